@@ -1,0 +1,32 @@
+// Shared helpers for the tests: where the real meshes are, and skipping cleanly without them.
+#pragma once
+#include <string>
+#include <sys/stat.h>
+
+#include <catch2/catch.hpp>
+
+namespace meshsal_test {
+
+inline std::string data_dir() { return MESHSAL_DATA_DIR; }
+
+inline bool file_exists(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// Path of a mesh in ../shared/data/meshes, or "" (with a warning) if it is absent.
+inline std::string shared_mesh(const std::string& name) {
+  std::string path = data_dir() + "/" + name;
+  if (!file_exists(path)) {
+    WARN("skipped: " << path << " is absent (../shared/data/meshes not found)");
+    return "";
+  }
+  return path;
+}
+
+}  // namespace meshsal_test
+
+// Skip the rest of the test case (Catch2 v2 has no SKIP) when a shared mesh is missing.
+#define MESHSAL_REQUIRE_MESH(var, name)               \
+  const std::string var = meshsal_test::shared_mesh(name); \
+  if (var.empty()) return
