@@ -1,0 +1,25 @@
+// meshsal CLI: each sub-command lives in its own cmd_*.cpp and registers itself here,
+// so adding a command never touches main.cpp.
+#pragma once
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace meshsal_cli {
+
+// Runs the chosen command after parsing; returns the process exit code.
+using RunFn = std::function<int()>;
+
+struct Command {
+  const char* name;
+  const char* help;    // one line for `meshsal --help`
+  int order;           // position in `meshsal --help`
+  // Adds the command's options to `sub` (bound to state the returned RunFn captures).
+  std::function<RunFn(CLI::App& sub)> setup;
+};
+
+// Called from a static initialiser in each cmd_*.cpp: `static bool reg = register_command({...});`
+bool register_command(Command command);
+
+}  // namespace meshsal_cli
