@@ -1,0 +1,17 @@
+// meshsal: the per-format parsers behind load_mesh. Each one parses bytes already in
+// memory; `name` is only used to prefix error messages ("NAME: line 7: ...").
+// They fan-triangulate polygons and reject faces with fewer than 3 vertices; the caller
+// (load_mesh) runs validate_mesh on the result.
+#pragma once
+#include <string>
+
+#include "meshsal/mesh.h"
+#include "meshsal/mesh_io.h"
+
+namespace meshsal {
+
+Mesh load_obj_text(const std::string& text, const std::string& name);
+Mesh load_off_text(const std::string& text, const std::string& name);
+Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexProperties* properties);
+
+}  // namespace meshsal
