@@ -1,29 +1,36 @@
-// meshsal: the neighbour sweep, GPU twin of gaussian_filter() (gaussian_filter.cpp).
-// One thread per mesh point in cell order (neighbouring threads walk the same cells, so
-// lanes stay in step). For each of the (2r+1)^2 rows of cells around the point's cell the
-// cells x-r..x+r are one contiguous range of the sorted points. Every candidate adds its
-// weight to all sigma sums at once, masked by each sigma's strict cutoff d < 2 s (no
-// branches: lavapipe runs 8 lanes of AVX2 and divergent branches cost more than math).
-// Included by sweep8.comp (the eight default sigmas with the exp trick of the CPU) and
-// sweepn.comp (any sigmas, one exp each).
+// meshsal: the neighbour sweep, GPU twin of gaussian_filter() / sweep_point()
+// (gaussian_filter.cpp), in double like the CPU so that near-ties in the local-maximum
+// test fall the same way. One thread per mesh point in cell order (neighbouring threads
+// walk the same cells, so lanes stay in step). Rows of cells are culled against the ball
+// as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
+// candidate adds its weight to all sigma sums at once, masked by each sigma's strict
+// cutoff d < 2 s (no branches: lavapipe runs 8 lanes of AVX2). Weights of a sigma half of
+// another are w(s) = w(2s)^4, as in the CPU's KernelPlan. The center-surround step
+// S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
+// Included by sweep8.comp (the default sigmas 12,10,8,6,5,4,3,2 eps, fixed plan) and
+// sweepn.comp (any plan of up to 16 sigmas).
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Sorted { vec4 sorted_pos[]; };  // xyz, value
+layout(std430, binding = 0) readonly buffer Sorted { dvec4 sorted_pos[]; };  // xyz, value
 layout(std430, binding = 1) readonly buffer SortedVertex { uint sorted_vertex[]; };
-layout(std430, binding = 2) readonly buffer SortedKey { uint sorted_key[]; };
+layout(std430, binding = 2) readonly buffer SortedKey { uint sorted_key[]; };  // unused here
 layout(std430, binding = 3) readonly buffer Start { uint starts[]; };
-// params[k] = (2 s_k)^2 (strict cutoff), params[16 + k] = 1 / (2 s_k^2)
-layout(std430, binding = 4) readonly buffer Params { float params[]; };
-layout(std430, binding = 5) writeonly buffer Filtered { float filtered[]; };  // [sigma][vertex]
-layout(std430, binding = 6) writeonly buffer Pairs { uint pairs[]; };         // per sorted point
+// The plan, largest sigma first: cut2 = (2 s)^2, coef = 1 / (2 s^2), parent = index of 2 s
+// or -1; output i is |G[out_a] - G[out_b]|, or G[out_a] when out_b < 0.
+layout(std430, binding = 4) readonly buffer Params {
+  double cut2[16]; double coef[16]; int parent[16]; int out_a[16]; int out_b[16];
+};
+layout(std430, binding = 5) writeonly buffer Out { double result[]; };  // [output][vertex]
+layout(std430, binding = 6) writeonly buffer Pairs { uint pairs[]; };   // per sorted point
 layout(push_constant) uniform Push {
   uint base; uint n;          // sorted points [base, n) of this submission
   uint nx; uint ny; uint nz;  // grid size in cells
-  int r;                      // cell range to visit on each side
-  uint stride;                // vertex count (row length of `filtered`)
-  uint nsig;                  // number of sigmas (8 in sweep8)
-  float inv_2eps2;            // 1 / (2 eps^2), sweep8 only
-  float radius2;              // (sweep radius)^2: pairs counted strictly inside
-  float ox; float oy; float oz; float inv_h;  // grid origin and 1 / cell side
+  int pad0;
+  uint stride;                // vertex count (row length of `result`)
+  uint nsig;                  // sigmas in the plan (8 in sweep8)
+  uint nout;                  // outputs
+  uint pad;
+  double h;                   // cell side
+  double radius2;             // largest cutoff^2: pairs are counted strictly inside
 } pc;
 
 #ifdef FAST8
@@ -32,82 +39,103 @@ layout(push_constant) uniform Push {
 #define NS 16
 #endif
 
+// exp(-x) for x >= 0, the same reduction and degree-12 Taylor polynomial as exp_neg()
+// in simd_exp.h (GLSL has no double exp).
+double exp_neg(double x) {
+  x = min(x, 700.0LF);
+  precise double y = -x;
+  double n = roundEven(y * 1.4426950408889634074LF);
+  precise double r = y - n * 6.93147180369123816490e-01LF;
+  r = r - n * 1.90821492927058770002e-10LF;
+  precise double p = 1.0LF / 479001600.0LF;
+  p = p * r + 1.0LF / 39916800.0LF;
+  p = p * r + 1.0LF / 3628800.0LF;
+  p = p * r + 1.0LF / 362880.0LF;
+  p = p * r + 1.0LF / 40320.0LF;
+  p = p * r + 1.0LF / 5040.0LF;
+  p = p * r + 1.0LF / 720.0LF;
+  p = p * r + 1.0LF / 120.0LF;
+  p = p * r + 1.0LF / 24.0LF;
+  p = p * r + 1.0LF / 6.0LF;
+  p = p * r + 0.5LF;
+  p = p * r + 1.0LF;
+  p = p * r + 1.0LF;
+  return ldexp(p, int(n));
+}
+
 void main() {
   uint i = pc.base + gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
-  vec4 p = sorted_pos[i];
-  uint key = sorted_key[i];
-  int cx = int(key % pc.nx);
-  int cy = int((key / pc.nx) % pc.ny);
-  int cz = int(key / (pc.nx * pc.ny));
-  float cut2[NS];
-  float sw[NS];
-  float sh[NS];
+  dvec4 p = sorted_pos[i];
+  double sw[NS];
+  double sh[NS];
   for (int k = 0; k < NS; ++k) {
-    cut2[k] = (k < int(pc.nsig)) ? params[k] : -1.0;
-    sw[k] = 0.0;
-    sh[k] = 0.0;
+    sw[k] = 0.0LF;
+    sh[k] = 0.0LF;
   }
-#ifndef FAST8
-  float coef[NS];
-  for (int k = 0; k < NS; ++k) coef[k] = (k < int(pc.nsig)) ? params[16 + k] : 0.0;
-#endif
   uint count = 0u;
-  // Rows and x ranges are culled against the ball around p (as the CPU sweep does), with
-  // a small margin: culling only skips work, the strict cutoffs below decide.
-  float h = 1.0 / pc.inv_h;
-  vec3 o = vec3(pc.ox, pc.oy, pc.oz);
-  float R2 = pc.radius2 * 1.0001 + 1e-6 * h * h;
-  int x0 = max(cx - pc.r, 0);
-  int x1 = min(cx + pc.r, int(pc.nx) - 1);
-  for (int z = max(cz - pc.r, 0); z <= min(cz + pc.r, int(pc.nz) - 1); ++z) {
-    float zl = o.z + float(z) * h;
-    float gz = max(0.0, max(zl - p.z, p.z - (zl + h)));
-    for (int y = max(cy - pc.r, 0); y <= min(cy + pc.r, int(pc.ny) - 1); ++y) {
-      float yl = o.y + float(y) * h;
-      float gy = max(0.0, max(yl - p.y, p.y - (yl + h)));
-      float rest = R2 - gy * gy - gz * gz;
-      if (rest <= 0.0) continue;
-      float xr = sqrt(rest);
-      int xa = clamp(int(floor((p.x - xr - o.x) * pc.inv_h)), x0, x1);
-      int xb = clamp(int(floor((p.x + xr - o.x) * pc.inv_h)), x0, x1);
+  const double c = pc.h;
+  const double R2 = pc.radius2;
+  // Cell ranges exactly as sweep_point() derives them (same doubles, same floors).
+  const double R = sqrt(R2);
+  int zlo = max(0, int(floor((p.z - R) / c))), zhi = min(int(pc.nz) - 1, int(floor((p.z + R) / c)));
+  int ylo = max(0, int(floor((p.y - R) / c))), yhi = min(int(pc.ny) - 1, int(floor((p.y + R) / c)));
+  for (int z = zlo; z <= zhi; ++z) {
+    double dz = max(0.0LF, max(double(z) * c - p.z, p.z - double(z + 1) * c));
+    for (int y = ylo; y <= yhi; ++y) {
+      double dy = max(0.0LF, max(double(y) * c - p.y, p.y - double(y + 1) * c));
+      double rest = R2 - dz * dz - dy * dy;
+      if (rest <= 0.0LF) continue;
+      double hx = sqrt(rest);
+      int xa = max(0, int(floor((p.x - hx) / c)));
+      int xb = min(int(pc.nx) - 1, int(floor((p.x + hx) / c)));
       uint row = pc.nx * (uint(y) + pc.ny * uint(z));
       uint j0 = starts[row + uint(xa)];
       uint j1 = starts[row + uint(xb) + 1u];
       for (uint j = j0; j < j1; ++j) {
-        vec4 q = sorted_pos[j];
-        vec3 d = q.xyz - p.xyz;
-        float d2 = dot(d, d);
-        count += (d2 < pc.radius2) ? 1u : 0u;
+        dvec4 q = sorted_pos[j];
+        precise dvec3 d = q.xyz - p.xyz;
+        precise double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+        count += (d2 < R2) ? 1u : 0u;
 #ifdef FAST8
-        // sigmas 2,3,4,5,6,8,10,12 eps: three exps, the rest by squaring (as the CPU does)
-        float t = d2 * pc.inv_2eps2;
-        float e12 = exp(-t * (1.0 / 144.0));
-        float e10 = exp(-t * (1.0 / 100.0));
-        float e8 = exp(-t * (1.0 / 64.0));
-        float e6 = e12 * e12; e6 *= e6;
-        float e3 = e6 * e6; e3 *= e3;
-        float e5 = e10 * e10; e5 *= e5;
-        float e4 = e8 * e8; e4 *= e4;
-        float e2 = e4 * e4; e2 *= e2;
-        float e[8] = float[8](e2, e3, e4, e5, e6, e8, e10, e12);
+        double w[8];
+        w[0] = exp_neg(d2 * coef[0]);  // 12 eps
+        w[1] = exp_neg(d2 * coef[1]);  // 10 eps
+        w[2] = exp_neg(d2 * coef[2]);  // 8 eps
+        double t;
+        t = w[0] * w[0]; w[3] = t * t;  // 6 eps
+        t = w[1] * w[1]; w[4] = t * t;  // 5 eps
+        t = w[2] * w[2]; w[5] = t * t;  // 4 eps
+        t = w[3] * w[3]; w[6] = t * t;  // 3 eps
+        t = w[5] * w[5]; w[7] = t * t;  // 2 eps
         for (int k = 0; k < 8; ++k) {
-          float w = (d2 < cut2[k]) ? e[k] : 0.0;
-          sw[k] += w;
-          sh[k] += w * q.w;
+          double m = (d2 < cut2[k]) ? w[k] : 0.0LF;
+          sh[k] += m * q.w;
+          sw[k] += m;
         }
 #else
+        double w[NS];
         for (int k = 0; k < NS; ++k) {
-          float w = (d2 < cut2[k]) ? exp(-d2 * coef[k]) : 0.0;
-          sw[k] += w;
-          sh[k] += w * q.w;
+          if (k >= int(pc.nsig)) break;
+          if (parent[k] < 0) {
+            w[k] = exp_neg(d2 * coef[k]);
+          } else {
+            double t = w[parent[k]] * w[parent[k]];
+            w[k] = t * t;
+          }
+          double m = (d2 < cut2[k]) ? w[k] : 0.0LF;
+          sh[k] += m * q.w;
+          sw[k] += m;
         }
 #endif
       }
     }
   }
   uint v = sorted_vertex[i];
-  for (int k = 0; k < NS; ++k)
-    if (k < int(pc.nsig)) filtered[uint(k) * pc.stride + v] = (sw[k] > 0.0) ? sh[k] / sw[k] : 0.0;
+  for (int o = 0; o < int(pc.nout); ++o) {
+    int a = out_a[o], b = out_b[o];
+    double ga = sh[a] / sw[a];  // sw >= 1: the point itself has weight 1
+    result[uint(o) * pc.stride + v] = (b < 0) ? ga : abs(ga - sh[b] / sw[b]);
+  }
   pairs[i] = count;
 }

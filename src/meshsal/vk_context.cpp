@@ -248,7 +248,12 @@ Context::Context(int device_index, bool want_validation) {
     qi.queueFamilyIndex = queue_family;
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
+    VkPhysicalDeviceFeatures supported{}, enabled{};
+    vkGetPhysicalDeviceFeatures(physical, &supported);
+    has_float64 = supported.shaderFloat64 == VK_TRUE;
+    enabled.shaderFloat64 = supported.shaderFloat64;
     VkDeviceCreateInfo di{};
+    di.pEnabledFeatures = &enabled;
     di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     di.queueCreateInfoCount = 1;
     di.pQueueCreateInfos = &qi;

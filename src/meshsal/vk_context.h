@@ -58,6 +58,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory{};
   DeviceInfo info;
   bool validation = false;
+  bool has_float64 = false;  // shaderFloat64, enabled when the device has it
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   std::map<const void*, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
 
