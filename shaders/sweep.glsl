@@ -1,7 +1,7 @@
 // meshsal: the neighbour sweep, GPU twin of gaussian_filter() / sweep_point()
 // (gaussian_filter.cpp), in double like the CPU so that near-ties in the local-maximum
-// test fall the same way. One thread per mesh point in cell order (neighbouring threads
-// walk the same cells, so lanes stay in step). Rows of cells are culled against the ball
+// test fall the same way. One subgroup per mesh point, in cell order: like the CPU's
+// 4-wide loop, the lanes split the candidates of a row between them. Rows of cells are culled against the ball
 // as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
 // candidate adds its weight to all sigma sums at once, masked by each sigma's strict
 // cutoff d < 2 s (no branches: lavapipe runs 8 lanes of AVX2). Weights of a sigma half of
@@ -9,6 +9,8 @@
 // S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
 // Included by sweep8.comp (the default sigmas 12,10,8,6,5,4,3,2 eps, fixed plan) and
 // sweepn.comp (any plan of up to 16 sigmas).
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Sorted { dvec4 sorted_pos[]; };  // xyz, value
 layout(std430, binding = 1) readonly buffer SortedVertex { uint sorted_vertex[]; };
@@ -44,7 +46,9 @@ layout(push_constant) uniform Push {
 double exp_neg(double x) {
   x = min(x, 700.0LF);
   precise double y = -x;
-  double n = roundEven(y * 1.4426950408889634074LF);
+  const double shifter = 6755399441055744.0LF;  // 1.5 * 2^52: rounds to an integer
+  precise double t = y * 1.4426950408889634074LF + shifter;
+  precise double n = t - shifter;
   precise double r = y - n * 6.93147180369123816490e-01LF;
   r = r - n * 1.90821492927058770002e-10LF;
   precise double p = 1.0LF / 479001600.0LF;
@@ -60,12 +64,18 @@ double exp_neg(double x) {
   p = p * r + 0.5LF;
   p = p * r + 1.0LF;
   p = p * r + 1.0LF;
-  return ldexp(p, int(n));
+  // times 2^n by adding n to the exponent bits (no ldexp: it does not vectorise)
+  uvec2 bits = unpackDouble2x32(p);
+  bits.y += uint(int(n)) << 20;
+  return packDouble2x32(bits);
 }
 
 void main() {
-  uint i = pc.base + gl_GlobalInvocationID.x;
+  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
+  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
+  uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
   if (i >= pc.n) return;
+  const uint lane = gl_SubgroupInvocationID, lanes = gl_SubgroupSize;
   dvec4 p = sorted_pos[i];
   double sw[NS];
   double sh[NS];
@@ -92,7 +102,7 @@ void main() {
       uint row = pc.nx * (uint(y) + pc.ny * uint(z));
       uint j0 = starts[row + uint(xa)];
       uint j1 = starts[row + uint(xb) + 1u];
-      for (uint j = j0; j < j1; ++j) {
+      for (uint j = j0 + lane; j < j1; j += lanes) {
         dvec4 q = sorted_pos[j];
         precise dvec3 d = q.xyz - p.xyz;
         precise double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
@@ -131,6 +141,13 @@ void main() {
       }
     }
   }
+  for (int k = 0; k < NS; ++k) {
+    if (k >= int(pc.nsig)) break;
+    sw[k] = subgroupAdd(sw[k]);
+    sh[k] = subgroupAdd(sh[k]);
+  }
+  count = subgroupAdd(count);
+  if (!subgroupElect()) return;
   uint v = sorted_vertex[i];
   for (int o = 0; o < int(pc.nout); ++o) {
     int a = out_a[o], b = out_b[o];

@@ -193,7 +193,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
         vkCmdFillBuffer(cmd, m.result.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], kLocal);
+      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], kLocal / ctx.subgroup_size);
     });
     if (options.progress) options.progress(stage, double(cuts[s + 1]) / std::max<uint32_t>(m.np, 1));
   }
@@ -291,6 +291,10 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (!ctx.has_float64)
     throw Error("Vulkan device '" + ctx.info.name + "' has no 64-bit floats in shaders "
                 "(shaderFloat64), which the GPU path needs to match the CPU path");
+  if (!ctx.subgroup_arithmetic || ctx.subgroup_size == 0 || ctx.subgroup_size > kLocal ||
+      kLocal % ctx.subgroup_size != 0)
+    throw Error("Vulkan device '" + ctx.info.name + "' lacks subgroup arithmetic in compute "
+                "shaders (subgroup size " + std::to_string(ctx.subgroup_size) + "), which the GPU path needs");
   BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];

@@ -248,6 +248,17 @@ Context::Context(int device_index, bool want_validation) {
     qi.queueFamilyIndex = queue_family;
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
+    if (properties.apiVersion >= VK_API_VERSION_1_1) {
+      VkPhysicalDeviceSubgroupProperties sub{};
+      sub.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+      VkPhysicalDeviceProperties2 p2{};
+      p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+      p2.pNext = &sub;
+      vkGetPhysicalDeviceProperties2(physical, &p2);
+      subgroup_size = sub.subgroupSize;
+      subgroup_arithmetic = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                            (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
+    }
     VkPhysicalDeviceFeatures supported{}, enabled{};
     vkGetPhysicalDeviceFeatures(physical, &supported);
     has_float64 = supported.shaderFloat64 == VK_TRUE;

@@ -59,6 +59,8 @@ class Context {
   DeviceInfo info;
   bool validation = false;
   bool has_float64 = false;  // shaderFloat64, enabled when the device has it
+  uint32_t subgroup_size = 0;        // lanes per subgroup (Vulkan 1.1)
+  bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   std::map<const void*, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
 
