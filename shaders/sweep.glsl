@@ -71,47 +71,66 @@ double exp_neg(double x) {
 }
 
 void main() {
+#ifdef UNIFORM_ROWS
+  // One thread per point; the subgroup walks the rows around the bounding box of its
+  // points, so every lane reads the same candidate (one load, no gather) and the loop
+  // bounds agree. Made for lavapipe, where a lane is an AVX2 slot.
+  uint i = min(pc.base + gl_GlobalInvocationID.x, pc.n - 1u);
+  const bool live = pc.base + gl_GlobalInvocationID.x < pc.n;
+  dvec4 p = sorted_pos[i];
+  const dvec3 lo = subgroupMin(p.xyz), hi = subgroupMax(p.xyz);
+  const uint first = 0u, step = 1u;
+#else
   // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
   // loads, and every lane loops the same rows), then the sums are reduced across lanes.
   uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
   if (i >= pc.n) return;
-  const uint lane = gl_SubgroupInvocationID, lanes = gl_SubgroupSize;
   dvec4 p = sorted_pos[i];
+  const dvec3 lo = p.xyz, hi = p.xyz;
+  const uint first = gl_SubgroupInvocationID, step = gl_SubgroupSize;
+#endif
   double sw[NS];
   double sh[NS];
   for (int k = 0; k < NS; ++k) {
     sw[k] = 0.0LF;
     sh[k] = 0.0LF;
   }
+#ifdef FAST8
+  // The plan in registers (reading the buffer in the inner loop costs a load per use).
+  double ct[8];
+  for (int k = 0; k < 8; ++k) ct[k] = cut2[k];
+  const double cf0 = coef[0], cf1 = coef[1], cf2 = coef[2];
+#endif
   uint count = 0u;
   const double c = pc.h;
   const double R2 = pc.radius2;
-  // Cell ranges exactly as sweep_point() derives them (same doubles, same floors).
+  // Cell ranges as sweep_point() derives them (same doubles, same floors) around the box
+  // [lo, hi] (a single point, or the subgroup's points).
   const double R = sqrt(R2);
-  int zlo = max(0, int(floor((p.z - R) / c))), zhi = min(int(pc.nz) - 1, int(floor((p.z + R) / c)));
-  int ylo = max(0, int(floor((p.y - R) / c))), yhi = min(int(pc.ny) - 1, int(floor((p.y + R) / c)));
+  int zlo = max(0, int(floor((lo.z - R) / c))), zhi = min(int(pc.nz) - 1, int(floor((hi.z + R) / c)));
+  int ylo = max(0, int(floor((lo.y - R) / c))), yhi = min(int(pc.ny) - 1, int(floor((hi.y + R) / c)));
   for (int z = zlo; z <= zhi; ++z) {
-    double dz = max(0.0LF, max(double(z) * c - p.z, p.z - double(z + 1) * c));
+    double dz = max(0.0LF, max(double(z) * c - hi.z, lo.z - double(z + 1) * c));
     for (int y = ylo; y <= yhi; ++y) {
-      double dy = max(0.0LF, max(double(y) * c - p.y, p.y - double(y + 1) * c));
+      double dy = max(0.0LF, max(double(y) * c - hi.y, lo.y - double(y + 1) * c));
       double rest = R2 - dz * dz - dy * dy;
       if (rest <= 0.0LF) continue;
       double hx = sqrt(rest);
-      int xa = max(0, int(floor((p.x - hx) / c)));
-      int xb = min(int(pc.nx) - 1, int(floor((p.x + hx) / c)));
+      int xa = max(0, int(floor((lo.x - hx) / c)));
+      int xb = min(int(pc.nx) - 1, int(floor((hi.x + hx) / c)));
       uint row = pc.nx * (uint(y) + pc.ny * uint(z));
       uint j0 = starts[row + uint(xa)];
       uint j1 = starts[row + uint(xb) + 1u];
-      for (uint j = j0 + lane; j < j1; j += lanes) {
+      for (uint j = j0 + first; j < j1; j += step) {
         dvec4 q = sorted_pos[j];
         precise dvec3 d = q.xyz - p.xyz;
         precise double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
         count += (d2 < R2) ? 1u : 0u;
 #ifdef FAST8
         double w[8];
-        w[0] = exp_neg(d2 * coef[0]);  // 12 eps
-        w[1] = exp_neg(d2 * coef[1]);  // 10 eps
-        w[2] = exp_neg(d2 * coef[2]);  // 8 eps
+        w[0] = exp_neg(d2 * cf0);  // 12 eps
+        w[1] = exp_neg(d2 * cf1);  // 10 eps
+        w[2] = exp_neg(d2 * cf2);  // 8 eps
         double t;
         t = w[0] * w[0]; w[3] = t * t;  // 6 eps
         t = w[1] * w[1]; w[4] = t * t;  // 5 eps
@@ -119,7 +138,7 @@ void main() {
         t = w[3] * w[3]; w[6] = t * t;  // 3 eps
         t = w[5] * w[5]; w[7] = t * t;  // 2 eps
         for (int k = 0; k < 8; ++k) {
-          double m = (d2 < cut2[k]) ? w[k] : 0.0LF;
+          double m = (d2 < ct[k]) ? w[k] : 0.0LF;
           sh[k] += m * q.w;
           sw[k] += m;
         }
@@ -141,18 +160,24 @@ void main() {
       }
     }
   }
-  for (int k = 0; k < NS; ++k) {
-    if (k >= int(pc.nsig)) break;
+#ifdef UNIFORM_ROWS
+  if (!live) return;
+#else
+  for (int k = 0; k < NS; ++k) {  // no early exit: constant indices keep the sums in registers
     sw[k] = subgroupAdd(sw[k]);
     sh[k] = subgroupAdd(sh[k]);
   }
   count = subgroupAdd(count);
   if (!subgroupElect()) return;
+#endif
+  // The averages go to their own array: indexing the accumulators with out_a/out_b would
+  // force them out of registers into memory for the whole loop.
+  double g[NS];
+  for (int k = 0; k < NS; ++k) g[k] = sh[k] / max(sw[k], 1.0LF);  // sw >= 1 (the point itself)
   uint v = sorted_vertex[i];
   for (int o = 0; o < int(pc.nout); ++o) {
     int a = out_a[o], b = out_b[o];
-    double ga = sh[a] / sw[a];  // sw >= 1: the point itself has weight 1
-    result[uint(o) * pc.stride + v] = (b < 0) ? ga : abs(ga - sh[b] / sw[b]);
+    result[uint(o) * pc.stride + v] = (b < 0) ? g[a] : abs(g[a] - g[b]);
   }
   pairs[i] = count;
 }

@@ -25,7 +25,9 @@
 #include "mbar_comp.h"
 #include "selftest_comp.h"
 #include "sweep8_comp.h"
+#include "sweep8_rows_comp.h"
 #include "sweepn_comp.h"
+#include "sweepn_rows_comp.h"
 
 namespace meshsal {
 
@@ -177,8 +179,14 @@ std::vector<uint32_t> plan_slices(const GridPlan& g, const std::vector<uint32_t>
 uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const GridPlan& g,
                const std::vector<uint32_t>& starts, bool fast8, uint32_t nsig, uint32_t nout,
                double radius, const SaliencyOptions& options, const char* stage) {
-  auto& k = fast8 ? KERNEL(ctx, spv_sweep8_comp, 7, SweepPush)
-                  : KERNEL(ctx, spv_sweepn_comp, 7, SweepPush);
+  // CPU devices (lavapipe) run a thread per point over rows shared by the subgroup; GPUs
+  // give each point a subgroup (see sweep.glsl).
+  const bool rows = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  auto& k = rows ? (fast8 ? KERNEL(ctx, spv_sweep8_rows_comp, 7, SweepPush)
+                          : KERNEL(ctx, spv_sweepn_rows_comp, 7, SweepPush))
+                 : (fast8 ? KERNEL(ctx, spv_sweep8_comp, 7, SweepPush)
+                          : KERNEL(ctx, spv_sweepn_comp, 7, SweepPush));
+  const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.sorted_key, &m.starts,
                                       &m.params, &m.result, &m.pairs});
   // Candidate pairs per submission: about a second on lavapipe, well under a second on a
@@ -193,7 +201,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
         vkCmdFillBuffer(cmd, m.result.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], kLocal / ctx.subgroup_size);
+      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], per_group);
     });
     if (options.progress) options.progress(stage, double(cuts[s + 1]) / std::max<uint32_t>(m.np, 1));
   }
