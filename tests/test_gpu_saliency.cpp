@@ -102,3 +102,15 @@ TEST_CASE("gpu saliency matches the cpu on real meshes", "[gpu]") {
     compare(load_mesh(path), SaliencyOptions{}, name);
   }
 }
+
+TEST_CASE("gpu saliency refuses a mesh too large for the device with a clear message", "[gpu]") {
+  vk::Context ctx(-1, true);
+  ctx.properties.limits.maxStorageBufferRange = 1 << 16;  // 64 KiB per buffer
+  Mesh m = make_bumpy_sphere(4);                            // 2.6k vertices: 82 KiB of positions
+  CHECK_THROWS_WITH(compute_saliency_gpu(ctx, m, SaliencyOptions{}),
+                    Catch::Contains("mesh too large") && Catch::Contains("--backend cpu"));
+  ctx.info.device_local_bytes = 1 << 20;  // and a device with 1 MiB of memory
+  ctx.properties.limits.maxStorageBufferRange = 1u << 30;
+  CHECK_THROWS_WITH(compute_saliency_gpu(ctx, make_bumpy_sphere(5), SaliencyOptions{}),
+                    Catch::Contains("mesh too large") && Catch::Contains("MiB of device memory"));
+}

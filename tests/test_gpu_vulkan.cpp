@@ -55,3 +55,28 @@ TEST_CASE("a vulkan device index out of range is a clear error", "[gpu]") {
     CHECK(std::string(e.what()).find("no Vulkan device 999") != std::string::npos);
   }
 }
+
+TEST_CASE("a submission past the fence time-out is an error, not a hang", "[gpu]") {
+  const uint64_t before = vk::validation_message_count();
+  {
+    vk::Context ctx(-1, true);
+    ctx.fence_timeout_s = 1e-9;  // nothing real finishes in a nanosecond
+    std::vector<float> x(size_t(1) << 22, 1.0f);
+    bool timed_out = false;
+    try {
+      gpu_selftest(ctx, x, 2.0f);
+    } catch (const Error& e) {
+      timed_out = std::string(e.what()).find("did not finish within") != std::string::npos;
+    }
+    CHECK(timed_out);
+    CHECK(ctx.has_abandoned_work());
+  }  // the context waits for the abandoned work, then frees everything cleanly
+  CHECK(vk::validation_message_count() == before);
+}
+
+TEST_CASE("buffers larger than maxStorageBufferRange are refused clearly", "[gpu]") {
+  vk::Context ctx(-1, true);
+  ctx.properties.limits.maxStorageBufferRange = 1 << 16;  // pretend a small device
+  std::vector<float> x(1 << 15, 1.0f);                     // 128 KiB
+  CHECK_THROWS_WITH(gpu_selftest(ctx, x, 1.0f), Catch::Contains("maxStorageBufferRange"));
+}

@@ -85,9 +85,17 @@ Buffer::~Buffer() { release(); }
 
 void Buffer::release() {
   if (!ctx_) return;
-  if (mapped_) vkUnmapMemory(ctx_->device, memory_);
-  if (buffer_) vkDestroyBuffer(ctx_->device, buffer_, nullptr);
-  if (memory_) vkFreeMemory(ctx_->device, memory_, nullptr);
+  VkDevice device = ctx_->device;
+  VkBuffer buffer = buffer_;
+  VkDeviceMemory memory = memory_;
+  auto destroy = [device, buffer, memory] {
+    if (buffer) vkDestroyBuffer(device, buffer, nullptr);
+    if (memory) vkFreeMemory(device, memory, nullptr);  // also unmaps
+  };
+  if (ctx_->has_abandoned_work())
+    ctx_->deferred_destroy.push_back(destroy);  // a timed-out submission may still use it
+  else
+    destroy();
   ctx_ = nullptr;
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
@@ -120,9 +128,17 @@ struct Staging {
     if (!mapped) throw Error("no host-visible Vulkan memory for staging");
   }
   ~Staging() {
-    if (mapped) vkUnmapMemory(ctx.device, memory);
-    vkDestroyBuffer(ctx.device, buffer, nullptr);
-    vkFreeMemory(ctx.device, memory, nullptr);
+    VkDevice device = ctx.device;
+    VkBuffer b = buffer;
+    VkDeviceMemory mem = memory;
+    auto destroy = [device, b, mem] {
+      vkDestroyBuffer(device, b, nullptr);
+      vkFreeMemory(device, mem, nullptr);  // also unmaps
+    };
+    if (ctx.has_abandoned_work())
+      ctx.deferred_destroy.push_back(destroy);
+    else
+      destroy();
   }
 };
 

@@ -78,7 +78,15 @@ DescriptorPool::DescriptorPool(Context& ctx, uint32_t max_sets, uint32_t max_buf
   check(vkCreateDescriptorPool(ctx.device, &pi, nullptr, &pool_), "vkCreateDescriptorPool");
 }
 
-DescriptorPool::~DescriptorPool() { vkDestroyDescriptorPool(ctx_.device, pool_, nullptr); }
+DescriptorPool::~DescriptorPool() {
+  VkDevice device = ctx_.device;
+  VkDescriptorPool pool = pool_;
+  auto destroy = [device, pool] { vkDestroyDescriptorPool(device, pool, nullptr); };
+  if (ctx_.has_abandoned_work())
+    ctx_.deferred_destroy.push_back(destroy);  // a timed-out submission may still use it
+  else
+    destroy();
+}
 
 VkDescriptorSet DescriptorPool::bind(const Kernel& kernel, const std::vector<const Buffer*>& buffers) {
   if (buffers.size() != kernel.bindings)
@@ -117,7 +125,7 @@ void submit(Context& ctx, const char* what, const std::function<void(VkCommandBu
   VkFence fence = VK_NULL_HANDLE;
   auto cleanup = [&] {
     if (fence) vkDestroyFence(ctx.device, fence, nullptr);
-    vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+    if (cmd) vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
   };
   try {
     VkCommandBufferBeginInfo bi{};
@@ -137,15 +145,17 @@ void submit(Context& ctx, const char* what, const std::function<void(VkCommandBu
     uint64_t timeout_ns = static_cast<uint64_t>(ctx.fence_timeout_s * 1e9);
     VkResult r = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, timeout_ns);
     if (r == VK_TIMEOUT) {
-      // The work may still be running: the device cannot be used safely any more, and
-      // we must not free what it uses. Leak the command buffer and fence deliberately.
+      // The work may still be running: keep what it uses until the context goes.
+      ctx.abandoned_fences.push_back(fence);
+      ctx.abandoned_commands.push_back(cmd);
+      fence = VK_NULL_HANDLE;
+      cmd = VK_NULL_HANDLE;
       throw Error(std::string("Vulkan stage '") + what + "' did not finish within " +
-                  std::to_string(static_cast<int>(ctx.fence_timeout_s)) + " s on '" +
-                  ctx.info.name + "'");
+                  std::to_string(ctx.fence_timeout_s) + " s on '" + ctx.info.name + "'");
     }
     check(r, (std::string("waiting for ") + what).c_str());
   } catch (...) {
-    if (vkGetFenceStatus(ctx.device, fence) != VK_NOT_READY) cleanup();
+    cleanup();  // a fence that was submitted is either signalled or abandoned by now
     throw;
   }
   cleanup();

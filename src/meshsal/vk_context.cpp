@@ -288,7 +288,12 @@ Context::Context(int device_index, bool want_validation) {
 Context::~Context() {
   if (device) {
     vkDeviceWaitIdle(device);
+    for (auto& destroy : deferred_destroy) destroy();
     kernel_cache.clear();
+    for (VkFence f : abandoned_fences) vkDestroyFence(device, f, nullptr);
+    if (!abandoned_commands.empty())
+      vkFreeCommandBuffers(device, command_pool, uint32_t(abandoned_commands.size()),
+                           abandoned_commands.data());
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
     vkDestroyDevice(device, nullptr);
   }

@@ -2,6 +2,7 @@
 // queue, optional Khronos validation that counts its messages (the tests fail on any).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -63,6 +64,13 @@ class Context {
   bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   std::map<const void*, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
+  // Fences and command buffers of submissions that timed out: the device may still use
+  // them, so they are freed only after the final vkDeviceWaitIdle.
+  std::vector<VkFence> abandoned_fences;
+  std::vector<VkCommandBuffer> abandoned_commands;
+  // While work is abandoned, buffers and descriptor pools are destroyed here, later.
+  std::vector<std::function<void()>> deferred_destroy;
+  bool has_abandoned_work() const { return !abandoned_fences.empty(); }
 
  private:
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
