@@ -38,7 +38,31 @@ layout(push_constant) uniform Push {
 #ifdef FAST8
 #define NS 8
 #else
-#define NS 16
+// sweepn is specialised per plan: the sigma count and each sigma's parent are constants
+// to the driver, so the loops unroll to exactly the plan's exps and squarings.
+layout(constant_id = 0) const int NS = 16;
+layout(constant_id = 1) const int P0 = -1;
+layout(constant_id = 2) const int P1 = -1;
+layout(constant_id = 3) const int P2 = -1;
+layout(constant_id = 4) const int P3 = -1;
+layout(constant_id = 5) const int P4 = -1;
+layout(constant_id = 6) const int P5 = -1;
+layout(constant_id = 7) const int P6 = -1;
+layout(constant_id = 8) const int P7 = -1;
+layout(constant_id = 9) const int P8 = -1;
+layout(constant_id = 10) const int P9 = -1;
+layout(constant_id = 11) const int P10 = -1;
+layout(constant_id = 12) const int P11 = -1;
+layout(constant_id = 13) const int P12 = -1;
+layout(constant_id = 14) const int P13 = -1;
+layout(constant_id = 15) const int P14 = -1;
+layout(constant_id = 16) const int P15 = -1;
+// k is a constant once the loops unroll, so this folds to the plan's parent.
+int parent_of(int k) {
+  return k == 0 ? P0 : k == 1 ? P1 : k == 2 ? P2 : k == 3 ? P3 : k == 4 ? P4 : k == 5 ? P5 :
+         k == 6 ? P6 : k == 7 ? P7 : k == 8 ? P8 : k == 9 ? P9 : k == 10 ? P10 :
+         k == 11 ? P11 : k == 12 ? P12 : k == 13 ? P13 : k == 14 ? P14 : P15;
+}
 #endif
 
 // exp(-x) for x >= 0, the same reduction and degree-12 Taylor polynomial as exp_neg()
@@ -95,11 +119,16 @@ void main() {
     sw[k] = 0.0LF;
     sh[k] = 0.0LF;
   }
-#ifdef FAST8
   // The plan in registers (reading the buffer in the inner loop costs a load per use).
-  double ct[8];
-  for (int k = 0; k < 8; ++k) ct[k] = cut2[k];
+  // Every array here is indexed by constants only once loops unroll, so it stays in
+  // registers (a dynamic index would move it to memory).
+  double ct[NS];
+  for (int k = 0; k < NS; ++k) ct[k] = cut2[k];
+#ifdef FAST8
   const double cf0 = coef[0], cf1 = coef[1], cf2 = coef[2];
+#else
+  double cf[NS];
+  for (int k = 0; k < NS; ++k) cf[k] = coef[k];
 #endif
   uint count = 0u;
   const double c = pc.h;
@@ -145,14 +174,13 @@ void main() {
 #else
         double w[NS];
         for (int k = 0; k < NS; ++k) {
-          if (k >= int(pc.nsig)) break;
-          if (parent[k] < 0) {
-            w[k] = exp_neg(d2 * coef[k]);
+          if (parent_of(k) < 0) {
+            w[k] = exp_neg(d2 * cf[k]);
           } else {
-            double t = w[parent[k]] * w[parent[k]];
+            double t = w[parent_of(k)] * w[parent_of(k)];
             w[k] = t * t;
           }
-          double m = (d2 < cut2[k]) ? w[k] : 0.0LF;
+          double m = (d2 < ct[k]) ? w[k] : 0.0LF;
           sh[k] += m * q.w;
           sw[k] += m;
         }

@@ -1,4 +1,4 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// meshsal: the sweep for up to 16 arbitrary sigmas, one exp each (see sweep.glsl).
+// meshsal: the sweep for any plan of up to 16 sigmas, specialised per plan (see sweep.glsl).
 #include "sweep.glsl"

@@ -19,6 +19,7 @@
 #include "grid_key_comp.h"
 #include "grid_scan_comp.h"
 #include "grid_scatter_comp.h"
+#include "grid_sort_cells_comp.h"
 #include "local_max_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
@@ -114,10 +115,12 @@ GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
   auto& k_key = KERNEL(ctx, spv_grid_key_comp, 5, GridKeyPush);
   auto& k_scan = KERNEL(ctx, spv_grid_scan_comp, 2, RangePush);
   auto& k_scatter = KERNEL(ctx, spv_grid_scatter_comp, 7, RangePush);
+  auto& k_order = KERNEL(ctx, spv_grid_sort_cells_comp, 3, RangePush);
   VkDescriptorSet s_key = pool.bind(k_key, {&m.pos, &m.flags, &m.cell_count, &m.key, &m.slot});
   VkDescriptorSet s_scan = pool.bind(k_scan, {&m.cell_count, &m.starts});
   VkDescriptorSet s_scatter = pool.bind(
       k_scatter, {&m.pos, &m.key, &m.slot, &m.starts, &m.sorted_pos, &m.sorted_vertex, &m.sorted_key});
+  VkDescriptorSet s_order = pool.bind(k_order, {&m.starts, &m.sorted_pos, &m.sorted_vertex});
   vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, m.cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier(cmd);
@@ -133,6 +136,9 @@ GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
     vk::barrier(cmd);
     RangePush cp{0, 0};
     vk::dispatch(ctx, cmd, k_scatter, s_scatter, &cp, 0, m.nv, kLocal);
+    vk::barrier(cmd);
+    RangePush op{0, 0};
+    vk::dispatch(ctx, cmd, k_order, s_order, &op, 0, cells, kLocal);
     vk::barrier(cmd);
   });
   starts_out->resize(size_t(cells) + 1);
@@ -177,15 +183,25 @@ std::vector<uint32_t> plan_slices(const GridPlan& g, const std::vector<uint32_t>
 // One neighbour sweep over the grid (gaussian_filter): result[o][v] as the plan in
 // m.params says; returns the number of pairs strictly inside `radius` (v itself included).
 uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const GridPlan& g,
-               const std::vector<uint32_t>& starts, bool fast8, uint32_t nsig, uint32_t nout,
+               const std::vector<uint32_t>& starts, bool fast8, const SweepParams& params,
+               uint32_t nsig, uint32_t nout,
                double radius, const SaliencyOptions& options, const char* stage) {
   // CPU devices (lavapipe) run a thread per point over rows shared by the subgroup; GPUs
   // give each point a subgroup (see sweep.glsl).
   const bool rows = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  auto& k = rows ? (fast8 ? KERNEL(ctx, spv_sweep8_rows_comp, 7, SweepPush)
-                          : KERNEL(ctx, spv_sweepn_rows_comp, 7, SweepPush))
-                 : (fast8 ? KERNEL(ctx, spv_sweep8_comp, 7, SweepPush)
-                          : KERNEL(ctx, spv_sweepn_comp, 7, SweepPush));
+  // sweep8 has the default plan built in; sweepn is specialised to this plan (count and
+  // parents), so the driver unrolls it to exactly the exps it needs.
+  std::vector<int32_t> spec;
+  if (!fast8) {
+    spec.push_back(int32_t(nsig));
+    for (uint32_t e = 0; e < 16; ++e) spec.push_back(e < nsig ? params.parent[e] : -1);
+  }
+  auto& k = fast8 ? (rows ? KERNEL(ctx, spv_sweep8_rows_comp, 7, SweepPush)
+                          : KERNEL(ctx, spv_sweep8_comp, 7, SweepPush))
+                  : (rows ? vk::cached_kernel(ctx, spv_sweepn_rows_comp, sizeof(spv_sweepn_rows_comp),
+                                              7, sizeof(SweepPush), "sweepn_rows", spec)
+                          : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 7,
+                                              sizeof(SweepPush), "sweepn", spec));
   const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.sorted_key, &m.starts,
                                       &m.params, &m.result, &m.pairs});
@@ -362,7 +378,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
-  res.pairs = sweep(ctx, pool, m, g, starts, fast8, static_cast<uint32_t>(units.size()),
+  res.pairs = sweep(ctx, pool, m, g, starts, fast8, params, static_cast<uint32_t>(units.size()),
                     static_cast<uint32_t>(nsc), radius, options, "gaussian sweep");
   res.stages.push_back({"gaussian sweep", seconds_since(t0)});
 
@@ -428,7 +444,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     sp.out_b[0] = -1;
     m.params.upload(&sp, sizeof sp);
     GridPlan g2 = build_grid(ctx, pool, m, extent, 6 * eps, &starts);
-    sweep(ctx, pool, m, g2, starts, false, 1, 1, 6 * eps, options, "smoothing");
+    sweep(ctx, pool, m, g2, starts, false, sp, 1, 1, 6 * eps, options, "smoothing");
     res.smoothed.resize(nv);
     m.result.download(res.smoothed.data(), nv * 8);
     for (size_t v = 0; v < nv; ++v)

@@ -11,7 +11,7 @@
 namespace meshsal::vk {
 
 Kernel::Kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, uint32_t n_bindings,
-               uint32_t push, const char* kernel_name)
+               uint32_t push, const char* kernel_name, const std::vector<int32_t>& specialization)
     : name(kernel_name), bindings(n_bindings), push_bytes(push), ctx_(ctx) {
   if (push > ctx.properties.limits.maxPushConstantsSize)
     throw Error(std::string("shader ") + name + " needs more push constants than the device has");
@@ -50,6 +50,12 @@ Kernel::Kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, uint32_t
     ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     ci.stage.module = module;
     ci.stage.pName = "main";
+    std::vector<VkSpecializationMapEntry> entries(specialization.size());
+    for (size_t i = 0; i < entries.size(); ++i)
+      entries[i] = {uint32_t(i), uint32_t(i * sizeof(int32_t)), sizeof(int32_t)};
+    VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(),
+                              specialization.size() * sizeof(int32_t), specialization.data()};
+    if (!specialization.empty()) ci.stage.pSpecializationInfo = &spec;
     ci.layout = layout;
     check(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
           (std::string("creating compute pipeline ") + name).c_str());
@@ -181,9 +187,13 @@ void dispatch(Context& ctx, VkCommandBuffer cmd, const Kernel& kernel, VkDescrip
 }
 
 Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
-                      uint32_t bindings, uint32_t push_bytes, const char* name) {
-  auto& slot = ctx.kernel_cache[spirv];
-  if (!slot) slot = std::make_unique<Kernel>(ctx, spirv, spirv_bytes, bindings, push_bytes, name);
+                      uint32_t bindings, uint32_t push_bytes, const char* name,
+                      const std::vector<int32_t>& specialization) {
+  std::string key = std::to_string(reinterpret_cast<uintptr_t>(spirv));
+  for (int32_t v : specialization) key += "," + std::to_string(v);
+  auto& slot = ctx.kernel_cache[key];
+  if (!slot)
+    slot = std::make_unique<Kernel>(ctx, spirv, spirv_bytes, bindings, push_bytes, name, specialization);
   return *slot;
 }
 

@@ -12,10 +12,12 @@
 namespace meshsal::vk {
 
 // A compute shader whose bindings 0..n-1 are all storage buffers, plus push constants.
+// `specialization` gives the int specialization constants 0..n-1 (the driver compiles
+// the shader with them as constants).
 class Kernel {
  public:
   Kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, uint32_t bindings,
-         uint32_t push_bytes, const char* name);
+         uint32_t push_bytes, const char* name, const std::vector<int32_t>& specialization = {});
   ~Kernel();
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;
@@ -61,7 +63,8 @@ void dispatch(Context& ctx, VkCommandBuffer cmd, const Kernel& kernel, VkDescrip
 // The kernel for this SPIR-V on this context, created on first use and kept with the
 // context (pipeline creation and the driver's first compile are paid once).
 Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
-                      uint32_t bindings, uint32_t push_bytes, const char* name);
+                      uint32_t bindings, uint32_t push_bytes, const char* name,
+                      const std::vector<int32_t>& specialization = {});
 
 // Makes shader writes (and transfers) before it visible to shader reads/writes after it.
 void barrier(VkCommandBuffer cmd);

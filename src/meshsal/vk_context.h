@@ -63,7 +63,7 @@ class Context {
   uint32_t subgroup_size = 0;        // lanes per subgroup (Vulkan 1.1)
   bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
-  std::map<const void*, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
+  std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only after the final vkDeviceWaitIdle.
   std::vector<VkFence> abandoned_fences;
