@@ -11,6 +11,8 @@
 #include <string>
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
+
 #include "meshsal/error.h"
 #include "meshsal/mesh_io.h"
 
