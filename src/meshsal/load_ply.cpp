@@ -75,6 +75,9 @@ Header parse_header(const std::string& bytes, const std::string& name) {
   std::string_view line;
   if (!scan.next_line(line) || strip_comment(line) != "ply")
     throw Error(name + ": not a PLY file (it does not start with 'ply')");
+  // A header cut short (truncated file) would otherwise be reported as its last odd line.
+  if (scan.text.find("end_header") == std::string_view::npos)
+    throw Error(name + ": PLY header has no end_header line (garbled or truncated file)");
   Header h;
   bool have_format = false, done = false;
   while (!done && scan.next_line(line)) {
