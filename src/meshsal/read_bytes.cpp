@@ -34,11 +34,13 @@ std::string read_raw(const std::string& path) {
     ::close(fd);
     fail(path, "is a folder, not a mesh file");
   }
+  // Regular files: read straight into a buffer of the right size; others (pipes) grow.
   std::string data;
-  if (S_ISREG(st.st_mode)) data.reserve(static_cast<size_t>(st.st_size));
-  char buf[1 << 16];
+  size_t size = 0;
+  if (S_ISREG(st.st_mode)) data.resize(static_cast<size_t>(st.st_size));
   for (;;) {
-    ssize_t n = ::read(fd, buf, sizeof buf);
+    if (size == data.size()) data.resize(std::max<size_t>(size * 2, 1 << 16));
+    ssize_t n = ::read(fd, &data[size], data.size() - size);
     if (n < 0) {
       if (errno == EINTR) continue;
       int e = errno;
@@ -46,8 +48,9 @@ std::string read_raw(const std::string& path) {
       fail(path, std::string("cannot read: ") + std::strerror(e));
     }
     if (n == 0) break;
-    data.append(buf, static_cast<size_t>(n));
+    size += static_cast<size_t>(n);
   }
+  data.resize(size);
   ::close(fd);
   return data;
 }
