@@ -10,7 +10,7 @@
 
 namespace meshsal {
 
-Mesh load_obj_text(const std::string& text, const std::string& name) {
+Mesh load_obj_text(std::string_view text, const std::string& name) {
   Mesh mesh;
   TextScan scan(text);
   std::string_view line;

@@ -67,7 +67,7 @@ struct Header {
   size_t body_line = 0;  // lines before the body (for ascii error messages)
 };
 
-Header parse_header(const std::string& bytes, const std::string& name) {
+Header parse_header(std::string_view bytes, const std::string& name) {
   TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)));
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": header line " + std::to_string(scan.line_no) + ": " + problem);
@@ -166,7 +166,7 @@ struct Plan {
 };
 
 struct Reader {
-  const std::string& bytes;
+  std::string_view bytes;
   const std::string& name;
   Mesh& mesh;
   uint64_t vertex_count = UINT64_MAX;  // known once the vertex element is seen
@@ -363,7 +363,7 @@ struct Reader {
 
 }  // namespace
 
-Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexProperties* properties) {
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
   Header h = parse_header(bytes, name);
   const bool ascii = h.format == Format::Ascii;
   const size_t body_size = bytes.size() - h.body;
@@ -445,7 +445,7 @@ Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexPro
 
   size_t end;
   if (ascii) {
-    TextScan scan{std::string_view(bytes)};
+    TextScan scan{bytes};
     scan.pos = h.body;
     scan.line_no = h.body_line;
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
