@@ -47,6 +47,9 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
 // Dispatches on options.backend (Auto: GPU when a discrete/integrated one exists, else CPU).
 SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options);
 
+// The distinct sigmas (in eps units) the filter needs for these scales: each k and 2k, sorted.
+std::vector<double> filter_sigma_units(const std::vector<double>& scales);
+
 // Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, junk).
 std::vector<double> parse_scales(const std::string& text);
 

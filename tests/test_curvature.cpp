@@ -1,0 +1,50 @@
+// Taubin mean curvature against analytic values (SPEC 1).
+#include <cmath>
+
+#include "meshsal/adjacency.h"
+#include "meshsal/curvature.h"
+#include "meshsal/synthetic.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+TEST_CASE("curvature of a sphere is -1/r within 2%", "[curvature]") {
+  const double r = 2.5;
+  Mesh sphere = make_sphere(r, 5);  // 10242 vertices
+  auto H = mean_curvature(sphere, build_adjacency(sphere), vertex_normals(sphere));
+  double worst = 0;
+  for (double h : H) worst = std::max(worst, std::fabs(h * r + 1.0));  // outward normals: H = -1/r
+  INFO("worst relative error " << worst);
+  CHECK(worst < 0.02);
+}
+
+TEST_CASE("curvature of a plane is zero", "[curvature]") {
+  Mesh plane = make_plane(3.0, 40);
+  auto H = mean_curvature(plane, build_adjacency(plane), vertex_normals(plane));
+  for (double h : H) REQUIRE(std::fabs(h) < 1e-12);
+}
+
+TEST_CASE("curvature skips unreferenced vertices and degenerate triangles", "[curvature]") {
+  Mesh m = make_sphere(1.0, 3);
+  const size_t extra = m.vertex_count();
+  m.positions.insert(m.positions.end(), {5.f, 5.f, 5.f});  // unreferenced
+  m.triangles.insert(m.triangles.end(), {0, 0, 1});        // zero-area triangle
+  auto adj = build_adjacency(m);
+  auto H = mean_curvature(m, adj, vertex_normals(m));
+  CHECK(H[extra] == 0.0);
+  CHECK(std::fabs(H[0] + 1.0) < 0.05);
+  // The zero-area triangle adds no self edge and no area.
+  for (uint32_t e = adj.offsets[0]; e < adj.offsets[1]; ++e) CHECK(adj.neighbors[e] != 0);
+}
+
+TEST_CASE("adjacency sums the area of both triangles on an edge", "[curvature]") {
+  // Two right triangles of area 0.5 sharing the diagonal 0-2 of the unit square.
+  Mesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  m.triangles = {0, 1, 2, 0, 2, 3};
+  Adjacency adj = build_adjacency(m);
+  REQUIRE(adj.offsets[1] - adj.offsets[0] == 3);  // 0: neighbours 1, 2, 3
+  CHECK(adj.neighbors[adj.offsets[0] + 1] == 2);
+  CHECK(adj.edge_area[adj.offsets[0] + 1] == Approx(1.0));
+  CHECK(adj.edge_area[adj.offsets[0]] == Approx(0.5));
+}
