@@ -119,7 +119,7 @@ TEST_CASE("OBJ forms: v/vt, v//vn, v/vt/vn, negative indices, polygons, comments
   check_small(m);
 }
 
-TEST_CASE("OBJ round of case-insensitive extensions and gzip", "[io]") {
+TEST_CASE("case-insensitive extensions and gzipped OBJ", "[io]") {
   TempDir dir;
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0.5 0.25\nf 1 2 3 4\nf 2 5 3\n";
   check_small(meshsal::load_mesh(dir.write("upper.OBJ", obj)));
