@@ -17,7 +17,8 @@ void tell(const SaliencyOptions& options, const std::string& line) {
 }
 
 // Auto: a discrete or integrated GPU when there is one (or the --device given), else the
-// CPU; any failure on the GPU falls back to the CPU with a one-line notice.
+// CPU; no Vulkan at all, or any failure on the GPU, falls back to the CPU with a one-line
+// notice.
 SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
   SaliencyOptions gpu = options;
   if (gpu.device < 0) {
@@ -28,11 +29,10 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
       tell(options, std::string("auto: no Vulkan (") + e.what() + "), using the CPU path");
       return compute_saliency_cpu(mesh, options);
     }
+    // Only lavapipe (or no device): the CPU path is the plain choice, not a fallback, so
+    // no notice (backend_name says "cpu").
     gpu.device = vk::pick_hardware_gpu(devices);
-    if (gpu.device < 0) {
-      tell(options, "auto: no discrete or integrated GPU, using the CPU path");
-      return compute_saliency_cpu(mesh, options);
-    }
+    if (gpu.device < 0) return compute_saliency_cpu(mesh, options);
   }
   try {
     return compute_saliency_gpu(mesh, gpu);
