@@ -1,0 +1,504 @@
+// meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
+// One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
+// the next collapse: a binary heap with lazy invalidation (simplify_mesh) and a full scan
+// (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
+#include "meshsal/simplify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "meshsal/error.h"
+#include "meshsal/quadric.h"
+
+namespace meshsal {
+
+size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) {
+  if (input_faces == 0) throw Error("simplify: the mesh has no non-degenerate triangles");
+  size_t target = options.target_faces;
+  if (target == 0) {
+    const double r = options.ratio;
+    if (r == 0)
+      throw Error("simplify: give a target face count (> 0) or a ratio in (0, 1]");
+    if (!(r > 0 && r <= 1))
+      throw Error("simplify: ratio must be in (0, 1], got " + std::to_string(r));
+    target = static_cast<size_t>(std::llround(r * static_cast<double>(input_faces)));
+    if (target == 0)
+      throw Error("simplify: ratio " + std::to_string(r) + " leaves no faces of " +
+                  std::to_string(input_faces));
+  }
+  if (target > input_faces)
+    throw Error("simplify: target of " + std::to_string(target) +
+                " faces is larger than the mesh (" + std::to_string(input_faces) + " faces)");
+  return target;
+}
+
+namespace {
+
+struct Entry {
+  double cost;
+  uint32_t a, b;    // a < b; a survives
+  uint32_t va, vb;  // versions of a and b when the cost was computed
+};
+
+// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers.
+inline bool key_less(const Entry& x, const Entry& y) {
+  if (x.cost != y.cost) return x.cost < y.cost;
+  if (x.a != y.a) return x.a < y.a;
+  return x.b < y.b;
+}
+struct HeapGreater {
+  bool operator()(const Entry& x, const Entry& y) const { return key_less(y, x); }
+};
+
+enum class Check { Ok, NotEdge, Refused };
+
+inline void cross3(const double u[3], const double v[3], double o[3]) {
+  o[0] = u[1] * v[2] - u[2] * v[1];
+  o[1] = u[2] * v[0] - u[0] * v[2];
+  o[2] = u[0] * v[1] - u[1] * v[0];
+}
+inline double dot3(const double u[3], const double v[3]) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+struct State {
+  size_t nv = 0;
+  double center[3] = {0, 0, 0};
+  double scale = 1;                          // internal = (p - center) * scale
+  std::vector<double> pos;                   // 3 per vertex, internal coordinates
+  std::vector<Quadric> quad;
+  std::vector<uint32_t> tri;                 // 3 per triangle
+  std::vector<uint8_t> tri_alive;
+  std::vector<std::vector<uint32_t>> vtris;  // triangles of each vertex (may hold dead ones)
+  std::vector<uint8_t> alive;
+  std::vector<uint8_t> border;               // on an open border or a non-manifold edge
+  std::vector<uint32_t> version;
+  size_t faces = 0;
+  size_t target = 0;
+  double min_cos = 0;
+  size_t refused = 0;
+  std::vector<Collapse> sequence;
+  bool record = false;
+  // scratch
+  std::vector<uint32_t> na, nb, opp;
+  std::vector<uint64_t> pairs_a;
+
+  const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
+
+  double cost(uint32_t a, uint32_t b, double out[3]) const {
+    return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
+  }
+
+  void init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+            std::vector<Entry>* edges);
+  Check check(uint32_t a, uint32_t b, const double np[3]);
+  // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
+  bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
+  void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
+  Mesh output(SimplifyReport* report) const;
+};
+
+void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+                 std::vector<Entry>* edges) {
+  nv = mesh.vertex_count();
+  const size_t nt_in = mesh.triangle_count();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= nv)
+      throw Error("simplify: triangle " + std::to_string(i / 3) + " has a vertex index out of range");
+  if (w) {
+    if (w->size() != nv)
+      throw Error("simplify: " + std::to_string(w->size()) + " vertex weights for a mesh of " +
+                  std::to_string(nv) + " vertices");
+    for (double x : *w)
+      if (!(x >= 0) || !std::isfinite(x))
+        throw Error("simplify: vertex weights must be finite and >= 0");
+  }
+  // Triangles with a repeated index are not part of the surface: drop them.
+  tri.reserve(3 * nt_in);
+  for (size_t t = 0; t < nt_in; ++t) {
+    const uint32_t* v = &mesh.triangles[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    tri.insert(tri.end(), v, v + 3);
+  }
+  const size_t nt = tri.size() / 3;
+  faces = nt;
+  target = resolve_target_faces(options, nt);
+  min_cos = options.min_normal_cos;
+  record = options.record_collapses;
+
+  // Internal coordinates: centred on the bounding box and scaled to unit diagonal, so that
+  // the relative tolerances below mean the same on every mesh.
+  alive.assign(nv, 0);
+  for (uint32_t v : tri) alive[v] = 1;
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t v = 0; v < nv; ++v) {
+    if (!alive[v]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.positions[3 * v + k];
+      if (!std::isfinite(x)) throw Error("simplify: vertex " + std::to_string(v) + " is not finite");
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (lo[k] + hi[k]);
+  scale = diag > 0 ? 1 / diag : 1;
+  pos.resize(3 * nv);
+  for (size_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) pos[3 * v + k] = (mesh.positions[3 * v + k] - center[k]) * scale;
+
+  tri_alive.assign(nt, 1);
+  std::vector<uint32_t> deg(nv, 0);
+  for (uint32_t v : tri) ++deg[v];
+  vtris.resize(nv);
+  for (size_t v = 0; v < nv; ++v) vtris[v].reserve(deg[v]);
+  quad.assign(nv, Quadric{});
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &tri[3 * t];
+    const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
+    for (int k = 0; k < 3; ++k) {
+      vtris[v[k]].push_back(uint32_t(t));
+      quad[v[k]] += q;
+    }
+  }
+
+  // Edges: sort (min, max, triangle) keys; a run of one is a border edge, more than two a
+  // non-manifold edge.
+  struct EdgeRef { uint64_t key; uint32_t t; uint32_t corner; };
+  std::vector<EdgeRef> refs(3 * nt);
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = tri[3 * t + k], b = tri[3 * t + (k + 1) % 3];
+      refs[3 * t + k] = {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), uint32_t(t), uint32_t(k)};
+    }
+  std::sort(refs.begin(), refs.end(), [](const EdgeRef& x, const EdgeRef& y) {
+    return x.key != y.key ? x.key < y.key : x.t < y.t;
+  });
+  border.assign(nv, 0);
+  std::vector<uint32_t> unique_edges_a, unique_edges_b;
+  for (size_t i = 0; i < refs.size();) {
+    size_t j = i;
+    while (j < refs.size() && refs[j].key == refs[i].key) ++j;
+    const uint32_t a = uint32_t(refs[i].key >> 32), b = uint32_t(refs[i].key & 0xffffffffu);
+    if (j - i == 1) {
+      const uint32_t t = refs[i].t, k = refs[i].corner;
+      const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+      quad[v0] += q;
+      quad[v1] += q;
+      border[a] = border[b] = 1;
+    } else if (j - i > 2) {
+      border[a] = border[b] = 1;
+    }
+    unique_edges_a.push_back(a);
+    unique_edges_b.push_back(b);
+    i = j;
+  }
+  if (w)
+    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[v];
+  version.assign(nv, 0);
+
+  if (edges) {
+    edges->resize(unique_edges_a.size());
+    double tmp[3];
+    for (size_t i = 0; i < unique_edges_a.size(); ++i) {
+      const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+      (*edges)[i] = {cost(a, b, tmp), a, b, 0, 0};
+    }
+  }
+}
+
+bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
+  const uint32_t* v = &tri[3 * size_t(t)];
+  const double* q[3] = {p(v[0]), p(v[1]), p(v[2])};
+  const double* r[3] = {q[0], q[1], q[2]};
+  for (int k = 0; k < 3; ++k)
+    if (v[k] == moved) r[k] = np;
+  double e1[3], e2[3], n_old[3], n_new[3];
+  for (int k = 0; k < 3; ++k) { e1[k] = q[1][k] - q[0][k]; e2[k] = q[2][k] - q[0][k]; }
+  cross3(e1, e2, n_old);
+  double l2max = 0;
+  for (int k = 0; k < 3; ++k) { e1[k] = r[1][k] - r[0][k]; e2[k] = r[2][k] - r[0][k]; }
+  cross3(e1, e2, n_new);
+  for (int i = 0; i < 3; ++i) {
+    const double* x = r[i];
+    const double* y = r[(i + 1) % 3];
+    const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    l2max = std::max(l2max, dot3(d, d));
+  }
+  const double len_new = std::sqrt(dot3(n_new, n_new));
+  // Degenerate: twice the area below 1e-6 of the longest edge squared (a needle or cap
+  // thinner than about a micro-radian), or no area at all.
+  if (!(len_new > 1e-6 * l2max)) return true;
+  const double len_old = std::sqrt(dot3(n_old, n_old));
+  if (len_old > 0 && dot3(n_old, n_new) <= min_cos * len_old * len_new) return true;
+  return false;
+}
+
+Check State::check(uint32_t a, uint32_t b, const double np[3]) {
+  // Triangles on the edge and the vertices opposite it.
+  opp.clear();
+  for (uint32_t t : vtris[a]) {
+    if (!tri_alive[t]) continue;
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == b || v[1] == b || v[2] == b) opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+  }
+  const size_t k = opp.size();
+  if (k == 0) return Check::NotEdge;
+  if (k > 2) return Check::Refused;                 // non-manifold edge
+  if (k > faces - target) return Check::Refused;    // would overshoot the target
+  if (k == 2 && (opp[0] == opp[1] || (border[a] && border[b]))) return Check::Refused;
+
+  // Link condition on vertices: the common neighbours of a and b are exactly the opposites.
+  na.clear();
+  nb.clear();
+  pairs_a.clear();
+  for (uint32_t t : vtris[a]) {
+    if (!tri_alive[t]) continue;
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == b || v[1] == b || v[2] == b) continue;
+    uint32_t x = 0, y = 0;
+    int n = 0;
+    for (int i = 0; i < 3; ++i)
+      if (v[i] != a) { na.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
+    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
+  }
+  for (uint32_t t : vtris[b]) {
+    if (!tri_alive[t]) continue;
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) continue;
+    uint32_t x = 0, y = 0;
+    int n = 0;
+    for (int i = 0; i < 3; ++i)
+      if (v[i] != b) { nb.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
+    // A triangle of b that would coincide with one of a after the collapse (e.g. the
+    // tetrahedron): refuse.
+    const uint64_t key = (uint64_t(std::min(x, y)) << 32) | std::max(x, y);
+    for (uint64_t pa : pairs_a)
+      if (pa == key) return Check::Refused;
+  }
+  for (uint32_t o : opp) { na.push_back(o); nb.push_back(o); }
+  std::sort(na.begin(), na.end());
+  na.erase(std::unique(na.begin(), na.end()), na.end());
+  std::sort(nb.begin(), nb.end());
+  nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  size_t common = 0;
+  for (size_t i = 0, j = 0; i < na.size() && j < nb.size();) {
+    if (na[i] < nb[j]) ++i;
+    else if (nb[j] < na[i]) ++j;
+    else { ++common; ++i; ++j; }
+  }
+  if (common != k) return Check::Refused;
+
+  // Flips, fold-overs and degenerate triangles among those that remain.
+  for (uint32_t t : vtris[a]) {
+    if (!tri_alive[t]) continue;
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == b || v[1] == b || v[2] == b) continue;
+    if (bad_triangle(t, a, np)) return Check::Refused;
+  }
+  for (uint32_t t : vtris[b]) {
+    if (!tri_alive[t]) continue;
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) continue;
+    if (bad_triangle(t, b, np)) return Check::Refused;
+  }
+  return Check::Ok;
+}
+
+void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
+  for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
+  quad[a] += quad[b];
+  border[a] = border[a] | border[b];
+  for (uint32_t t : vtris[b]) {
+    if (!tri_alive[t]) continue;
+    uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) {
+      tri_alive[t] = 0;
+      --faces;
+    } else {
+      for (int k = 0; k < 3; ++k)
+        if (v[k] == b) v[k] = a;
+      vtris[a].push_back(t);
+    }
+  }
+  std::vector<uint32_t>& la = vtris[a];
+  la.erase(std::remove_if(la.begin(), la.end(), [&](uint32_t t) { return !tri_alive[t]; }),
+           la.end());
+  std::vector<uint32_t>().swap(vtris[b]);
+  alive[b] = 0;
+  ++version[a];
+  ++version[b];
+  if (record) sequence.push_back({a, b, c});
+}
+
+Mesh State::output(SimplifyReport* report) const {
+  std::vector<uint32_t> remap(nv, UINT32_MAX);
+  Mesh out;
+  std::vector<uint32_t> origin;
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) remap[tri[3 * t + k]] = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (remap[v] == UINT32_MAX) continue;
+    remap[v] = uint32_t(origin.size());
+    origin.push_back(uint32_t(v));
+    for (int k = 0; k < 3; ++k)
+      out.positions.push_back(float(pos[3 * v + k] / scale + center[k]));
+  }
+  out.triangles.reserve(3 * faces);
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
+  if (report) {
+    report->input_faces = tri_alive.size();
+    report->target_faces = target;
+    report->output_faces = out.triangle_count();
+    report->output_vertices = out.vertex_count();
+    report->reached = report->output_faces == target;
+    report->note.clear();
+    if (!report->reached) {
+      bool any_border = false;
+      for (size_t v = 0; v < nv && !any_border; ++v) any_border = alive[v] && border[v];
+      if (!any_border && faces == target + 1)
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: a closed manifold mesh has an even face "
+                       "count; stopped at " + std::to_string(faces);
+      else
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: no further collapse keeps the mesh manifold "
+                       "and unfolded; stopped at " + std::to_string(faces);
+    }
+    report->refused = refused;
+    report->sequence = sequence;
+    report->collapses = tri_alive.size() - faces;  // overwritten by the callers
+    report->vertex_origin = std::move(origin);
+  }
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                   const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  std::vector<Entry> heap;
+  s.init(mesh, options, vertex_weights, &heap);
+  std::make_heap(heap.begin(), heap.end(), HeapGreater{});
+  // Edges refused for reasons that depend on their neighbourhood wait here, listed at both
+  // ends, and go back into the heap when a collapse changes the 1-ring of either end.
+  std::vector<std::vector<Entry>> waiting(s.nv);
+  std::vector<uint32_t> stamp(s.nv, UINT32_MAX);
+  std::vector<uint32_t> ring;
+  size_t collapses = 0;
+  double np[3];
+  while (s.faces > s.target && !heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), HeapGreater{});
+    const Entry e = heap.back();
+    heap.pop_back();
+    if (!s.alive[e.a] || !s.alive[e.b] || s.version[e.a] != e.va || s.version[e.b] != e.vb)
+      continue;  // stale
+    s.cost(e.a, e.b, np);
+    const Check c = s.check(e.a, e.b, np);
+    if (c == Check::NotEdge) continue;
+    if (c == Check::Refused) {
+      ++s.refused;
+      waiting[e.a].push_back(e);
+      waiting[e.b].push_back(e);
+      continue;
+    }
+    s.collapse(e.a, e.b, np, e.cost);
+    ++collapses;
+    const uint32_t a = e.a;
+    std::vector<Entry>().swap(waiting[e.b]);
+    // New costs for the edges of the moved vertex; re-examine waiting edges around it.
+    ring.clear();
+    const uint32_t id = uint32_t(collapses);
+    stamp[a] = id;
+    for (uint32_t t : s.vtris[a]) {
+      const uint32_t* v = &s.tri[3 * size_t(t)];
+      for (int k = 0; k < 3; ++k)
+        if (stamp[v[k]] != id) { stamp[v[k]] = id; ring.push_back(v[k]); }
+    }
+    for (uint32_t x : ring) {
+      const uint32_t lo = std::min(a, x), hi = std::max(a, x);
+      double tmp[3];
+      heap.push_back({s.cost(lo, hi, tmp), lo, hi, s.version[lo], s.version[hi]});
+      std::push_heap(heap.begin(), heap.end(), HeapGreater{});
+    }
+    ring.push_back(a);
+    for (uint32_t w : ring) {
+      for (const Entry& q : waiting[w]) {
+        if (!s.alive[q.a] || !s.alive[q.b] || s.version[q.a] != q.va || s.version[q.b] != q.vb)
+          continue;
+        heap.push_back(q);
+        std::push_heap(heap.begin(), heap.end(), HeapGreater{});
+      }
+      waiting[w].clear();
+    }
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  s.init(mesh, options, vertex_weights, nullptr);
+  size_t collapses = 0;
+  std::vector<Entry> cand;
+  while (s.faces > s.target) {
+    cand.clear();
+    for (size_t t = 0; t < s.tri_alive.size(); ++t) {
+      if (!s.tri_alive[t]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
+        cand.push_back({0, std::min(x, y), std::max(x, y), 0, 0});
+      }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {
+      return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    cand.erase(std::unique(cand.begin(), cand.end(),
+                           [](const Entry& x, const Entry& y) { return x.a == y.a && x.b == y.b; }),
+               cand.end());
+    double tmp[3];
+    for (Entry& e : cand) e.cost = s.cost(e.a, e.b, tmp);
+    std::sort(cand.begin(), cand.end(), key_less);
+    bool done = false;
+    for (const Entry& e : cand) {
+      double np[3];
+      s.cost(e.a, e.b, np);
+      if (s.check(e.a, e.b, np) != Check::Ok) {
+        ++s.refused;
+        continue;
+      }
+      s.collapse(e.a, e.b, np, e.cost);
+      ++collapses;
+      done = true;
+      break;
+    }
+    if (!done) break;
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+}  // namespace meshsal
