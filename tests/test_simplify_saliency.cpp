@@ -39,7 +39,7 @@ TEST_CASE("simplify: saliency weights keep the unique feature of the bumpy spher
   double alpha = 0;
   const std::vector<double> w = saliency_weights(s.smoothed, s.is_point, {}, &alpha);
   CHECK(alpha > 0);
-  for (size_t faces : {size_t(1000), size_t(2000)}) {
+  for (size_t faces : {size_t(2000), size_t(4000)}) {
     SimplifyOptions o;
     o.target_faces = faces;
     const Mesh plain = simplify_mesh(m, o);

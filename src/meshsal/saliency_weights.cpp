@@ -7,6 +7,7 @@
 
 #include "meshsal/error.h"
 #include "meshsal/gaussian_filter.h"
+#include "meshsal/mesh_io.h"
 #include "meshsal/mesh_points.h"
 
 namespace meshsal {
@@ -37,6 +38,18 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
   const double eps = scale_unit(mesh, is_point, eps_frac);
   return gaussian_filter(mesh, is_point, saliency, {3 * eps}, threads)[0];
+}
+
+std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices) {
+  VertexProperties props;
+  const Mesh m = load_mesh(path, &props);
+  auto it = props.find("quality");
+  if (it == props.end())
+    throw Error("'" + path + "' has no per-vertex `quality` property (write it with `meshsal saliency`)");
+  if (m.vertex_count() != expected_vertices || it->second.size() != expected_vertices)
+    throw Error("saliency file '" + path + "' has " + std::to_string(m.vertex_count()) +
+                " vertices but the mesh has " + std::to_string(expected_vertices));
+  return std::vector<double>(it->second.begin(), it->second.end());
 }
 
 std::vector<double> saliency_weights(const std::vector<double>& smoothed,

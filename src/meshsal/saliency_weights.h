@@ -1,6 +1,8 @@
 // meshsal: the per-vertex quadric weights W of saliency-guided simplification (SPEC 2).
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "meshsal/mesh.h"
@@ -25,6 +27,11 @@ double percentile(const std::vector<double>& values, const std::vector<uint8_t>&
 // eps = eps_frac * bbox diagonal. For reusing a saliency PLY without recomputing it.
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     double eps_frac = 0.003, unsigned threads = 0);
+
+// Reads S back from a saliency PLY written by `meshsal saliency` (its `quality` vertex
+// property). Throws Error when the file has no quality property or its vertex count is not
+// `expected_vertices` (the saliency then belongs to another mesh).
+std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices);
 
 // W(v) = lambda * Sm(v) if Sm(v) >= alpha else Sm(v), with alpha the alpha_percentile of Sm
 // over the mesh points (is_point != 0); 0 for other vertices. `alpha_out` receives alpha.
