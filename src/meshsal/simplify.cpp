@@ -36,10 +36,12 @@ size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) 
 
 namespace {
 
+// 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
+// float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
 struct Entry {
-  double cost;
-  uint32_t a, b;    // a < b; a survives
-  uint32_t va, vb;  // versions of a and b when the cost was computed
+  float cost;
+  uint32_t a, b;   // a < b; a survives
+  uint32_t stamp;  // collapse count when the cost was computed
 };
 
 // Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers.
@@ -74,7 +76,7 @@ struct State {
   std::vector<std::vector<uint32_t>> vtris;  // triangles of each vertex (may hold dead ones)
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
-  std::vector<uint32_t> version;
+  std::vector<uint32_t> changed;             // collapse count when the vertex last moved
   size_t faces = 0;
   size_t target = 0;
   double min_cos = 0;
@@ -97,6 +99,11 @@ struct State {
   // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
   bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
   void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
+  // An entry is current while neither end has changed since its cost was computed.
+  bool current(const Entry& e) const {
+    return alive[e.a] && alive[e.b] && changed[e.a] <= e.stamp && changed[e.b] <= e.stamp;
+  }
+  size_t collapses = 0;
   Mesh output(SimplifyReport* report) const;
 };
 
@@ -199,14 +206,14 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   }
   if (w)
     for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[v];
-  version.assign(nv, 0);
+  changed.assign(nv, 0);
 
   if (edges) {
     edges->resize(unique_edges_a.size());
     double tmp[3];
     for (size_t i = 0; i < unique_edges_a.size(); ++i) {
       const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
-      (*edges)[i] = {cost(a, b, tmp), a, b, 0, 0};
+      (*edges)[i] = {float(cost(a, b, tmp)), a, b, 0};
     }
   }
 }
@@ -239,6 +246,11 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
 }
 
 Check State::check(uint32_t a, uint32_t b, const double np[3]) {
+  // Drop dead triangles from both lists first (they are only ever appended to).
+  for (uint32_t v : {a, b}) {
+    std::vector<uint32_t>& l = vtris[v];
+    l.erase(std::remove_if(l.begin(), l.end(), [&](uint32_t t) { return !tri_alive[t]; }), l.end());
+  }
   // Triangles on the edge and the vertices opposite it.
   opp.clear();
   for (uint32_t t : vtris[a]) {
@@ -330,8 +342,8 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
            la.end());
   std::vector<uint32_t>().swap(vtris[b]);
   alive[b] = 0;
-  ++version[a];
-  ++version[b];
+  ++collapses;
+  changed[a] = changed[b] = uint32_t(collapses);
   if (record) sequence.push_back({a, b, c});
 }
 
@@ -386,27 +398,88 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+// A 4-ary min-heap of entries under key_less: shallower than a binary heap, and each
+// node's children share a cache line.
+class EntryHeap {
+ public:
+  void assign(std::vector<Entry> items) {
+    h_ = std::move(items);
+    if (h_.size() > 1)
+      for (size_t i = (h_.size() - 2) / 4 + 1; i-- > 0;) down(i);
+  }
+  bool empty() const { return h_.empty(); }
+  size_t size() const { return h_.size(); }
+  void push(const Entry& e) {
+    h_.push_back(e);
+    up(h_.size() - 1);
+  }
+  Entry pop() {
+    const Entry top = h_[0];
+    h_[0] = h_.back();
+    h_.pop_back();
+    if (!h_.empty()) down(0);
+    return top;
+  }
+  // Drops the entries that fail `keep` and re-heapifies.
+  template <class F>
+  void filter(F keep) {
+    std::vector<Entry> k;
+    k.reserve(h_.size() / 2);
+    for (const Entry& e : h_)
+      if (keep(e)) k.push_back(e);
+    assign(std::move(k));
+  }
+
+ private:
+  void up(size_t i) {
+    const Entry e = h_[i];
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!key_less(e, h_[parent])) break;
+      h_[i] = h_[parent];
+      i = parent;
+    }
+    h_[i] = e;
+  }
+  void down(size_t i) {
+    const size_t n = h_.size();
+    const Entry e = h_[i];
+    for (;;) {
+      const size_t c = 4 * i + 1;
+      if (c >= n) break;
+      size_t best = c;
+      const size_t end = std::min(c + 4, n);
+      for (size_t j = c + 1; j < end; ++j)
+        if (key_less(h_[j], h_[best])) best = j;
+      if (!key_less(h_[best], e)) break;
+      h_[i] = h_[best];
+      i = best;
+    }
+    h_[i] = e;
+  }
+  std::vector<Entry> h_;
+};
+
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   State s;
-  std::vector<Entry> heap;
-  s.init(mesh, options, vertex_weights, &heap);
-  std::make_heap(heap.begin(), heap.end(), HeapGreater{});
+  std::vector<Entry> initial;
+  s.init(mesh, options, vertex_weights, &initial);
+  EntryHeap heap;
+  heap.assign(std::move(initial));
   // Edges refused for reasons that depend on their neighbourhood wait here, listed at both
   // ends, and go back into the heap when a collapse changes the 1-ring of either end.
   std::vector<std::vector<Entry>> waiting(s.nv);
   std::vector<uint32_t> stamp(s.nv, UINT32_MAX);
   std::vector<uint32_t> ring;
-  size_t collapses = 0;
   double np[3];
   while (s.faces > s.target && !heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), HeapGreater{});
-    const Entry e = heap.back();
-    heap.pop_back();
-    if (!s.alive[e.a] || !s.alive[e.b] || s.version[e.a] != e.va || s.version[e.b] != e.vb)
-      continue;  // stale
-    s.cost(e.a, e.b, np);
+    // Stale entries pile up (about six a collapse): sweep them out when they dominate.
+    if (heap.size() > 4 * s.faces + 4096) heap.filter([&](const Entry& e) { return s.current(e); });
+    const Entry e = heap.pop();
+    if (!s.current(e)) continue;
+    const double exact = s.cost(e.a, e.b, np);
     const Check c = s.check(e.a, e.b, np);
     if (c == Check::NotEdge) continue;
     if (c == Check::Refused) {
@@ -415,39 +488,32 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       waiting[e.b].push_back(e);
       continue;
     }
-    s.collapse(e.a, e.b, np, e.cost);
-    ++collapses;
-    const uint32_t a = e.a;
+    s.collapse(e.a, e.b, np, exact);
+    const uint32_t a = e.a, now = uint32_t(s.collapses);
     std::vector<Entry>().swap(waiting[e.b]);
     // New costs for the edges of the moved vertex; re-examine waiting edges around it.
     ring.clear();
-    const uint32_t id = uint32_t(collapses);
-    stamp[a] = id;
+    stamp[a] = now;
     for (uint32_t t : s.vtris[a]) {
       const uint32_t* v = &s.tri[3 * size_t(t)];
       for (int k = 0; k < 3; ++k)
-        if (stamp[v[k]] != id) { stamp[v[k]] = id; ring.push_back(v[k]); }
+        if (stamp[v[k]] != now) { stamp[v[k]] = now; ring.push_back(v[k]); }
     }
     for (uint32_t x : ring) {
       const uint32_t lo = std::min(a, x), hi = std::max(a, x);
       double tmp[3];
-      heap.push_back({s.cost(lo, hi, tmp), lo, hi, s.version[lo], s.version[hi]});
-      std::push_heap(heap.begin(), heap.end(), HeapGreater{});
+      heap.push({float(s.cost(lo, hi, tmp)), lo, hi, now});
     }
     ring.push_back(a);
     for (uint32_t w : ring) {
-      for (const Entry& q : waiting[w]) {
-        if (!s.alive[q.a] || !s.alive[q.b] || s.version[q.a] != q.va || s.version[q.b] != q.vb)
-          continue;
-        heap.push_back(q);
-        std::push_heap(heap.begin(), heap.end(), HeapGreater{});
-      }
+      for (const Entry& q : waiting[w])
+        if (s.current(q)) heap.push(q);
       waiting[w].clear();
     }
   }
   Mesh out = s.output(report);
   if (report) {
-    report->collapses = collapses;
+    report->collapses = s.collapses;
     report->seconds = seconds_since(t0);
   }
   return out;
@@ -458,7 +524,6 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
   const auto t0 = std::chrono::steady_clock::now();
   State s;
   s.init(mesh, options, vertex_weights, nullptr);
-  size_t collapses = 0;
   std::vector<Entry> cand;
   while (s.faces > s.target) {
     cand.clear();
@@ -466,7 +531,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
       if (!s.tri_alive[t]) continue;
       for (int k = 0; k < 3; ++k) {
         const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
-        cand.push_back({0, std::min(x, y), std::max(x, y), 0, 0});
+        cand.push_back({0, std::min(x, y), std::max(x, y), 0});
       }
     }
     std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {
@@ -476,18 +541,17 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                            [](const Entry& x, const Entry& y) { return x.a == y.a && x.b == y.b; }),
                cand.end());
     double tmp[3];
-    for (Entry& e : cand) e.cost = s.cost(e.a, e.b, tmp);
+    for (Entry& e : cand) e.cost = float(s.cost(e.a, e.b, tmp));
     std::sort(cand.begin(), cand.end(), key_less);
     bool done = false;
     for (const Entry& e : cand) {
       double np[3];
-      s.cost(e.a, e.b, np);
+      const double exact = s.cost(e.a, e.b, np);
       if (s.check(e.a, e.b, np) != Check::Ok) {
         ++s.refused;
         continue;
       }
-      s.collapse(e.a, e.b, np, e.cost);
-      ++collapses;
+      s.collapse(e.a, e.b, np, exact);
       done = true;
       break;
     }
@@ -495,7 +559,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
   }
   Mesh out = s.output(report);
   if (report) {
-    report->collapses = collapses;
+    report->collapses = s.collapses;
     report->seconds = seconds_since(t0);
   }
   return out;
