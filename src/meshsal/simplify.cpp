@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <string>
 
@@ -398,117 +400,202 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-// A 4-ary min-heap of entries under key_less: shallower than a binary heap, and each
-// node's children share a cache line.
-class EntryHeap {
+// Indexed 4-ary min-heap over vertices, keyed by each vertex's cheapest edge. Only the
+// vertices whose cheapest edge changed are touched per collapse, and nothing goes stale.
+class VertexHeap {
  public:
-  void assign(std::vector<Entry> items) {
-    h_ = std::move(items);
-    if (h_.size() > 1)
-      for (size_t i = (h_.size() - 2) / 4 + 1; i-- > 0;) down(i);
-  }
+  explicit VertexHeap(const std::vector<Entry>& best) : best_(best), pos_(best.size(), kNone) {}
   bool empty() const { return h_.empty(); }
-  size_t size() const { return h_.size(); }
-  void push(const Entry& e) {
-    h_.push_back(e);
-    up(h_.size() - 1);
+  uint32_t top() const { return h_[0]; }
+  // Inserts v or moves it to its place after best_[v] changed.
+  void update(uint32_t v) {
+    if (pos_[v] == kNone) {
+      pos_[v] = uint32_t(h_.size());
+      h_.push_back(v);
+      up(pos_[v]);
+    } else {
+      up(pos_[v]);
+      down(pos_[v]);
+    }
   }
-  Entry pop() {
-    const Entry top = h_[0];
-    h_[0] = h_.back();
+  void remove(uint32_t v) {
+    const uint32_t i = pos_[v];
+    if (i == kNone) return;
+    pos_[v] = kNone;
+    const uint32_t last = h_.back();
     h_.pop_back();
-    if (!h_.empty()) down(0);
-    return top;
-  }
-  // Drops the entries that fail `keep` and re-heapifies.
-  template <class F>
-  void filter(F keep) {
-    std::vector<Entry> k;
-    k.reserve(h_.size() / 2);
-    for (const Entry& e : h_)
-      if (keep(e)) k.push_back(e);
-    assign(std::move(k));
+    if (i < h_.size()) {
+      h_[i] = last;
+      pos_[last] = i;
+      up(i);
+      down(pos_[last]);
+    }
   }
 
  private:
-  void up(size_t i) {
-    const Entry e = h_[i];
+  static constexpr uint32_t kNone = UINT32_MAX;
+  bool less(uint32_t x, uint32_t y) const {
+    const Entry& ex = best_[x];
+    const Entry& ey = best_[y];
+    if (key_less(ex, ey)) return true;
+    if (key_less(ey, ex)) return false;
+    return x < y;  // the two ends of one edge: any fixed order
+  }
+  void up(uint32_t i) {
+    const uint32_t v = h_[i];
     while (i > 0) {
-      const size_t parent = (i - 1) / 4;
-      if (!key_less(e, h_[parent])) break;
+      const uint32_t parent = (i - 1) / 4;
+      if (!less(v, h_[parent])) break;
       h_[i] = h_[parent];
+      pos_[h_[i]] = i;
       i = parent;
     }
-    h_[i] = e;
+    h_[i] = v;
+    pos_[v] = i;
   }
-  void down(size_t i) {
+  void down(uint32_t i) {
     const size_t n = h_.size();
-    const Entry e = h_[i];
+    const uint32_t v = h_[i];
     for (;;) {
-      const size_t c = 4 * i + 1;
+      const size_t c = 4 * size_t(i) + 1;
       if (c >= n) break;
-      size_t best = c;
+      size_t m = c;
       const size_t end = std::min(c + 4, n);
       for (size_t j = c + 1; j < end; ++j)
-        if (key_less(h_[j], h_[best])) best = j;
-      if (!key_less(h_[best], e)) break;
-      h_[i] = h_[best];
-      i = best;
+        if (less(h_[j], h_[m])) m = j;
+      if (!less(h_[m], v)) break;
+      h_[i] = h_[m];
+      pos_[h_[i]] = i;
+      i = uint32_t(m);
     }
-    h_[i] = e;
+    h_[i] = v;
+    pos_[v] = i;
   }
-  std::vector<Entry> h_;
+  const std::vector<Entry>& best_;
+  std::vector<uint32_t> pos_;
+  std::vector<uint32_t> h_;
 };
 
+// Invariant of the loop below: best[v] is the current key of a current, not refused edge of
+// v (or infinite), and every current, not refused edge has an end whose best[] orders at or
+// before it. So the heap's top is the edge that a full scan would pick.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   State s;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
-  EntryHeap heap;
-  heap.assign(std::move(initial));
-  // Edges refused for reasons that depend on their neighbourhood wait here, listed at both
-  // ends, and go back into the heap when a collapse changes the 1-ring of either end.
-  std::vector<std::vector<Entry>> waiting(s.nv);
-  std::vector<uint32_t> stamp(s.nv, UINT32_MAX);
-  std::vector<uint32_t> ring;
+  const Entry none{HUGE_VALF, UINT32_MAX, UINT32_MAX, 0};
+  std::vector<Entry> best(s.nv, none);
+  for (const Entry& e : initial) {
+    if (key_less(e, best[e.a])) best[e.a] = e;
+    if (key_less(e, best[e.b])) best[e.b] = e;
+  }
+  VertexHeap heap(best);
+  for (uint32_t v = 0; v < s.nv; ++v)
+    if (s.alive[v] && best[v].a != UINT32_MAX) heap.update(v);
+
+  // Every current edge with its key, listed at both ends: a collapse only re-costs the edges
+  // of the surviving vertex.
+  std::vector<std::vector<Entry>> edges(s.nv);
+  {
+    std::vector<uint32_t> count(s.nv, 0);
+    for (const Entry& e : initial) { ++count[e.a]; ++count[e.b]; }
+    for (uint32_t v = 0; v < s.nv; ++v) edges[v].reserve(count[v]);
+    for (const Entry& e : initial) { edges[e.a].push_back(e); edges[e.b].push_back(e); }
+  }
+  std::vector<Entry>().swap(initial);
+  // Refused edges, listed at both ends; they count again once a collapse changes the 1-ring
+  // of either end.
+  std::vector<std::vector<uint32_t>> refused(s.nv);
+  auto is_refused = [&](uint32_t v, uint32_t y) {
+    for (uint32_t z : refused[v])
+      if (z == y) return true;
+    return false;
+  };
+  // best[v] from the listed edges of v that are not refused.
+  auto rescan = [&](uint32_t v) {
+    Entry b = none;
+    for (const Entry& e : edges[v])
+      if (key_less(e, b) && (refused[v].empty() || !is_refused(v, e.a ^ e.b ^ v))) b = e;
+    best[v] = b;
+    heap.update(v);
+  };
+  auto partner = [](const Entry& e, uint32_t v) { return e.a ^ e.b ^ v; };
+
+  std::vector<uint32_t> mark(s.nv, UINT32_MAX);
+  std::vector<uint32_t> redo;
   double np[3];
   while (s.faces > s.target && !heap.empty()) {
-    // Stale entries pile up (about six a collapse): sweep them out when they dominate.
-    if (heap.size() > 4 * s.faces + 4096) heap.filter([&](const Entry& e) { return s.current(e); });
-    const Entry e = heap.pop();
-    if (!s.current(e)) continue;
+    const uint32_t v = heap.top();
+    const Entry e = best[v];
+    if (e.a == UINT32_MAX) break;  // no edge left anywhere
     const double exact = s.cost(e.a, e.b, np);
     const Check c = s.check(e.a, e.b, np);
-    if (c == Check::NotEdge) continue;
-    if (c == Check::Refused) {
+    if (c != Check::Ok) {
       ++s.refused;
-      waiting[e.a].push_back(e);
-      waiting[e.b].push_back(e);
+      refused[e.a].push_back(e.b);
+      refused[e.b].push_back(e.a);
+      const uint32_t other = partner(e, v);
+      rescan(v);
+      if (best[other].a == e.a && best[other].b == e.b) rescan(other);
       continue;
     }
-    s.collapse(e.a, e.b, np, exact);
-    const uint32_t a = e.a, now = uint32_t(s.collapses);
-    std::vector<Entry>().swap(waiting[e.b]);
-    // New costs for the edges of the moved vertex; re-examine waiting edges around it.
-    ring.clear();
-    stamp[a] = now;
+    const uint32_t a = e.a, b = e.b;
+    s.collapse(a, b, np, exact);
+    heap.remove(b);
+    std::vector<uint32_t>().swap(refused[b]);
+    std::vector<Entry>().swap(edges[b]);
+    // The new edges of a, with their costs.
+    const uint32_t now = uint32_t(s.collapses);
+    std::vector<Entry>& ea = edges[a];
+    ea.clear();
+    mark[a] = now;
+    double tmp[3];
     for (uint32_t t : s.vtris[a]) {
-      const uint32_t* v = &s.tri[3 * size_t(t)];
-      for (int k = 0; k < 3; ++k)
-        if (stamp[v[k]] != now) { stamp[v[k]] = now; ring.push_back(v[k]); }
+      const uint32_t* tv = &s.tri[3 * size_t(t)];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t y = tv[k];
+        if (mark[y] == now) continue;
+        mark[y] = now;
+        const uint32_t lo = std::min(a, y), hi = std::max(a, y);
+        ea.push_back({float(s.cost(lo, hi, tmp)), lo, hi, 0});
+      }
     }
-    for (uint32_t x : ring) {
-      const uint32_t lo = std::min(a, x), hi = std::max(a, x);
-      double tmp[3];
-      heap.push({float(s.cost(lo, hi, tmp)), lo, hi, now});
-    }
-    ring.push_back(a);
-    for (uint32_t w : ring) {
-      for (const Entry& q : waiting[w])
-        if (s.current(q)) heap.push(q);
-      waiting[w].clear();
+    // The 1-ring of a changed: refused edges there count again (at both ends).
+    auto release = [&](uint32_t w) {
+      for (uint32_t z : refused[w]) {
+        auto& l = refused[z];
+        auto it = std::find(l.begin(), l.end(), w);
+        if (it != l.end()) { *it = l.back(); l.pop_back(); }
+      }
+      const bool had = !refused[w].empty();
+      refused[w].clear();
+      return had;
+    };
+    release(a);
+    redo.clear();
+    for (const Entry& ey : ea)
+      if (release(partner(ey, a))) redo.push_back(partner(ey, a));
+    rescan(a);
+    for (const Entry& ey : ea) {
+      const uint32_t y = partner(ey, a);
+      std::vector<Entry>& l = edges[y];
+      for (size_t i = 0; i < l.size();) {
+        const uint32_t z = partner(l[i], y);
+        if (z == a || z == b) { l[i] = l.back(); l.pop_back(); }
+        else ++i;
+      }
+      l.push_back(ey);
+      const Entry& by = best[y];
+      const uint32_t py = by.a == UINT32_MAX ? UINT32_MAX : partner(by, y);
+      if (py == a || py == b || py == UINT32_MAX ||
+          std::find(redo.begin(), redo.end(), y) != redo.end()) {
+        rescan(y);
+      } else if (key_less(ey, by)) {
+        best[y] = ey;
+        heap.update(y);
+      }
     }
   }
   Mesh out = s.output(report);
