@@ -79,6 +79,8 @@ struct State {
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
   std::vector<uint32_t> changed;             // collapse count when the vertex last moved
+  std::vector<uint32_t> order;               // internal vertex id -> input vertex
+  std::vector<uint32_t> inv;                 // input vertex -> internal id
   size_t faces = 0;
   size_t target = 0;
   double min_cos = 0;
@@ -155,9 +157,42 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
                                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
   for (int k = 0; k < 3; ++k) center[k] = 0.5 * (lo[k] + hi[k]);
   scale = diag > 0 ? 1 / diag : 1;
+  // Internal vertex ids follow a Morton curve, so that the vertices of one neighbourhood sit
+  // close together in memory: the collapse order jumps around the mesh, and this keeps each
+  // collapse on few cache lines. Unreferenced vertices go last.
+  order.resize(nv);
+  {
+    std::vector<uint64_t> code(nv);
+    const double inv_ext[3] = {hi[0] > lo[0] ? 1 / (hi[0] - lo[0]) : 0, hi[1] > lo[1] ? 1 / (hi[1] - lo[1]) : 0,
+                               hi[2] > lo[2] ? 1 / (hi[2] - lo[2]) : 0};
+    for (size_t v = 0; v < nv; ++v) {
+      uint64_t c = 0;
+      if (alive[v]) {
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k)
+          q[k] = uint32_t(std::min(1.0, std::max(0.0, (mesh.positions[3 * v + k] - lo[k]) * inv_ext[k])) * 1023.0);
+        for (int bit = 9; bit >= 0; --bit)
+          for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
+      } else {
+        c = UINT64_MAX;
+      }
+      code[v] = c;
+      order[v] = uint32_t(v);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return code[x] < code[y]; });
+  }
+  inv.resize(nv);
+  for (size_t i = 0; i < nv; ++i) inv[order[i]] = uint32_t(i);
+  for (uint32_t& v : tri) v = inv[v];
+  {
+    std::vector<uint8_t> a2(nv);
+    for (size_t i = 0; i < nv; ++i) a2[i] = alive[order[i]];
+    alive.swap(a2);
+  }
   pos.resize(3 * nv);
-  for (size_t v = 0; v < nv; ++v)
-    for (int k = 0; k < 3; ++k) pos[3 * v + k] = (mesh.positions[3 * v + k] - center[k]) * scale;
+  for (size_t i = 0; i < nv; ++i)
+    for (int k = 0; k < 3; ++k)
+      pos[3 * i + k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
 
   tri_alive.assign(nt, 1);
   std::vector<uint32_t> deg(nv, 0);
@@ -207,7 +242,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     i = j;
   }
   if (w)
-    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[v];
+    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
   changed.assign(nv, 0);
 
   if (edges) {
@@ -346,7 +381,7 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   alive[b] = 0;
   ++collapses;
   changed[a] = changed[b] = uint32_t(collapses);
-  if (record) sequence.push_back({a, b, c});
+  if (record) sequence.push_back({order[a], order[b], c});
 }
 
 Mesh State::output(SimplifyReport* report) const {
@@ -356,10 +391,11 @@ Mesh State::output(SimplifyReport* report) const {
   for (size_t t = 0; t < tri_alive.size(); ++t)
     if (tri_alive[t])
       for (int k = 0; k < 3; ++k) remap[tri[3 * t + k]] = 0;
-  for (size_t v = 0; v < nv; ++v) {
+  for (size_t iv = 0; iv < nv; ++iv) {  // in input order
+    const uint32_t v = inv[iv];
     if (remap[v] == UINT32_MAX) continue;
     remap[v] = uint32_t(origin.size());
-    origin.push_back(uint32_t(v));
+    origin.push_back(uint32_t(iv));
     for (int k = 0; k < 3; ++k)
       out.positions.push_back(float(pos[3 * v + k] / scale + center[k]));
   }

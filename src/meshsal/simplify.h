@@ -26,8 +26,8 @@ struct SimplifyOptions {
   bool record_collapses = false;
 };
 
-// One edge contraction: vertices `kept` and `removed` (input indices, kept < removed) merge
-// into `kept`, which moves to the optimal position. `cost` is the quadric error.
+// One edge contraction: vertices `kept` and `removed` (input indices) merge into `kept`,
+// which moves to the optimal position. `cost` is the quadric error.
 struct Collapse {
   uint32_t kept;
   uint32_t removed;
@@ -70,8 +70,10 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    SimplifyReport* report = nullptr);
 
 // The test oracle: the same collapses, but every step recomputes the cost and validity of
-// every remaining edge and takes the minimum. Ties break on (cost, kept, removed) in both
-// versions, so with the same input both produce the same collapse sequence. O(steps * edges).
+// every remaining edge and takes the minimum. Both order edges by (cost rounded to float,
+// then the internal ids of the two ends: vertices are renumbered along a Morton curve for
+// memory locality, identically in both), so with the same input both produce the same
+// collapse sequence. O(steps * edges).
 Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                          const std::vector<double>* vertex_weights = nullptr,
                          SimplifyReport* report = nullptr);
