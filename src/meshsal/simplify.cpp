@@ -283,6 +283,11 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
 }
 
 Check State::check(uint32_t a, uint32_t b, const double np[3]) {
+  for (uint32_t v : {a, b})  // scattered loads: issue them together
+    for (uint32_t t : vtris[v]) {
+      __builtin_prefetch(&tri[3 * size_t(t)]);
+      __builtin_prefetch(&tri_alive[t]);
+    }
   // Drop dead triangles from both lists first (they are only ever appended to).
   for (uint32_t v : {a, b}) {
     std::vector<uint32_t>& l = vtris[v];
@@ -584,6 +589,8 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     std::vector<Entry>().swap(edges[b]);
     // The new edges of a, with their costs.
     const uint32_t now = uint32_t(s.collapses);
+    // Loads below go to scattered memory (the ring's quadrics and edge lists): they are
+    // prefetched all at once instead of one miss after the other.
     std::vector<Entry>& ea = edges[a];
     ea.clear();
     mark[a] = now;
@@ -594,10 +601,13 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
         const uint32_t y = tv[k];
         if (mark[y] == now) continue;
         mark[y] = now;
-        const uint32_t lo = std::min(a, y), hi = std::max(a, y);
-        ea.push_back({float(s.cost(lo, hi, tmp)), lo, hi, 0});
+        ea.push_back({0, std::min(a, y), std::max(a, y), 0});
+        __builtin_prefetch(&s.quad[y]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
+        __builtin_prefetch(edges[y].data());
       }
     }
+    for (Entry& ey : ea) ey.cost = float(s.cost(ey.a, ey.b, tmp));
     // The 1-ring of a changed: refused edges there count again (at both ends).
     auto release = [&](uint32_t w) {
       for (uint32_t z : refused[w]) {
