@@ -1,6 +1,6 @@
 // meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
 // One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
-// the next collapse: a binary heap with lazy invalidation (simplify_mesh) and a full scan
+// the next collapse: an indexed heap of per-vertex cheapest edges (simplify_mesh) and a full scan
 // (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
 #include "meshsal/simplify.h"
 

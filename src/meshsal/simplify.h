@@ -49,9 +49,11 @@ struct SimplifyReport {
 };
 
 // Simplifies `mesh` to options.target_faces (or ratio * faces) by edge collapses in order of
-// quadric error (priority queue with lazy invalidation by per-vertex version counters).
+// quadric error: an indexed 4-ary heap over vertices keyed by each vertex's cheapest edge,
+// with per-vertex edge cost lists, so a collapse re-costs only the survivor's edges.
 //  - vertex_weights (may be null): one weight W per input vertex; each vertex quadric is
-//    multiplied by W once before any collapse (SPEC 2), and weights add up on collapse.
+//    multiplied by W once before any collapse (SPEC 2). Weights add up on collapse through
+//    the quadrics (Q_i + Q_j carries W_i Q_i + W_j Q_j); W is not needed separately after.
 //    Build W with saliency_weights() (saliency_weights.h). Null = plain quadric method.
 //  - Collapses are refused when they break the link condition (would create a non-manifold
 //    edge or vertex), touch an edge shared by more than two triangles, join two border
