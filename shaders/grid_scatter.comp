@@ -8,7 +8,6 @@ layout(std430, binding = 2) readonly buffer Slot { uint slot[]; };
 layout(std430, binding = 3) readonly buffer Start { uint starts[]; };
 layout(std430, binding = 4) writeonly buffer Sorted { dvec4 sorted_pos[]; };
 layout(std430, binding = 5) writeonly buffer SortedVertex { uint sorted_vertex[]; };
-layout(std430, binding = 6) writeonly buffer SortedKey { uint sorted_key[]; };
 layout(push_constant) uniform Push { uint base; uint n; } pc;
 void main() {
   uint v = pc.base + gl_GlobalInvocationID.x;
@@ -18,5 +17,4 @@ void main() {
   uint j = starts[k] + slot[v];
   sorted_pos[j] = pos[v];
   sorted_vertex[j] = v;
-  sorted_key[j] = k;
 }

@@ -14,15 +14,14 @@
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Sorted { dvec4 sorted_pos[]; };  // xyz, value
 layout(std430, binding = 1) readonly buffer SortedVertex { uint sorted_vertex[]; };
-layout(std430, binding = 2) readonly buffer SortedKey { uint sorted_key[]; };  // unused here
-layout(std430, binding = 3) readonly buffer Start { uint starts[]; };
+layout(std430, binding = 2) readonly buffer Start { uint starts[]; };
 // The plan, largest sigma first: cut2 = (2 s)^2, coef = 1 / (2 s^2), parent = index of 2 s
 // or -1; output i is |G[out_a] - G[out_b]|, or G[out_a] when out_b < 0.
-layout(std430, binding = 4) readonly buffer Params {
+layout(std430, binding = 3) readonly buffer Params {
   double cut2[16]; double coef[16]; int parent[16]; int out_a[16]; int out_b[16];
 };
-layout(std430, binding = 5) writeonly buffer Out { double result[]; };  // [output][vertex]
-layout(std430, binding = 6) writeonly buffer Pairs { uint pairs[]; };   // per sorted point
+layout(std430, binding = 4) writeonly buffer Out { double result[]; };  // [output][vertex]
+layout(std430, binding = 5) writeonly buffer Pairs { uint pairs[]; };   // per sorted point
 layout(push_constant) uniform Push {
   uint base; uint n;          // sorted points [base, n) of this submission
   uint nx; uint ny; uint nz;  // grid size in cells

@@ -37,7 +37,20 @@ double rel_error(const std::vector<double>& cpu, const std::vector<double>& gpu)
   return mx > 0 ? err / mx : err;
 }
 
+void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what);
+
 void compare(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
+  // Both sweep variants: the one for this device and the other one (on lavapipe that is
+  // the GPU variant, a subgroup per point, which CI could not run otherwise).
+  for (int variant : {0, 1}) {
+    context().sweep_variant = variant;
+    INFO("sweep variant " << variant);
+    compare_once(mesh, opt, what);
+  }
+  context().sweep_variant = -1;
+}
+
+void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
   INFO(what);
   opt.threads = 2;
   opt.smoothed = true;

@@ -95,7 +95,7 @@ GridPlan plan_grid(const double extent[3], double radius, uint64_t points, uint6
 struct DeviceMesh {
   uint32_t nv = 0, np = 0;  // vertices, mesh points
   vk::Buffer pos, flags, offsets, neighbors;
-  vk::Buffer cell_count, starts, key, slot, sorted_pos, sorted_vertex, sorted_key;
+  vk::Buffer cell_count, starts, key, slot, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
 };
 
@@ -114,12 +114,12 @@ GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
 
   auto& k_key = KERNEL(ctx, spv_grid_key_comp, 5, GridKeyPush);
   auto& k_scan = KERNEL(ctx, spv_grid_scan_comp, 2, RangePush);
-  auto& k_scatter = KERNEL(ctx, spv_grid_scatter_comp, 7, RangePush);
+  auto& k_scatter = KERNEL(ctx, spv_grid_scatter_comp, 6, RangePush);
   auto& k_order = KERNEL(ctx, spv_grid_sort_cells_comp, 3, RangePush);
   VkDescriptorSet s_key = pool.bind(k_key, {&m.pos, &m.flags, &m.cell_count, &m.key, &m.slot});
   VkDescriptorSet s_scan = pool.bind(k_scan, {&m.cell_count, &m.starts});
   VkDescriptorSet s_scatter = pool.bind(
-      k_scatter, {&m.pos, &m.key, &m.slot, &m.starts, &m.sorted_pos, &m.sorted_vertex, &m.sorted_key});
+      k_scatter, {&m.pos, &m.key, &m.slot, &m.starts, &m.sorted_pos, &m.sorted_vertex});
   VkDescriptorSet s_order = pool.bind(k_order, {&m.starts, &m.sorted_pos, &m.sorted_vertex});
   vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, m.cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -188,7 +188,8 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
                double radius, const SaliencyOptions& options, const char* stage) {
   // CPU devices (lavapipe) run a thread per point over rows shared by the subgroup; GPUs
   // give each point a subgroup (see sweep.glsl).
-  const bool rows = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  const bool rows = ctx.sweep_variant < 0 ? ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                          : ctx.sweep_variant == 0;
   // sweep8 has the default plan built in; sweepn is specialised to this plan (count and
   // parents), so the driver unrolls it to exactly the exps it needs.
   std::vector<int32_t> spec;
@@ -196,15 +197,15 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
     spec.push_back(int32_t(nsig));
     for (uint32_t e = 0; e < 16; ++e) spec.push_back(e < nsig ? params.parent[e] : -1);
   }
-  auto& k = fast8 ? (rows ? KERNEL(ctx, spv_sweep8_rows_comp, 7, SweepPush)
-                          : KERNEL(ctx, spv_sweep8_comp, 7, SweepPush))
+  auto& k = fast8 ? (rows ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
+                          : KERNEL(ctx, spv_sweep8_comp, 6, SweepPush))
                   : (rows ? vk::cached_kernel(ctx, spv_sweepn_rows_comp, sizeof(spv_sweepn_rows_comp),
-                                              7, sizeof(SweepPush), "sweepn_rows", spec)
-                          : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 7,
+                                              6, sizeof(SweepPush), "sweepn_rows", spec)
+                          : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
                                               sizeof(SweepPush), "sweepn", spec));
   const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
-  VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.sorted_key, &m.starts,
-                                      &m.params, &m.result, &m.pairs});
+  VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
+                                      &m.result, &m.pairs});
   // Candidate pairs per submission: about a second on lavapipe, and on a GPU with slow
   // FP64 (consumer cards run doubles at 1/32..1/64 rate) still well under the usual 2 s
   // driver watchdog; our own fence time-out is never near.
@@ -352,7 +353,6 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   m.slot = vk::Buffer(ctx, nv * 4, "the cell slots");
   m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
   m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
-  m.sorted_key = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted cell keys");
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
   m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
   m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
