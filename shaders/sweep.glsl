@@ -8,7 +8,7 @@
 // another are w(s) = w(2s)^4, as in the CPU's KernelPlan. The center-surround step
 // S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
 // Included by sweep8.comp (the default sigmas 12,10,8,6,5,4,3,2 eps, fixed plan) and
-// sweepn.comp (any plan of up to 16 sigmas).
+// sweepn.comp (any plan of up to 16 sigmas, specialised per plan).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 layout(local_size_x = 64) in;
@@ -94,16 +94,6 @@ double exp_neg(double x) {
 }
 
 void main() {
-#ifdef UNIFORM_ROWS
-  // One thread per point; the subgroup walks the rows around the bounding box of its
-  // points, so every lane reads the same candidate (one load, no gather) and the loop
-  // bounds agree. Made for lavapipe, where a lane is an AVX2 slot.
-  uint i = min(pc.base + gl_GlobalInvocationID.x, pc.n - 1u);
-  const bool live = pc.base + gl_GlobalInvocationID.x < pc.n;
-  dvec4 p = sorted_pos[i];
-  const dvec3 lo = subgroupMin(p.xyz), hi = subgroupMax(p.xyz);
-  const uint first = 0u, step = 1u;
-#else
   // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
   // loads, and every lane loops the same rows), then the sums are reduced across lanes.
   uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
@@ -111,7 +101,6 @@ void main() {
   dvec4 p = sorted_pos[i];
   const dvec3 lo = p.xyz, hi = p.xyz;
   const uint first = gl_SubgroupInvocationID, step = gl_SubgroupSize;
-#endif
   double sw[NS];
   double sh[NS];
   for (int k = 0; k < NS; ++k) {
@@ -187,16 +176,12 @@ void main() {
       }
     }
   }
-#ifdef UNIFORM_ROWS
-  if (!live) return;
-#else
   for (int k = 0; k < NS; ++k) {  // no early exit: constant indices keep the sums in registers
     sw[k] = subgroupAdd(sw[k]);
     sh[k] = subgroupAdd(sh[k]);
   }
   count = subgroupAdd(count);
   if (!subgroupElect()) return;
-#endif
   // The averages go to their own array: indexing the accumulators with out_a/out_b would
   // force them out of registers into memory for the whole loop.
   double g[NS];

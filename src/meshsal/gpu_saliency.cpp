@@ -26,9 +26,7 @@
 #include "mbar_comp.h"
 #include "selftest_comp.h"
 #include "sweep8_comp.h"
-#include "sweep8_rows_comp.h"
 #include "sweepn_comp.h"
-#include "sweepn_rows_comp.h"
 
 namespace meshsal {
 
@@ -186,10 +184,6 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
                const std::vector<uint32_t>& starts, bool fast8, const SweepParams& params,
                uint32_t nsig, uint32_t nout,
                double radius, const SaliencyOptions& options, const char* stage) {
-  // CPU devices (lavapipe) run a thread per point over rows shared by the subgroup; GPUs
-  // give each point a subgroup (see sweep.glsl).
-  const bool rows = ctx.sweep_variant < 0 ? ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU
-                                          : ctx.sweep_variant == 0;
   // sweep8 has the default plan built in; sweepn is specialised to this plan (count and
   // parents), so the driver unrolls it to exactly the exps it needs.
   std::vector<int32_t> spec;
@@ -197,13 +191,10 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
     spec.push_back(int32_t(nsig));
     for (uint32_t e = 0; e < 16; ++e) spec.push_back(e < nsig ? params.parent[e] : -1);
   }
-  auto& k = fast8 ? (rows ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
-                          : KERNEL(ctx, spv_sweep8_comp, 6, SweepPush))
-                  : (rows ? vk::cached_kernel(ctx, spv_sweepn_rows_comp, sizeof(spv_sweepn_rows_comp),
-                                              6, sizeof(SweepPush), "sweepn_rows", spec)
-                          : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
-                                              sizeof(SweepPush), "sweepn", spec));
-  const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
+  auto& k = fast8 ? KERNEL(ctx, spv_sweep8_comp, 6, SweepPush)
+                  : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
+                                      sizeof(SweepPush), "sweepn", spec);
+  const uint32_t per_group = kLocal / ctx.subgroup_size;  // one subgroup per point
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
                                       &m.result, &m.pairs});
   // Candidate pairs per submission: about a second on lavapipe, and on a GPU with slow
