@@ -20,9 +20,31 @@ struct Args {
   std::vector<std::string> meshes;
   std::string data_dir;
   bool json = false;
+  bool simplify = false;
   unsigned threads = 0;
   int repeat = 3;
 };
+
+// `--simplify` runs tools/bench_simplify (built beside meshsal): only that program links
+// meshoptimizer, the baseline it compares against.
+int exec_simplify_benchmark(const Args& a, const std::string& data_dir) {
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::string tool = (exe.parent_path() / "bench_simplify").string();
+  if (ec || !std::filesystem::exists(tool))
+    throw meshsal::Error("bench_simplify not found beside meshsal (build the tools target)");
+  std::vector<std::string> args{tool};
+  args.insert(args.end(), a.meshes.begin(), a.meshes.end());
+  args.insert(args.end(), {"--data-dir", data_dir, "--repeat", std::to_string(a.repeat),
+                           "--threads", std::to_string(a.threads)});
+  if (a.json) args.push_back("--json");
+  std::vector<char*> argv;
+  for (std::string& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  execv(tool.c_str(), argv.data());
+  throw meshsal::Error("cannot run " + tool);
+}
 
 struct Row {
   std::string model, device;
@@ -131,6 +153,7 @@ int run(const Args& a) {
   if (a.repeat < 1) throw meshsal::Error("--repeat must be at least 1");
   std::vector<std::string> paths = a.meshes;
   const std::string dir = a.data_dir.empty() ? default_data_dir() : a.data_dir;
+  if (a.simplify) return exec_simplify_benchmark(a, dir);
   if (paths.empty()) {
     for (const char* name : {"bunny_36k.obj", "armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz"}) {
       std::string p = dir + "/" + name;
@@ -168,6 +191,9 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("meshes", a->meshes, "Mesh files to time");
   sub.add_option("--data-dir", a->data_dir, "Folder of the default benchmark meshes");
   sub.add_flag("--json", a->json, "Print JSON instead of the table");
+  sub.add_flag("--simplify", a->simplify,
+               "Benchmark simplification instead (plain, saliency-weighted, meshoptimizer) at 1% "
+               "and 5% of the faces of armadillo_43k, dragon_50k and igea_134k");
   sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
   sub.add_option("--repeat", a->repeat, "Runs per mesh and device; the fastest is reported")
       ->capture_default_str();
