@@ -19,6 +19,7 @@ layout(std430, binding = 2) readonly buffer Start { uint starts[]; };
 // or -1; output i is |G[out_a] - G[out_b]|, or G[out_a] when out_b < 0.
 layout(std430, binding = 3) readonly buffer Params {
   double cut2[16]; double coef[16]; int parent[16]; int out_a[16]; int out_b[16];
+  double bcoef;  // sweep8 only: b = exp(-d2 * bcoef), see sweep_point_default()
 };
 layout(std430, binding = 4) writeonly buffer Out { double result[]; };  // [output][vertex]
 layout(std430, binding = 5) writeonly buffer Pairs { uint pairs[]; };   // per sorted point
@@ -93,14 +94,66 @@ double exp_neg(double x) {
   return packDouble2x32(bits);
 }
 
+#ifdef FAST8
+// exp(-x) for 0 <= x <= 0.02 (Taylor, truncation < 1e-18): exp_neg_small() in
+// gaussian_filter.cpp.
+double exp_neg_small(double x) {
+  // The CPU build contracts p * x + c to an fma (x86-64-v3, GCC's -ffp-contract=fast); so
+  // does the GPU variant. Not sweep8_rows: lavapipe runs a double fma() far slower than
+  // a * b + c (its igea_134k sweep went from 2.0 s to 2.8 s).
+#ifdef UNIFORM_ROWS
+#define MAD(a, b, c) ((a) * (b) + (c))
+#else
+#define MAD(a, b, c) fma(a, b, c)
+#endif
+  double p = -1.0LF / 5040.0LF;
+  p = MAD(p, x, 1.0LF / 720.0LF);
+  p = MAD(p, x, -1.0LF / 120.0LF);
+  p = MAD(p, x, 1.0LF / 24.0LF);
+  p = MAD(p, x, -1.0LF / 6.0LF);
+  p = MAD(p, x, 0.5LF);
+  p = MAD(p, x, -1.0LF);
+  return MAD(p, x, 1.0LF);
+#undef MAD
+}
+#endif
+
 void main() {
   // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
   // loads, and every lane loops the same rows), then the sums are reduced across lanes.
+#ifdef UNIFORM_ROWS
+  // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
+  // take consecutive sorted points and walk the rows around the box of those points, so
+  // every lane reads the same candidate (one load, no gather) and all loop bounds agree.
+  // The box comes from plain loads of the group's points, not from subgroupMin/Max on
+  // doubles: with those, lavapipe gave wrong sums for ~100 of 537k points of igea_loop1,
+  // a different set every run. A box holding the lane's own point is all correctness
+  // needs; the group only decides how much is shared.
+  const uint gid = gl_GlobalInvocationID.x;
+  const uint i = min(pc.base + gid, pc.n - 1u);
+  const bool live = pc.base + gid < pc.n;
+  const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
+  dvec4 p = sorted_pos[i];
+  dvec3 lo = p.xyz, hi = p.xyz;
+  for (uint e = 0u; e < gl_SubgroupSize; ++e) {
+    dvec3 o = sorted_pos[min(g0 + e, pc.n - 1u)].xyz;
+    lo = min(lo, o);
+    hi = max(hi, o);
+  }
+  // A group that straddles rows of cells (the sorted order jumps back in x) would walk
+  // the rows of a box across the mesh: then every lane walks its own point's rows.
+  if (any(greaterThan(hi - lo, dvec3(pc.h)))) {
+    lo = p.xyz;
+    hi = p.xyz;
+  }
+  const uint first = 0u, step = 1u;
+#else
   uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
   if (i >= pc.n) return;
   dvec4 p = sorted_pos[i];
   const dvec3 lo = p.xyz, hi = p.xyz;
   const uint first = gl_SubgroupInvocationID, step = gl_SubgroupSize;
+#endif
   double sw[NS];
   double sh[NS];
   for (int k = 0; k < NS; ++k) {
@@ -113,7 +166,7 @@ void main() {
   double ct[NS];
   for (int k = 0; k < NS; ++k) ct[k] = cut2[k];
 #ifdef FAST8
-  const double cf0 = coef[0], cf1 = coef[1], cf2 = coef[2];
+  const double cb = bcoef;  // 1 / (2 eps^2 14400), computed as the CPU computes it
 #else
   double cf[NS];
   for (int k = 0; k < NS; ++k) cf[k] = coef[k];
@@ -144,10 +197,20 @@ void main() {
         precise double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
         count += (d2 < R2) ? 1u : 0u;
 #ifdef FAST8
+        // The CPU twin is sweep_point_default() (gaussian_filter.cpp), line for line:
+        // with t = d2 / (2 eps^2) every weight is a power of b = exp(-t / 14400), and
+        // t <= 288 inside the sweep radius, so b is a degree-7 Taylor polynomial; the
+        // candidates at or past the radius get b = 0 (no branch, no overflow).
+        //   CPU: v4d b = (d2 < cut[0]) ? exp_neg_small(d2 * cb) : zero;
+        double b = (d2 < ct[0]) ? exp_neg_small(d2 * cb) : 0.0LF;
+        //   CPU: b2 .. b128 by squaring; w12 = b64*b32*b4, w10 = b128*b16, w8 = b128*b64*b32*b
+        double b2 = b * b, b4 = b2 * b2, b8 = b4 * b4, b16 = b8 * b8, b32 = b16 * b16,
+               b64 = b32 * b32, b128 = b64 * b64;
         double w[8];
-        w[0] = exp_neg(d2 * cf0);  // 12 eps
-        w[1] = exp_neg(d2 * cf1);  // 10 eps
-        w[2] = exp_neg(d2 * cf2);  // 8 eps
+        w[0] = b64 * b32 * b4;         // 12 eps: b^100
+        w[1] = b128 * b16;             // 10 eps: b^144
+        w[2] = b128 * b64 * b32 * b;   //  8 eps: b^225
+        //   CPU: w(k) = w(2k)^4 for 6, 5, 4, 3, 2 eps
         double t;
         t = w[0] * w[0]; w[3] = t * t;  // 6 eps
         t = w[1] * w[1]; w[4] = t * t;  // 5 eps
@@ -176,12 +239,16 @@ void main() {
       }
     }
   }
+#ifdef UNIFORM_ROWS
+  if (!live) return;
+#else
   for (int k = 0; k < NS; ++k) {  // no early exit: constant indices keep the sums in registers
     sw[k] = subgroupAdd(sw[k]);
     sh[k] = subgroupAdd(sh[k]);
   }
   count = subgroupAdd(count);
   if (!subgroupElect()) return;
+#endif
   // The averages go to their own array: indexing the accumulators with out_a/out_b would
   // force them out of registers into memory for the whole loop.
   double g[NS];

@@ -26,6 +26,7 @@
 #include "mbar_comp.h"
 #include "selftest_comp.h"
 #include "sweep8_comp.h"
+#include "sweep8_rows_comp.h"
 #include "sweepn_comp.h"
 
 namespace meshsal {
@@ -60,9 +61,10 @@ struct SweepParams {
   int32_t parent[kMaxSigmas];
   int32_t out_a[kMaxSigmas];
   int32_t out_b[kMaxSigmas];
+  double bcoef;  // sweep8: b = exp(-d2 * bcoef) (sweep_point_default in gaussian_filter.cpp)
 };
 
-// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of radius / 2, grown
+// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of radius / 4, grown
 // by 1.25 while there are more than max(2^20, 4 points) cells (or more than one buffer
 // holds); coordinates relative to the bbox minimum.
 struct GridPlan {
@@ -71,11 +73,11 @@ struct GridPlan {
   uint64_t cells() const { return uint64_t(nx) * ny * nz; }
 };
 
-GridPlan plan_grid(const double extent[3], double radius, uint64_t points, uint64_t limit) {
+GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uint64_t limit) {
   const double max_cells = std::min<double>(std::max<double>(1 << 20, 4.0 * double(points)),
                                             double(limit));
   GridPlan g;
-  double cell = 0.5 * radius;
+  double cell = min_cell;
   for (;;) {
     double cells = 1;
     for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / cell) + 1;
@@ -104,8 +106,8 @@ double seconds_since(Clock::time_point t0) {
 // Builds the grid for `radius` over the current pos[] (counting sort on the device) and
 // returns its plan and the downloaded cell starts (for planning the sweep slices).
 GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
-                    const double extent[3], double radius, std::vector<uint32_t>* starts_out) {
-  GridPlan g = plan_grid(extent, radius, m.np, ctx.properties.limits.maxStorageBufferRange / 4 - 1);
+                    const double extent[3], double cell, std::vector<uint32_t>* starts_out) {
+  GridPlan g = plan_grid(extent, cell, m.np, ctx.properties.limits.maxStorageBufferRange / 4 - 1);
   const uint32_t cells = static_cast<uint32_t>(g.cells());
   m.cell_count = vk::Buffer(ctx, size_t(cells) * 4, "the grid cell counts");
   m.starts = vk::Buffer(ctx, size_t(cells + 1) * 4, "the grid cell starts");
@@ -178,6 +180,15 @@ std::vector<uint32_t> plan_slices(const GridPlan& g, const std::vector<uint32_t>
   return cuts;
 }
 
+// Whether the sweep runs a lane per point over rows shared by the subgroup (sweep8_rows:
+// the default plan on CPU devices, or as Context::sweep_variant says) rather than a
+// subgroup per point.
+bool shared_rows(const vk::Context& ctx, bool fast8) {
+  if (!fast8) return false;
+  return ctx.sweep_variant < 0 ? ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU
+                               : ctx.sweep_variant == 0;
+}
+
 // One neighbour sweep over the grid (gaussian_filter): result[o][v] as the plan in
 // m.params says; returns the number of pairs strictly inside `radius` (v itself included).
 uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const GridPlan& g,
@@ -191,10 +202,14 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
     spec.push_back(int32_t(nsig));
     for (uint32_t e = 0; e < 16; ++e) spec.push_back(e < nsig ? params.parent[e] : -1);
   }
-  auto& k = fast8 ? KERNEL(ctx, spv_sweep8_comp, 6, SweepPush)
+  // CPU devices (lavapipe) run the default plan with a lane per point over rows shared by
+  // the subgroup (sweep8_rows); otherwise each point gets a subgroup (see sweep.glsl).
+  const bool rows = shared_rows(ctx, fast8);
+  auto& k = rows ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
+            : fast8 ? KERNEL(ctx, spv_sweep8_comp, 6, SweepPush)
                   : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
                                       sizeof(SweepPush), "sweepn", spec);
-  const uint32_t per_group = kLocal / ctx.subgroup_size;  // one subgroup per point
+  const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
                                       &m.result, &m.pairs});
   // Candidate pairs per submission: about a second on lavapipe, and on a GPU with slow
@@ -301,6 +316,10 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   }
   // sweep8.comp hard-codes the plan of the default sigmas 12,10,8 (exp), 6,5,4,3,2.
   const bool fast8 = units == std::vector<double>{2, 3, 4, 5, 6, 8, 10, 12};
+  if (fast8) {  // the same doubles as sweep_point_default() derives from its plan
+    const double e = std::sqrt(1.0 / (2.0 * params.coef[0])) / 12.0;
+    params.bcoef = 1.0 / (2.0 * e * e * 14400.0);
+  }
   const double radius = 2 * units.back() * eps;
 
   // --- upload: positions relative to the bbox minimum in double, as the CPU grid has them
@@ -366,7 +385,12 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // --- grid + sweep (gaussian_filter), with the center-surround maps ------------------
   t0 = Clock::now();
   std::vector<uint32_t> starts;
-  GridPlan g = build_grid(ctx, pool, m, extent, radius, &starts);
+  // Cells of a quarter of the radius for the shared-rows sweep, as the CPU has them (rows
+  // are clipped to the ball's chord, so smaller cells mean fewer candidates, and a smaller
+  // box around the subgroup's points); half the radius for a subgroup per point, where
+  // short rows would leave lanes idle.
+  const bool rows = shared_rows(ctx, fast8);
+  GridPlan g = build_grid(ctx, pool, m, extent, (rows ? 0.25 : 0.5) * radius, &starts);
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
@@ -435,7 +459,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     sp.out_a[0] = 0;
     sp.out_b[0] = -1;
     m.params.upload(&sp, sizeof sp);
-    GridPlan g2 = build_grid(ctx, pool, m, extent, 6 * eps, &starts);
+    GridPlan g2 = build_grid(ctx, pool, m, extent, 0.5 * 6 * eps, &starts);
     sweep(ctx, pool, m, g2, starts, false, sp, 1, 1, 6 * eps, options, "smoothing");
     res.smoothed.resize(nv);
     m.result.download(res.smoothed.data(), nv * 8);

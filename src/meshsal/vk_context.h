@@ -62,6 +62,10 @@ class Context {
   bool has_float64 = false;  // shaderFloat64, enabled when the device has it
   uint32_t subgroup_size = 0;        // lanes per subgroup (Vulkan 1.1)
   bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
+  // The sweep variant of the default plan (sweep.glsl): -1 by device type (a lane per
+  // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
+  // 0 shared rows, 1 subgroup per point. Tests run both.
+  int sweep_variant = -1;
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
