@@ -123,26 +123,30 @@ void main() {
   // loads, and every lane loops the same rows), then the sums are reduced across lanes.
 #ifdef UNIFORM_ROWS
   // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
-  // take consecutive sorted points and walk the rows around the box of those points, so
-  // every lane reads the same candidate (one load, no gather) and all loop bounds agree.
-  // The box comes from plain loads of the group's points, not from subgroupMin/Max on
-  // doubles: with those, lavapipe gave wrong sums for ~100 of 537k points of igea_loop1,
-  // a different set every run. A box holding the lane's own point is all correctness
-  // needs; the group only decides how much is shared.
+  // take consecutive sorted points and walk the rows of cells around the box of those of
+  // the group's points that lie in their own row of cells, so they load the same
+  // candidates and their loop bounds agree (except where a group straddles two rows).
+  // Any box that holds the lane's own point gives the right sums; the group only decides
+  // how much is shared. The box must stay small: with the box of all the subgroup's
+  // points (subgroupMin/Max), a group straddling rows walked boxes across the whole mesh,
+  // and lavapipe gave wrong sums for ~100 of igea_loop1's 537k points (fewer pairs than
+  // the CPU); the cause inside lavapipe was not found, small boxes do not show it.
   const uint gid = gl_GlobalInvocationID.x;
   const uint i = min(pc.base + gid, pc.n - 1u);
   const bool live = pc.base + gid < pc.n;
   const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
   dvec4 p = sorted_pos[i];
   dvec3 lo = p.xyz, hi = p.xyz;
+  const ivec2 my_row = ivec2(p.yz / pc.h);
   for (uint e = 0u; e < gl_SubgroupSize; ++e) {
     dvec3 o = sorted_pos[min(g0 + e, pc.n - 1u)].xyz;
-    lo = min(lo, o);
-    hi = max(hi, o);
+    if (ivec2(o.yz / pc.h) == my_row) {
+      lo = min(lo, o);
+      hi = max(hi, o);
+    }
   }
-  // A group that straddles rows of cells (the sorted order jumps back in x) would walk
-  // the rows of a box across the mesh: then every lane walks its own point's rows.
-  if (any(greaterThan(hi - lo, dvec3(pc.h)))) {
+  // A row whose points lie far apart (two crossings of the surface): each lane alone.
+  if (hi.x - lo.x > 2.0LF * pc.h) {
     lo = p.xyz;
     hi = p.xyz;
   }
