@@ -64,7 +64,7 @@ struct SweepParams {
   double bcoef;  // sweep8: b = exp(-d2 * bcoef) (sweep_point_default in gaussian_filter.cpp)
 };
 
-// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of radius / 4, grown
+// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of min_cell, grown
 // by 1.25 while there are more than max(2^20, 4 points) cells (or more than one buffer
 // holds); coordinates relative to the bbox minimum.
 struct GridPlan {
@@ -385,12 +385,13 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // --- grid + sweep (gaussian_filter), with the center-surround maps ------------------
   t0 = Clock::now();
   std::vector<uint32_t> starts;
-  // Cells of a quarter of the radius for the shared-rows sweep, as the CPU has them (rows
-  // are clipped to the ball's chord, so smaller cells mean fewer candidates, and a smaller
-  // box around the subgroup's points); half the radius for a subgroup per point, where
-  // short rows would leave lanes idle.
+  // Cells of a fifth of the radius for the shared-rows sweep (rows are clipped to the
+  // ball's chord, so smaller cells mean fewer candidates, and a smaller box around the
+  // subgroup's points; on lavapipe, igea_134k, 1/4 to 1/8 were within the noise of each
+  // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
+  // point, where short rows would leave lanes idle.
   const bool rows = shared_rows(ctx, fast8);
-  GridPlan g = build_grid(ctx, pool, m, extent, (rows ? 0.25 : 0.5) * radius, &starts);
+  GridPlan g = build_grid(ctx, pool, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
