@@ -1,14 +1,15 @@
 // meshsal: the neighbour sweep, GPU twin of gaussian_filter() / sweep_point()
 // (gaussian_filter.cpp), in double like the CPU so that near-ties in the local-maximum
-// test fall the same way. One subgroup per mesh point, in cell order: like the CPU's
-// 4-wide loop, the lanes split the candidates of a row between them. Rows of cells are culled against the ball
-// as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
+// test fall the same way. GPUs give each mesh point a subgroup, in cell order: like the
+// CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU devices
+// (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of cells are
+// culled against the ball as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
 // candidate adds its weight to all sigma sums at once, masked by each sigma's strict
 // cutoff d < 2 s (no branches: lavapipe runs 8 lanes of AVX2). Weights of a sigma half of
 // another are w(s) = w(2s)^4, as in the CPU's KernelPlan. The center-surround step
 // S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
-// Included by sweep8.comp (the default sigmas 12,10,8,6,5,4,3,2 eps, fixed plan) and
-// sweepn.comp (any plan of up to 16 sigmas, specialised per plan).
+// Included by sweep8.comp and sweep8_rows.comp (the default sigmas 12,10,8,6,5,4,3,2 eps,
+// fixed plan: FAST8) and sweepn.comp (any plan of up to 16 sigmas, specialised per plan).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 layout(local_size_x = 64) in;
@@ -119,18 +120,17 @@ double exp_neg_small(double x) {
 #endif
 
 void main() {
-  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
-  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
 #ifdef UNIFORM_ROWS
   // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
   // take consecutive sorted points and walk the rows of cells around the box of those of
   // the group's points that lie in their own row of cells, so they load the same
-  // candidates and their loop bounds agree (except where a group straddles two rows).
-  // Any box that holds the lane's own point gives the right sums; the group only decides
-  // how much is shared. The box must stay small: with the box of all the subgroup's
-  // points (subgroupMin/Max), a group straddling rows walked boxes across the whole mesh,
-  // and lavapipe gave wrong sums for ~100 of igea_loop1's 537k points (fewer pairs than
-  // the CPU); the cause inside lavapipe was not found, small boxes do not show it.
+  // candidates at once and their loop bounds agree (except where a group straddles two
+  // rows). Any box that holds the lane's own point gives the right sums; the group only
+  // decides how much is shared. The box must stay small: with the box of all the
+  // subgroup's points (by subgroupMin/Max or by these loads alike), a group straddling
+  // rows walked a box across the whole mesh, and lavapipe gave fewer pairs than the CPU
+  // and wrong sums for ~100 of igea_loop1's 537k points. Why lavapipe loses them there
+  // was not found; with boxes of one row of cells igea_loop1 matches the CPU exactly.
   const uint gid = gl_GlobalInvocationID.x;
   const uint i = min(pc.base + gid, pc.n - 1u);
   const bool live = pc.base + gid < pc.n;
@@ -152,6 +152,8 @@ void main() {
   }
   const uint first = 0u, step = 1u;
 #else
+  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
+  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
   uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
   if (i >= pc.n) return;
   dvec4 p = sorted_pos[i];
