@@ -31,7 +31,7 @@ struct OptimiserOptions {
   uint64_t seed = 1;
   double probe = 0.05;           // probe angle (radians) for the central differences
   double initial_step = 0.25;    // first step length along the gradient (radians)
-  double min_step = 0.004;       // a restart stops when its step shrinks below this
+  double min_step = 0.01;        // a restart stops when its step shrinks below this
   int max_iterations = 60;       // per restart
 };
 

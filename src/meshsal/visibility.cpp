@@ -99,7 +99,16 @@ static void test_vertices(const std::vector<float>& proj, const std::vector<floa
     if (!(px >= 0.0f && py >= 0.0f && px < fres && py < fres)) continue;
     int x = int(px), y = int(py);
     if (x > res - 1 || y > res - 1) continue;
-    if (proj[3 * i + 2] <= zbuf[size_t(y) * res + x] + tol) visit(i);
+    float z = zbuf[size_t(y) * res + x];
+    if (std::isinf(z)) {
+      // The point fell on an empty pixel: it lies on the silhouette between pixel centres.
+      // Test it against the nearest surface around (3x3), so that points just behind the
+      // silhouette do not leak through.
+      for (int yy = (y > 0 ? y - 1 : 0); yy <= (y < res - 1 ? y + 1 : y); ++yy)
+        for (int xx = (x > 0 ? x - 1 : 0); xx <= (x < res - 1 ? x + 1 : x); ++xx)
+          z = std::fmin(z, zbuf[size_t(yy) * res + xx]);
+    }
+    if (proj[3 * i + 2] <= z + tol) visit(i);
   }
 }
 

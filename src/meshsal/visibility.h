@@ -5,6 +5,8 @@
 // the triangle, depth interpolated linearly, smaller = nearer, cleared to +inf). A mesh
 // point is visible when its pixel floor(px), floor(py) lies inside the image and
 //   depth(point) <= zbuffer(pixel) + depth_tol_px / res
+// (a point whose pixel is empty, on the silhouette between pixel centres, is tested against
+// the smallest depth of the 3x3 pixels around it, visible if they are all empty),
 // i.e. the tolerance is depth_tol_px pixel widths along the view axis (a pixel is 2R/res
 // wide and depth spans 2R). It absorbs the depth of the point's own triangles sampled up to
 // 0.71 px away: a point is kept visible while its surface is inclined less than about
