@@ -190,28 +190,45 @@ Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, con
   // Gaussian smoothing over neighbours at about the spacing of the directions.
   double spacing = std::sqrt(4 * kPi / double(n));
   double sigma = 0.6 * spacing, cut = std::cos(std::min(kPi, 3 * sigma));
+  // Candidates of a row: directions whose latitude is within the cut (angle >= |dphi|).
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return map.views[a].phi < map.views[b].phi; });
+  std::vector<double> sorted_phi(n);
+  for (size_t i = 0; i < n; ++i) sorted_phi[i] = map.views[order[i]].phi;
+  const double window = std::acos(cut);
   Image img(width, h);
   for (int y = 0; y < h; ++y) {
     ViewAngles a;
     a.phi = kPi / 2 - (y + 0.5) / h * kPi;
+    size_t lo_i = size_t(std::lower_bound(sorted_phi.begin(), sorted_phi.end(), a.phi - window) - sorted_phi.begin());
+    size_t hi_i = size_t(std::upper_bound(sorted_phi.begin(), sorted_phi.end(), a.phi + window) - sorted_phi.begin());
     for (int x = 0; x < width; ++x) {
       a.theta = -kPi + (x + 0.5) / width * 2 * kPi;
       double q[3];
       view_direction(a, q);
-      double ws = 0, us = 0, best_dot = -2, nearest = 0;
-      for (size_t i = 0; i < n; ++i) {
+      double ws = 0, us = 0;
+      for (size_t k = lo_i; k < hi_i; ++k) {
+        size_t i = order[k];
         double dot = q[0] * dirs[3 * i] + q[1] * dirs[3 * i + 1] + q[2] * dirs[3 * i + 2];
-        if (dot > best_dot) {
-          best_dot = dot;
-          nearest = map.U[i];
-        }
         if (dot < cut) continue;
         double ang = std::acos(std::min(1.0, dot));
         double w = std::exp(-ang * ang / (2 * sigma * sigma));
         ws += w;
         us += w * map.U[i];
       }
-      double u = ws > 0 ? us / ws : nearest;
+      if (!(ws > 0)) {  // no direction nearby (a sparse map): the nearest one
+        double best_dot = -2;
+        for (size_t i = 0; i < n; ++i) {
+          double dot = q[0] * dirs[3 * i] + q[1] * dirs[3 * i + 1] + q[2] * dirs[3 * i + 2];
+          if (dot > best_dot) {
+            best_dot = dot;
+            us = map.U[i];
+          }
+        }
+        ws = 1;
+      }
+      double u = us / ws;
       double t = hi > lo ? (u - lo) / (hi - lo) : 0.5;
       uint8_t* px = img.at(x, y);
       colormap_rgb(std::clamp(t, 0.0, 1.0), px);
