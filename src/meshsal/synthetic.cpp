@@ -137,13 +137,15 @@ Mesh make_bumpy_sphere(int subdivisions, std::vector<uint8_t>* feature_mask,
   std::vector<uint32_t> tri;
   unit_icosphere(subdivisions, pos, tri);
 
-  // One unique, larger and smoother feature: high on the sphere, wide and tall but of lower
-  // curvature than the small bumps.
+  // One unique feature, larger than the bumps but of lower peak curvature; its size matches
+  // the coarse saliency scales (sigma 4-6 eps, eps ~ 0.0105 here).
   const Vec3 feature = normalized({0.3, 0.4, 1.0});
-  const double feature_width = 0.2, feature_height = 0.15;
-  // Many identical small sharp bumps at the points of a Fibonacci sphere, away from it.
-  const int bumps = 160;
-  const double bump_width = 0.06, bump_height = 0.045;
+  const double feature_width = 0.08, feature_height = 0.06;
+  // Many identical small bumps at the points of a Fibonacci sphere (spacing ~0.12 rad),
+  // away from the feature: sharper, so mean curvature rates them higher, but repeated.
+  // Sizes were tuned so both contrasts hold from 5 subdivisions (10k vertices) up.
+  const int bumps = 900;
+  const double bump_width = 0.03, bump_height = 0.011;
   std::vector<Vec3> centres;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < bumps; ++i) {

@@ -19,8 +19,9 @@ Mesh make_plane_with_bump(double size, int n, double height, double width);
 // Closed unit cube [-1,1]^3, each face an n x n grid.
 Mesh make_cube(int n);
 
-// The demo mesh of the paper's point: a unit icosphere covered with many regular small
-// bumps and one unique larger feature. feature_mask (if given) marks the vertices of the
+// The demo mesh of the paper's point: a unit icosphere covered with ~900 regular small
+// bumps and one unique larger, smoother feature. With 5+ subdivisions mean curvature rates
+// the bumps at least as high as the feature, while saliency picks the feature. feature_mask (if given) marks the vertices of the
 // unique feature, bump_mask those of the repeated bumps.
 Mesh make_bumpy_sphere(int subdivisions, std::vector<uint8_t>* feature_mask = nullptr,
                        std::vector<uint8_t>* bump_mask = nullptr);

@@ -1,0 +1,78 @@
+// meshsal demo -o DIR: the paper's point on a procedural mesh, with no data needed.
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "command.h"
+#include "meshsal/error.h"
+#include "meshsal/saliency.h"
+#include "meshsal/synthetic.h"
+#include "progress.h"
+#include "saliency_output.h"
+
+namespace meshsal_cli {
+namespace {
+
+struct Args {
+  std::string dir = "demo_out", backend = "auto";
+  int subdivisions = 6;
+  unsigned threads = 0;
+};
+
+double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t v = 0; v < values.size(); ++v)
+    if (mask[v]) sum += std::fabs(values[v]), count++;
+  return count ? sum / double(count) : 0.0;
+}
+
+int run(const Args& a) {
+  using namespace meshsal;
+  if (a.subdivisions < 5 || a.subdivisions > 8)
+    throw Error("--subdivisions must be between 5 and 8");
+  std::error_code ec;
+  std::filesystem::create_directories(a.dir, ec);
+  if (ec) throw Error("cannot create output folder '" + a.dir + "': " + ec.message());
+
+  std::vector<uint8_t> feature, bumps;
+  Mesh mesh = make_bumpy_sphere(a.subdivisions, &feature, &bumps);
+  std::printf("demo mesh: a sphere with ~900 identical small bumps and one larger unique feature\n");
+
+  SaliencyOptions opt;
+  opt.threads = a.threads;
+  opt.backend = parse_backend(a.backend);
+  Progress progress(stderr_is_terminal());
+  opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  SaliencyResult r = compute_saliency(mesh, opt);
+  progress.finish();
+  print_saliency_summary(mesh, r, 0.0);
+
+  const std::string out = a.dir + "/bumpy_sphere_saliency.ply";
+  write_saliency_ply(out, mesh, r, true);
+  std::printf("\n                 mean |curvature|   mean saliency\n");
+  std::printf("unique feature   %16.3f   %13.3f\n", mean_over(r.curvature, feature), mean_over(r.saliency, feature));
+  std::printf("repeated bumps   %16.3f   %13.3f\n", mean_over(r.curvature, bumps), mean_over(r.saliency, bumps));
+  std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
+  std::printf("wrote %s (open in MeshLab: colour = saliency)\n", out.c_str());
+  return 0;
+}
+
+RunFn setup(CLI::App& sub) {
+  auto a = std::make_shared<Args>();
+  sub.footer(
+      "Build a procedural mesh that shows the paper's point (a sphere covered with regular small\n"
+      "bumps and one unique larger feature), compute its saliency and write the results to DIR.");
+  sub.add_option("-o,--output", a->dir, "Output folder (created if missing)")->capture_default_str();
+  sub.add_option("--backend", a->backend, "auto, gpu or cpu")->capture_default_str();
+  sub.add_option("--subdivisions", a->subdivisions, "Icosphere subdivisions (5..8; 6 = 41k vertices)")
+      ->capture_default_str();
+  sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command({"demo", "Run saliency on the built-in demo mesh", 0, setup});
+
+}  // namespace
+}  // namespace meshsal_cli

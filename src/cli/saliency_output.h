@@ -1,0 +1,22 @@
+// meshsal CLI: writing a saliency result as the PLY of SPEC section 4, and its summary.
+#pragma once
+#include <string>
+
+#include "meshsal/mesh.h"
+#include "meshsal/saliency.h"
+
+namespace meshsal_cli {
+
+// quality = S, red/green/blue = colour map of S; with dump_scales also curvature and
+// saliency_raw_0..n-1. Written atomically.
+void write_saliency_ply(const std::string& path, const meshsal::Mesh& mesh,
+                        const meshsal::SaliencyResult& result, bool dump_scales);
+
+// Prints vertices, faces, eps, backend, time per stage and pairs/s to stdout.
+void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyResult& result,
+                            double load_seconds);
+
+// Parses "auto" / "cpu" / "gpu".
+meshsal::Backend parse_backend(const std::string& name);
+
+}  // namespace meshsal_cli
