@@ -1,0 +1,53 @@
+// meshsal: depth of the mesh for a batch of views. Invocations x of view y (workgroup y)
+// take triangles x, x + stride, ... (few long-lived invocations suit CPU drivers, enough of
+// them fill a GPU); pixels whose centre lies inside or on the triangle get the
+// interpolated depth by atomicMin on its bits (non-negative floats order like their bits).
+// Same rule as raster_depth() in visibility.cpp. zbuf holds res*res uints per view, cleared
+// to +inf (0x7f800000) before.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
+layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
+layout(std430, binding = 2) readonly buffer Views { vec4 rows[]; };
+layout(std430, binding = 3) buffer Depth { uint zbuf[]; };
+layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; } pc;
+
+#include "visibility_common.glsl"
+
+void rasterise(uint t, uint view, int res, float half_res, uint zbase) {
+  vec3 a = project_vertex(tri[3u * t], view, half_res);
+  vec3 b = project_vertex(tri[3u * t + 1u], view, half_res);
+  vec3 c = project_vertex(tri[3u * t + 2u], view, half_res);
+  float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  if (!(abs(area) > 1e-12)) return;
+  float s = area > 0.0 ? 1.0 : -1.0;
+  float inv = 1.0 / abs(area);
+  int x0 = max(0, int(floor(min(a.x, min(b.x, c.x)))));
+  int x1 = min(res - 1, int(floor(max(a.x, max(b.x, c.x)))));
+  int y0 = max(0, int(floor(min(a.y, min(b.y, c.y)))));
+  int y1 = min(res - 1, int(floor(max(a.y, max(b.y, c.y)))));
+  for (int y = y0; y <= y1; ++y) {
+    float cy = float(y) + 0.5;
+    for (int x = x0; x <= x1; ++x) {
+      float cx = float(x) + 0.5;
+      float w0 = s * ((c.x - b.x) * (cy - b.y) - (c.y - b.y) * (cx - b.x));
+      float w1 = s * ((a.x - c.x) * (cy - c.y) - (a.y - c.y) * (cx - c.x));
+      float w2 = s * ((b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x));
+      if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+      uint z = floatBitsToUint((w0 * a.z + w1 * b.z + w2 * c.z) * inv);
+      uint at = zbase + uint(y * res + x);
+      if (z < zbuf[at]) atomicMin(zbuf[at], z);  // most hidden fragments skip the atomic
+    }
+  }
+}
+
+void main() {
+  uint lane = pc.base + gl_GlobalInvocationID.x;
+  if (lane >= pc.n) return;
+  uint view = gl_WorkGroupID.y;
+  int res = int(pc.res);
+  float half_res = 0.5 * float(res);
+  uint zbase = view * uint(res) * uint(res);
+  for (uint t = lane; t < pc.triangles; t += pc.n) rasterise(t, view, res, half_res, zbase);
+}
