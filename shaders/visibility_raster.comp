@@ -23,10 +23,11 @@ void rasterise(uint t, uint view, int res, float half_res, uint zbase) {
   if (!(abs(area) > 1e-12)) return;
   float s = area > 0.0 ? 1.0 : -1.0;
   float inv = 1.0 / abs(area);
-  int x0 = max(0, int(floor(min(a.x, min(b.x, c.x)))));
-  int x1 = min(res - 1, int(floor(max(a.x, max(b.x, c.x)))));
-  int y0 = max(0, int(floor(min(a.y, min(b.y, c.y)))));
-  int y1 = min(res - 1, int(floor(max(a.y, max(b.y, c.y)))));
+  // Pixels whose centre x + 0.5 lies in the bounding box (tiny triangles often have none).
+  int x0 = max(0, -int(floor(0.5 - min(a.x, min(b.x, c.x)))));
+  int x1 = min(res - 1, int(floor(max(a.x, max(b.x, c.x)) - 0.5)));
+  int y0 = max(0, -int(floor(0.5 - min(a.y, min(b.y, c.y)))));
+  int y1 = min(res - 1, int(floor(max(a.y, max(b.y, c.y)) - 0.5)));
   for (int y = y0; y <= y1; ++y) {
     float cy = float(y) + 0.5;
     for (int x = x0; x <= x1; ++x) {

@@ -198,11 +198,14 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   std::vector<double> sal(mesh.vertex_count());
   for (size_t i = 0; i < sal.size(); ++i) sal[i] = feature[i] ? 1.0 : 0.05;
   std::string dir = temp_dir();
-  std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh);
+  DemoPictureOptions opt;
+  opt.image_size = 256;
+  opt.map_views = 400;
+  std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh, opt);
   REQUIRE(files.size() == 3);
-  CHECK(read_png(files[0]).width == 512);
+  CHECK(read_png(files[0]).width == 256);
   CHECK(read_png(files[1]).width == 720);
-  CHECK(read_png(files[2]).width == 3 * 512 + 8);
+  CHECK(read_png(files[2]).width == 3 * 256 + 8);
 }
 
 TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws any view", "[view]") {

@@ -87,6 +87,9 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
     // Edge lengths in pixels, for the distance of a pixel to each edge.
     double len[3] = {std::hypot(sx[c] - sx[b], sy[c] - sy[b]), std::hypot(sx[a] - sx[c], sy[a] - sy[c]),
                      std::hypot(sx[b] - sx[a], sy[b] - sy[a])};
+    // Edges only on triangles at least 4 px tall: dense regions stay readable, and the
+    // contrast between wireframe and smooth areas shows where triangles were kept.
+    bool draw_edges = style.edges && std::fabs(area) / std::max({len[0], len[1], len[2]}) >= 4.0;
     double fn[3] = {0, 0, 0};
     if (!style.smooth) {
       double e1[3], e2[3];
@@ -130,7 +133,7 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
           for (int k = 0; k < 3; ++k) nn[k] = fn[k];
         }
         double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
-        if (style.edges) {
+        if (draw_edges) {
           double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
           if (dist < 0.55) shade *= 0.45;
         }

@@ -16,7 +16,7 @@ struct RenderStyle {
   int size = 512;            // square image side in pixels
   double margin = 1.05;      // the image frames the bounding sphere times this
   bool smooth = true;        // interpolated vertex normals; false: flat faces
-  bool edges = false;        // darken triangle edges (shows where triangles are dense)
+  bool edges = false;        // darken the edges of triangles at least 4 px tall
   uint8_t background[3] = {255, 255, 255};
   uint8_t base[3] = {190, 190, 190};  // surface colour when there are no vertex colours
 };

@@ -2,27 +2,26 @@
 
 #include "meshsal/render.h"
 #include "meshsal/viewpoint.h"
+#include "meshsal/viewpoint_backend.h"
 #include "meshsal/visibility.h"
 
 namespace meshsal {
 
 std::vector<std::string> write_demo_pictures(const Mesh& mesh, const std::vector<double>& saliency,
                                              const std::string& dir, const Mesh* plain,
-                                             const Mesh* salient) {
-  std::vector<float> weights = visibility_weights(mesh, saliency);
+                                             const Mesh* salient, const DemoPictureOptions& options) {
   ViewFrame frame = frame_mesh(mesh);
   VisibilityOptions vopt;
-  vopt.resolution = 256;
-  ViewScorer scorer = [&](const std::vector<ViewAngles>& views) {
-    return visible_score_cpu(mesh, weights, frame, views, vopt);
-  };
-  OptimiserResult best = optimise_viewpoint(scorer, OptimiserOptions{});
-  ViewMap map = exhaustive_map(scorer, 2000);
+  vopt.resolution = options.resolution;
+  ViewScorerSetup setup = make_view_scorer(mesh, saliency, vopt, options.backend);
+  OptimiserResult best = optimise_viewpoint(setup.scorer, OptimiserOptions{});
+  ViewMap map = exhaustive_map(setup.scorer, options.map_views, setup.batch);
   std::vector<uint8_t> colours = score_colours(mesh, saliency);
   std::string base = dir.empty() ? std::string(".") : dir;
   if (base.back() != '/') base += '/';
   std::vector<std::string> written;
   RenderStyle style;
+  style.size = options.image_size;
   written.push_back(base + "demo_best_view.png");
   write_png(written.back(), render_mesh(mesh, &colours, frame, best.best, style));
   written.push_back(base + "demo_view_map.png");

@@ -45,6 +45,14 @@ static void project_all(const Mesh& mesh, const ViewRows& view, int res, std::ve
   }
 }
 
+// Inline floor/min/max (positions are finite; these equal GLSL floor/min/max there).
+static inline int ifloor(float v) {
+  int i = int(v);
+  return float(i) > v ? i - 1 : i;
+}
+static inline float min3(float a, float b, float c) { return a < b ? (a < c ? a : c) : (b < c ? b : c); }
+static inline float max3(float a, float b, float c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
+
 // The rasteriser rule shared with shaders/visibility_raster.comp (same float expressions).
 static void raster_depth(const Mesh& mesh, const std::vector<float>& proj, int res, float* zbuf) {
   const uint32_t* t = mesh.triangles.data();
@@ -56,10 +64,11 @@ static void raster_depth(const Mesh& mesh, const std::vector<float>& proj, int r
     if (!(std::fabs(area) > 1e-12f)) continue;
     float s = area > 0 ? 1.0f : -1.0f;
     float inv = 1.0f / std::fabs(area);
-    int x0 = int(std::floor(std::fmin(a[0], std::fmin(b[0], c[0]))));
-    int x1 = int(std::floor(std::fmax(a[0], std::fmax(b[0], c[0]))));
-    int y0 = int(std::floor(std::fmin(a[1], std::fmin(b[1], c[1]))));
-    int y1 = int(std::floor(std::fmax(a[1], std::fmax(b[1], c[1]))));
+    // Pixels whose centre x + 0.5 lies in the bounding box (tiny triangles often have none).
+    int x0 = -ifloor(0.5f - min3(a[0], b[0], c[0]));  // ceil(min - 0.5)
+    int x1 = ifloor(max3(a[0], b[0], c[0]) - 0.5f);
+    int y0 = -ifloor(0.5f - min3(a[1], b[1], c[1]));
+    int y1 = ifloor(max3(a[1], b[1], c[1]) - 0.5f);
     x0 = x0 < 0 ? 0 : x0;
     y0 = y0 < 0 ? 0 : y0;
     x1 = x1 > res - 1 ? res - 1 : x1;
