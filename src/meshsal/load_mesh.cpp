@@ -35,7 +35,8 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties) {
   if (properties) properties->clear();
   Mesh mesh;
   try {
-    const std::string bytes = read_bytes(path);
+    const Bytes file = read_bytes(path);
+    const std::string_view bytes = file.view();
     if (ext == ".obj") mesh = load_obj_text(bytes, path);
     else if (ext == ".off") mesh = load_off_text(bytes, path);
     else mesh = load_ply_bytes(bytes, path, properties);

@@ -10,7 +10,7 @@
 
 namespace meshsal {
 
-Mesh load_obj_text(const std::string& text, const std::string& name) {
+Mesh load_obj_text(std::string_view text, const std::string& name) {
   Mesh mesh;
   TextScan scan(text);
   std::string_view line;
@@ -20,9 +20,8 @@ Mesh load_obj_text(const std::string& text, const std::string& name) {
   };
   while (scan.next_line(line)) {
     line = strip_comment(line);
-    if (line.size() < 2) continue;
-    if (line[0] == 'v' && is_space(line[1])) {
-      line.remove_prefix(1);
+    const std::string_view key = next_token(line);
+    if (key == "v") {
       for (int k = 0; k < 3; ++k) {
         std::string_view tok = next_token(line);
         float x;
@@ -31,8 +30,7 @@ Mesh load_obj_text(const std::string& text, const std::string& name) {
         mesh.positions.push_back(x);
       }
       // Optional w or r g b columns follow; they are not needed.
-    } else if (line[0] == 'f' && is_space(line[1])) {
-      line.remove_prefix(1);
+    } else if (key == "f") {
       poly.clear();
       const int64_t defined = static_cast<int64_t>(mesh.vertex_count());
       for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {

@@ -10,7 +10,7 @@
 
 namespace meshsal {
 
-Mesh load_off_text(const std::string& text, const std::string& name) {
+Mesh load_off_text(std::string_view text, const std::string& name) {
   TextScan scan(text);
   std::string_view line;
   auto fail = [&](const std::string& problem) -> Error {

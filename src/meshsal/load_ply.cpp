@@ -67,7 +67,7 @@ struct Header {
   size_t body_line = 0;  // lines before the body (for ascii error messages)
 };
 
-Header parse_header(const std::string& bytes, const std::string& name) {
+Header parse_header(std::string_view bytes, const std::string& name) {
   TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)));
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": header line " + std::to_string(scan.line_no) + ": " + problem);
@@ -75,6 +75,9 @@ Header parse_header(const std::string& bytes, const std::string& name) {
   std::string_view line;
   if (!scan.next_line(line) || strip_comment(line) != "ply")
     throw Error(name + ": not a PLY file (it does not start with 'ply')");
+  // A header cut short (truncated file) would otherwise be reported as its last odd line.
+  if (scan.text.find("end_header") == std::string_view::npos)
+    throw Error(name + ": PLY header has no end_header line (garbled or truncated file)");
   Header h;
   bool have_format = false, done = false;
   while (!done && scan.next_line(line)) {
@@ -163,7 +166,7 @@ struct Plan {
 };
 
 struct Reader {
-  const std::string& bytes;
+  std::string_view bytes;
   const std::string& name;
   Mesh& mesh;
   uint64_t vertex_count = UINT64_MAX;  // known once the vertex element is seen
@@ -235,6 +238,79 @@ struct Reader {
     return pos;
   }
 
+  // Fast path for the common face layout: only the index list, uchar/char count and
+  // 32-bit indices in host byte order. Returns false when the element does not qualify.
+  bool read_faces_fast(const Element& e, const Plan& plan, size_t& pos, bool swap) {
+    if (swap || e.props.size() != 1 || plan.roles[0] != Indices) return false;
+    const Property& p = e.props[0];
+    if (type_size(p.count_type) != 1 || type_size(p.type) != 4 || p.type == PlyType::Float32) return false;
+    if (vertex_count == UINT64_MAX) return false;  // faces before vertices: use the slow path
+    const bool signed_count = p.count_type == PlyType::Int8;
+    const char* data = bytes.data();
+    const size_t end = bytes.size();
+    int64_t poly[256];
+    for (uint64_t k = 0; k < e.count; ++k) {
+      if (pos >= end) truncated(e, k);
+      int c = signed_count ? static_cast<int8_t>(data[pos]) : static_cast<uint8_t>(data[pos]);
+      if (c < 0) fail(e.name + " " + std::to_string(k) + " has a negative list length");
+      ++pos;
+      if (static_cast<size_t>(c) * 4 > end - pos) truncated(e, k);
+      if (c == 3) {
+        uint32_t t[3];
+        std::memcpy(t, data + pos, 12);
+        if (p.type == PlyType::UInt32 ? (t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count)
+                                      : (int32_t(t[0]) >= 0 && int32_t(t[1]) >= 0 && int32_t(t[2]) >= 0 &&
+                                         t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count)) {
+          mesh.triangles.insert(mesh.triangles.end(), t, t + 3);
+          pos += 12;
+          continue;
+        }
+      }
+      for (int i = 0; i < c; ++i) {
+        uint32_t u;
+        std::memcpy(&u, data + pos + 4 * i, 4);
+        poly[i] = p.type == PlyType::UInt32 ? int64_t(u) : int64_t(int32_t(u));
+      }
+      add_polygon(poly, static_cast<uint64_t>(c), k, 0);
+      pos += 4 * size_t(c);
+    }
+    return true;
+  }
+
+  // Fast path for a vertex element without lists: fixed stride, one bounds check.
+  template <bool Swap>
+  bool read_fixed_fast(const Element& e, Plan& plan, size_t& pos) {
+    size_t stride = 0;
+    for (const Property& p : e.props) {
+      if (p.is_list) return false;
+      stride += type_size(p.type);
+    }
+    if (e.count > (bytes.size() - pos) / stride) truncated(e, (bytes.size() - pos) / stride);
+    std::vector<size_t> offset(e.props.size());
+    for (size_t j = 0, o = 0; j < e.props.size(); o += type_size(e.props[j].type), ++j) offset[j] = o;
+    const char* base = bytes.data() + pos;
+    // x, y, z as adjacent host-order floats: one 12-byte copy per vertex.
+    const bool packed_xyz = !Swap && plan.roles.size() >= 3 && plan.roles[0] == X && plan.roles[1] == Y &&
+                            plan.roles[2] == Z && e.props[0].type == PlyType::Float32 &&
+                            e.props[1].type == PlyType::Float32 && e.props[2].type == PlyType::Float32;
+    const size_t first = packed_xyz ? 3 : 0;
+    const size_t old = mesh.positions.size();
+    mesh.positions.resize(old + 3 * e.count);
+    float* out = mesh.positions.data() + old;
+    for (uint64_t k = 0; k < e.count; ++k, base += stride, out += 3) {
+      if (packed_xyz) std::memcpy(out, base, 12);
+      for (size_t j = first; j < e.props.size(); ++j) {
+        const Role role = plan.roles[j];
+        if (role == Skip) continue;
+        const float v = static_cast<float>(read_value<Swap>(base + offset[j], e.props[j].type));
+        if (role == Extra) *plan.extra_out[j]++ = v;
+        else out[role] = v;
+      }
+    }
+    pos += e.count * stride;
+    return true;
+  }
+
   [[noreturn]] void truncated(const Element& e, uint64_t k) {
     fail("truncated: the file ends inside " + e.name + " " + std::to_string(k) + " of " +
          std::to_string(e.count));
@@ -287,7 +363,7 @@ struct Reader {
 
 }  // namespace
 
-Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexProperties* properties) {
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
   Header h = parse_header(bytes, name);
   const bool ascii = h.format == Format::Ascii;
   const size_t body_size = bytes.size() - h.body;
@@ -369,7 +445,7 @@ Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexPro
 
   size_t end;
   if (ascii) {
-    TextScan scan{std::string_view(bytes)};
+    TextScan scan{bytes};
     scan.pos = h.body;
     scan.line_no = h.body_line;
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
@@ -383,8 +459,14 @@ Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexPro
     end = h.body;
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
       if (h.elements[ei].props.empty()) continue;
-      end = swap ? reader.read_binary<true>(h.elements[ei], plans[ei], end)
-                 : reader.read_binary<false>(h.elements[ei], plans[ei], end);
+      const Element& e = h.elements[ei];
+      if (reader.read_faces_fast(e, plans[ei], end, swap)) continue;
+      if (&e == vertex && (swap ? reader.read_fixed_fast<true>(e, plans[ei], end)
+                                : reader.read_fixed_fast<false>(e, plans[ei], end))) {
+        reader.vertex_count = vertex->count;
+        continue;
+      }
+      end = swap ? reader.read_binary<true>(e, plans[ei], end) : reader.read_binary<false>(e, plans[ei], end);
       if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
     }
   }

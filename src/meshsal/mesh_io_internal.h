@@ -4,14 +4,15 @@
 // (load_mesh) runs validate_mesh on the result.
 #pragma once
 #include <string>
+#include <string_view>
 
 #include "meshsal/mesh.h"
 #include "meshsal/mesh_io.h"
 
 namespace meshsal {
 
-Mesh load_obj_text(const std::string& text, const std::string& name);
-Mesh load_off_text(const std::string& text, const std::string& name);
-Mesh load_ply_bytes(const std::string& bytes, const std::string& name, VertexProperties* properties);
+Mesh load_obj_text(std::string_view text, const std::string& name);
+Mesh load_off_text(std::string_view text, const std::string& name);
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties);
 
 }  // namespace meshsal

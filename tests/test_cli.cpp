@@ -1,0 +1,163 @@
+// The meshsal executable end to end: outputs, exit codes and one-line errors.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "meshsal/mesh_io.h"
+#include "meshsal/saliency.h"
+#include "test_util.h"
+
+using namespace meshsal;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code;  // -1 when killed by a signal
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+fs::path scratch_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("meshsal_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+RunResult run_cli(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+  int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary);
+  f << text;
+}
+
+// A failed run: exit code 1 (not a signal), exactly one line on stderr starting "error: ".
+void check_clean_failure(const RunResult& r) {
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.rfind("error: ", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
+
+}  // namespace
+
+TEST_CASE("cli: saliency writes the SPEC PLY with the CPU path's numbers", "[cli]") {
+  MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
+  fs::path dir = scratch_dir("saliency");
+  fs::path out = dir / "bunny.ply";
+  RunResult r = run_cli("saliency " + input + " -o " + out.string() + " --backend cpu --dump-scales", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("vertices   3485") != std::string::npos);
+  CHECK(r.out.find("pairs/s") != std::string::npos);
+
+  VertexProperties props;
+  Mesh written = load_mesh(out.string(), &props);
+  Mesh original = load_mesh(input);
+  CHECK(written.positions == original.positions);
+  CHECK(written.triangles == original.triangles);
+  SaliencyResult expected = compute_saliency_cpu(original, {});
+  for (const char* name : {"quality", "curvature", "saliency_raw_0", "saliency_raw_4", "red", "green", "blue"})
+    REQUIRE(props.count(name) == 1);
+  for (size_t v = 0; v < original.vertex_count(); ++v) {
+    REQUIRE(props["quality"][v] == Approx(float(expected.saliency[v])).margin(1e-6));
+    REQUIRE(props["curvature"][v] == Approx(float(expected.curvature[v])).margin(1e-4));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: bad input gets one error line and exit code 1", "[cli]") {
+  fs::path dir = scratch_dir("bad");
+  const std::string out = (dir / "out.ply").string();
+  SECTION("missing file") { check_clean_failure(run_cli("saliency " + (dir / "nope.obj").string() + " -o " + out, dir)); }
+  SECTION("unknown extension") {
+    write_text(dir / "mesh.stl", "solid x\n");
+    check_clean_failure(run_cli("saliency " + (dir / "mesh.stl").string() + " -o " + out, dir));
+  }
+  SECTION("garbled PLY") {
+    write_text(dir / "g.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2\nxyz\n");
+    check_clean_failure(run_cli("saliency " + (dir / "g.ply").string() + " -o " + out, dir));
+  }
+  SECTION("only degenerate triangles") {
+    write_text(dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    check_clean_failure(run_cli("saliency " + (dir / "d.obj").string() + " -o " + out, dir));
+  }
+  SECTION("NaN coordinate") {
+    write_text(dir / "n.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+    check_clean_failure(run_cli("saliency " + (dir / "n.obj").string() + " -o " + out, dir));
+  }
+  SECTION("index out of range") {
+    write_text(dir / "i.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+    check_clean_failure(run_cli("saliency " + (dir / "i.off").string() + " -o " + out, dir));
+  }
+  SECTION("bad scales") {
+    write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    check_clean_failure(run_cli("saliency " + (dir / "t.obj").string() + " -o " + out + " --scales 2,x", dir));
+  }
+  SECTION("output not .ply") {
+    write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    check_clean_failure(run_cli("saliency " + (dir / "t.obj").string() + " -o " + (dir / "o.txt").string(), dir));
+  }
+  SECTION("output folder missing") {
+    write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    check_clean_failure(run_cli("saliency " + (dir / "t.obj").string() + " -o " + (dir / "no/such/o.ply").string(), dir));
+  }
+  CHECK_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: a failed run leaves an earlier output untouched", "[cli]") {
+  fs::path dir = scratch_dir("keep");
+  const fs::path out = dir / "out.ply";
+  write_text(out, "previous result");
+  write_text(dir / "bad.obj", "v 0 0 0\nf 1 2 3\n");
+  check_clean_failure(run_cli("saliency " + (dir / "bad.obj").string() + " -o " + out.string(), dir));
+  CHECK(slurp(out) == "previous result");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: help explains every command and option", "[cli]") {
+  fs::path dir = scratch_dir("help");
+  RunResult top = run_cli("--help", dir);
+  CHECK(top.exit_code == 0);
+  for (const char* cmd : {"saliency", "demo", "bench"}) CHECK(top.out.find(cmd) != std::string::npos);
+  RunResult sal = run_cli("saliency --help", dir);
+  CHECK(sal.exit_code == 0);
+  for (const char* opt : {"--backend", "--scales", "--eps-frac", "--dump-scales", "--threads", "--output"})
+    CHECK(sal.out.find(opt) != std::string::npos);
+  RunResult none = run_cli("", dir);
+  CHECK(none.exit_code != 0);
+  CHECK(none.exit_code != -1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
+  fs::path dir = scratch_dir("demo");
+  RunResult r = run_cli("demo -o " + (dir / "out").string() + " --subdivisions 5 --backend cpu", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  VertexProperties props;
+  Mesh m = load_mesh((dir / "out" / "bumpy_sphere_saliency.ply").string(), &props);
+  CHECK(m.vertex_count() == 10242);
+  REQUIRE(props.count("quality") == 1);
+  CHECK(r.out.find("unique feature") != std::string::npos);
+  fs::remove_all(dir);
+}

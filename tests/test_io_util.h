@@ -1,0 +1,89 @@
+// Helpers for the [io] tests: a private temporary folder and small file writers.
+#pragma once
+#include <zlib.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "meshsal/error.h"
+#include "meshsal/mesh_io.h"
+
+namespace meshsal_test {
+
+// A fresh folder under the system temp dir, removed with everything in it at scope exit.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    static std::atomic<int> counter{0};
+    auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    path = std::filesystem::temp_directory_path() /
+           ("meshsal_io_" + std::to_string(::getpid()) + "_" + std::to_string(stamp) + "_" +
+            std::to_string(counter++));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::permissions(path, std::filesystem::perms::owner_all,
+                                 std::filesystem::perm_options::add, ec);
+    std::filesystem::remove_all(path, ec);
+  }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+
+  // Writes `bytes` to NAME in this folder and returns the full path.
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::string p = file(name);
+    std::ofstream out(p, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return p;
+  }
+
+  // Writes `bytes` gzip-compressed.
+  std::string write_gz(const std::string& name, const std::string& bytes) const {
+    std::string p = file(name);
+    gzFile gz = gzopen(p.c_str(), "wb");
+    gzwrite(gz, bytes.data(), static_cast<unsigned>(bytes.size()));
+    gzclose(gz);
+    return p;
+  }
+
+  size_t entries() const {
+    size_t n = 0;
+    for (auto it = std::filesystem::directory_iterator(path); it != std::filesystem::directory_iterator(); ++it) ++n;
+    return n;
+  }
+};
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The message load_mesh throws for PATH, or "" when it loads fine.
+inline std::string load_error(const std::string& path) {
+  try {
+    meshsal::load_mesh(path);
+  } catch (const meshsal::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Binary PLY body helpers: append raw values in the given byte order.
+template <typename T>
+void put_bin(std::string& s, T v, bool big_endian = false) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big_endian)
+    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  s.append(b, sizeof(T));
+}
+
+}  // namespace meshsal_test
