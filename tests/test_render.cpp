@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -25,12 +26,20 @@ using namespace meshsal;
 namespace {
 const double kPi = 3.14159265358979323846;
 
-std::string temp_dir() {
-  char tmpl[] = "/tmp/meshsal_render_XXXXXX";
-  const char* d = mkdtemp(tmpl);
-  REQUIRE(d != nullptr);
-  return d;
-}
+// A fresh folder under /tmp, removed with everything in it when the test ends.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char tmpl[] = "/tmp/meshsal_render_XXXXXX";
+    const char* d = mkdtemp(tmpl);
+    REQUIRE(d != nullptr);
+    path = d;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
 
 Image read_png(const std::string& path) {
   int w = 0, h = 0, c = 0;
@@ -181,7 +190,8 @@ TEST_CASE("render: view map, side by side and PNG round trip", "[view]") {
   for (int yy = 0; yy < 64; ++yy)
     for (int xx = 0; xx < 64; ++xx) REQUIRE(std::equal(sbs.at(xx, yy), sbs.at(xx, yy) + 3, sbs.at(xx + 136, yy)));
 
-  std::string dir = temp_dir();
+  TempDir tmp;
+  const std::string& dir = tmp.path;
   write_png(dir + "/sbs.png", sbs);
   Image back = read_png(dir + "/sbs.png");
   CHECK(back.width == sbs.width);
@@ -197,7 +207,8 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   Mesh mesh = make_bumpy_sphere(3, &feature);
   std::vector<double> sal(mesh.vertex_count());
   for (size_t i = 0; i < sal.size(); ++i) sal[i] = feature[i] ? 1.0 : 0.05;
-  std::string dir = temp_dir();
+  TempDir tmp;
+  const std::string& dir = tmp.path;
   DemoPictureOptions opt;
   opt.image_size = 256;
   opt.map_views = 400;
@@ -209,7 +220,8 @@ TEST_CASE("render: demo pictures are written", "[view]") {
 }
 
 TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws any view", "[view]") {
-  std::string dir = temp_dir();
+  TempDir tmp;
+  const std::string& dir = tmp.path;
   // A sphere whose saliency (PLY quality) is max(0, x): the best view looks from +x.
   Mesh s = make_sphere(1.0, 3);
   std::vector<double> q(s.vertex_count());
