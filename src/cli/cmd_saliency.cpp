@@ -28,6 +28,8 @@ int run(const Args& a) {
   using namespace meshsal;
   if (!ends_with(a.output, ".ply") && !ends_with(a.output, ".PLY"))
     throw Error("output must be a .ply file (binary PLY with per-vertex quality), got '" + a.output + "'");
+  if (!(a.eps_frac > 0) || a.eps_frac > 1)
+    throw Error("--eps-frac must be in (0, 1], got " + std::to_string(a.eps_frac));
   SaliencyOptions opt;
   opt.eps_frac = a.eps_frac;
   opt.scales = parse_scales(a.scales);
@@ -69,7 +71,7 @@ RunFn setup(CLI::App& sub) {
                  "Center-surround scales in units of eps: scale k compares the Gaussian averages "
                  "of curvature at k*eps and 2k*eps")->capture_default_str();
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str();
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
