@@ -49,6 +49,11 @@ int run(const Options& o) {
   auto t0 = std::chrono::steady_clock::now();
   if (o.restarts < 1 || o.restarts > 1000) throw Error("--restarts must be between 1 and 1000");
   if (o.views < 0 || o.views > 1000000) throw Error("--views must be between 0 and 1000000");
+  RenderStyle style;
+  style.size = o.size;
+  if (!o.out_png.empty()) check_render_style(style);
+  if (!o.map_png.empty() && (o.map_width < 32 || o.map_width > 8192))
+    throw Error("--map-width must be between 32 and 8192");
   Backend backend = parse_backend(o.backend);
   ViewScore kind = parse_view_score(o.score);
   Mesh mesh = load_mesh(o.input);
@@ -99,8 +104,6 @@ int run(const Options& o) {
   std::fflush(stdout);
 
   if (!o.out_png.empty()) {
-    RenderStyle style;
-    style.size = o.size;
     std::vector<uint8_t> colours = score_colours(mesh, score);
     write_png(o.out_png, render_mesh(mesh, &colours, frame_mesh(mesh), best.best, style));
   }
