@@ -1,6 +1,7 @@
-// meshsal: depth of the mesh for a batch of views. Invocations x of view y (workgroup y)
-// take triangles x, x + stride, ... (few long-lived invocations suit CPU drivers, enough of
-// them fill a GPU); pixels whose centre lies inside or on the triangle get the
+// meshsal: depth of the mesh for a batch of views. Invocation x of view group y (workgroup
+// y: views 4y .. 4y+3) takes triangles x, x + stride, ... and rasterises each into the 4
+// views (positions loaded once; few long-lived invocations suit CPU drivers, enough of them
+// still fill a GPU); pixels whose centre lies inside or on the triangle get the
 // interpolated depth by atomicMin on its bits (non-negative floats order like their bits).
 // Same rule as raster_depth() in visibility.cpp. zbuf holds res*res uints per view, cleared
 // to +inf (0x7f800000) before.
@@ -11,14 +12,24 @@ layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
 layout(std430, binding = 2) readonly buffer Views { vec4 rows[]; };
 layout(std430, binding = 3) buffer Depth { uint zbuf[]; };
-layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; } pc;
+layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; } pc;
+const uint VIEWS_PER_GROUP = 4u;  // views rasterised per invocation (positions loaded once)
 
 #include "visibility_common.glsl"
 
-void rasterise(uint t, uint view, int res, float half_res, uint zbase) {
-  vec3 a = project_vertex(tri[3u * t], view, half_res);
-  vec3 b = project_vertex(tri[3u * t + 1u], view, half_res);
-  vec3 c = project_vertex(tri[3u * t + 2u], view, half_res);
+vec3 project_point(vec3 p, uint view, float half_res) {
+  vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
+  float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
+  float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
+  float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
+  float d = (1.0 - nz) * 0.5;
+  return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
+}
+
+void rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, uint zbase) {
+  vec3 a = project_point(pa, view, half_res);
+  vec3 b = project_point(pb, view, half_res);
+  vec3 c = project_point(pc_, view, half_res);
   float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
   if (!(abs(area) > 1e-12)) return;
   float s = area > 0.0 ? 1.0 : -1.0;
@@ -43,12 +54,18 @@ void rasterise(uint t, uint view, int res, float half_res, uint zbase) {
   }
 }
 
+vec3 load(uint v) { return vec3(pos[3u * v], pos[3u * v + 1u], pos[3u * v + 2u]); }
+
 void main() {
   uint lane = pc.base + gl_GlobalInvocationID.x;
   if (lane >= pc.n) return;
-  uint view = gl_WorkGroupID.y;
+  uint first = gl_WorkGroupID.y * VIEWS_PER_GROUP;
+  uint last = min(first + VIEWS_PER_GROUP, pc.views);
   int res = int(pc.res);
   float half_res = 0.5 * float(res);
-  uint zbase = view * uint(res) * uint(res);
-  for (uint t = lane; t < pc.triangles; t += pc.n) rasterise(t, view, res, half_res, zbase);
+  for (uint t = lane; t < pc.triangles; t += pc.n) {
+    vec3 pa = load(tri[3u * t]), pb = load(tri[3u * t + 1u]), pc_ = load(tri[3u * t + 2u]);
+    for (uint view = first; view < last; ++view)
+      rasterise(pa, pb, pc_, view, res, half_res, view * uint(res) * uint(res));
+  }
 }

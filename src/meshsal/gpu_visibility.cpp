@@ -13,8 +13,9 @@ namespace meshsal {
 
 namespace {
 struct RasterPush {
-  uint32_t base, n, res, triangles;  // n: invocations per view
+  uint32_t base, n, res, triangles, views;  // n: invocations per view group
 };
+const uint32_t kViewsPerRasterGroup = 4;  // VIEWS_PER_GROUP in visibility_raster.comp
 struct TestPush {
   uint32_t base, n, res, vertices;
   float tol;
@@ -107,8 +108,9 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
       vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
       vk::barrier(cmd);
-      RasterPush rp{0, s.raster_lanes, res, s.triangles};
-      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, s.raster_lanes, 64, count);
+      RasterPush rp{0, s.raster_lanes, res, s.triangles, count};
+      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, s.raster_lanes, 64,
+                   (count + kViewsPerRasterGroup - 1) / kViewsPerRasterGroup);
       vk::barrier(cmd);
       TestPush tp{0, s.test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution)};
       vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, s.test_lanes, 64, count);
