@@ -6,7 +6,6 @@
 // Same rule as raster_depth() in visibility.cpp. zbuf holds res*res uints per view, cleared
 // to +inf (0x7f800000) before.
 #version 450
-#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
@@ -14,8 +13,6 @@ layout(std430, binding = 2) readonly buffer Views { vec4 rows[]; };
 layout(std430, binding = 3) buffer Depth { uint zbuf[]; };
 layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; } pc;
 const uint VIEWS_PER_GROUP = 4u;  // views rasterised per invocation (positions loaded once)
-
-#include "visibility_common.glsl"
 
 vec3 project_point(vec3 p, uint view, float half_res) {
   vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];

@@ -15,10 +15,11 @@ namespace {
 struct RasterPush {
   uint32_t base, n, res, triangles, views;  // n: invocations per view group
 };
-const uint32_t kViewsPerRasterGroup = 4;  // VIEWS_PER_GROUP in visibility_raster.comp
+const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
 struct TestPush {
   uint32_t base, n, res, vertices;
   float tol;
+  uint32_t views;
 };
 // Invocations per view: each loops over items with this stride. About 16 items each, at most
 // 4096 (raster) / 2048 (test) per view: a batch of 256 views is then up to a million
@@ -110,10 +111,11 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
       vk::barrier(cmd);
       RasterPush rp{0, s.raster_lanes, res, s.triangles, count};
       vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, s.raster_lanes, 64,
-                   (count + kViewsPerRasterGroup - 1) / kViewsPerRasterGroup);
+                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
       vk::barrier(cmd);
-      TestPush tp{0, s.test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution)};
-      vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, s.test_lanes, 64, count);
+      TestPush tp{0, s.test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count};
+      vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, s.test_lanes, 64,
+                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
       VkMemoryBarrier host{};  // the partial sums are read by the host after the fence
       host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
       host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
