@@ -33,6 +33,24 @@ meshsal::Backend parse_backend(const std::string& s) {
   throw meshsal::Error("--backend must be auto, cpu or gpu, got '" + s + "'");
 }
 
+// A JSON string literal body: quotes, backslashes and control characters escaped.
+std::string json_escape(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += char(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
+}
+
 std::string json_view(const meshsal::ViewAngles& a, double U) {
   double d[3];
   meshsal::view_direction(a, d);
@@ -89,8 +107,8 @@ int run(const Options& o) {
 
   std::printf("{\"mesh\": \"%s\", \"vertices\": %zu, \"score\": \"%s\", \"score_source\": \"%s\", "
               "\"backend\": \"%s\", \"resolution\": %d, \"depth_tol_px\": %g, ",
-              o.input.c_str(), mesh.vertex_count(), o.score.c_str(), source.c_str(),
-              setup.backend_name.c_str(), o.resolution, o.depth_tol);
+              json_escape(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_escape(source).c_str(),
+              json_escape(setup.backend_name).c_str(), o.resolution, o.depth_tol);
   std::printf("%s, \"U_fraction\": %.6f, ", json_view(best.best, best.U).c_str(), total > 0 ? best.U / total : 0.0);
   std::printf("\"restarts\": %d, \"seed\": %llu, ", o.restarts, (unsigned long long)o.seed);
   if (map_views > 0)
