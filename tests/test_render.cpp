@@ -255,6 +255,13 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
                   dir + "/c.png", &out) == 0);
   CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
 
+  // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
+  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
+  CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
+  CHECK(json_number(out, "U_fraction") > 0.4);
+  CHECK(json_number(out, "U_fraction") < 0.6);
+  CHECK(out.find("\"exhaustive\": null") != std::string::npos);
+
   // Errors are one line, exit code 1.
   CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 1);
   CHECK(out.find("error: --score must be saliency or curvature") != std::string::npos);
