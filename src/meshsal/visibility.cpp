@@ -144,7 +144,9 @@ std::vector<double> visible_score_cpu(const Mesh& mesh, const std::vector<float>
   std::vector<double> U(views.size(), 0.0);
   const int res = o.resolution;
   const float tol = float(o.depth_tol_px / res);
-  parallel_for(views.size(), o.threads, 1, [&](size_t begin, size_t end) {
+  // Chunks of several views: each chunk allocates its own z-buffer once.
+  size_t chunk = std::max<size_t>(1, views.size() / (8 * size_t(resolve_threads(o.threads))));
+  parallel_for(views.size(), o.threads, chunk, [&](size_t begin, size_t end) {
     std::vector<float> proj;
     std::vector<float> zbuf(size_t(res) * res);
     for (size_t v = begin; v < end; ++v) {
