@@ -5,13 +5,14 @@
 // the triangle, depth interpolated linearly, smaller = nearer, cleared to +inf). A mesh
 // point is visible when its pixel floor(px), floor(py) lies inside the image and
 //   depth(point) <= zbuffer(pixel) + depth_tol_px / res
-// (a point whose pixel is empty, on the silhouette between pixel centres, is tested against
-// the smallest depth of the 3x3 pixels around it, visible if they are all empty),
 // i.e. the tolerance is depth_tol_px pixel widths along the view axis (a pixel is 2R/res
-// wide and depth spans 2R). It absorbs the depth of the point's own triangles sampled up to
-// 0.71 px away: a point is kept visible while its surface is inclined less than about
-// atan(tol / 0.71) to the view (70 degrees at the default 2 px); more grazing points, and
-// points less than tol behind an occluder, are borderline by nature.
+// wide and depth spans 2R). A point whose pixel is empty (on the silhouette, between pixel
+// centres) is tested against the smallest depth of the 3x3 pixels around it, and is visible
+// if they are all empty, so points just behind a silhouette do not leak through.
+// The tolerance absorbs the depth of the point's own triangles sampled up to 0.71 px away:
+// a point stays visible while its normal is within about atan(tol / 0.71) of the view
+// direction (70 degrees at the default 2 px); more grazing points, and points less than
+// tol behind an occluder, are borderline by nature.
 // U(view) = sum of score over visible mesh points.
 #pragma once
 #include <cstdint>
