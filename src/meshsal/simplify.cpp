@@ -1,6 +1,6 @@
 // meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
 // One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
-// the next collapse: an indexed heap of per-vertex cheapest edges (simplify_mesh) and a full scan
+// the next collapse: a lazily invalidated heap of edges (simplify_mesh) and a full scan
 // (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
 #include "meshsal/simplify.h"
 
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "meshsal/error.h"
@@ -40,21 +41,30 @@ namespace {
 
 // 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
 // float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
+// `a` comes first so that (a, cost) read as one little-endian 64-bit word orders by cost,
+// then a: costs are never negative, -0 or NaN (Quadric::error clamps to +0), and the bits
+// of such floats order like their values.
 struct Entry {
+  uint32_t a;      // a < b; a survives
   float cost;
-  uint32_t a, b;   // a < b; a survives
+  uint32_t b;
   uint32_t stamp;  // collapse count when the cost was computed
 };
-
-// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers.
-inline bool key_less(const Entry& x, const Entry& y) {
-  if (x.cost != y.cost) return x.cost < y.cost;
-  if (x.a != y.a) return x.a < y.a;
-  return x.b < y.b;
+inline Entry make_entry(double cost, uint32_t a, uint32_t b, uint32_t stamp) {
+  return {a, float(cost), b, stamp};
 }
-struct HeapGreater {
-  bool operator()(const Entry& x, const Entry& y) const { return key_less(y, x); }
-};
+inline uint64_t cost_a(const Entry& x) {
+  uint64_t k;
+  std::memcpy(&k, &x, 8);
+  return k;
+}
+
+// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers. No
+// branches: the heap compares in random order, and mispredictions were half its time.
+inline bool key_less(const Entry& x, const Entry& y) {
+  const uint64_t kx = cost_a(x), ky = cost_a(y);
+  return (kx < ky) | ((kx == ky) & (x.b < y.b));
+}
 
 enum class Check { Ok, NotEdge, Refused };
 
@@ -75,7 +85,26 @@ struct State {
   std::vector<Quadric> quad;
   std::vector<uint32_t> tri;                 // 3 per triangle
   std::vector<uint8_t> tri_alive;
-  std::vector<std::vector<uint32_t>> vtris;  // triangles of each vertex (may hold dead ones)
+  // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
+  // from vt_start[v], room for vt_cap[v]; a run that outgrows its room moves to the end.
+  std::vector<uint32_t> vt_pool, vt_start, vt_count, vt_cap;
+  struct Run {
+    const uint32_t* b;
+    const uint32_t* e;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+  };
+  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
+  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
+  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  // Drops the dead triangles from v's run.
+  void compact(uint32_t v) {
+    uint32_t* l = tris_of(v);
+    uint32_t n = 0;
+    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i)
+      if (tri_alive[l[i]]) l[n++] = l[i];
+    vt_count[v] = n;
+  }
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
   std::vector<uint32_t> changed;             // collapse count when the vertex last moved
@@ -197,14 +226,21 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   tri_alive.assign(nt, 1);
   std::vector<uint32_t> deg(nv, 0);
   for (uint32_t v : tri) ++deg[v];
-  vtris.resize(nv);
-  for (size_t v = 0; v < nv; ++v) vtris[v].reserve(deg[v]);
+  vt_start.resize(nv);
+  vt_count.assign(nv, 0);
+  vt_cap.resize(nv);
+  {
+    size_t off = 0;
+    for (size_t v = 0; v < nv; ++v) { vt_start[v] = uint32_t(off); vt_cap[v] = deg[v]; off += deg[v]; }
+    vt_pool.reserve(2 * off + 64);
+    vt_pool.resize(off);
+  }
   quad.assign(nv, Quadric{});
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* v = &tri[3 * t];
     const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
     for (int k = 0; k < 3; ++k) {
-      vtris[v[k]].push_back(uint32_t(t));
+      vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
       quad[v[k]] += q;
     }
   }
@@ -250,7 +286,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     double tmp[3];
     for (size_t i = 0; i < unique_edges_a.size(); ++i) {
       const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
-      (*edges)[i] = {float(cost(a, b, tmp)), a, b, 0};
+      (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
     }
   }
 }
@@ -284,18 +320,16 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
 
 Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   for (uint32_t v : {a, b})  // scattered loads: issue them together
-    for (uint32_t t : vtris[v]) {
+    for (uint32_t t : vt(v)) {
       __builtin_prefetch(&tri[3 * size_t(t)]);
       __builtin_prefetch(&tri_alive[t]);
     }
   // Drop dead triangles from both lists first (they are only ever appended to).
-  for (uint32_t v : {a, b}) {
-    std::vector<uint32_t>& l = vtris[v];
-    l.erase(std::remove_if(l.begin(), l.end(), [&](uint32_t t) { return !tri_alive[t]; }), l.end());
-  }
+  compact(a);
+  compact(b);
   // Triangles on the edge and the vertices opposite it.
   opp.clear();
-  for (uint32_t t : vtris[a]) {
+  for (uint32_t t : vt(a)) {
     if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == b || v[1] == b || v[2] == b) opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
@@ -310,7 +344,7 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   na.clear();
   nb.clear();
   pairs_a.clear();
-  for (uint32_t t : vtris[a]) {
+  for (uint32_t t : vt(a)) {
     if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == b || v[1] == b || v[2] == b) continue;
@@ -320,7 +354,7 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
       if (v[i] != a) { na.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
     pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
   }
-  for (uint32_t t : vtris[b]) {
+  for (uint32_t t : vt(b)) {
     if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
@@ -348,13 +382,13 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   if (common != k) return Check::Refused;
 
   // Flips, fold-overs and degenerate triangles among those that remain.
-  for (uint32_t t : vtris[a]) {
+  for (uint32_t t : vt(a)) {
     if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == b || v[1] == b || v[2] == b) continue;
     if (bad_triangle(t, a, np)) return Check::Refused;
   }
-  for (uint32_t t : vtris[b]) {
+  for (uint32_t t : vt(b)) {
     if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
@@ -367,7 +401,22 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
   border[a] = border[a] | border[b];
-  for (uint32_t t : vtris[b]) {
+  compact(a);
+  const uint32_t need = vt_count[a] + vt_count[b];
+  if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
+    const uint32_t cap = need + need / 2;
+    const size_t start = vt_pool.size();
+    vt_pool.resize(start + cap);
+    std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
+              vt_pool.begin() + start);
+    vt_start[a] = uint32_t(start);
+    vt_cap[a] = cap;
+  }
+  uint32_t* la = tris_of(a);
+  uint32_t na_ = vt_count[a];
+  const uint32_t* lb = tris_of(b);
+  for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
+    const uint32_t t = lb[i];
     if (!tri_alive[t]) continue;
     uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) {
@@ -376,13 +425,12 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     } else {
       for (int k = 0; k < 3; ++k)
         if (v[k] == b) v[k] = a;
-      vtris[a].push_back(t);
+      la[na_++] = t;
     }
   }
-  std::vector<uint32_t>& la = vtris[a];
-  la.erase(std::remove_if(la.begin(), la.end(), [&](uint32_t t) { return !tri_alive[t]; }),
-           la.end());
-  std::vector<uint32_t>().swap(vtris[b]);
+  vt_count[a] = na_;
+  compact(a);
+  vt_count[b] = 0;
   alive[b] = 0;
   ++collapses;
   changed[a] = changed[b] = uint32_t(collapses);
@@ -441,207 +489,150 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-// Indexed 4-ary min-heap over vertices, keyed by each vertex's cheapest edge. Only the
-// vertices whose cheapest edge changed are touched per collapse, and nothing goes stale.
-class VertexHeap {
+// 4-ary min-heap of edge entries with the keys inline (16-byte entries, so the four
+// children of a node share one 64-byte line). Entries are never updated in place: a collapse
+// pushes the survivor's new edges and the old ones are dropped when they surface (stamps).
+class EdgeHeap {
  public:
-  explicit VertexHeap(const std::vector<Entry>& best) : best_(best), pos_(best.size(), kNone) {}
   bool empty() const { return h_.empty(); }
-  uint32_t top() const { return h_[0]; }
-  // Inserts v or moves it to its place after best_[v] changed.
-  void update(uint32_t v) {
-    if (pos_[v] == kNone) {
-      pos_[v] = uint32_t(h_.size());
-      h_.push_back(v);
-      up(pos_[v]);
-    } else {
-      up(pos_[v]);
-      down(pos_[v]);
-    }
+  size_t size() const { return h_.size(); }
+  void assign(std::vector<Entry>&& all) {
+    h_ = std::move(all);
+    if (h_.size() > 1)
+      for (size_t i = (h_.size() - 2) / 4 + 1; i-- > 0;) down(i);
   }
-  void remove(uint32_t v) {
-    const uint32_t i = pos_[v];
-    if (i == kNone) return;
-    pos_[v] = kNone;
-    const uint32_t last = h_.back();
-    h_.pop_back();
-    if (i < h_.size()) {
-      h_[i] = last;
-      pos_[last] = i;
-      up(i);
-      down(pos_[last]);
+  // Drops the entries for which keep() is false and restores the heap order, O(n).
+  template <class F>
+  void filter(F keep) {
+    std::vector<Entry> rest;
+    rest.reserve(h_.size());
+    for (const Entry& e : h_)
+      if (keep(e)) rest.push_back(e);
+    assign(std::move(rest));
+  }
+  void push(const Entry& e) {
+    size_t i = h_.size();
+    h_.push_back(e);
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!key_less(e, h_[parent])) break;
+      h_[i] = h_[parent];
+      i = parent;
     }
+    h_[i] = e;
+  }
+  Entry pop() {
+    const Entry top = h_[0];
+    const Entry last = h_.back();
+    h_.pop_back();
+    if (!h_.empty()) {
+      h_[0] = last;
+      down(0);
+    }
+    return top;
   }
 
  private:
-  static constexpr uint32_t kNone = UINT32_MAX;
-  bool less(uint32_t x, uint32_t y) const {
-    const Entry& ex = best_[x];
-    const Entry& ey = best_[y];
-    if (key_less(ex, ey)) return true;
-    if (key_less(ey, ex)) return false;
-    return x < y;  // the two ends of one edge: any fixed order
-  }
-  void up(uint32_t i) {
-    const uint32_t v = h_[i];
-    while (i > 0) {
-      const uint32_t parent = (i - 1) / 4;
-      if (!less(v, h_[parent])) break;
-      h_[i] = h_[parent];
-      pos_[h_[i]] = i;
-      i = parent;
-    }
-    h_[i] = v;
-    pos_[v] = i;
-  }
-  void down(uint32_t i) {
+  void down(size_t i) {
     const size_t n = h_.size();
-    const uint32_t v = h_[i];
+    const Entry v = h_[i];
     for (;;) {
-      const size_t c = 4 * size_t(i) + 1;
+      const size_t c = 4 * i + 1;
       if (c >= n) break;
       size_t m = c;
-      const size_t end = std::min(c + 4, n);
-      for (size_t j = c + 1; j < end; ++j)
-        if (less(h_[j], h_[m])) m = j;
-      if (!less(h_[m], v)) break;
+      if (c + 4 <= n) {  // all four children: select without branches
+        const size_t m01 = key_less(h_[c + 1], h_[c]) ? c + 1 : c;
+        const size_t m23 = key_less(h_[c + 3], h_[c + 2]) ? c + 3 : c + 2;
+        m = key_less(h_[m23], h_[m01]) ? m23 : m01;
+      } else {
+        for (size_t j = c + 1; j < n; ++j)
+          if (key_less(h_[j], h_[m])) m = j;
+      }
+      if (!key_less(h_[m], v)) break;
       h_[i] = h_[m];
-      pos_[h_[i]] = i;
-      i = uint32_t(m);
+      i = m;
     }
     h_[i] = v;
-    pos_[v] = i;
   }
-  const std::vector<Entry>& best_;
-  std::vector<uint32_t> pos_;
-  std::vector<uint32_t> h_;
+  std::vector<Entry> h_;
 };
 
-// Invariant of the loop below: best[v] is the current key of a current, not refused edge of
-// v (or infinite), and every current, not refused edge has an end whose best[] orders at or
-// before it. So the heap's top is the edge that a full scan would pick.
+// Invariant of the loop below: every current edge that is not refused has a current entry
+// in the heap, with its key; stale entries (an end collapsed or moved since) are skipped.
+// So the first current entry popped is the edge that a full scan would pick. A refused
+// edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
+// of them; then its entry goes back into the heap.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   State s;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
-  const Entry none{HUGE_VALF, UINT32_MAX, UINT32_MAX, 0};
-  std::vector<Entry> best(s.nv, none);
-  for (const Entry& e : initial) {
-    if (key_less(e, best[e.a])) best[e.a] = e;
-    if (key_less(e, best[e.b])) best[e.b] = e;
-  }
-  VertexHeap heap(best);
-  for (uint32_t v = 0; v < s.nv; ++v)
-    if (s.alive[v] && best[v].a != UINT32_MAX) heap.update(v);
+  EdgeHeap heap;
+  heap.assign(std::move(initial));
 
-  // Every current edge with its key, listed at both ends: a collapse only re-costs the edges
-  // of the surviving vertex.
-  std::vector<std::vector<Entry>> edges(s.nv);
-  {
-    std::vector<uint32_t> count(s.nv, 0);
-    for (const Entry& e : initial) { ++count[e.a]; ++count[e.b]; }
-    for (uint32_t v = 0; v < s.nv; ++v) edges[v].reserve(count[v]);
-    for (const Entry& e : initial) { edges[e.a].push_back(e); edges[e.b].push_back(e); }
-  }
-  std::vector<Entry>().swap(initial);
-  // Refused edges, listed at both ends; they count again once a collapse changes the 1-ring
-  // of either end.
-  std::vector<std::vector<uint32_t>> refused(s.nv);
-  auto is_refused = [&](uint32_t v, uint32_t y) {
-    for (uint32_t z : refused[v])
-      if (z == y) return true;
-    return false;
+  std::vector<std::vector<Entry>> refused(s.nv);
+  // Puts the refused edges of w back (both ends' lists forget them).
+  auto release = [&](uint32_t w) {
+    if (refused[w].empty()) return;
+    for (const Entry& e : refused[w]) {
+      const uint32_t z = e.a ^ e.b ^ w;
+      auto& l = refused[z];
+      for (size_t i = 0; i < l.size(); ++i)
+        if (l[i].a == e.a && l[i].b == e.b) { l[i] = l.back(); l.pop_back(); break; }
+      if (s.current(e)) heap.push(e);
+    }
+    refused[w].clear();
   };
-  // best[v] from the listed edges of v that are not refused.
-  auto rescan = [&](uint32_t v) {
-    Entry b = none;
-    for (const Entry& e : edges[v])
-      if (key_less(e, b) && (refused[v].empty() || !is_refused(v, e.a ^ e.b ^ v))) b = e;
-    best[v] = b;
-    heap.update(v);
-  };
-  auto partner = [](const Entry& e, uint32_t v) { return e.a ^ e.b ^ v; };
 
   std::vector<uint32_t> mark(s.nv, UINT32_MAX);
-  std::vector<uint32_t> redo;
-  double np[3];
+  std::vector<uint32_t> ring;
+  double np[3], tmp[3];
+  // Current edges in the heap, about: 3 per vertex on a closed surface.
+  size_t vertices = 0;
+  for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
   while (s.faces > s.target && !heap.empty()) {
-    const uint32_t v = heap.top();
-    const Entry e = best[v];
-    if (e.a == UINT32_MAX) break;  // no edge left anywhere
+    // Stale entries were 90% of all pops, each a sift through a heap far larger than the
+    // cache: drop them in one sequential pass when the heap is 4/3 of the current edges.
+    if (heap.size() > 4 * (vertices - s.collapses) + 4096)
+      heap.filter([&](const Entry& x) { return s.current(x); });
+    const Entry e = heap.pop();
+    if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
     const Check c = s.check(e.a, e.b, np);
     if (c != Check::Ok) {
       ++s.refused;
-      refused[e.a].push_back(e.b);
-      refused[e.b].push_back(e.a);
-      const uint32_t other = partner(e, v);
-      rescan(v);
-      if (best[other].a == e.a && best[other].b == e.b) rescan(other);
+      refused[e.a].push_back(e);
+      refused[e.b].push_back(e);
       continue;
     }
     const uint32_t a = e.a, b = e.b;
     s.collapse(a, b, np, exact);
-    heap.remove(b);
-    std::vector<uint32_t>().swap(refused[b]);
-    std::vector<Entry>().swap(edges[b]);
-    // The new edges of a, with their costs.
+    std::vector<Entry>().swap(refused[b]);
     const uint32_t now = uint32_t(s.collapses);
-    // Loads below go to scattered memory (the ring's quadrics and edge lists): they are
-    // prefetched all at once instead of one miss after the other.
-    std::vector<Entry>& ea = edges[a];
-    ea.clear();
+    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
+    ring.clear();
     mark[a] = now;
-    double tmp[3];
-    for (uint32_t t : s.vtris[a]) {
-      const uint32_t* tv = &s.tri[3 * size_t(t)];
+    const uint32_t* tl = s.tris_of(a);
+    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
       for (int k = 0; k < 3; ++k) {
         const uint32_t y = tv[k];
         if (mark[y] == now) continue;
         mark[y] = now;
-        ea.push_back({0, std::min(a, y), std::max(a, y), 0});
+        ring.push_back(y);
         __builtin_prefetch(&s.quad[y]);
         __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
-        __builtin_prefetch(edges[y].data());
+        __builtin_prefetch(&s.pos[3 * size_t(y)]);
       }
     }
-    for (Entry& ey : ea) ey.cost = float(s.cost(ey.a, ey.b, tmp));
-    // The 1-ring of a changed: refused edges there count again (at both ends).
-    auto release = [&](uint32_t w) {
-      for (uint32_t z : refused[w]) {
-        auto& l = refused[z];
-        auto it = std::find(l.begin(), l.end(), w);
-        if (it != l.end()) { *it = l.back(); l.pop_back(); }
-      }
-      const bool had = !refused[w].empty();
-      refused[w].clear();
-      return had;
-    };
+    // The 1-ring of a changed: refused edges there count again.
     release(a);
-    redo.clear();
-    for (const Entry& ey : ea)
-      if (release(partner(ey, a))) redo.push_back(partner(ey, a));
-    rescan(a);
-    for (const Entry& ey : ea) {
-      const uint32_t y = partner(ey, a);
-      std::vector<Entry>& l = edges[y];
-      for (size_t i = 0; i < l.size();) {
-        const uint32_t z = partner(l[i], y);
-        if (z == a || z == b) { l[i] = l.back(); l.pop_back(); }
-        else ++i;
-      }
-      l.push_back(ey);
-      const Entry& by = best[y];
-      const uint32_t py = by.a == UINT32_MAX ? UINT32_MAX : partner(by, y);
-      if (py == a || py == b || py == UINT32_MAX ||
-          std::find(redo.begin(), redo.end(), y) != redo.end()) {
-        rescan(y);
-      } else if (key_less(ey, by)) {
-        best[y] = ey;
-        heap.update(y);
-      }
+    for (uint32_t y : ring) release(y);
+    for (uint32_t y : ring)
+      {
+      const uint32_t lo = std::min(a, y), hi = std::max(a, y);
+      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
     }
   }
   Mesh out = s.output(report);
@@ -664,7 +655,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
       if (!s.tri_alive[t]) continue;
       for (int k = 0; k < 3; ++k) {
         const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
-        cand.push_back({0, std::min(x, y), std::max(x, y), 0});
+        cand.push_back(make_entry(0, std::min(x, y), std::max(x, y), 0));
       }
     }
     std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {

@@ -49,8 +49,8 @@ struct SimplifyReport {
 };
 
 // Simplifies `mesh` to options.target_faces (or ratio * faces) by edge collapses in order of
-// quadric error: an indexed 4-ary heap over vertices keyed by each vertex's cheapest edge,
-// with per-vertex edge cost lists, so a collapse re-costs only the survivor's edges.
+// quadric error: a 4-ary heap of edge entries with lazy invalidation (a collapse pushes the
+// survivor's re-costed edges; entries of changed vertices are skipped or swept out).
 //  - vertex_weights (may be null): one weight W per input vertex; each vertex quadric is
 //    multiplied by W once before any collapse (SPEC 2). Weights add up on collapse through
 //    the quadrics (Q_i + Q_j carries W_i Q_i + W_j Q_j); W is not needed separately after.
