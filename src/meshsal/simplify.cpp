@@ -13,6 +13,7 @@
 #include <string>
 
 #include "meshsal/error.h"
+#include "meshsal/parallel.h"
 #include "meshsal/quadric.h"
 
 namespace meshsal {
@@ -245,37 +246,48 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     }
   }
 
-  // Edges: sort (min, max, triangle) keys; a run of one is a border edge, more than two a
-  // non-manifold edge.
-  struct EdgeRef { uint64_t key; uint32_t t; uint32_t corner; };
-  std::vector<EdgeRef> refs(3 * nt);
-  for (size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = tri[3 * t + k], b = tri[3 * t + (k + 1) % 3];
-      refs[3 * t + k] = {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), uint32_t(t), uint32_t(k)};
-    }
-  std::sort(refs.begin(), refs.end(), [](const EdgeRef& x, const EdgeRef& y) {
-    return x.key != y.key ? x.key < y.key : x.t < y.t;
-  });
+  // Edges from the triangle runs: for each vertex a, its higher neighbours b with the
+  // triangles on (a, b), sorted by (b, triangle); one triangle is a border edge, more than two
+  // a non-manifold edge. The edges come out ordered by (a, b), and the border quadrics are
+  // added in that order. Cheaper than sorting all 3 * faces edge ends (vertices are in
+  // Morton order, so the runs are close in memory).
   border.assign(nv, 0);
   std::vector<uint32_t> unique_edges_a, unique_edges_b;
-  for (size_t i = 0; i < refs.size();) {
-    size_t j = i;
-    while (j < refs.size() && refs[j].key == refs[i].key) ++j;
-    const uint32_t a = uint32_t(refs[i].key >> 32), b = uint32_t(refs[i].key & 0xffffffffu);
-    if (j - i == 1) {
-      const uint32_t t = refs[i].t, k = refs[i].corner;
-      const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
-      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
-      quad[v0] += q;
-      quad[v1] += q;
-      border[a] = border[b] = 1;
-    } else if (j - i > 2) {
-      border[a] = border[b] = 1;
+  unique_edges_a.reserve(nt * 3 / 2 + 16);
+  unique_edges_b.reserve(nt * 3 / 2 + 16);
+  struct Ref { uint32_t b, t, corner; };
+  std::vector<Ref> refs;
+  for (uint32_t a = 0; a < nv; ++a) {
+    refs.clear();
+    for (uint32_t t : vt(a)) {
+      const uint32_t* v = &tri[3 * size_t(t)];
+      const uint32_t k = v[0] == a ? 0 : v[1] == a ? 1 : 2;
+      const uint32_t u1 = v[(k + 1) % 3], u2 = v[(k + 2) % 3];
+      if (u1 > a) refs.push_back({u1, t, k});            // edge a -> u1 starts at corner k
+      if (u2 > a) refs.push_back({u2, t, (k + 2) % 3});  // edge u2 -> a starts at k + 2
     }
-    unique_edges_a.push_back(a);
-    unique_edges_b.push_back(b);
-    i = j;
+    for (size_t i = 1; i < refs.size(); ++i)  // insertion sort: a dozen entries
+      for (size_t j = i; j > 0 && (refs[j].b < refs[j - 1].b ||
+                                   (refs[j].b == refs[j - 1].b && refs[j].t < refs[j - 1].t)); --j)
+        std::swap(refs[j], refs[j - 1]);
+    for (size_t i = 0; i < refs.size();) {
+      size_t j = i;
+      while (j < refs.size() && refs[j].b == refs[i].b) ++j;
+      const uint32_t b = refs[i].b;
+      if (j - i == 1) {
+        const uint32_t t = refs[i].t, k = refs[i].corner;
+        const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+        const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+        quad[v0] += q;
+        quad[v1] += q;
+        border[a] = border[b] = 1;
+      } else if (j - i > 2) {
+        border[a] = border[b] = 1;
+      }
+      unique_edges_a.push_back(a);
+      unique_edges_b.push_back(b);
+      i = j;
+    }
   }
   if (w)
     for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
@@ -283,11 +295,14 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
 
   if (edges) {
     edges->resize(unique_edges_a.size());
-    double tmp[3];
-    for (size_t i = 0; i < unique_edges_a.size(); ++i) {
-      const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
-      (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
-    }
+    // Independent per edge: on all cores (a tenth of the whole run on one).
+    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
+      double tmp[3];
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
+      }
+    });
   }
 }
 

@@ -22,6 +22,9 @@ struct SimplifyOptions {
   // A collapse is refused when it turns any remaining triangle's normal by more than
   // acos(min_normal_cos) (fold-over / flip test). 0 = refuse turns of 90 degrees or more.
   double min_normal_cos = 0;
+  // Threads for the initial edge costs (0 = all cores); the collapse loop is sequential.
+  // The result does not depend on it.
+  unsigned threads = 0;
   // Record the sequence of collapses (for tests comparing against simplify_bruteforce).
   bool record_collapses = false;
 };
