@@ -588,13 +588,17 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
 
   std::vector<std::vector<Entry>> refused(s.nv);
   // Puts the refused edges of w back (both ends' lists forget them).
+  // Whether refused[w] is not empty: one byte per vertex stays in cache, the vectors not.
+  std::vector<uint8_t> has_refused(s.nv, 0);
   auto release = [&](uint32_t w) {
-    if (refused[w].empty()) return;
+    if (!has_refused[w]) return;
+    has_refused[w] = 0;
     for (const Entry& e : refused[w]) {
       const uint32_t z = e.a ^ e.b ^ w;
       auto& l = refused[z];
       for (size_t i = 0; i < l.size(); ++i)
         if (l[i].a == e.a && l[i].b == e.b) { l[i] = l.back(); l.pop_back(); break; }
+      has_refused[z] = !l.empty();
       if (s.current(e)) heap.push(e);
     }
     refused[w].clear();
@@ -619,11 +623,15 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       ++s.refused;
       refused[e.a].push_back(e);
       refused[e.b].push_back(e);
+      has_refused[e.a] = has_refused[e.b] = 1;
       continue;
     }
     const uint32_t a = e.a, b = e.b;
     s.collapse(a, b, np, exact);
-    std::vector<Entry>().swap(refused[b]);
+    if (has_refused[b]) {
+      std::vector<Entry>().swap(refused[b]);
+      has_refused[b] = 0;
+    }
     const uint32_t now = uint32_t(s.collapses);
     // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
     ring.clear();
