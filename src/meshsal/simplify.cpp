@@ -324,12 +324,16 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
     const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
     l2max = std::max(l2max, dot3(d, d));
   }
-  const double len_new = std::sqrt(dot3(n_new, n_new));
+  // Squared lengths compared: no square roots in the common case (min_cos 0).
+  const double len2_new = dot3(n_new, n_new);
   // Degenerate: twice the area below 1e-6 of the longest edge squared (a needle or cap
   // thinner than about a micro-radian), or no area at all.
-  if (!(len_new > 1e-6 * l2max)) return true;
-  const double len_old = std::sqrt(dot3(n_old, n_old));
-  if (len_old > 0 && dot3(n_old, n_new) <= min_cos * len_old * len_new) return true;
+  if (!(len2_new > 1e-12 * l2max * l2max) || !(l2max > 0)) return true;
+  const double len2_old = dot3(n_old, n_old);
+  if (!(len2_old > 0)) return false;
+  const double d = dot3(n_old, n_new);
+  if (min_cos == 0) return d <= 0;
+  return d <= min_cos * std::sqrt(len2_old * len2_new);
   return false;
 }
 
@@ -511,6 +515,7 @@ class EdgeHeap {
  public:
   bool empty() const { return h_.empty(); }
   size_t size() const { return h_.size(); }
+  const Entry& top() const { return h_[0]; }
   void assign(std::vector<Entry>&& all) {
     h_ = std::move(all);
     if (h_.size() > 1)
@@ -616,6 +621,17 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     if (heap.size() > 4 * (vertices - s.collapses) + 4096)
       heap.filter([&](const Entry& x) { return s.current(x); });
     const Entry e = heap.pop();
+    if (!heap.empty()) {  // the next pick's data, while this one is worked on
+      const Entry& n = heap.top();
+      __builtin_prefetch(&s.changed[n.a]);
+      __builtin_prefetch(&s.changed[n.b]);
+      __builtin_prefetch(&s.vt_start[n.a]);
+      __builtin_prefetch(&s.vt_start[n.b]);
+      __builtin_prefetch(&s.vt_count[n.a]);
+      __builtin_prefetch(&s.vt_count[n.b]);
+      __builtin_prefetch(&s.quad[n.a]);
+      __builtin_prefetch(&s.quad[n.b]);
+    }
     if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
     const Check c = s.check(e.a, e.b, np);
