@@ -98,6 +98,24 @@ struct State {
   uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
   const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
   Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  // Lays all runs out again in vertex order, live triangles only, each with room for half
+  // as many more: instead of growing the pool (a copy of all of it, and page faults), and it
+  // puts the runs back in Morton order.
+  void repack() {
+    std::vector<uint32_t> fresh;
+    fresh.reserve(vt_pool.capacity());
+    for (size_t v = 0; v < nv; ++v) {
+      const uint32_t start = uint32_t(fresh.size());
+      if (alive[v])
+        for (uint32_t t : vt(uint32_t(v)))
+          if (tri_alive[t]) fresh.push_back(t);
+      vt_start[v] = start;
+      vt_count[v] = uint32_t(fresh.size()) - start;
+      vt_cap[v] = vt_count[v] + vt_count[v] / 2;
+      fresh.resize(start + vt_cap[v]);
+    }
+    vt_pool.swap(fresh);
+  }
   // Drops the dead triangles from v's run.
   void compact(uint32_t v) {
     uint32_t* l = tris_of(v);
@@ -424,6 +442,7 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   const uint32_t need = vt_count[a] + vt_count[b];
   if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
     const uint32_t cap = need + need / 2;
+    if (vt_pool.size() + cap > vt_pool.capacity()) repack();
     const size_t start = vt_pool.size();
     vt_pool.resize(start + cap);
     std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
