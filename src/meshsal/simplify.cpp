@@ -136,7 +136,9 @@ struct State {
   std::vector<Collapse> sequence;
   bool record = false;
   // scratch
-  std::vector<uint32_t> na, nb, opp;
+  std::vector<uint32_t> opp;
+  std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
+  uint32_t link_stamp = 0;
   std::vector<uint64_t> pairs_a;
 
   const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
@@ -310,6 +312,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   if (w)
     for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
   changed.assign(nv, 0);
+  link.assign(nv, 0);
 
   if (edges) {
     edges->resize(unique_edges_a.size());
@@ -364,12 +367,21 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   // Drop dead triangles from both lists first (they are only ever appended to).
   compact(a);
   compact(b);
-  // Triangles on the edge and the vertices opposite it.
+  // Triangles on the edge and the vertices opposite it; the other neighbours of a get
+  // marked (link[] == in_a) for the link condition below.
+  link_stamp += 2;
+  const uint32_t in_a = link_stamp, counted = link_stamp + 1;
   opp.clear();
+  pairs_a.clear();
   for (uint32_t t : vt(a)) {
-    if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+    if (v[0] == b || v[1] == b || v[2] == b) {
+      opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+      continue;
+    }
+    const uint32_t x = v[0] == a ? v[1] : v[0], y = v[2] == a ? v[1] : v[2];
+    link[x] = link[y] = in_a;
+    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
   }
   const size_t k = opp.size();
   if (k == 0) return Check::NotEdge;
@@ -378,55 +390,31 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   if (k == 2 && (opp[0] == opp[1] || (border[a] && border[b]))) return Check::Refused;
 
   // Link condition on vertices: the common neighbours of a and b are exactly the opposites.
-  na.clear();
-  nb.clear();
-  pairs_a.clear();
-  for (uint32_t t : vt(a)) {
-    if (!tri_alive[t]) continue;
-    const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) continue;
-    uint32_t x = 0, y = 0;
-    int n = 0;
-    for (int i = 0; i < 3; ++i)
-      if (v[i] != a) { na.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
-    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
-  }
+  for (uint32_t o : opp) link[o] = in_a;
+  size_t common = 0;
   for (uint32_t t : vt(b)) {
-    if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
-    uint32_t x = 0, y = 0;
-    int n = 0;
-    for (int i = 0; i < 3; ++i)
-      if (v[i] != b) { nb.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
+    const uint32_t x = v[0] == b ? v[1] : v[0], y = v[2] == b ? v[1] : v[2];
     // A triangle of b that would coincide with one of a after the collapse (e.g. the
     // tetrahedron): refuse.
     const uint64_t key = (uint64_t(std::min(x, y)) << 32) | std::max(x, y);
     for (uint64_t pa : pairs_a)
       if (pa == key) return Check::Refused;
+    for (uint32_t z : {x, y})
+      if (link[z] == in_a) { link[z] = counted; ++common; }
   }
-  for (uint32_t o : opp) { na.push_back(o); nb.push_back(o); }
-  std::sort(na.begin(), na.end());
-  na.erase(std::unique(na.begin(), na.end()), na.end());
-  std::sort(nb.begin(), nb.end());
-  nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-  size_t common = 0;
-  for (size_t i = 0, j = 0; i < na.size() && j < nb.size();) {
-    if (na[i] < nb[j]) ++i;
-    else if (nb[j] < na[i]) ++j;
-    else { ++common; ++i; ++j; }
-  }
+  for (uint32_t o : opp)
+    if (link[o] == in_a) { link[o] = counted; ++common; }
   if (common != k) return Check::Refused;
 
   // Flips, fold-overs and degenerate triangles among those that remain.
   for (uint32_t t : vt(a)) {
-    if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == b || v[1] == b || v[2] == b) continue;
     if (bad_triangle(t, a, np)) return Check::Refused;
   }
   for (uint32_t t : vt(b)) {
-    if (!tri_alive[t]) continue;
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
     if (bad_triangle(t, b, np)) return Check::Refused;
