@@ -46,7 +46,7 @@ struct SimplifyReport {
   std::string note;           // why the target was not reached (empty when it was)
   size_t collapses = 0;
   size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
-  double seconds = 0;         // wall time of the collapse loop and output compaction
+  double seconds = 0;         // wall time of the whole call: setup, collapse loop, output
   std::vector<Collapse> sequence;      // when options.record_collapses
   std::vector<uint32_t> vertex_origin; // output vertex -> input vertex that survived as it
 };
