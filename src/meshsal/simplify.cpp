@@ -213,7 +213,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   // collapse on few cache lines. Unreferenced vertices go last.
   order.resize(nv);
   {
-    std::vector<uint64_t> code(nv);
+    std::vector<uint32_t> code(nv);
     const double inv_ext[3] = {hi[0] > lo[0] ? 1 / (hi[0] - lo[0]) : 0, hi[1] > lo[1] ? 1 / (hi[1] - lo[1]) : 0,
                                hi[2] > lo[2] ? 1 / (hi[2] - lo[2]) : 0};
     for (size_t v = 0; v < nv; ++v) {
@@ -225,12 +225,22 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
         for (int bit = 9; bit >= 0; --bit)
           for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
       } else {
-        c = UINT64_MAX;
+        c = uint64_t(1) << 30;  // after every 30-bit code
       }
-      code[v] = c;
+      code[v] = uint32_t(c);
       order[v] = uint32_t(v);
     }
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return code[x] < code[y]; });
+    // Stable LSD radix sort on the 31-bit codes (11 + 10 + 10 bits): the order a stable
+    // comparison sort gives, several times faster.
+    std::vector<uint32_t> tmp(nv), count;
+    for (int shift : {0, 11, 21}) {
+      const uint32_t buckets = shift == 0 ? 2048 : 1024, mask = buckets - 1;
+      count.assign(buckets + 1, 0);
+      for (uint32_t v : order) ++count[((code[v] >> shift) & mask) + 1];
+      for (uint32_t i = 0; i < buckets; ++i) count[i + 1] += count[i];
+      for (uint32_t v : order) tmp[count[(code[v] >> shift) & mask]++] = v;
+      order.swap(tmp);
+    }
   }
   inv.resize(nv);
   for (size_t i = 0; i < nv; ++i) inv[order[i]] = uint32_t(i);
