@@ -127,6 +127,7 @@ struct State {
   }
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
+  size_t border_vertices = 0;                // live vertices with border[] set
   std::vector<uint32_t> changed;             // collapse count when the vertex last moved
   std::vector<uint32_t> order;               // internal vertex id -> input vertex
   std::vector<uint32_t> inv;                 // input vertex -> internal id
@@ -324,6 +325,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
   changed.assign(nv, 0);
   link.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
 
   if (edges) {
     edges->resize(unique_edges_a.size());
@@ -436,6 +438,7 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
 void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
+  if (border[a] && border[b]) --border_vertices;
   border[a] = border[a] | border[b];
   compact(a);
   const uint32_t need = vt_count[a] + vt_count[b];
@@ -662,6 +665,10 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   size_t vertices = 0;
   for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
   while (s.faces > s.target && !heap.empty()) {
+    // One face short on a closed manifold surface: every collapse removes two faces and
+    // would overshoot, so the scan below would refuse every edge left. Stop now instead
+    // (same result; the report's note says why).
+    if (s.faces == s.target + 1 && s.border_vertices == 0) break;
     // Stale entries were 90% of all pops, each a sift through a heap far larger than the
     // cache: drop them in one sequential pass when the heap is 4/3 of the current edges.
     if (heap.size() > 4 * (vertices - s.collapses) + 4096)
