@@ -159,5 +159,9 @@ TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
   CHECK(m.vertex_count() == 10242);
   REQUIRE(props.count("quality") == 1);
   CHECK(r.out.find("unique feature") != std::string::npos);
+  Mesh plain = load_mesh((dir / "out" / "simplified_plain.obj").string());
+  Mesh salient = load_mesh((dir / "out" / "simplified_saliency.obj").string());
+  CHECK(plain.triangle_count() == salient.triangle_count());
+  CHECK(salient.triangle_count() < m.triangle_count() / 20);
   fs::remove_all(dir);
 }

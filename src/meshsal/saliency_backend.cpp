@@ -4,17 +4,54 @@
 #include <sstream>
 
 #include "meshsal/error.h"
+#include "meshsal/gpu_saliency.h"
 #include "meshsal/saliency.h"
+#include "meshsal/vk_context.h"
 
 namespace meshsal {
+
+namespace {
+
+void tell(const SaliencyOptions& options, const std::string& line) {
+  if (options.notice) options.notice(line);
+}
+
+// Auto: a discrete or integrated GPU when there is one (or the --device given), else the
+// CPU; no Vulkan at all, or any failure on the GPU, falls back to the CPU with a one-line
+// notice.
+SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
+  SaliencyOptions gpu = options;
+  if (gpu.device < 0) {
+    std::vector<vk::DeviceInfo> devices;
+    try {
+      devices = vk::list_devices();
+    } catch (const Error& e) {
+      tell(options, std::string("auto: no Vulkan (") + e.what() + "), using the CPU path");
+      return compute_saliency_cpu(mesh, options);
+    }
+    // Only lavapipe (or no device): the CPU path is the plain choice, not a fallback, so
+    // no notice (backend_name says "cpu").
+    gpu.device = vk::pick_hardware_gpu(devices);
+    if (gpu.device < 0) return compute_saliency_cpu(mesh, options);
+  }
+  try {
+    return compute_saliency_gpu(mesh, gpu);
+  } catch (const Error& e) {
+    tell(options, std::string("auto: the GPU path failed (") + e.what() + "), using the CPU path");
+    return compute_saliency_cpu(mesh, options);
+  }
+}
+
+}  // namespace
 
 SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options) {
   switch (options.backend) {
     case Backend::Cpu:
-    case Backend::Auto:
       return compute_saliency_cpu(mesh, options);
+    case Backend::Auto:
+      return compute_auto(mesh, options);
     case Backend::Gpu:
-      throw Error("the GPU backend is not available in this build");
+      return compute_saliency_gpu(mesh, options);
   }
   throw Error("unknown backend");
 }

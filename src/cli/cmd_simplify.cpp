@@ -1,0 +1,154 @@
+// meshsal simplify IN -o OUT: Garland-Heckbert simplification, saliency-weighted by default.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "command.h"
+#include "meshsal/error.h"
+#include "meshsal/mesh_io.h"
+#include "meshsal/mesh_points.h"
+#include "meshsal/saliency.h"
+#include "meshsal/saliency_weights.h"
+#include "meshsal/simplify.h"
+#include "progress.h"
+#include "saliency_output.h"
+
+namespace meshsal_cli {
+namespace {
+
+struct Args {
+  std::string input, output, weights = "saliency", saliency_from, backend = "auto";
+  long long target_faces = 0;
+  double ratio = 0;
+  double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
+  bool has_target = false, has_ratio = false, quiet = false;
+  unsigned threads = 0;
+};
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower((unsigned char)s[s.size() - suffix.size() + i]) != suffix[i]) return false;
+  return true;
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int run(const Args& a) {
+  using namespace meshsal;
+  const bool obj = ends_with(a.output, ".obj"), ply = ends_with(a.output, ".ply");
+  if (!obj && !ply) throw Error("output must be a .obj or .ply file, got '" + a.output + "'");
+  if (a.has_target == a.has_ratio) throw Error("give exactly one of --target-faces N and --ratio R");
+  if (a.has_target && a.target_faces <= 0)
+    throw Error("--target-faces must be a positive face count, got " + std::to_string(a.target_faces));
+  if (a.has_ratio && !(a.ratio > 0 && a.ratio <= 1))
+    throw Error("--ratio must be in (0, 1], got " + std::to_string(a.ratio));
+  if (a.weights != "saliency" && a.weights != "none")
+    throw Error("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
+  if (a.weights == "none" && !a.saliency_from.empty())
+    throw Error("--saliency-from needs --weights saliency");
+
+  Progress progress(!a.quiet && stderr_is_terminal());
+  const auto t0 = std::chrono::steady_clock::now();
+  progress.update("reading", 0.0);
+  const Mesh mesh = load_mesh(a.input);
+  const double t_load = since(t0);
+
+  SimplifyOptions opt;
+  if (a.has_target) opt.target_faces = size_t(a.target_faces);
+  else opt.ratio = a.ratio;
+  // Check the target before spending time on saliency.
+  resolve_target_faces(opt, mesh.triangle_count());
+
+  std::vector<double> weights;
+  double t_saliency = 0, alpha = 0;
+  if (a.weights == "saliency") {
+    const auto ts = std::chrono::steady_clock::now();
+    std::vector<double> smoothed;
+    const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+    if (!a.saliency_from.empty()) {
+      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh.vertex_count());
+      progress.update("smoothing saliency", 0.0);
+      smoothed = smooth_saliency(mesh, s, a.eps_frac, a.threads);
+    } else {
+      SaliencyOptions so;
+      so.eps_frac = a.eps_frac;
+      so.threads = a.threads;
+      so.backend = parse_backend(a.backend);
+      so.smoothed = true;
+      so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+      so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+      smoothed = compute_saliency(mesh, so).smoothed;
+    }
+    SaliencyWeightOptions wo;
+    wo.lambda = a.lambda;
+    wo.alpha_percentile = a.alpha_percentile;
+    wo.floor = a.weight_floor;
+    weights = saliency_weights(smoothed, is_point, wo, &alpha);
+    t_saliency = since(ts);
+  }
+
+  progress.update("simplifying", 0.0);
+  SimplifyReport rep;
+  const Mesh out = simplify_mesh(mesh, opt, weights.empty() ? nullptr : &weights, &rep);
+  progress.update("writing", 0.0);
+  if (obj) write_obj(a.output, out);
+  else write_ply(a.output, out, {});
+  progress.finish();
+  if (!rep.reached) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
+  if (!a.quiet) {
+    std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
+                rep.input_faces, t_load);
+    if (!weights.empty())
+      std::printf("weights    saliency%s, lambda %g, alpha %.6g (%g-th percentile), %.3f s\n",
+                  a.saliency_from.empty() ? "" : (" from " + a.saliency_from).c_str(), a.lambda,
+                  alpha, a.alpha_percentile, t_saliency);
+    else
+      std::printf("weights    none (plain quadric error)\n");
+    std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses in %.3f s\n",
+                rep.output_vertices, rep.output_faces, rep.target_faces, rep.collapses, rep.seconds);
+    std::printf("wrote      %s\n", a.output.c_str());
+  }
+  return 0;
+}
+
+RunFn setup(CLI::App& sub) {
+  auto a = std::make_shared<Args>();
+  sub.footer(
+      "Simplify IN by Garland-Heckbert edge collapses to a face count. With --weights saliency\n"
+      "(the default) every vertex quadric is first multiplied by W = lambda*Sm where the smoothed\n"
+      "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4).\n"
+      "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
+      "closed mesh only has even face counts, so an odd target ends one face above it (noted).");
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, optionally .gz)")->required();
+  sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
+  sub.add_option_function<long long>(
+      "--target-faces", [a](long long n) { a->target_faces = n; a->has_target = true; },
+      "Number of faces to keep");
+  sub.add_option_function<double>(
+      "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
+      "Fraction of the faces to keep, in (0, 1]");
+  sub.add_option("--weights", a->weights, "saliency or none (plain quadric error)")->capture_default_str();
+  sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices")->capture_default_str();
+  sub.add_option("--alpha-percentile", a->alpha_percentile,
+                 "Percentile of Sm above which vertices are amplified")->capture_default_str();
+  sub.add_option("--saliency-from", a->saliency_from,
+                 "Reuse S from this saliency PLY (`quality` property) instead of computing it");
+  sub.add_option("--weight-floor", a->weight_floor,
+                 "Not in the paper: raise W to at least this fraction of its mean (0 = off)")
+      ->capture_default_str();
+  sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
+  sub.add_option("--threads", a->threads, "CPU threads for saliency (0 = all cores)")->capture_default_str();
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  return [a] { return run(*a); };
+}
+
+const bool registered = register_command(
+    {"simplify", "Simplify a mesh, guided by saliency (or plain quadric error)", 20, setup});
+
+}  // namespace
+}  // namespace meshsal_cli

@@ -1,0 +1,42 @@
+// meshsal: Garland-Heckbert error quadrics (symmetric 4x4, 10 doubles) and the optimal
+// contraction target of an edge (SPEC 2).
+#pragma once
+
+namespace meshsal {
+
+// Q = [A b; b^T c] with A symmetric 3x3; the error of a point p is p^T A p + 2 b.p + c.
+struct Quadric {
+  double a00 = 0, a01 = 0, a02 = 0, a11 = 0, a12 = 0, a22 = 0;
+  double b0 = 0, b1 = 0, b2 = 0;
+  double c = 0;
+
+  Quadric& operator+=(const Quadric& q);
+  Quadric& operator*=(double s);
+  // Error of point p (clamped at 0: rounding can make it slightly negative).
+  double error(const double p[3]) const;
+};
+
+Quadric operator+(Quadric a, const Quadric& b);
+
+// Quadric of the plane n.x + d = 0 (n unit length) times `weight`: weight * dist(p)^2.
+Quadric plane_quadric(const double n[3], double d, double weight);
+
+// Area-weighted quadric of triangle (p0, p1, p2): area * (distance to its plane)^2.
+// A zero-area triangle gives the zero quadric.
+Quadric triangle_quadric(const double p0[3], const double p1[3], const double p2[3]);
+
+// Border quadric of edge (p0, p1) of a triangle whose third corner is p2: the plane that
+// contains the edge and is perpendicular to the triangle, weighted by weight * |p1-p0|^2,
+// so that moving a border vertex off its border line costs error.
+Quadric border_quadric(const double p0[3], const double p1[3], const double p2[3],
+                       double weight);
+
+// Where to place the vertex that replaces edge (p0, p1) under quadric q, and its error.
+// Optimal placement solves A x = -b; when A is singular (|det A| <= 1e-6 * (trace A / 3)^3,
+// i.e. numerically rank deficient, e.g. a flat or cylindrical neighbourhood) the best of
+// p0, p1 and their midpoint is used (first minimum in that order). Returns the error.
+// The threshold is relative, so the choice does not depend on the scale (or weight) of q.
+double optimal_placement(const Quadric& q, const double p0[3], const double p1[3],
+                         double out[3], bool* used_fallback = nullptr);
+
+}  // namespace meshsal

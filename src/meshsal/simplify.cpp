@@ -1,0 +1,784 @@
+// meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
+// One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
+// the next collapse: a lazily invalidated heap of edges (simplify_mesh) and a full scan
+// (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
+#include "meshsal/simplify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "meshsal/error.h"
+#include "meshsal/parallel.h"
+#include "meshsal/quadric.h"
+
+namespace meshsal {
+
+size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) {
+  if (input_faces == 0) throw Error("simplify: the mesh has no non-degenerate triangles");
+  size_t target = options.target_faces;
+  if (target == 0) {
+    const double r = options.ratio;
+    if (r == 0)
+      throw Error("simplify: give a target face count (> 0) or a ratio in (0, 1]");
+    if (!(r > 0 && r <= 1))
+      throw Error("simplify: ratio must be in (0, 1], got " + std::to_string(r));
+    target = static_cast<size_t>(std::llround(r * static_cast<double>(input_faces)));
+    if (target == 0)
+      throw Error("simplify: ratio " + std::to_string(r) + " leaves no faces of " +
+                  std::to_string(input_faces));
+  }
+  if (target > input_faces)
+    throw Error("simplify: target of " + std::to_string(target) +
+                " faces is larger than the mesh (" + std::to_string(input_faces) + " faces)");
+  return target;
+}
+
+namespace {
+
+// 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
+// float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
+// `a` comes first so that (a, cost) read as one little-endian 64-bit word orders by cost,
+// then a: costs are never negative, -0 or NaN (Quadric::error clamps to +0), and the bits
+// of such floats order like their values.
+struct Entry {
+  uint32_t a;      // a < b; a survives
+  float cost;
+  uint32_t b;
+  uint32_t stamp;  // collapse count when the cost was computed
+};
+inline Entry make_entry(double cost, uint32_t a, uint32_t b, uint32_t stamp) {
+  return {a, float(cost), b, stamp};
+}
+inline uint64_t cost_a(const Entry& x) {
+  uint64_t k;
+  std::memcpy(&k, &x, 8);
+  return k;
+}
+
+// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers. No
+// branches: the heap compares in random order, and mispredictions were half its time.
+inline bool key_less(const Entry& x, const Entry& y) {
+  const uint64_t kx = cost_a(x), ky = cost_a(y);
+  return (kx < ky) | ((kx == ky) & (x.b < y.b));
+}
+
+enum class Check { Ok, NotEdge, Refused };
+
+inline void cross3(const double u[3], const double v[3], double o[3]) {
+  o[0] = u[1] * v[2] - u[2] * v[1];
+  o[1] = u[2] * v[0] - u[0] * v[2];
+  o[2] = u[0] * v[1] - u[1] * v[0];
+}
+inline double dot3(const double u[3], const double v[3]) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+struct State {
+  size_t nv = 0;
+  double center[3] = {0, 0, 0};
+  double scale = 1;                          // internal = (p - center) * scale
+  std::vector<double> pos;                   // 3 per vertex, internal coordinates
+  std::vector<Quadric> quad;
+  std::vector<uint32_t> tri;                 // 3 per triangle
+  std::vector<uint8_t> tri_alive;
+  // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
+  // from vt_start[v], room for vt_cap[v]; a run that outgrows its room moves to the end.
+  std::vector<uint32_t> vt_pool, vt_start, vt_count, vt_cap;
+  struct Run {
+    const uint32_t* b;
+    const uint32_t* e;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+  };
+  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
+  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
+  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  // Lays all runs out again in vertex order, live triangles only, each with room for half
+  // as many more: instead of growing the pool (a copy of all of it, and page faults), and it
+  // puts the runs back in Morton order.
+  void repack() {
+    std::vector<uint32_t> fresh;
+    fresh.reserve(vt_pool.capacity());
+    for (size_t v = 0; v < nv; ++v) {
+      const uint32_t start = uint32_t(fresh.size());
+      if (alive[v])
+        for (uint32_t t : vt(uint32_t(v)))
+          if (tri_alive[t]) fresh.push_back(t);
+      vt_start[v] = start;
+      vt_count[v] = uint32_t(fresh.size()) - start;
+      vt_cap[v] = vt_count[v] + vt_count[v] / 2;
+      fresh.resize(start + vt_cap[v]);
+    }
+    vt_pool.swap(fresh);
+  }
+  // Drops the dead triangles from v's run.
+  void compact(uint32_t v) {
+    uint32_t* l = tris_of(v);
+    uint32_t n = 0;
+    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i)
+      if (tri_alive[l[i]]) l[n++] = l[i];
+    vt_count[v] = n;
+  }
+  std::vector<uint8_t> alive;
+  std::vector<uint8_t> border;               // on an open border or a non-manifold edge
+  size_t border_vertices = 0;                // live vertices with border[] set
+  std::vector<uint32_t> changed;             // collapse count when the vertex last moved
+  std::vector<uint32_t> order;               // internal vertex id -> input vertex
+  std::vector<uint32_t> inv;                 // input vertex -> internal id
+  size_t faces = 0;
+  size_t target = 0;
+  double min_cos = 0;
+  size_t refused = 0;
+  std::vector<Collapse> sequence;
+  bool record = false;
+  // scratch
+  std::vector<uint32_t> opp;
+  std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
+  uint32_t link_stamp = 0;
+  std::vector<uint64_t> pairs_a;
+
+  const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
+
+  double cost(uint32_t a, uint32_t b, double out[3]) const {
+    return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
+  }
+
+  void init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+            std::vector<Entry>* edges);
+  Check check(uint32_t a, uint32_t b, const double np[3]);
+  // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
+  bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
+  void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
+  // An entry is current while neither end has changed since its cost was computed.
+  bool current(const Entry& e) const {
+    return alive[e.a] && alive[e.b] && changed[e.a] <= e.stamp && changed[e.b] <= e.stamp;
+  }
+  size_t collapses = 0;
+  Mesh output(SimplifyReport* report) const;
+};
+
+void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+                 std::vector<Entry>* edges) {
+  nv = mesh.vertex_count();
+  const size_t nt_in = mesh.triangle_count();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= nv)
+      throw Error("simplify: triangle " + std::to_string(i / 3) + " has a vertex index out of range");
+  if (w) {
+    if (w->size() != nv)
+      throw Error("simplify: " + std::to_string(w->size()) + " vertex weights for a mesh of " +
+                  std::to_string(nv) + " vertices");
+    for (double x : *w)
+      if (!(x >= 0) || !std::isfinite(x))
+        throw Error("simplify: vertex weights must be finite and >= 0");
+  }
+  // Triangles with a repeated index are not part of the surface: drop them.
+  tri.reserve(3 * nt_in);
+  for (size_t t = 0; t < nt_in; ++t) {
+    const uint32_t* v = &mesh.triangles[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    tri.insert(tri.end(), v, v + 3);
+  }
+  const size_t nt = tri.size() / 3;
+  faces = nt;
+  target = resolve_target_faces(options, nt);
+  min_cos = options.min_normal_cos;
+  record = options.record_collapses;
+
+  // Internal coordinates: centred on the bounding box and scaled to unit diagonal, so that
+  // the relative tolerances below mean the same on every mesh.
+  alive.assign(nv, 0);
+  for (uint32_t v : tri) alive[v] = 1;
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t v = 0; v < nv; ++v) {
+    if (!alive[v]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.positions[3 * v + k];
+      if (!std::isfinite(x)) throw Error("simplify: vertex " + std::to_string(v) + " is not finite");
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (lo[k] + hi[k]);
+  scale = diag > 0 ? 1 / diag : 1;
+  // Internal vertex ids follow a Morton curve, so that the vertices of one neighbourhood sit
+  // close together in memory: the collapse order jumps around the mesh, and this keeps each
+  // collapse on few cache lines. Unreferenced vertices go last.
+  order.resize(nv);
+  {
+    std::vector<uint32_t> code(nv);
+    const double inv_ext[3] = {hi[0] > lo[0] ? 1 / (hi[0] - lo[0]) : 0, hi[1] > lo[1] ? 1 / (hi[1] - lo[1]) : 0,
+                               hi[2] > lo[2] ? 1 / (hi[2] - lo[2]) : 0};
+    for (size_t v = 0; v < nv; ++v) {
+      uint64_t c = 0;
+      if (alive[v]) {
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k)
+          q[k] = uint32_t(std::min(1.0, std::max(0.0, (mesh.positions[3 * v + k] - lo[k]) * inv_ext[k])) * 1023.0);
+        for (int bit = 9; bit >= 0; --bit)
+          for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
+      } else {
+        c = uint64_t(1) << 30;  // after every 30-bit code
+      }
+      code[v] = uint32_t(c);
+      order[v] = uint32_t(v);
+    }
+    // Stable LSD radix sort on the 31-bit codes (11 + 10 + 10 bits): the order a stable
+    // comparison sort gives, several times faster.
+    std::vector<uint32_t> tmp(nv), count;
+    for (int shift : {0, 11, 21}) {
+      const uint32_t buckets = shift == 0 ? 2048 : 1024, mask = buckets - 1;
+      count.assign(buckets + 1, 0);
+      for (uint32_t v : order) ++count[((code[v] >> shift) & mask) + 1];
+      for (uint32_t i = 0; i < buckets; ++i) count[i + 1] += count[i];
+      for (uint32_t v : order) tmp[count[(code[v] >> shift) & mask]++] = v;
+      order.swap(tmp);
+    }
+  }
+  inv.resize(nv);
+  for (size_t i = 0; i < nv; ++i) inv[order[i]] = uint32_t(i);
+  for (uint32_t& v : tri) v = inv[v];
+  {
+    std::vector<uint8_t> a2(nv);
+    for (size_t i = 0; i < nv; ++i) a2[i] = alive[order[i]];
+    alive.swap(a2);
+  }
+  pos.resize(3 * nv);
+  for (size_t i = 0; i < nv; ++i)
+    for (int k = 0; k < 3; ++k)
+      pos[3 * i + k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
+
+  tri_alive.assign(nt, 1);
+  std::vector<uint32_t> deg(nv, 0);
+  for (uint32_t v : tri) ++deg[v];
+  vt_start.resize(nv);
+  vt_count.assign(nv, 0);
+  vt_cap.resize(nv);
+  {
+    size_t off = 0;
+    for (size_t v = 0; v < nv; ++v) { vt_start[v] = uint32_t(off); vt_cap[v] = deg[v]; off += deg[v]; }
+    vt_pool.reserve(2 * off + 64);
+    vt_pool.resize(off);
+  }
+  quad.assign(nv, Quadric{});
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &tri[3 * t];
+    const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
+    for (int k = 0; k < 3; ++k) {
+      vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
+      quad[v[k]] += q;
+    }
+  }
+
+  // Edges from the triangle runs: for each vertex a, its higher neighbours b with the
+  // triangles on (a, b), sorted by (b, triangle); one triangle is a border edge, more than two
+  // a non-manifold edge. The edges come out ordered by (a, b), and the border quadrics are
+  // added in that order. Cheaper than sorting all 3 * faces edge ends (vertices are in
+  // Morton order, so the runs are close in memory).
+  border.assign(nv, 0);
+  std::vector<uint32_t> unique_edges_a, unique_edges_b;
+  unique_edges_a.reserve(nt * 3 / 2 + 16);
+  unique_edges_b.reserve(nt * 3 / 2 + 16);
+  struct Ref { uint32_t b, t, corner; };
+  std::vector<Ref> refs;
+  for (uint32_t a = 0; a < nv; ++a) {
+    refs.clear();
+    for (uint32_t t : vt(a)) {
+      const uint32_t* v = &tri[3 * size_t(t)];
+      const uint32_t k = v[0] == a ? 0 : v[1] == a ? 1 : 2;
+      const uint32_t u1 = v[(k + 1) % 3], u2 = v[(k + 2) % 3];
+      if (u1 > a) refs.push_back({u1, t, k});            // edge a -> u1 starts at corner k
+      if (u2 > a) refs.push_back({u2, t, (k + 2) % 3});  // edge u2 -> a starts at k + 2
+    }
+    for (size_t i = 1; i < refs.size(); ++i)  // insertion sort: a dozen entries
+      for (size_t j = i; j > 0 && (refs[j].b < refs[j - 1].b ||
+                                   (refs[j].b == refs[j - 1].b && refs[j].t < refs[j - 1].t)); --j)
+        std::swap(refs[j], refs[j - 1]);
+    for (size_t i = 0; i < refs.size();) {
+      size_t j = i;
+      while (j < refs.size() && refs[j].b == refs[i].b) ++j;
+      const uint32_t b = refs[i].b;
+      if (j - i == 1) {
+        const uint32_t t = refs[i].t, k = refs[i].corner;
+        const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+        const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+        quad[v0] += q;
+        quad[v1] += q;
+        border[a] = border[b] = 1;
+      } else if (j - i > 2) {
+        border[a] = border[b] = 1;
+      }
+      unique_edges_a.push_back(a);
+      unique_edges_b.push_back(b);
+      i = j;
+    }
+  }
+  if (w)
+    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
+  changed.assign(nv, 0);
+  link.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
+
+  if (edges) {
+    edges->resize(unique_edges_a.size());
+    // Independent per edge: on all cores (a tenth of the whole run on one).
+    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
+      double tmp[3];
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
+      }
+    });
+  }
+}
+
+bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
+  const uint32_t* v = &tri[3 * size_t(t)];
+  const double* q[3] = {p(v[0]), p(v[1]), p(v[2])};
+  const double* r[3] = {q[0], q[1], q[2]};
+  for (int k = 0; k < 3; ++k)
+    if (v[k] == moved) r[k] = np;
+  double e1[3], e2[3], n_old[3], n_new[3];
+  for (int k = 0; k < 3; ++k) { e1[k] = q[1][k] - q[0][k]; e2[k] = q[2][k] - q[0][k]; }
+  cross3(e1, e2, n_old);
+  double l2max = 0;
+  for (int k = 0; k < 3; ++k) { e1[k] = r[1][k] - r[0][k]; e2[k] = r[2][k] - r[0][k]; }
+  cross3(e1, e2, n_new);
+  for (int i = 0; i < 3; ++i) {
+    const double* x = r[i];
+    const double* y = r[(i + 1) % 3];
+    const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    l2max = std::max(l2max, dot3(d, d));
+  }
+  // Squared lengths compared: no square roots in the common case (min_cos 0).
+  const double len2_new = dot3(n_new, n_new);
+  // Degenerate: twice the area below 1e-6 of the longest edge squared (a needle or cap
+  // thinner than about a micro-radian), or no area at all.
+  if (!(len2_new > 1e-12 * l2max * l2max) || !(l2max > 0)) return true;
+  const double len2_old = dot3(n_old, n_old);
+  if (!(len2_old > 0)) return false;
+  const double d = dot3(n_old, n_new);
+  if (min_cos == 0) return d <= 0;
+  return d <= min_cos * std::sqrt(len2_old * len2_new);
+  return false;
+}
+
+Check State::check(uint32_t a, uint32_t b, const double np[3]) {
+  for (uint32_t v : {a, b})  // scattered loads: issue them together
+    for (uint32_t t : vt(v)) {
+      __builtin_prefetch(&tri[3 * size_t(t)]);
+      __builtin_prefetch(&tri_alive[t]);
+    }
+  // Drop dead triangles from both lists first (they are only ever appended to).
+  compact(a);
+  compact(b);
+  // Triangles on the edge and the vertices opposite it; the other neighbours of a get
+  // marked (link[] == in_a) for the link condition below.
+  link_stamp += 2;
+  const uint32_t in_a = link_stamp, counted = link_stamp + 1;
+  opp.clear();
+  pairs_a.clear();
+  for (uint32_t t : vt(a)) {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == b || v[1] == b || v[2] == b) {
+      opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+      continue;
+    }
+    const uint32_t x = v[0] == a ? v[1] : v[0], y = v[2] == a ? v[1] : v[2];
+    link[x] = link[y] = in_a;
+    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
+  }
+  const size_t k = opp.size();
+  if (k == 0) return Check::NotEdge;
+  if (k > 2) return Check::Refused;                 // non-manifold edge
+  if (k > faces - target) return Check::Refused;    // would overshoot the target
+  if (k == 2 && (opp[0] == opp[1] || (border[a] && border[b]))) return Check::Refused;
+
+  // Link condition on vertices: the common neighbours of a and b are exactly the opposites.
+  for (uint32_t o : opp) link[o] = in_a;
+  size_t common = 0;
+  for (uint32_t t : vt(b)) {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) continue;
+    const uint32_t x = v[0] == b ? v[1] : v[0], y = v[2] == b ? v[1] : v[2];
+    // A triangle of b that would coincide with one of a after the collapse (e.g. the
+    // tetrahedron): refuse.
+    const uint64_t key = (uint64_t(std::min(x, y)) << 32) | std::max(x, y);
+    for (uint64_t pa : pairs_a)
+      if (pa == key) return Check::Refused;
+    for (uint32_t z : {x, y})
+      if (link[z] == in_a) { link[z] = counted; ++common; }
+  }
+  for (uint32_t o : opp)
+    if (link[o] == in_a) { link[o] = counted; ++common; }
+  if (common != k) return Check::Refused;
+
+  // Flips, fold-overs and degenerate triangles among those that remain.
+  for (uint32_t t : vt(a)) {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == b || v[1] == b || v[2] == b) continue;
+    if (bad_triangle(t, a, np)) return Check::Refused;
+  }
+  for (uint32_t t : vt(b)) {
+    const uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) continue;
+    if (bad_triangle(t, b, np)) return Check::Refused;
+  }
+  return Check::Ok;
+}
+
+void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
+  for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
+  quad[a] += quad[b];
+  if (border[a] && border[b]) --border_vertices;
+  border[a] = border[a] | border[b];
+  compact(a);
+  const uint32_t need = vt_count[a] + vt_count[b];
+  if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
+    const uint32_t cap = need + need / 2;
+    if (vt_pool.size() + cap > vt_pool.capacity()) repack();
+    const size_t start = vt_pool.size();
+    vt_pool.resize(start + cap);
+    std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
+              vt_pool.begin() + start);
+    vt_start[a] = uint32_t(start);
+    vt_cap[a] = cap;
+  }
+  uint32_t* la = tris_of(a);
+  uint32_t na_ = vt_count[a];
+  const uint32_t* lb = tris_of(b);
+  for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
+    const uint32_t t = lb[i];
+    if (!tri_alive[t]) continue;
+    uint32_t* v = &tri[3 * size_t(t)];
+    if (v[0] == a || v[1] == a || v[2] == a) {
+      tri_alive[t] = 0;
+      --faces;
+    } else {
+      for (int k = 0; k < 3; ++k)
+        if (v[k] == b) v[k] = a;
+      la[na_++] = t;
+    }
+  }
+  vt_count[a] = na_;
+  compact(a);
+  vt_count[b] = 0;
+  alive[b] = 0;
+  ++collapses;
+  changed[a] = changed[b] = uint32_t(collapses);
+  if (record) sequence.push_back({order[a], order[b], c});
+}
+
+Mesh State::output(SimplifyReport* report) const {
+  std::vector<uint32_t> remap(nv, UINT32_MAX);
+  Mesh out;
+  std::vector<uint32_t> origin;
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) remap[tri[3 * t + k]] = 0;
+  for (size_t iv = 0; iv < nv; ++iv) {  // in input order
+    const uint32_t v = inv[iv];
+    if (remap[v] == UINT32_MAX) continue;
+    remap[v] = uint32_t(origin.size());
+    origin.push_back(uint32_t(iv));
+    for (int k = 0; k < 3; ++k)
+      out.positions.push_back(float(pos[3 * v + k] / scale + center[k]));
+  }
+  out.triangles.reserve(3 * faces);
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
+  if (report) {
+    report->input_faces = tri_alive.size();
+    report->target_faces = target;
+    report->output_faces = out.triangle_count();
+    report->output_vertices = out.vertex_count();
+    report->reached = report->output_faces == target;
+    report->note.clear();
+    if (!report->reached) {
+      bool any_border = false;
+      for (size_t v = 0; v < nv && !any_border; ++v) any_border = alive[v] && border[v];
+      if (!any_border && faces == target + 1)
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: a closed manifold mesh has an even face "
+                       "count; stopped at " + std::to_string(faces);
+      else
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: no further collapse keeps the mesh manifold "
+                       "and unfolded; stopped at " + std::to_string(faces);
+    }
+    report->refused = refused;
+    report->sequence = sequence;
+    report->collapses = tri_alive.size() - faces;  // overwritten by the callers
+    report->vertex_origin = std::move(origin);
+  }
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+// 4-ary min-heap of edge entries with the keys inline (16-byte entries, so the four
+// children of a node share one 64-byte line). Entries are never updated in place: a collapse
+// pushes the survivor's new edges and the old ones are dropped when they surface (stamps).
+// Allocator with 64-byte (cache line) alignment, for the heap below.
+template <class T>
+struct LineAlloc {
+  using value_type = T;
+  LineAlloc() = default;
+  template <class U>
+  LineAlloc(const LineAlloc<U>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+  template <class U>
+  bool operator==(const LineAlloc<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const LineAlloc<U>&) const { return false; }
+};
+
+class EdgeHeap {
+ public:
+  // Node i lives at s_[i + kPad]: with the storage 64-byte aligned, the four children of a
+  // node (4i+1 .. 4i+4) then fill exactly one cache line, so each level of a sift costs one
+  // miss, not two.
+  static constexpr size_t kPad = 3;
+  EdgeHeap() : s_(kPad) {}
+  bool empty() const { return s_.size() == kPad; }
+  size_t size() const { return s_.size() - kPad; }
+  const Entry& top() const { return s_[kPad]; }
+  void assign(const std::vector<Entry>& all) {
+    s_.resize(kPad);
+    s_.insert(s_.end(), all.begin(), all.end());
+    heapify();
+  }
+  // Drops the entries for which keep() is false and restores the heap order, O(n).
+  template <class F>
+  void filter(F keep) {
+    size_t n = kPad;
+    for (size_t i = kPad; i < s_.size(); ++i)
+      if (keep(s_[i])) s_[n++] = s_[i];
+    s_.resize(n);
+    heapify();
+  }
+  void push(const Entry& e) {
+    s_.push_back(e);
+    Entry* h = s_.data() + kPad;
+    size_t i = size() - 1;
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!key_less(e, h[parent])) break;
+      h[i] = h[parent];
+      i = parent;
+    }
+    h[i] = e;
+  }
+  Entry pop() {
+    const Entry top = s_[kPad];
+    const Entry last = s_.back();
+    s_.pop_back();
+    if (!empty()) {
+      s_[kPad] = last;
+      down(0);
+    }
+    return top;
+  }
+
+ private:
+  void heapify() {
+    const size_t n = size();
+    if (n > 1)
+      for (size_t i = (n - 2) / 4 + 1; i-- > 0;) down(i);
+  }
+  void down(size_t i) {
+    Entry* h = s_.data() + kPad;
+    const size_t n = size();
+    const Entry v = h[i];
+    for (;;) {
+      const size_t c = 4 * i + 1;
+      if (c >= n) break;
+      size_t m = c;
+      if (c + 4 <= n) {  // all four children: select without branches
+        const size_t m01 = key_less(h[c + 1], h[c]) ? c + 1 : c;
+        const size_t m23 = key_less(h[c + 3], h[c + 2]) ? c + 3 : c + 2;
+        m = key_less(h[m23], h[m01]) ? m23 : m01;
+      } else {
+        for (size_t j = c + 1; j < n; ++j)
+          if (key_less(h[j], h[m])) m = j;
+      }
+      if (!key_less(h[m], v)) break;
+      h[i] = h[m];
+      i = m;
+    }
+    h[i] = v;
+  }
+  std::vector<Entry, LineAlloc<Entry>> s_;
+};
+
+// Invariant of the loop below: every current edge that is not refused has a current entry
+// in the heap, with its key; stale entries (an end collapsed or moved since) are skipped.
+// So the first current entry popped is the edge that a full scan would pick. A refused
+// edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
+// of them; then its entry goes back into the heap.
+Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                   const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  std::vector<Entry> initial;
+  s.init(mesh, options, vertex_weights, &initial);
+  EdgeHeap heap;
+  heap.assign(initial);
+  std::vector<Entry>().swap(initial);
+
+  std::vector<std::vector<Entry>> refused(s.nv);
+  // Puts the refused edges of w back (both ends' lists forget them).
+  // Whether refused[w] is not empty: one byte per vertex stays in cache, the vectors not.
+  std::vector<uint8_t> has_refused(s.nv, 0);
+  auto release = [&](uint32_t w) {
+    if (!has_refused[w]) return;
+    has_refused[w] = 0;
+    for (const Entry& e : refused[w]) {
+      const uint32_t z = e.a ^ e.b ^ w;
+      auto& l = refused[z];
+      for (size_t i = 0; i < l.size(); ++i)
+        if (l[i].a == e.a && l[i].b == e.b) { l[i] = l.back(); l.pop_back(); break; }
+      has_refused[z] = !l.empty();
+      if (s.current(e)) heap.push(e);
+    }
+    refused[w].clear();
+  };
+
+  std::vector<uint32_t> mark(s.nv, UINT32_MAX);
+  std::vector<uint32_t> ring;
+  double np[3], tmp[3];
+  // Current edges in the heap, about: 3 per vertex on a closed surface.
+  size_t vertices = 0;
+  for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
+  while (s.faces > s.target && !heap.empty()) {
+    // One face short on a closed manifold surface: every collapse removes two faces and
+    // would overshoot, so the scan below would refuse every edge left. Stop now instead
+    // (same result; the report's note says why).
+    if (s.faces == s.target + 1 && s.border_vertices == 0) break;
+    // Stale entries were 90% of all pops, each a sift through a heap far larger than the
+    // cache: drop them in one sequential pass when the heap is 4/3 of the current edges.
+    if (heap.size() > 4 * (vertices - s.collapses) + 4096)
+      heap.filter([&](const Entry& x) { return s.current(x); });
+    const Entry e = heap.pop();
+    if (!heap.empty()) {  // the next pick's data, while this one is worked on
+      const Entry& n = heap.top();
+      __builtin_prefetch(&s.changed[n.a]);
+      __builtin_prefetch(&s.changed[n.b]);
+      __builtin_prefetch(&s.vt_start[n.a]);
+      __builtin_prefetch(&s.vt_start[n.b]);
+      __builtin_prefetch(&s.vt_count[n.a]);
+      __builtin_prefetch(&s.vt_count[n.b]);
+      __builtin_prefetch(&s.quad[n.a]);
+      __builtin_prefetch(&s.quad[n.b]);
+    }
+    if (!s.current(e)) continue;
+    const double exact = s.cost(e.a, e.b, np);
+    const Check c = s.check(e.a, e.b, np);
+    if (c != Check::Ok) {
+      ++s.refused;
+      refused[e.a].push_back(e);
+      refused[e.b].push_back(e);
+      has_refused[e.a] = has_refused[e.b] = 1;
+      continue;
+    }
+    const uint32_t a = e.a, b = e.b;
+    s.collapse(a, b, np, exact);
+    if (has_refused[b]) {
+      std::vector<Entry>().swap(refused[b]);
+      has_refused[b] = 0;
+    }
+    const uint32_t now = uint32_t(s.collapses);
+    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
+    ring.clear();
+    mark[a] = now;
+    const uint32_t* tl = s.tris_of(a);
+    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t y = tv[k];
+        if (mark[y] == now) continue;
+        mark[y] = now;
+        ring.push_back(y);
+        __builtin_prefetch(&s.quad[y]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
+        __builtin_prefetch(&s.pos[3 * size_t(y)]);
+      }
+    }
+    // The 1-ring of a changed: refused edges there count again.
+    release(a);
+    for (uint32_t y : ring) release(y);
+    for (uint32_t y : ring)
+      {
+      const uint32_t lo = std::min(a, y), hi = std::max(a, y);
+      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
+    }
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = s.collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  s.init(mesh, options, vertex_weights, nullptr);
+  std::vector<Entry> cand;
+  while (s.faces > s.target) {
+    cand.clear();
+    for (size_t t = 0; t < s.tri_alive.size(); ++t) {
+      if (!s.tri_alive[t]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
+        cand.push_back(make_entry(0, std::min(x, y), std::max(x, y), 0));
+      }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {
+      return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    cand.erase(std::unique(cand.begin(), cand.end(),
+                           [](const Entry& x, const Entry& y) { return x.a == y.a && x.b == y.b; }),
+               cand.end());
+    double tmp[3];
+    for (Entry& e : cand) e.cost = float(s.cost(e.a, e.b, tmp));
+    std::sort(cand.begin(), cand.end(), key_less);
+    bool done = false;
+    for (const Entry& e : cand) {
+      double np[3];
+      const double exact = s.cost(e.a, e.b, np);
+      if (s.check(e.a, e.b, np) != Check::Ok) {
+        ++s.refused;
+        continue;
+      }
+      s.collapse(e.a, e.b, np, exact);
+      done = true;
+      break;
+    }
+    if (!done) break;
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = s.collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,83 @@
+// meshsal: a small Vulkan layer over the plain C API: instance, device choice, one compute
+// queue, optional Khronos validation that counts its messages (the tests fail on any).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace meshsal::vk {
+
+class Kernel;  // vk_compute.h
+
+// One physical device as `meshsal devices` lists it.
+struct DeviceInfo {
+  int index = 0;                  // position in vkEnumeratePhysicalDevices order
+  std::string name;
+  std::string type;               // "discrete", "integrated", "virtual", "cpu", "other"
+  VkPhysicalDeviceType vk_type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  uint64_t device_local_bytes = 0;  // largest device-local heap
+  std::string api_version;        // "1.3.239"
+  bool has_compute = false;       // a queue family with compute
+};
+
+// True when MESHSAL_VALIDATION is set to something other than "" or "0".
+bool validation_requested_by_env();
+
+// Number of validation warnings + errors reported so far in this process (all contexts).
+uint64_t validation_message_count();
+
+// The devices of the Vulkan loader; throws Error when there is no loader/driver at all.
+std::vector<DeviceInfo> list_devices(bool validation = false);
+
+// Index of the device `auto` picks: the first discrete GPU with compute, else the first
+// integrated one; -1 if there is neither (e.g. only lavapipe).
+int pick_hardware_gpu(const std::vector<DeviceInfo>& devices);
+
+// An open device with one compute queue. Not copyable; destroys everything it made.
+class Context {
+ public:
+  // device_index -1: the best device (discrete > integrated > virtual > cpu).
+  // validation: enable VK_LAYER_KHRONOS_validation (also on when MESHSAL_VALIDATION=1);
+  // throws Error when requested but not installed.
+  explicit Context(int device_index = -1, bool validation = false);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkCommandPool command_pool = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memory{};
+  DeviceInfo info;
+  bool validation = false;
+  bool has_float64 = false;  // shaderFloat64, enabled when the device has it
+  uint32_t subgroup_size = 0;        // lanes per subgroup (Vulkan 1.1)
+  bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
+  double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
+  std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
+  // Fences and command buffers of submissions that timed out: the device may still use
+  // them, so they are freed only after the final vkDeviceWaitIdle.
+  std::vector<VkFence> abandoned_fences;
+  std::vector<VkCommandBuffer> abandoned_commands;
+  // While work is abandoned, buffers and descriptor pools are destroyed here, later.
+  std::vector<std::function<void()>> deferred_destroy;
+  bool has_abandoned_work() const { return !abandoned_fences.empty(); }
+
+ private:
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+};
+
+// Throws Error("<what>: <VkResult name>") unless r is VK_SUCCESS.
+void check(VkResult r, const char* what);
+const char* result_name(VkResult r);
+
+}  // namespace meshsal::vk

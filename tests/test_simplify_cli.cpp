@@ -1,0 +1,106 @@
+// `meshsal simplify` and `meshsal compare` end to end, including the errors on bad input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "meshsal/mesh_io.h"
+#include "meshsal/synthetic.h"
+#include "test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int rc = -1;
+  std::string out;  // stdout and stderr together
+};
+
+Run run_cli(const std::string& args) {
+  Run r;
+  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path temp_dir() {
+  fs::path d = fs::temp_directory_path() / ("meshsal_simplify_cli_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("cli simplify: target counts, formats and the saliency PLY", "[simplify]") {
+  MESHSAL_REQUIRE_MESH(bunny, "bunny_3k.off");
+  const fs::path dir = temp_dir();
+  const std::string obj = (dir / "plain.obj").string(), ply = (dir / "sal.ply").string();
+  Run r = run_cli("simplify '" + bunny + "' -o '" + obj + "' --target-faces 1000 --weights none");
+  INFO(r.out);
+  REQUIRE(r.rc == 0);
+  CHECK(meshsal::load_mesh(obj).triangle_count() == 1000);
+
+  const std::string sal = (dir / "bunny_sal.ply").string();
+  REQUIRE(run_cli("saliency '" + bunny + "' -o '" + sal + "' --backend cpu -q").rc == 0);
+  r = run_cli("simplify '" + bunny + "' -o '" + ply + "' --ratio 0.1 --saliency-from '" + sal + "'");
+  REQUIRE(r.rc == 0);
+  const meshsal::Mesh out = meshsal::load_mesh(ply);
+  CHECK(out.triangle_count() == 698);  // 10% of 6966 is 697: odd, so one above on a closed mesh
+  CHECK(r.out.find("even face count") != std::string::npos);
+
+  r = run_cli("compare '" + bunny + "' '" + ply + "' --saliency '" + sal + "' --samples 20000");
+  REQUIRE(r.rc == 0);
+  for (const char* key : {"\"hausdorff\": ", "\"rms\": ", "\"salient_error\": ", "\"simplified_faces\": 698"})
+    CHECK(r.out.find(key) != std::string::npos);
+  CHECK(r.out.front() == '{');
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
+  MESHSAL_REQUIRE_MESH(bunny, "bunny_3k.off");
+  MESHSAL_REQUIRE_MESH(spot, "spot_3k.obj");
+  const fs::path dir = temp_dir();
+  const std::string out = (dir / "out.obj").string();
+  const std::string base = "simplify '" + bunny + "' -o '" + out + "' --weights none ";
+  struct Case { std::string args, message; };
+  const Case cases[] = {
+      {"--target-faces 100000", "larger than the mesh (6966 faces)"},
+      {"--target-faces 0", "--target-faces must be a positive face count"},
+      {"--target-faces -5", "--target-faces must be a positive face count"},
+      {"--ratio 0", "--ratio must be in (0, 1]"},
+      {"--ratio 1.5", "--ratio must be in (0, 1]"},
+      {"", "give exactly one of --target-faces N and --ratio R"},
+      {"--target-faces 10 --ratio 0.5", "give exactly one of"},
+  };
+  for (const Case& c : cases) {
+    const Run r = run_cli(base + c.args);
+    INFO(c.args << "\n" << r.out);
+    CHECK(r.rc == 1);
+    CHECK(r.out.find("error: ") != std::string::npos);
+    CHECK(r.out.find(c.message) != std::string::npos);
+  }
+  // A saliency PLY of another mesh.
+  const std::string sal = (dir / "spot_sal.ply").string();
+  REQUIRE(run_cli("saliency '" + spot + "' -o '" + sal + "' --backend cpu -q").rc == 0);
+  Run r = run_cli("simplify '" + bunny + "' -o '" + out + "' --target-faces 500 --saliency-from '" + sal + "'");
+  INFO(r.out);
+  CHECK(r.rc == 1);
+  CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
+  r = run_cli("compare '" + bunny + "' '" + spot + "' --saliency '" + sal + "'");
+  CHECK(r.rc == 1);
+  CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
+  r = run_cli("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
+  CHECK(r.rc == 1);
+  CHECK(r.out.find("output must be a .obj or .ply file") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
