@@ -1,5 +1,7 @@
 #include "meshsal/render.h"
 
+#include "meshsal/curvature.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,29 +19,6 @@ void check_render_style(const RenderStyle& s) {
   if (s.size < 16 || s.size > 8192)
     throw Error("image size must be between 16 and 8192, got " + std::to_string(s.size));
   if (!(s.margin >= 1.0) || !std::isfinite(s.margin)) throw Error("image margin must be >= 1");
-}
-
-// Area-weighted vertex normals, unit length (zero where they vanish).
-static std::vector<double> normals_of(const Mesh& mesh) {
-  std::vector<double> n(mesh.positions.size(), 0.0);
-  const float* p = mesh.positions.data();
-  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
-    const uint32_t* t = &mesh.triangles[3 * f];
-    double e1[3], e2[3];
-    for (int k = 0; k < 3; ++k) {
-      e1[k] = double(p[3 * t[1] + k]) - p[3 * t[0] + k];
-      e2[k] = double(p[3 * t[2] + k]) - p[3 * t[0] + k];
-    }
-    double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) n[3 * size_t(t[j]) + k] += c[k];
-  }
-  for (size_t i = 0; i < n.size(); i += 3) {
-    double l = std::sqrt(n[i] * n[i] + n[i + 1] * n[i + 1] + n[i + 2] * n[i + 2]);
-    if (l > 0)
-      for (int k = 0; k < 3; ++k) n[i + k] /= l;
-  }
-  return n;
 }
 
 Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, const ViewFrame& frame_in,
@@ -74,7 +53,7 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
     sy[i] = (1 - y) * half;
     sz[i] = (1 - z) * 0.5;
   }
-  std::vector<double> normals = normals_of(mesh);
+  std::vector<double> normals = vertex_normals(mesh);  // the curvature stage's normals
 
   Image img(res, res, style.background[0], style.background[1], style.background[2]);
   std::vector<double> zbuf(size_t(res) * res, std::numeric_limits<double>::infinity());
