@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "meshsal/data_dir.h"
 #include "meshsal/error.h"
 #include "meshsal/mesh_io.h"
 #include "meshsal/saliency.h"
@@ -49,20 +50,6 @@ struct Row {
 
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string default_data_dir() {
-  const char* env = std::getenv("MESHSAL_DATA");
-  if (env && *env) return env;
-  namespace fs = std::filesystem;
-  if (fs::is_directory("../shared/data/meshes")) return "../shared/data/meshes";
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path guess = exe.parent_path().parent_path().parent_path() / "shared/data/meshes";
-    if (fs::is_directory(guess)) return guess.string();
-  }
-  return "../shared/data/meshes";
 }
 
 std::vector<double> parse_list(const std::string& text) {
@@ -195,7 +182,7 @@ void print_json(const std::vector<Row>& rows, const std::vector<std::pair<std::s
 
 int run(const Args& a) {
   std::vector<std::string> paths = a.meshes;
-  const std::string dir = a.data_dir.empty() ? default_data_dir() : a.data_dir;
+  const std::string dir = a.data_dir.empty() ? meshsal::benchmark_data_dir() : a.data_dir;
   if (paths.empty()) {
     for (const char* name : {"armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz"}) {
       const std::string p = dir + "/" + name;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "command.h"
+#include "meshsal/data_dir.h"
 #include "meshsal/error.h"
 #include "meshsal/gpu_saliency.h"
 #include "meshsal/mesh_io.h"
@@ -53,21 +54,6 @@ struct Row {
   meshsal::SaliencyResult best;  // the fastest of the repeats
   double total = 0;
 };
-
-// ../shared/data/meshes from the working directory, else relative to the executable.
-std::string default_data_dir() {
-  const char* env = std::getenv("MESHSAL_DATA");
-  if (env && *env) return env;
-  namespace fs = std::filesystem;
-  if (fs::is_directory("../shared/data/meshes")) return "../shared/data/meshes";
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path guess = exe.parent_path().parent_path().parent_path() / "shared/data/meshes";
-    if (fs::is_directory(guess)) return guess.string();
-  }
-  return "../shared/data/meshes";
-}
 
 // Each backend the table has a row for: the CPU path and every Vulkan device with compute.
 std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
@@ -152,7 +138,7 @@ void print_json(const std::vector<Row>& rows) {
 int run(const Args& a) {
   if (a.repeat < 1) throw meshsal::Error("--repeat must be at least 1");
   std::vector<std::string> paths = a.meshes;
-  const std::string dir = a.data_dir.empty() ? default_data_dir() : a.data_dir;
+  const std::string dir = a.data_dir.empty() ? meshsal::benchmark_data_dir() : a.data_dir;
   if (a.simplify) return exec_simplify_benchmark(a, dir);
   if (paths.empty()) {
     for (const char* name : {"bunny_36k.obj", "armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz"}) {

@@ -6,6 +6,7 @@
 #include "command.h"
 #include "meshsal/error.h"
 #include "meshsal/mesh_io.h"
+#include "meshsal/render_demo.h"
 #include "meshsal/saliency.h"
 #include "meshsal/saliency_weights.h"
 #include "meshsal/simplify.h"
@@ -89,6 +90,16 @@ int run(const Args& a) {
   std::printf("feature error (mean dist.) %15.5f   %17.5f\n", mean_distance(mesh, feature, plain),
               mean_distance(mesh, feature, salient));
   std::printf("wrote %s/simplified_plain.obj and simplified_saliency.obj\n", a.dir.c_str());
+
+  // Pictures: best view coloured by saliency, the map of visible saliency over all view
+  // directions, and original | plain | saliency-simplified side by side.
+  DemoPictureOptions po;
+  po.backend = opt.backend;
+  progress.update("pictures", 0.0);
+  std::vector<std::string> pictures = write_demo_pictures(mesh, r.saliency, a.dir, &plain, &salient, po);
+  progress.finish();
+  std::printf("\n");
+  for (const std::string& p : pictures) std::printf("wrote %s\n", p.c_str());
   return 0;
 }
 

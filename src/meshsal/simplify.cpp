@@ -1,6 +1,6 @@
 // meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
 // One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
-// the next collapse: an indexed heap of per-vertex cheapest edges (simplify_mesh) and a full scan
+// the next collapse: a lazily invalidated heap of edges (simplify_mesh) and a full scan
 // (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
 #include "meshsal/simplify.h"
 
@@ -9,9 +9,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <cstring>
+#include <new>
 #include <string>
 
 #include "meshsal/error.h"
+#include "meshsal/parallel.h"
 #include "meshsal/quadric.h"
 
 namespace meshsal {
@@ -40,21 +43,30 @@ namespace {
 
 // 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
 // float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
+// `a` comes first so that (a, cost) read as one little-endian 64-bit word orders by cost,
+// then a: costs are never negative, -0 or NaN (Quadric::error clamps to +0), and the bits
+// of such floats order like their values.
 struct Entry {
+  uint32_t a;      // a < b; a survives
   float cost;
-  uint32_t a, b;   // a < b; a survives
+  uint32_t b;
   uint32_t stamp;  // collapse count when the cost was computed
 };
-
-// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers.
-inline bool key_less(const Entry& x, const Entry& y) {
-  if (x.cost != y.cost) return x.cost < y.cost;
-  if (x.a != y.a) return x.a < y.a;
-  return x.b < y.b;
+inline Entry make_entry(double cost, uint32_t a, uint32_t b, uint32_t stamp) {
+  return {a, float(cost), b, stamp};
 }
-struct HeapGreater {
-  bool operator()(const Entry& x, const Entry& y) const { return key_less(y, x); }
-};
+inline uint64_t cost_a(const Entry& x) {
+  uint64_t k;
+  std::memcpy(&k, &x, 8);
+  return k;
+}
+
+// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers. No
+// branches: the heap compares in random order, and mispredictions were half its time.
+inline bool key_less(const Entry& x, const Entry& y) {
+  const uint64_t kx = cost_a(x), ky = cost_a(y);
+  return (kx < ky) | ((kx == ky) & (x.b < y.b));
+}
 
 enum class Check { Ok, NotEdge, Refused };
 
@@ -75,9 +87,47 @@ struct State {
   std::vector<Quadric> quad;
   std::vector<uint32_t> tri;                 // 3 per triangle
   std::vector<uint8_t> tri_alive;
-  std::vector<std::vector<uint32_t>> vtris;  // triangles of each vertex (may hold dead ones)
+  // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
+  // from vt_start[v], room for vt_cap[v]; a run that outgrows its room moves to the end.
+  std::vector<uint32_t> vt_pool, vt_start, vt_count, vt_cap;
+  struct Run {
+    const uint32_t* b;
+    const uint32_t* e;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+  };
+  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
+  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
+  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  // Lays all runs out again in vertex order, live triangles only, each with room for half
+  // as many more: instead of growing the pool (a copy of all of it, and page faults), and it
+  // puts the runs back in Morton order.
+  void repack() {
+    std::vector<uint32_t> fresh;
+    fresh.reserve(vt_pool.capacity());
+    for (size_t v = 0; v < nv; ++v) {
+      const uint32_t start = uint32_t(fresh.size());
+      if (alive[v])
+        for (uint32_t t : vt(uint32_t(v)))
+          if (tri_alive[t]) fresh.push_back(t);
+      vt_start[v] = start;
+      vt_count[v] = uint32_t(fresh.size()) - start;
+      vt_cap[v] = vt_count[v] + vt_count[v] / 2;
+      fresh.resize(start + vt_cap[v]);
+    }
+    vt_pool.swap(fresh);
+  }
+  // Drops the dead triangles from v's run.
+  void compact(uint32_t v) {
+    uint32_t* l = tris_of(v);
+    uint32_t n = 0;
+    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i)
+      if (tri_alive[l[i]]) l[n++] = l[i];
+    vt_count[v] = n;
+  }
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
+  size_t border_vertices = 0;                // live vertices with border[] set
   std::vector<uint32_t> changed;             // collapse count when the vertex last moved
   std::vector<uint32_t> order;               // internal vertex id -> input vertex
   std::vector<uint32_t> inv;                 // input vertex -> internal id
@@ -88,7 +138,9 @@ struct State {
   std::vector<Collapse> sequence;
   bool record = false;
   // scratch
-  std::vector<uint32_t> na, nb, opp;
+  std::vector<uint32_t> opp;
+  std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
+  uint32_t link_stamp = 0;
   std::vector<uint64_t> pairs_a;
 
   const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
@@ -162,7 +214,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   // collapse on few cache lines. Unreferenced vertices go last.
   order.resize(nv);
   {
-    std::vector<uint64_t> code(nv);
+    std::vector<uint32_t> code(nv);
     const double inv_ext[3] = {hi[0] > lo[0] ? 1 / (hi[0] - lo[0]) : 0, hi[1] > lo[1] ? 1 / (hi[1] - lo[1]) : 0,
                                hi[2] > lo[2] ? 1 / (hi[2] - lo[2]) : 0};
     for (size_t v = 0; v < nv; ++v) {
@@ -174,12 +226,22 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
         for (int bit = 9; bit >= 0; --bit)
           for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
       } else {
-        c = UINT64_MAX;
+        c = uint64_t(1) << 30;  // after every 30-bit code
       }
-      code[v] = c;
+      code[v] = uint32_t(c);
       order[v] = uint32_t(v);
     }
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return code[x] < code[y]; });
+    // Stable LSD radix sort on the 31-bit codes (11 + 10 + 10 bits): the order a stable
+    // comparison sort gives, several times faster.
+    std::vector<uint32_t> tmp(nv), count;
+    for (int shift : {0, 11, 21}) {
+      const uint32_t buckets = shift == 0 ? 2048 : 1024, mask = buckets - 1;
+      count.assign(buckets + 1, 0);
+      for (uint32_t v : order) ++count[((code[v] >> shift) & mask) + 1];
+      for (uint32_t i = 0; i < buckets; ++i) count[i + 1] += count[i];
+      for (uint32_t v : order) tmp[count[(code[v] >> shift) & mask]++] = v;
+      order.swap(tmp);
+    }
   }
   inv.resize(nv);
   for (size_t i = 0; i < nv; ++i) inv[order[i]] = uint32_t(i);
@@ -197,61 +259,84 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   tri_alive.assign(nt, 1);
   std::vector<uint32_t> deg(nv, 0);
   for (uint32_t v : tri) ++deg[v];
-  vtris.resize(nv);
-  for (size_t v = 0; v < nv; ++v) vtris[v].reserve(deg[v]);
+  vt_start.resize(nv);
+  vt_count.assign(nv, 0);
+  vt_cap.resize(nv);
+  {
+    size_t off = 0;
+    for (size_t v = 0; v < nv; ++v) { vt_start[v] = uint32_t(off); vt_cap[v] = deg[v]; off += deg[v]; }
+    vt_pool.reserve(2 * off + 64);
+    vt_pool.resize(off);
+  }
   quad.assign(nv, Quadric{});
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* v = &tri[3 * t];
     const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
     for (int k = 0; k < 3; ++k) {
-      vtris[v[k]].push_back(uint32_t(t));
+      vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
       quad[v[k]] += q;
     }
   }
 
-  // Edges: sort (min, max, triangle) keys; a run of one is a border edge, more than two a
-  // non-manifold edge.
-  struct EdgeRef { uint64_t key; uint32_t t; uint32_t corner; };
-  std::vector<EdgeRef> refs(3 * nt);
-  for (size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = tri[3 * t + k], b = tri[3 * t + (k + 1) % 3];
-      refs[3 * t + k] = {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), uint32_t(t), uint32_t(k)};
-    }
-  std::sort(refs.begin(), refs.end(), [](const EdgeRef& x, const EdgeRef& y) {
-    return x.key != y.key ? x.key < y.key : x.t < y.t;
-  });
+  // Edges from the triangle runs: for each vertex a, its higher neighbours b with the
+  // triangles on (a, b), sorted by (b, triangle); one triangle is a border edge, more than two
+  // a non-manifold edge. The edges come out ordered by (a, b), and the border quadrics are
+  // added in that order. Cheaper than sorting all 3 * faces edge ends (vertices are in
+  // Morton order, so the runs are close in memory).
   border.assign(nv, 0);
   std::vector<uint32_t> unique_edges_a, unique_edges_b;
-  for (size_t i = 0; i < refs.size();) {
-    size_t j = i;
-    while (j < refs.size() && refs[j].key == refs[i].key) ++j;
-    const uint32_t a = uint32_t(refs[i].key >> 32), b = uint32_t(refs[i].key & 0xffffffffu);
-    if (j - i == 1) {
-      const uint32_t t = refs[i].t, k = refs[i].corner;
-      const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
-      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
-      quad[v0] += q;
-      quad[v1] += q;
-      border[a] = border[b] = 1;
-    } else if (j - i > 2) {
-      border[a] = border[b] = 1;
+  unique_edges_a.reserve(nt * 3 / 2 + 16);
+  unique_edges_b.reserve(nt * 3 / 2 + 16);
+  struct Ref { uint32_t b, t, corner; };
+  std::vector<Ref> refs;
+  for (uint32_t a = 0; a < nv; ++a) {
+    refs.clear();
+    for (uint32_t t : vt(a)) {
+      const uint32_t* v = &tri[3 * size_t(t)];
+      const uint32_t k = v[0] == a ? 0 : v[1] == a ? 1 : 2;
+      const uint32_t u1 = v[(k + 1) % 3], u2 = v[(k + 2) % 3];
+      if (u1 > a) refs.push_back({u1, t, k});            // edge a -> u1 starts at corner k
+      if (u2 > a) refs.push_back({u2, t, (k + 2) % 3});  // edge u2 -> a starts at k + 2
     }
-    unique_edges_a.push_back(a);
-    unique_edges_b.push_back(b);
-    i = j;
+    for (size_t i = 1; i < refs.size(); ++i)  // insertion sort: a dozen entries
+      for (size_t j = i; j > 0 && (refs[j].b < refs[j - 1].b ||
+                                   (refs[j].b == refs[j - 1].b && refs[j].t < refs[j - 1].t)); --j)
+        std::swap(refs[j], refs[j - 1]);
+    for (size_t i = 0; i < refs.size();) {
+      size_t j = i;
+      while (j < refs.size() && refs[j].b == refs[i].b) ++j;
+      const uint32_t b = refs[i].b;
+      if (j - i == 1) {
+        const uint32_t t = refs[i].t, k = refs[i].corner;
+        const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+        const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+        quad[v0] += q;
+        quad[v1] += q;
+        border[a] = border[b] = 1;
+      } else if (j - i > 2) {
+        border[a] = border[b] = 1;
+      }
+      unique_edges_a.push_back(a);
+      unique_edges_b.push_back(b);
+      i = j;
+    }
   }
   if (w)
     for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
   changed.assign(nv, 0);
+  link.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
 
   if (edges) {
     edges->resize(unique_edges_a.size());
-    double tmp[3];
-    for (size_t i = 0; i < unique_edges_a.size(); ++i) {
-      const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
-      (*edges)[i] = {float(cost(a, b, tmp)), a, b, 0};
-    }
+    // Independent per edge: on all cores (a tenth of the whole run on one).
+    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
+      double tmp[3];
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
+      }
+    });
   }
 }
 
@@ -273,32 +358,43 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
     const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
     l2max = std::max(l2max, dot3(d, d));
   }
-  const double len_new = std::sqrt(dot3(n_new, n_new));
+  // Squared lengths compared: no square roots in the common case (min_cos 0).
+  const double len2_new = dot3(n_new, n_new);
   // Degenerate: twice the area below 1e-6 of the longest edge squared (a needle or cap
   // thinner than about a micro-radian), or no area at all.
-  if (!(len_new > 1e-6 * l2max)) return true;
-  const double len_old = std::sqrt(dot3(n_old, n_old));
-  if (len_old > 0 && dot3(n_old, n_new) <= min_cos * len_old * len_new) return true;
+  if (!(len2_new > 1e-12 * l2max * l2max) || !(l2max > 0)) return true;
+  const double len2_old = dot3(n_old, n_old);
+  if (!(len2_old > 0)) return false;
+  const double d = dot3(n_old, n_new);
+  if (min_cos == 0) return d <= 0;
+  return d <= min_cos * std::sqrt(len2_old * len2_new);
   return false;
 }
 
 Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   for (uint32_t v : {a, b})  // scattered loads: issue them together
-    for (uint32_t t : vtris[v]) {
+    for (uint32_t t : vt(v)) {
       __builtin_prefetch(&tri[3 * size_t(t)]);
       __builtin_prefetch(&tri_alive[t]);
     }
   // Drop dead triangles from both lists first (they are only ever appended to).
-  for (uint32_t v : {a, b}) {
-    std::vector<uint32_t>& l = vtris[v];
-    l.erase(std::remove_if(l.begin(), l.end(), [&](uint32_t t) { return !tri_alive[t]; }), l.end());
-  }
-  // Triangles on the edge and the vertices opposite it.
+  compact(a);
+  compact(b);
+  // Triangles on the edge and the vertices opposite it; the other neighbours of a get
+  // marked (link[] == in_a) for the link condition below.
+  link_stamp += 2;
+  const uint32_t in_a = link_stamp, counted = link_stamp + 1;
   opp.clear();
-  for (uint32_t t : vtris[a]) {
-    if (!tri_alive[t]) continue;
+  pairs_a.clear();
+  for (uint32_t t : vt(a)) {
     const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+    if (v[0] == b || v[1] == b || v[2] == b) {
+      opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
+      continue;
+    }
+    const uint32_t x = v[0] == a ? v[1] : v[0], y = v[2] == a ? v[1] : v[2];
+    link[x] = link[y] = in_a;
+    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
   }
   const size_t k = opp.size();
   if (k == 0) return Check::NotEdge;
@@ -307,55 +403,31 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   if (k == 2 && (opp[0] == opp[1] || (border[a] && border[b]))) return Check::Refused;
 
   // Link condition on vertices: the common neighbours of a and b are exactly the opposites.
-  na.clear();
-  nb.clear();
-  pairs_a.clear();
-  for (uint32_t t : vtris[a]) {
-    if (!tri_alive[t]) continue;
-    const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) continue;
-    uint32_t x = 0, y = 0;
-    int n = 0;
-    for (int i = 0; i < 3; ++i)
-      if (v[i] != a) { na.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
-    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
-  }
-  for (uint32_t t : vtris[b]) {
-    if (!tri_alive[t]) continue;
+  for (uint32_t o : opp) link[o] = in_a;
+  size_t common = 0;
+  for (uint32_t t : vt(b)) {
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
-    uint32_t x = 0, y = 0;
-    int n = 0;
-    for (int i = 0; i < 3; ++i)
-      if (v[i] != b) { nb.push_back(v[i]); (n++ == 0 ? x : y) = v[i]; }
+    const uint32_t x = v[0] == b ? v[1] : v[0], y = v[2] == b ? v[1] : v[2];
     // A triangle of b that would coincide with one of a after the collapse (e.g. the
     // tetrahedron): refuse.
     const uint64_t key = (uint64_t(std::min(x, y)) << 32) | std::max(x, y);
     for (uint64_t pa : pairs_a)
       if (pa == key) return Check::Refused;
+    for (uint32_t z : {x, y})
+      if (link[z] == in_a) { link[z] = counted; ++common; }
   }
-  for (uint32_t o : opp) { na.push_back(o); nb.push_back(o); }
-  std::sort(na.begin(), na.end());
-  na.erase(std::unique(na.begin(), na.end()), na.end());
-  std::sort(nb.begin(), nb.end());
-  nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-  size_t common = 0;
-  for (size_t i = 0, j = 0; i < na.size() && j < nb.size();) {
-    if (na[i] < nb[j]) ++i;
-    else if (nb[j] < na[i]) ++j;
-    else { ++common; ++i; ++j; }
-  }
+  for (uint32_t o : opp)
+    if (link[o] == in_a) { link[o] = counted; ++common; }
   if (common != k) return Check::Refused;
 
   // Flips, fold-overs and degenerate triangles among those that remain.
-  for (uint32_t t : vtris[a]) {
-    if (!tri_alive[t]) continue;
+  for (uint32_t t : vt(a)) {
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == b || v[1] == b || v[2] == b) continue;
     if (bad_triangle(t, a, np)) return Check::Refused;
   }
-  for (uint32_t t : vtris[b]) {
-    if (!tri_alive[t]) continue;
+  for (uint32_t t : vt(b)) {
     const uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) continue;
     if (bad_triangle(t, b, np)) return Check::Refused;
@@ -366,8 +438,25 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
 void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
+  if (border[a] && border[b]) --border_vertices;
   border[a] = border[a] | border[b];
-  for (uint32_t t : vtris[b]) {
+  compact(a);
+  const uint32_t need = vt_count[a] + vt_count[b];
+  if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
+    const uint32_t cap = need + need / 2;
+    if (vt_pool.size() + cap > vt_pool.capacity()) repack();
+    const size_t start = vt_pool.size();
+    vt_pool.resize(start + cap);
+    std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
+              vt_pool.begin() + start);
+    vt_start[a] = uint32_t(start);
+    vt_cap[a] = cap;
+  }
+  uint32_t* la = tris_of(a);
+  uint32_t na_ = vt_count[a];
+  const uint32_t* lb = tris_of(b);
+  for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
+    const uint32_t t = lb[i];
     if (!tri_alive[t]) continue;
     uint32_t* v = &tri[3 * size_t(t)];
     if (v[0] == a || v[1] == a || v[2] == a) {
@@ -376,13 +465,12 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     } else {
       for (int k = 0; k < 3; ++k)
         if (v[k] == b) v[k] = a;
-      vtris[a].push_back(t);
+      la[na_++] = t;
     }
   }
-  std::vector<uint32_t>& la = vtris[a];
-  la.erase(std::remove_if(la.begin(), la.end(), [&](uint32_t t) { return !tri_alive[t]; }),
-           la.end());
-  std::vector<uint32_t>().swap(vtris[b]);
+  vt_count[a] = na_;
+  compact(a);
+  vt_count[b] = 0;
   alive[b] = 0;
   ++collapses;
   changed[a] = changed[b] = uint32_t(collapses);
@@ -441,207 +529,202 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-// Indexed 4-ary min-heap over vertices, keyed by each vertex's cheapest edge. Only the
-// vertices whose cheapest edge changed are touched per collapse, and nothing goes stale.
-class VertexHeap {
+// 4-ary min-heap of edge entries with the keys inline (16-byte entries, so the four
+// children of a node share one 64-byte line). Entries are never updated in place: a collapse
+// pushes the survivor's new edges and the old ones are dropped when they surface (stamps).
+// Allocator with 64-byte (cache line) alignment, for the heap below.
+template <class T>
+struct LineAlloc {
+  using value_type = T;
+  LineAlloc() = default;
+  template <class U>
+  LineAlloc(const LineAlloc<U>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+  template <class U>
+  bool operator==(const LineAlloc<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const LineAlloc<U>&) const { return false; }
+};
+
+class EdgeHeap {
  public:
-  explicit VertexHeap(const std::vector<Entry>& best) : best_(best), pos_(best.size(), kNone) {}
-  bool empty() const { return h_.empty(); }
-  uint32_t top() const { return h_[0]; }
-  // Inserts v or moves it to its place after best_[v] changed.
-  void update(uint32_t v) {
-    if (pos_[v] == kNone) {
-      pos_[v] = uint32_t(h_.size());
-      h_.push_back(v);
-      up(pos_[v]);
-    } else {
-      up(pos_[v]);
-      down(pos_[v]);
-    }
+  // Node i lives at s_[i + kPad]: with the storage 64-byte aligned, the four children of a
+  // node (4i+1 .. 4i+4) then fill exactly one cache line, so each level of a sift costs one
+  // miss, not two.
+  static constexpr size_t kPad = 3;
+  EdgeHeap() : s_(kPad) {}
+  bool empty() const { return s_.size() == kPad; }
+  size_t size() const { return s_.size() - kPad; }
+  const Entry& top() const { return s_[kPad]; }
+  void assign(const std::vector<Entry>& all) {
+    s_.resize(kPad);
+    s_.insert(s_.end(), all.begin(), all.end());
+    heapify();
   }
-  void remove(uint32_t v) {
-    const uint32_t i = pos_[v];
-    if (i == kNone) return;
-    pos_[v] = kNone;
-    const uint32_t last = h_.back();
-    h_.pop_back();
-    if (i < h_.size()) {
-      h_[i] = last;
-      pos_[last] = i;
-      up(i);
-      down(pos_[last]);
+  // Drops the entries for which keep() is false and restores the heap order, O(n).
+  template <class F>
+  void filter(F keep) {
+    size_t n = kPad;
+    for (size_t i = kPad; i < s_.size(); ++i)
+      if (keep(s_[i])) s_[n++] = s_[i];
+    s_.resize(n);
+    heapify();
+  }
+  void push(const Entry& e) {
+    s_.push_back(e);
+    Entry* h = s_.data() + kPad;
+    size_t i = size() - 1;
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!key_less(e, h[parent])) break;
+      h[i] = h[parent];
+      i = parent;
     }
+    h[i] = e;
+  }
+  Entry pop() {
+    const Entry top = s_[kPad];
+    const Entry last = s_.back();
+    s_.pop_back();
+    if (!empty()) {
+      s_[kPad] = last;
+      down(0);
+    }
+    return top;
   }
 
  private:
-  static constexpr uint32_t kNone = UINT32_MAX;
-  bool less(uint32_t x, uint32_t y) const {
-    const Entry& ex = best_[x];
-    const Entry& ey = best_[y];
-    if (key_less(ex, ey)) return true;
-    if (key_less(ey, ex)) return false;
-    return x < y;  // the two ends of one edge: any fixed order
+  void heapify() {
+    const size_t n = size();
+    if (n > 1)
+      for (size_t i = (n - 2) / 4 + 1; i-- > 0;) down(i);
   }
-  void up(uint32_t i) {
-    const uint32_t v = h_[i];
-    while (i > 0) {
-      const uint32_t parent = (i - 1) / 4;
-      if (!less(v, h_[parent])) break;
-      h_[i] = h_[parent];
-      pos_[h_[i]] = i;
-      i = parent;
-    }
-    h_[i] = v;
-    pos_[v] = i;
-  }
-  void down(uint32_t i) {
-    const size_t n = h_.size();
-    const uint32_t v = h_[i];
+  void down(size_t i) {
+    Entry* h = s_.data() + kPad;
+    const size_t n = size();
+    const Entry v = h[i];
     for (;;) {
-      const size_t c = 4 * size_t(i) + 1;
+      const size_t c = 4 * i + 1;
       if (c >= n) break;
       size_t m = c;
-      const size_t end = std::min(c + 4, n);
-      for (size_t j = c + 1; j < end; ++j)
-        if (less(h_[j], h_[m])) m = j;
-      if (!less(h_[m], v)) break;
-      h_[i] = h_[m];
-      pos_[h_[i]] = i;
-      i = uint32_t(m);
+      if (c + 4 <= n) {  // all four children: select without branches
+        const size_t m01 = key_less(h[c + 1], h[c]) ? c + 1 : c;
+        const size_t m23 = key_less(h[c + 3], h[c + 2]) ? c + 3 : c + 2;
+        m = key_less(h[m23], h[m01]) ? m23 : m01;
+      } else {
+        for (size_t j = c + 1; j < n; ++j)
+          if (key_less(h[j], h[m])) m = j;
+      }
+      if (!key_less(h[m], v)) break;
+      h[i] = h[m];
+      i = m;
     }
-    h_[i] = v;
-    pos_[v] = i;
+    h[i] = v;
   }
-  const std::vector<Entry>& best_;
-  std::vector<uint32_t> pos_;
-  std::vector<uint32_t> h_;
+  std::vector<Entry, LineAlloc<Entry>> s_;
 };
 
-// Invariant of the loop below: best[v] is the current key of a current, not refused edge of
-// v (or infinite), and every current, not refused edge has an end whose best[] orders at or
-// before it. So the heap's top is the edge that a full scan would pick.
+// Invariant of the loop below: every current edge that is not refused has a current entry
+// in the heap, with its key; stale entries (an end collapsed or moved since) are skipped.
+// So the first current entry popped is the edge that a full scan would pick. A refused
+// edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
+// of them; then its entry goes back into the heap.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   State s;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
-  const Entry none{HUGE_VALF, UINT32_MAX, UINT32_MAX, 0};
-  std::vector<Entry> best(s.nv, none);
-  for (const Entry& e : initial) {
-    if (key_less(e, best[e.a])) best[e.a] = e;
-    if (key_less(e, best[e.b])) best[e.b] = e;
-  }
-  VertexHeap heap(best);
-  for (uint32_t v = 0; v < s.nv; ++v)
-    if (s.alive[v] && best[v].a != UINT32_MAX) heap.update(v);
-
-  // Every current edge with its key, listed at both ends: a collapse only re-costs the edges
-  // of the surviving vertex.
-  std::vector<std::vector<Entry>> edges(s.nv);
-  {
-    std::vector<uint32_t> count(s.nv, 0);
-    for (const Entry& e : initial) { ++count[e.a]; ++count[e.b]; }
-    for (uint32_t v = 0; v < s.nv; ++v) edges[v].reserve(count[v]);
-    for (const Entry& e : initial) { edges[e.a].push_back(e); edges[e.b].push_back(e); }
-  }
+  EdgeHeap heap;
+  heap.assign(initial);
   std::vector<Entry>().swap(initial);
-  // Refused edges, listed at both ends; they count again once a collapse changes the 1-ring
-  // of either end.
-  std::vector<std::vector<uint32_t>> refused(s.nv);
-  auto is_refused = [&](uint32_t v, uint32_t y) {
-    for (uint32_t z : refused[v])
-      if (z == y) return true;
-    return false;
+
+  std::vector<std::vector<Entry>> refused(s.nv);
+  // Puts the refused edges of w back (both ends' lists forget them).
+  // Whether refused[w] is not empty: one byte per vertex stays in cache, the vectors not.
+  std::vector<uint8_t> has_refused(s.nv, 0);
+  auto release = [&](uint32_t w) {
+    if (!has_refused[w]) return;
+    has_refused[w] = 0;
+    for (const Entry& e : refused[w]) {
+      const uint32_t z = e.a ^ e.b ^ w;
+      auto& l = refused[z];
+      for (size_t i = 0; i < l.size(); ++i)
+        if (l[i].a == e.a && l[i].b == e.b) { l[i] = l.back(); l.pop_back(); break; }
+      has_refused[z] = !l.empty();
+      if (s.current(e)) heap.push(e);
+    }
+    refused[w].clear();
   };
-  // best[v] from the listed edges of v that are not refused.
-  auto rescan = [&](uint32_t v) {
-    Entry b = none;
-    for (const Entry& e : edges[v])
-      if (key_less(e, b) && (refused[v].empty() || !is_refused(v, e.a ^ e.b ^ v))) b = e;
-    best[v] = b;
-    heap.update(v);
-  };
-  auto partner = [](const Entry& e, uint32_t v) { return e.a ^ e.b ^ v; };
 
   std::vector<uint32_t> mark(s.nv, UINT32_MAX);
-  std::vector<uint32_t> redo;
-  double np[3];
+  std::vector<uint32_t> ring;
+  double np[3], tmp[3];
+  // Current edges in the heap, about: 3 per vertex on a closed surface.
+  size_t vertices = 0;
+  for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
   while (s.faces > s.target && !heap.empty()) {
-    const uint32_t v = heap.top();
-    const Entry e = best[v];
-    if (e.a == UINT32_MAX) break;  // no edge left anywhere
+    // One face short on a closed manifold surface: every collapse removes two faces and
+    // would overshoot, so the scan below would refuse every edge left. Stop now instead
+    // (same result; the report's note says why).
+    if (s.faces == s.target + 1 && s.border_vertices == 0) break;
+    // Stale entries were 90% of all pops, each a sift through a heap far larger than the
+    // cache: drop them in one sequential pass when the heap is 4/3 of the current edges.
+    if (heap.size() > 4 * (vertices - s.collapses) + 4096)
+      heap.filter([&](const Entry& x) { return s.current(x); });
+    const Entry e = heap.pop();
+    if (!heap.empty()) {  // the next pick's data, while this one is worked on
+      const Entry& n = heap.top();
+      __builtin_prefetch(&s.changed[n.a]);
+      __builtin_prefetch(&s.changed[n.b]);
+      __builtin_prefetch(&s.vt_start[n.a]);
+      __builtin_prefetch(&s.vt_start[n.b]);
+      __builtin_prefetch(&s.vt_count[n.a]);
+      __builtin_prefetch(&s.vt_count[n.b]);
+      __builtin_prefetch(&s.quad[n.a]);
+      __builtin_prefetch(&s.quad[n.b]);
+    }
+    if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
     const Check c = s.check(e.a, e.b, np);
     if (c != Check::Ok) {
       ++s.refused;
-      refused[e.a].push_back(e.b);
-      refused[e.b].push_back(e.a);
-      const uint32_t other = partner(e, v);
-      rescan(v);
-      if (best[other].a == e.a && best[other].b == e.b) rescan(other);
+      refused[e.a].push_back(e);
+      refused[e.b].push_back(e);
+      has_refused[e.a] = has_refused[e.b] = 1;
       continue;
     }
     const uint32_t a = e.a, b = e.b;
     s.collapse(a, b, np, exact);
-    heap.remove(b);
-    std::vector<uint32_t>().swap(refused[b]);
-    std::vector<Entry>().swap(edges[b]);
-    // The new edges of a, with their costs.
+    if (has_refused[b]) {
+      std::vector<Entry>().swap(refused[b]);
+      has_refused[b] = 0;
+    }
     const uint32_t now = uint32_t(s.collapses);
-    // Loads below go to scattered memory (the ring's quadrics and edge lists): they are
-    // prefetched all at once instead of one miss after the other.
-    std::vector<Entry>& ea = edges[a];
-    ea.clear();
+    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
+    ring.clear();
     mark[a] = now;
-    double tmp[3];
-    for (uint32_t t : s.vtris[a]) {
-      const uint32_t* tv = &s.tri[3 * size_t(t)];
+    const uint32_t* tl = s.tris_of(a);
+    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
       for (int k = 0; k < 3; ++k) {
         const uint32_t y = tv[k];
         if (mark[y] == now) continue;
         mark[y] = now;
-        ea.push_back({0, std::min(a, y), std::max(a, y), 0});
+        ring.push_back(y);
         __builtin_prefetch(&s.quad[y]);
         __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
-        __builtin_prefetch(edges[y].data());
+        __builtin_prefetch(&s.pos[3 * size_t(y)]);
       }
     }
-    for (Entry& ey : ea) ey.cost = float(s.cost(ey.a, ey.b, tmp));
-    // The 1-ring of a changed: refused edges there count again (at both ends).
-    auto release = [&](uint32_t w) {
-      for (uint32_t z : refused[w]) {
-        auto& l = refused[z];
-        auto it = std::find(l.begin(), l.end(), w);
-        if (it != l.end()) { *it = l.back(); l.pop_back(); }
-      }
-      const bool had = !refused[w].empty();
-      refused[w].clear();
-      return had;
-    };
+    // The 1-ring of a changed: refused edges there count again.
     release(a);
-    redo.clear();
-    for (const Entry& ey : ea)
-      if (release(partner(ey, a))) redo.push_back(partner(ey, a));
-    rescan(a);
-    for (const Entry& ey : ea) {
-      const uint32_t y = partner(ey, a);
-      std::vector<Entry>& l = edges[y];
-      for (size_t i = 0; i < l.size();) {
-        const uint32_t z = partner(l[i], y);
-        if (z == a || z == b) { l[i] = l.back(); l.pop_back(); }
-        else ++i;
-      }
-      l.push_back(ey);
-      const Entry& by = best[y];
-      const uint32_t py = by.a == UINT32_MAX ? UINT32_MAX : partner(by, y);
-      if (py == a || py == b || py == UINT32_MAX ||
-          std::find(redo.begin(), redo.end(), y) != redo.end()) {
-        rescan(y);
-      } else if (key_less(ey, by)) {
-        best[y] = ey;
-        heap.update(y);
-      }
+    for (uint32_t y : ring) release(y);
+    for (uint32_t y : ring)
+      {
+      const uint32_t lo = std::min(a, y), hi = std::max(a, y);
+      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
     }
   }
   Mesh out = s.output(report);
@@ -664,7 +747,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
       if (!s.tri_alive[t]) continue;
       for (int k = 0; k < 3; ++k) {
         const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
-        cand.push_back({0, std::min(x, y), std::max(x, y), 0});
+        cand.push_back(make_entry(0, std::min(x, y), std::max(x, y), 0));
       }
     }
     std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {

@@ -22,6 +22,9 @@ struct SimplifyOptions {
   // A collapse is refused when it turns any remaining triangle's normal by more than
   // acos(min_normal_cos) (fold-over / flip test). 0 = refuse turns of 90 degrees or more.
   double min_normal_cos = 0;
+  // Threads for the initial edge costs (0 = all cores); the collapse loop is sequential.
+  // The result does not depend on it.
+  unsigned threads = 0;
   // Record the sequence of collapses (for tests comparing against simplify_bruteforce).
   bool record_collapses = false;
 };
@@ -43,14 +46,14 @@ struct SimplifyReport {
   std::string note;           // why the target was not reached (empty when it was)
   size_t collapses = 0;
   size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
-  double seconds = 0;         // wall time of the collapse loop and output compaction
+  double seconds = 0;         // wall time of the whole call: setup, collapse loop, output
   std::vector<Collapse> sequence;      // when options.record_collapses
   std::vector<uint32_t> vertex_origin; // output vertex -> input vertex that survived as it
 };
 
 // Simplifies `mesh` to options.target_faces (or ratio * faces) by edge collapses in order of
-// quadric error: an indexed 4-ary heap over vertices keyed by each vertex's cheapest edge,
-// with per-vertex edge cost lists, so a collapse re-costs only the survivor's edges.
+// quadric error: a 4-ary heap of edge entries with lazy invalidation (a collapse pushes the
+// survivor's re-costed edges; entries of changed vertices are skipped or swept out).
 //  - vertex_weights (may be null): one weight W per input vertex; each vertex quadric is
 //    multiplied by W once before any collapse (SPEC 2). Weights add up on collapse through
 //    the quadrics (Q_i + Q_j carries W_i Q_i + W_j Q_j); W is not needed separately after.

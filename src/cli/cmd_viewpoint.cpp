@@ -1,0 +1,156 @@
+// `meshsal viewpoint`: the view direction that sees the most saliency (SPEC 3), as JSON.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "command.h"
+#include "meshsal/error.h"
+#include "meshsal/mesh_io.h"
+#include "meshsal/render.h"
+#include "meshsal/viewpoint.h"
+#include "meshsal/viewpoint_backend.h"
+#include "meshsal/viewpoint_score.h"
+#include "progress.h"
+
+namespace meshsal_cli {
+namespace {
+
+struct Options {
+  std::string input, saliency_from, score = "saliency", backend = "auto", out_png, map_png;
+  int restarts = 8, views = 0, resolution = 512, size = 512, map_width = 720, device = -1;
+  uint64_t seed = 1;
+  double depth_tol = 2.0;
+  unsigned threads = 0;
+};
+
+const double kDeg = 180.0 / 3.14159265358979323846;
+
+meshsal::Backend parse_backend(const std::string& s) {
+  if (s == "auto") return meshsal::Backend::Auto;
+  if (s == "cpu") return meshsal::Backend::Cpu;
+  if (s == "gpu") return meshsal::Backend::Gpu;
+  throw meshsal::Error("--backend must be auto, cpu or gpu, got '" + s + "'");
+}
+
+// A JSON string literal body: quotes, backslashes and control characters escaped.
+std::string json_escape(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += char(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
+}
+
+std::string json_view(const meshsal::ViewAngles& a, double U) {
+  double d[3];
+  meshsal::view_direction(a, d);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "\"theta\": %.6f, \"phi\": %.6f, \"theta_deg\": %.3f, \"phi_deg\": %.3f, "
+                "\"direction\": [%.6f, %.6f, %.6f], \"U\": %.9g",
+                a.theta, a.phi, a.theta * kDeg, a.phi * kDeg, d[0], d[1], d[2], U);
+  return buf;
+}
+
+int run(const Options& o) {
+  using namespace meshsal;
+  auto t0 = std::chrono::steady_clock::now();
+  if (o.restarts < 1 || o.restarts > 1000) throw Error("--restarts must be between 1 and 1000");
+  if (o.views < 0 || o.views > 1000000) throw Error("--views must be between 0 and 1000000");
+  RenderStyle style;
+  style.size = o.size;
+  if (!o.out_png.empty()) check_render_style(style);
+  if (!o.map_png.empty() && (o.map_width < 32 || o.map_width > 8192))
+    throw Error("--map-width must be between 32 and 8192");
+  Backend backend = parse_backend(o.backend);
+  ViewScore kind = parse_view_score(o.score);
+  Mesh mesh = load_mesh(o.input);
+
+  Progress progress(stderr_is_terminal());
+  SaliencyOptions sopt;
+  sopt.threads = o.threads;
+  sopt.backend = backend;
+  sopt.device = o.device;
+  sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+  sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+  std::string source;
+  std::vector<double> score = vertex_score(mesh, kind, o.saliency_from, sopt, &source);
+  progress.finish();
+
+  VisibilityOptions vopt;
+  vopt.resolution = o.resolution;
+  vopt.depth_tol_px = o.depth_tol;
+  vopt.threads = o.threads;
+  ViewScorerSetup setup = make_view_scorer(mesh, score, vopt, backend, o.device, sopt.notice);
+
+  OptimiserOptions oopt;
+  oopt.restarts = o.restarts;
+  oopt.seed = o.seed;
+  OptimiserResult best = optimise_viewpoint(setup.scorer, oopt);
+
+  int map_views = o.views > 0 ? o.views : (o.map_png.empty() ? 0 : 2000);
+  ViewMap map;
+  if (map_views > 0) map = exhaustive_map(setup.scorer, map_views, setup.batch);
+
+  double total = 0;
+  for (float w : visibility_weights(mesh, score)) total += w;
+
+  std::printf("{\"mesh\": \"%s\", \"vertices\": %zu, \"score\": \"%s\", \"score_source\": \"%s\", "
+              "\"backend\": \"%s\", \"resolution\": %d, \"depth_tol_px\": %g, ",
+              json_escape(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_escape(source).c_str(),
+              json_escape(setup.backend_name).c_str(), o.resolution, o.depth_tol);
+  std::printf("%s, \"U_fraction\": %.6f, ", json_view(best.best, best.U).c_str(), total > 0 ? best.U / total : 0.0);
+  std::printf("\"restarts\": %d, \"seed\": %llu, ", o.restarts, (unsigned long long)o.seed);
+  if (map_views > 0)
+    std::printf("\"exhaustive\": {\"views\": %d, %s}, ", map_views,
+                json_view(map.views[map.best], map.U[map.best]).c_str());
+  else
+    std::printf("\"exhaustive\": null, ");
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("\"views_evaluated\": %llu, \"seconds\": %.3f}\n",
+              (unsigned long long)(best.views_evaluated + uint64_t(map_views)), secs);
+  std::fflush(stdout);
+
+  if (!o.out_png.empty()) {
+    std::vector<uint8_t> colours = score_colours(mesh, score);
+    write_png(o.out_png, render_mesh(mesh, &colours, frame_mesh(mesh), best.best, style));
+  }
+  if (!o.map_png.empty())
+    write_png(o.map_png, render_view_map(map, o.map_width, &map.views[map.best], &best.best));
+  return 0;
+}
+
+RunFn setup(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz)")->required();
+  app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
+  app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
+  app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")->capture_default_str();
+  app.add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();
+  app.add_option("--views", o->views, "also evaluate N Fibonacci-sphere directions exhaustively (0: only with --map, 2000)")->capture_default_str();
+  app.add_option("--resolution", o->resolution, "z-buffer side in pixels")->capture_default_str();
+  app.add_option("--depth-tol", o->depth_tol, "visibility depth tolerance in pixel widths")->capture_default_str();
+  app.add_option("--backend", o->backend, "visibility (and saliency) backend: auto, gpu or cpu")->capture_default_str();
+  app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)");
+  app.add_option("--threads", o->threads, "CPU threads, 0 = all cores")->capture_default_str();
+  app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");
+  app.add_option("--map", o->map_png, "PNG of U over all directions (equirectangular)");
+  app.add_option("--size", o->size, "side of the -o picture in pixels")->capture_default_str();
+  app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")->capture_default_str();
+  return [o]() { return run(*o); };
+}
+
+bool registered = register_command({"viewpoint", "best view direction by visible saliency (JSON), pictures", 60, setup});
+
+}  // namespace
+}  // namespace meshsal_cli

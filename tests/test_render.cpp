@@ -1,0 +1,274 @@
+// Pictures: renderer coverage and colours, the view map, PNG files, and the two CLI commands.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include "meshsal/camera.h"
+#include "meshsal/colormap.h"
+#include "meshsal/error.h"
+#include "meshsal/mesh_io.h"
+#include "meshsal/png_image.h"
+#include "meshsal/render.h"
+#include "meshsal/render_demo.h"
+#include "meshsal/synthetic.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+const double kPi = 3.14159265358979323846;
+
+// A fresh folder under /tmp, removed with everything in it when the test ends.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char tmpl[] = "/tmp/meshsal_render_XXXXXX";
+    const char* d = mkdtemp(tmpl);
+    REQUIRE(d != nullptr);
+    path = d;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+Image read_png(const std::string& path) {
+  int w = 0, h = 0, c = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &c, 3);
+  REQUIRE(data != nullptr);
+  Image img;
+  img.width = w;
+  img.height = h;
+  img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
+  stbi_image_free(data);
+  return img;
+}
+
+// The colour-map position t of a (possibly shaded) colour: the t whose colour has the nearest
+// chromaticity (shading scales r, g, b alike).
+double decode_t(const uint8_t* p) {
+  double sum = double(p[0]) + p[1] + p[2] + 1e-9, best = 1e9, best_t = 0;
+  for (int k = 0; k <= 200; ++k) {
+    uint8_t c[3];
+    colormap_rgb(k / 200.0, c);
+    double cs = double(c[0]) + c[1] + c[2] + 1e-9, e = 0;
+    for (int j = 0; j < 3; ++j) e += std::pow(p[j] / sum - c[j] / cs, 2);
+    if (e < best) {
+      best = e;
+      best_t = k / 200.0;
+    }
+  }
+  return best_t;
+}
+
+bool is_background(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
+
+int run_cli(const std::string& args, std::string* out = nullptr) {
+  std::string file = "/tmp/meshsal_render_cli_" + std::to_string(getpid()) + ".txt";
+  int rc = std::system((std::string(MESHSAL_CLI) + " " + args + " > " + file + " 2>&1").c_str());
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (out) *out = ss.str();
+  std::remove(file.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+double json_number(const std::string& text, const std::string& key) {
+  size_t at = text.find("\"" + key + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::strtod(text.c_str() + at + key.size() + 4, nullptr);
+}
+}  // namespace
+
+TEST_CASE("render: a sphere covers the disc the camera frames, centred", "[view]") {
+  Mesh s = make_sphere(1.0, 4);
+  ViewFrame frame = frame_mesh(s);
+  RenderStyle style;
+  style.size = 200;
+  Image img = render_mesh(s, nullptr, frame, {0.6, 0.3}, style);
+  REQUIRE(img.width == 200);
+  REQUIRE(img.height == 200);
+  REQUIRE(img.rgb.size() == size_t(200 * 200 * 3));
+  double covered = 0, cx = 0, cy = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x)
+      if (!is_background(img.at(x, y))) {
+        covered += 1;
+        cx += x + 0.5;
+        cy += y + 0.5;
+      }
+  double r_px = 100.0 / (frame.radius * style.margin);  // sphere radius 1 in pixels
+  CHECK(covered / (kPi * r_px * r_px) == Approx(1.0).margin(0.03));
+  CHECK(cx / covered == Approx(100).margin(1.0));
+  CHECK(cy / covered == Approx(100).margin(1.0));
+  // Shading: the lit centre is brighter than the rim, and nothing is black.
+  CHECK(int(img.at(100, 100)[0]) > int(img.at(100 + int(r_px) - 3, 100)[0]));
+  CHECK(int(img.at(100, 100)[0]) > 150);
+}
+
+TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
+  Mesh s = make_sphere(1.0, 4);
+  std::vector<double> score(s.vertex_count());
+  for (size_t i = 0; i < score.size(); ++i) score[i] = s.positions[3 * i];  // grows to the right (+x)
+  std::vector<uint8_t> colours = score_colours(s, score);
+  RenderStyle style;
+  style.size = 160;
+  Image img = render_mesh(s, &colours, frame_mesh(s), {0, 0}, style);  // from +z: +x is right
+  // Mean colour-map position per column band over the covered pixels rises left to right.
+  double band[4] = {0, 0, 0, 0}, count[4] = {0, 0, 0, 0};
+  for (int y = 0; y < 160; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const uint8_t* p = img.at(x, y);
+      if (is_background(p)) continue;
+      int b = std::min(3, std::max(0, (x - 34) * 4 / 92));  // the disc spans about x 34..126
+      band[b] += decode_t(p);
+      count[b] += 1;
+    }
+  for (int b = 0; b < 4; ++b) {
+    REQUIRE(count[b] > 50);
+    band[b] /= count[b];
+  }
+  INFO("bands " << band[0] << " " << band[1] << " " << band[2] << " " << band[3]);
+  CHECK(band[0] < 0.2);  // blue on the low side
+  CHECK(band[3] > 0.8);  // red on the high side
+  CHECK(band[0] < band[1]);
+  CHECK(band[1] < band[2]);
+  CHECK(band[2] < band[3]);
+  // The 99th-percentile scaling: the top 1% are the same full red, not rarer.
+  std::vector<double> one_hot(s.vertex_count(), 0.0);
+  one_hot[0] = 1000.0;
+  std::vector<uint8_t> c2 = score_colours(s, one_hot);
+  CHECK(decode_t(&c2[0]) > 0.95);
+  CHECK(decode_t(&c2[3]) < 0.05);
+  CHECK(c2[3] == c2[6]);
+}
+
+TEST_CASE("render: view map, side by side and PNG round trip", "[view]") {
+  ViewMap map;
+  map.views = fibonacci_directions(800);
+  for (const ViewAngles& a : map.views) {
+    double d[3];
+    view_direction(a, d);
+    map.U.push_back(d[0]);  // hottest looking from +x: theta 90, phi 0
+  }
+  map.best = size_t(std::max_element(map.U.begin(), map.U.end()) - map.U.begin());
+  ViewAngles hot{kPi / 2, 0};
+  Image m = render_view_map(map, 360, &hot, nullptr);
+  REQUIRE(m.width == 360);
+  REQUIRE(m.height == 180);
+  int x, y;
+  view_map_pixel(hot, 360, &x, &y);
+  CHECK(x == 270);
+  CHECK(y == 90);
+  const uint8_t* h = m.at(x + 2, y + 1);   // inside the ring
+  const uint8_t* c = m.at(90 + 2, 90 + 1);  // theta -90: coldest
+  CHECK(decode_t(h) > 0.9);
+  CHECK(decode_t(c) < 0.1);
+  const uint8_t* ring = m.at(x + std::max(4, 360 / 100), y);
+  CHECK((ring[0] == 255 && ring[1] == 255 && ring[2] == 255));
+
+  Mesh cube = make_cube(4);
+  RenderStyle style;
+  style.size = 64;
+  style.edges = true;
+  style.smooth = false;
+  Image sbs = render_side_by_side({&cube, &cube, &cube}, {nullptr, nullptr, nullptr}, frame_mesh(cube),
+                                  {0.5, 0.4}, style);
+  CHECK(sbs.width == 3 * 64 + 2 * 4);
+  CHECK(sbs.height == 64);
+  // The three panels are identical renders.
+  for (int yy = 0; yy < 64; ++yy)
+    for (int xx = 0; xx < 64; ++xx) REQUIRE(std::equal(sbs.at(xx, yy), sbs.at(xx, yy) + 3, sbs.at(xx + 136, yy)));
+
+  TempDir tmp;
+  const std::string& dir = tmp.path;
+  write_png(dir + "/sbs.png", sbs);
+  Image back = read_png(dir + "/sbs.png");
+  CHECK(back.width == sbs.width);
+  CHECK(back.height == sbs.height);
+  CHECK(back.rgb == sbs.rgb);
+  CHECK_THROWS_AS(write_png("/nonexistent-dir/x.png", sbs), Error);
+  style.size = 8;
+  CHECK_THROWS_AS(render_mesh(cube, nullptr, frame_mesh(cube), {0, 0}, style), Error);
+}
+
+TEST_CASE("render: demo pictures are written", "[view]") {
+  std::vector<uint8_t> feature;
+  Mesh mesh = make_bumpy_sphere(3, &feature);
+  std::vector<double> sal(mesh.vertex_count());
+  for (size_t i = 0; i < sal.size(); ++i) sal[i] = feature[i] ? 1.0 : 0.05;
+  TempDir tmp;
+  const std::string& dir = tmp.path;
+  DemoPictureOptions opt;
+  opt.image_size = 256;
+  opt.map_views = 400;
+  std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh, opt);
+  REQUIRE(files.size() == 3);
+  CHECK(read_png(files[0]).width == 256);
+  CHECK(read_png(files[1]).width == 720);
+  CHECK(read_png(files[2]).width == 3 * 256 + 8);
+}
+
+TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws any view", "[view]") {
+  TempDir tmp;
+  const std::string& dir = tmp.path;
+  // A sphere whose saliency (PLY quality) is max(0, x): the best view looks from +x.
+  Mesh s = make_sphere(1.0, 3);
+  std::vector<double> q(s.vertex_count());
+  for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
+  write_ply(dir + "/s.ply", s, {{"quality", &q}});
+  std::string out;
+  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/s.ply --backend cpu --resolution 64 "
+                  "--restarts 3 --views 150 -o " + dir + "/best.png --map " + dir + "/map.png --size 128",
+                  &out) == 0);
+  INFO(out);
+  double d0 = 0;
+  {
+    size_t at = out.find("\"direction\": [");
+    REQUIRE(at != std::string::npos);
+    d0 = std::strtod(out.c_str() + at + 14, nullptr);
+  }
+  CHECK(d0 > 0.9);
+  CHECK(json_number(out, "views_evaluated") > 150);
+  CHECK(json_number(out, "U") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "U"));
+  CHECK(json_number(out, "U_fraction") > 0.5);
+  CHECK(read_png(dir + "/best.png").width == 128);
+  CHECK(read_png(dir + "/map.png").height == 360);
+
+  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 96 -o " +
+                  dir + "/r.png", &out) == 0);
+  Image r = read_png(dir + "/r.png");
+  CHECK(r.width == 96);
+  const uint8_t* centre = r.at(48, 48);  // looking from +x at the most salient side: red
+  CHECK(decode_t(centre) > 0.8);
+  REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
+                  dir + "/c.png", &out) == 0);
+  CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
+
+  // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
+  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
+  CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
+  CHECK(json_number(out, "U_fraction") > 0.4);
+  CHECK(json_number(out, "U_fraction") < 0.6);
+  CHECK(out.find("\"exhaustive\": null") != std::string::npos);
+
+  // Errors are one line, exit code 1.
+  CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 1);
+  CHECK(out.find("error: --score must be saliency or curvature") != std::string::npos);
+  write_ply(dir + "/noq.ply", s, {});
+  CHECK(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply", &out) == 1);
+  CHECK(out.find("no vertex property 'quality'") != std::string::npos);
+  CHECK(run_cli("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu", &out) == 1);
+  CHECK(out.find("error: resolution") != std::string::npos);
+  CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 1);
+}
