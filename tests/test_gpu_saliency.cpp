@@ -107,6 +107,21 @@ TEST_CASE("gpu saliency matches the cpu with other scales and eps", "[gpu]") {
   compare(make_plane_with_bump(2.0, 40, 0.3, 0.2), opt, "plane, one scale");
 }
 
+TEST_CASE("gpu saliency split into many sweep submissions matches the cpu", "[gpu]") {
+  // Big scans are swept in slices of the sorted points, one submission each; here a small
+  // budget splits a small mesh the same way (slices start mid-row and mid-subgroup).
+  context().sweep_pairs_per_submission = 1e4;
+  int sweep_submissions = 0;
+  SaliencyOptions opt;
+  opt.progress = [&](const char* stage, double) {
+    sweep_submissions += std::string(stage) == "gaussian sweep";
+  };
+  compare(make_bumpy_sphere(4), opt, "bumpy sphere, small submissions");
+  context().sweep_pairs_per_submission = 0;
+  // Both variants ran, each over more than ten slices.
+  CHECK(sweep_submissions > 2 * 10);
+}
+
 TEST_CASE("gpu saliency keeps unreferenced vertices at zero", "[gpu]") {
   Mesh m = make_bumpy_sphere(3);
   m.positions.insert(m.positions.end(), {0.1f, 0.2f, 0.3f, 5.0f, 5.0f, 5.0f});

@@ -216,7 +216,9 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   // FP64 (consumer cards run doubles at 1/32..1/64 rate) still well under the usual 2 s
   // driver watchdog; our own fence time-out is never near.
   const bool cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  const double budget = cpu_device ? 1e8 : 5e9;
+  const double budget = ctx.sweep_pairs_per_submission > 0 ? ctx.sweep_pairs_per_submission
+                        : cpu_device                         ? 1e8
+                                                             : 5e9;
   std::vector<uint32_t> cuts = plan_slices(g, starts, radius, budget);
   SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig, nout, 0, g.h, radius * radius};
   for (size_t s = 0; s + 1 < cuts.size(); ++s) {

@@ -66,6 +66,9 @@ class Context {
   // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
   // 0 shared rows, 1 subgroup per point. Tests run both.
   int sweep_variant = -1;
+  // Candidate pairs per sweep submission; 0: by device type (1e8 on CPU devices, 5e9 on
+  // GPUs, see sweep() in gpu_saliency.cpp). Tests set it small to split a small mesh.
+  double sweep_pairs_per_submission = 0;
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
