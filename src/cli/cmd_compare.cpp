@@ -9,6 +9,7 @@
 #include "meshsal/saliency.h"
 #include "meshsal/saliency_weights.h"
 #include "meshsal/surface_distance.h"
+#include "json_string.h"
 #include "saliency_output.h"
 
 namespace meshsal_cli {
@@ -20,19 +21,6 @@ struct Args {
   double fraction = 0.30;
   unsigned threads = 0;
 };
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if ((unsigned char)c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else out += c;
-  }
-  return out + "\"";
-}
 
 int run(const Args& a) {
   using namespace meshsal;

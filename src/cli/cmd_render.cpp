@@ -10,6 +10,7 @@
 #include "meshsal/render.h"
 #include "meshsal/viewpoint_score.h"
 #include "progress.h"
+#include "saliency_output.h"
 
 namespace meshsal_cli {
 namespace {
@@ -42,9 +43,7 @@ int run(const Options& o) {
     Progress progress(stderr_is_terminal());
     SaliencyOptions sopt;
     sopt.threads = o.threads;
-    sopt.backend = o.backend == "cpu" ? Backend::Cpu : o.backend == "gpu" ? Backend::Gpu : Backend::Auto;
-    if (o.backend != "cpu" && o.backend != "gpu" && o.backend != "auto")
-      throw Error("--backend must be auto, cpu or gpu, got '" + o.backend + "'");
+    sopt.backend = parse_backend(o.backend);
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
     colours = score_colours(mesh, vertex_score(mesh, parse_view_score(o.score), o.saliency_from, sopt));

@@ -11,7 +11,9 @@
 #include "meshsal/viewpoint.h"
 #include "meshsal/viewpoint_backend.h"
 #include "meshsal/viewpoint_score.h"
+#include "json_string.h"
 #include "progress.h"
+#include "saliency_output.h"
 
 namespace meshsal_cli {
 namespace {
@@ -25,31 +27,6 @@ struct Options {
 };
 
 const double kDeg = 180.0 / 3.14159265358979323846;
-
-meshsal::Backend parse_backend(const std::string& s) {
-  if (s == "auto") return meshsal::Backend::Auto;
-  if (s == "cpu") return meshsal::Backend::Cpu;
-  if (s == "gpu") return meshsal::Backend::Gpu;
-  throw meshsal::Error("--backend must be auto, cpu or gpu, got '" + s + "'");
-}
-
-// A JSON string literal body: quotes, backslashes and control characters escaped.
-std::string json_escape(const std::string& text) {
-  std::string out;
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += char(c);
-    } else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += char(c);
-    }
-  }
-  return out;
-}
 
 std::string json_view(const meshsal::ViewAngles& a, double U) {
   double d[3];
@@ -105,10 +82,10 @@ int run(const Options& o) {
   double total = 0;
   for (float w : visibility_weights(mesh, score)) total += w;
 
-  std::printf("{\"mesh\": \"%s\", \"vertices\": %zu, \"score\": \"%s\", \"score_source\": \"%s\", "
-              "\"backend\": \"%s\", \"resolution\": %d, \"depth_tol_px\": %g, ",
-              json_escape(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_escape(source).c_str(),
-              json_escape(setup.backend_name).c_str(), o.resolution, o.depth_tol);
+  std::printf("{\"mesh\": %s, \"vertices\": %zu, \"score\": \"%s\", \"score_source\": %s, "
+              "\"backend\": %s, \"resolution\": %d, \"depth_tol_px\": %g, ",
+              json_string(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_string(source).c_str(),
+              json_string(setup.backend_name).c_str(), o.resolution, o.depth_tol);
   std::printf("%s, \"U_fraction\": %.6f, ", json_view(best.best, best.U).c_str(), total > 0 ? best.U / total : 0.0);
   std::printf("\"restarts\": %d, \"seed\": %llu, ", o.restarts, (unsigned long long)o.seed);
   if (map_views > 0)
