@@ -22,13 +22,8 @@ Mesh load_obj_text(std::string_view text, const std::string& name) {
     line = strip_comment(line);
     const std::string_view key = next_token(line);
     if (key == "v") {
-      for (int k = 0; k < 3; ++k) {
-        std::string_view tok = next_token(line);
-        float x;
-        if (tok.empty()) throw fail("vertex needs 3 coordinates");
-        if (!parse_coord(tok, x)) throw fail("bad vertex coordinate " + quoted(tok));
-        mesh.positions.push_back(x);
-      }
+      const std::string problem = take_xyz(line, mesh.positions);
+      if (!problem.empty()) throw fail(problem);
       // Optional w or r g b columns follow; they are not needed.
     } else if (key == "f") {
       poly.clear();

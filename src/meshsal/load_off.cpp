@@ -57,13 +57,8 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
     if (!content_line(line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[0]) +
                   " vertices but the file ends after " + std::to_string(v));
-    for (int k = 0; k < 3; ++k) {
-      std::string_view tok = next_token(line);
-      float x;
-      if (tok.empty()) throw fail("vertex needs 3 coordinates");
-      if (!parse_coord(tok, x)) throw fail("bad vertex coordinate " + quoted(tok));
-      mesh.positions.push_back(x);
-    }
+    const std::string problem = take_xyz(line, mesh.positions);
+    if (!problem.empty()) throw fail(problem);
   }
   for (uint64_t f = 0; f < counts[1]; ++f) {
     if (!content_line(line))

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "meshsal/error.h"
 
@@ -92,6 +93,19 @@ inline std::string quoted(std::string_view tok) {
   for (char& c : s)
     if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
   return "'" + s + "'";
+}
+
+// Reads the next three coordinates of `line` (consumed from it) onto `out`. Returns what
+// is wrong, for the caller's "file: line N: ..." message, or "" when all three were read.
+inline std::string take_xyz(std::string_view& line, std::vector<float>& out) {
+  for (int k = 0; k < 3; ++k) {
+    std::string_view tok = next_token(line);
+    float x;
+    if (tok.empty()) return "vertex needs 3 coordinates";
+    if (!parse_coord(tok, x)) return "bad vertex coordinate " + quoted(tok);
+    out.push_back(x);
+  }
+  return "";
 }
 
 }  // namespace meshsal
