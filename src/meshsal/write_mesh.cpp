@@ -156,34 +156,27 @@ void write_obj(const std::string& path, const Mesh& mesh) {
     std::string out;
     out.reserve(1 << 20);
     char num[64];
+    // One "key x y z" line; to_chars gives the shortest text that reads back to the same
+    // float bits. Written out in blocks of about 1 MiB.
+    auto add_line = [&](char key, auto x, auto y, auto z) {
+      out += key;
+      for (auto value : {x, y, z}) {
+        auto r = std::to_chars(num, num + sizeof num, value);
+        out += ' ';
+        out.append(num, r.ptr);
+      }
+      out += '\n';
+      if (out.size() > (1 << 20) - 256) {
+        put(f, out.data(), out.size());
+        out.clear();
+      }
+    };
     out += "# written by meshsal\n";
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-      out += 'v';
-      for (int k = 0; k < 3; ++k) {
-        // Shortest text that reads back to the same float bits.
-        auto r = std::to_chars(num, num + sizeof num, mesh.positions[3 * v + k]);
-        out += ' ';
-        out.append(num, r.ptr);
-      }
-      out += '\n';
-      if (out.size() > (1 << 20) - 256) {
-        put(f, out.data(), out.size());
-        out.clear();
-      }
-    }
-    for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
-      out += 'f';
-      for (int k = 0; k < 3; ++k) {
-        auto r = std::to_chars(num, num + sizeof num, uint64_t(mesh.triangles[t + k]) + 1);
-        out += ' ';
-        out.append(num, r.ptr);
-      }
-      out += '\n';
-      if (out.size() > (1 << 20) - 256) {
-        put(f, out.data(), out.size());
-        out.clear();
-      }
-    }
+    const float* p = mesh.positions.data();
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) add_line('v', p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+    const uint32_t* t = mesh.triangles.data();
+    for (size_t i = 0; i < mesh.triangles.size(); i += 3)
+      add_line('f', uint64_t(t[i]) + 1, uint64_t(t[i + 1]) + 1, uint64_t(t[i + 2]) + 1);
     put(f, out.data(), out.size());
   });
 }
