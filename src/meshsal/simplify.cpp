@@ -1,6 +1,6 @@
 // meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
 // One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
-// the next collapse: a lazily invalidated heap of edges (simplify_mesh) and a full scan
+// the next collapse: a lazily invalidated queue of edges (simplify_mesh) and a full scan
 // (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
 #include "meshsal/simplify.h"
 
@@ -15,6 +15,7 @@
 
 #include "meshsal/error.h"
 #include "meshsal/parallel.h"
+#include "meshsal/edge_queue.h"
 #include "meshsal/quadric.h"
 
 namespace meshsal {
@@ -39,34 +40,9 @@ size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) 
   return target;
 }
 
+using namespace simplify_detail;
+
 namespace {
-
-// 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
-// float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
-// `a` comes first so that (a, cost) read as one little-endian 64-bit word orders by cost,
-// then a: costs are never negative, -0 or NaN (Quadric::error clamps to +0), and the bits
-// of such floats order like their values.
-struct Entry {
-  uint32_t a;      // a < b; a survives
-  float cost;
-  uint32_t b;
-  uint32_t stamp;  // collapse count when the cost was computed
-};
-inline Entry make_entry(double cost, uint32_t a, uint32_t b, uint32_t stamp) {
-  return {a, float(cost), b, stamp};
-}
-inline uint64_t cost_a(const Entry& x) {
-  uint64_t k;
-  std::memcpy(&k, &x, 8);
-  return k;
-}
-
-// Orders by (cost, a, b): the deterministic tie-break shared by both simplifiers. No
-// branches: the heap compares in random order, and mispredictions were half its time.
-inline bool key_less(const Entry& x, const Entry& y) {
-  const uint64_t kx = cost_a(x), ky = cost_a(y);
-  return (kx < ky) | ((kx == ky) & (x.b < y.b));
-}
 
 enum class Check { Ok, NotEdge, Refused };
 
@@ -529,102 +505,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-// 4-ary min-heap of edge entries with the keys inline (16-byte entries, so the four
-// children of a node share one 64-byte line). Entries are never updated in place: a collapse
-// pushes the survivor's new edges and the old ones are dropped when they surface (stamps).
-// Allocator with 64-byte (cache line) alignment, for the heap below.
-template <class T>
-struct LineAlloc {
-  using value_type = T;
-  LineAlloc() = default;
-  template <class U>
-  LineAlloc(const LineAlloc<U>&) {}
-  T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
-  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(64)); }
-  template <class U>
-  bool operator==(const LineAlloc<U>&) const { return true; }
-  template <class U>
-  bool operator!=(const LineAlloc<U>&) const { return false; }
-};
-
-class EdgeHeap {
- public:
-  // Node i lives at s_[i + kPad]: with the storage 64-byte aligned, the four children of a
-  // node (4i+1 .. 4i+4) then fill exactly one cache line, so each level of a sift costs one
-  // miss, not two.
-  static constexpr size_t kPad = 3;
-  EdgeHeap() : s_(kPad) {}
-  bool empty() const { return s_.size() == kPad; }
-  size_t size() const { return s_.size() - kPad; }
-  const Entry& top() const { return s_[kPad]; }
-  void assign(const std::vector<Entry>& all) {
-    s_.resize(kPad);
-    s_.insert(s_.end(), all.begin(), all.end());
-    heapify();
-  }
-  // Drops the entries for which keep() is false and restores the heap order, O(n).
-  template <class F>
-  void filter(F keep) {
-    size_t n = kPad;
-    for (size_t i = kPad; i < s_.size(); ++i)
-      if (keep(s_[i])) s_[n++] = s_[i];
-    s_.resize(n);
-    heapify();
-  }
-  void push(const Entry& e) {
-    s_.push_back(e);
-    Entry* h = s_.data() + kPad;
-    size_t i = size() - 1;
-    while (i > 0) {
-      const size_t parent = (i - 1) / 4;
-      if (!key_less(e, h[parent])) break;
-      h[i] = h[parent];
-      i = parent;
-    }
-    h[i] = e;
-  }
-  Entry pop() {
-    const Entry top = s_[kPad];
-    const Entry last = s_.back();
-    s_.pop_back();
-    if (!empty()) {
-      s_[kPad] = last;
-      down(0);
-    }
-    return top;
-  }
-
- private:
-  void heapify() {
-    const size_t n = size();
-    if (n > 1)
-      for (size_t i = (n - 2) / 4 + 1; i-- > 0;) down(i);
-  }
-  void down(size_t i) {
-    Entry* h = s_.data() + kPad;
-    const size_t n = size();
-    const Entry v = h[i];
-    for (;;) {
-      const size_t c = 4 * i + 1;
-      if (c >= n) break;
-      size_t m = c;
-      if (c + 4 <= n) {  // all four children: select without branches
-        const size_t m01 = key_less(h[c + 1], h[c]) ? c + 1 : c;
-        const size_t m23 = key_less(h[c + 3], h[c + 2]) ? c + 3 : c + 2;
-        m = key_less(h[m23], h[m01]) ? m23 : m01;
-      } else {
-        for (size_t j = c + 1; j < n; ++j)
-          if (key_less(h[j], h[m])) m = j;
-      }
-      if (!key_less(h[m], v)) break;
-      h[i] = h[m];
-      i = m;
-    }
-    h[i] = v;
-  }
-  std::vector<Entry, LineAlloc<Entry>> s_;
-};
-
 // Invariant of the loop below: every current edge that is not refused has a current entry
 // in the heap, with its key; stale entries (an end collapsed or moved since) are skipped.
 // So the first current entry popped is the edge that a full scan would pick. A refused
@@ -636,8 +516,8 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   State s;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
-  EdgeHeap heap;
-  heap.assign(initial);
+  EdgeQueue heap;
+  for (const Entry& x : initial) heap.push(x);
   std::vector<Entry>().swap(initial);
 
   std::vector<std::vector<Entry>> refused(s.nv);
@@ -664,17 +544,18 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   // Current edges in the heap, about: 3 per vertex on a closed surface.
   size_t vertices = 0;
   for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
-  while (s.faces > s.target && !heap.empty()) {
+  const auto current = [&](const Entry& x) { return s.current(x); };
+  while (s.faces > s.target) {
     // One face short on a closed manifold surface: every collapse removes two faces and
     // would overshoot, so the scan below would refuse every edge left. Stop now instead
     // (same result; the report's note says why).
     if (s.faces == s.target + 1 && s.border_vertices == 0) break;
-    // Stale entries were 90% of all pops, each a sift through a heap far larger than the
-    // cache: drop them in one sequential pass when the heap is 4/3 of the current edges.
-    if (heap.size() > 4 * (vertices - s.collapses) + 4096)
-      heap.filter([&](const Entry& x) { return s.current(x); });
+    // Stale entries waiting in the queue only cost memory (they are dropped when their
+    // bucket comes up): sweep them out in one pass when they outnumber the current edges.
+    if (heap.size() > 4 * (vertices - s.collapses) + 4096) heap.filter(current);
+    if (!heap.ready(current)) break;
     const Entry e = heap.pop();
-    if (!heap.empty()) {  // the next pick's data, while this one is worked on
+    if (heap.has_top()) {  // the next pick's data, while this one is worked on
       const Entry& n = heap.top();
       __builtin_prefetch(&s.changed[n.a]);
       __builtin_prefetch(&s.changed[n.b]);

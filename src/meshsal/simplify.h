@@ -52,8 +52,9 @@ struct SimplifyReport {
 };
 
 // Simplifies `mesh` to options.target_faces (or ratio * faces) by edge collapses in order of
-// quadric error: a 4-ary heap of edge entries with lazy invalidation (a collapse pushes the
-// survivor's re-costed edges; entries of changed vertices are skipped or swept out).
+// quadric error: a priority queue of edge entries with lazy invalidation (a collapse pushes
+// the survivor's re-costed edges; entries of changed vertices are skipped or swept out; see
+// edge_queue.h).
 //  - vertex_weights (may be null): one weight W per input vertex; each vertex quadric is
 //    multiplied by W once before any collapse (SPEC 2). Weights add up on collapse through
 //    the quadrics (Q_i + Q_j carries W_i Q_i + W_j Q_j); W is not needed separately after.
