@@ -69,16 +69,23 @@ class EdgeHeap {
   template <class F>
   void assign(const Entry* begin, const Entry* end, F keep) {
     s_.resize(kPad);
-    for (const Entry* x = begin; x != end; ++x)
-      if (keep(*x)) s_.push_back(*x);
+    s_.resize(kPad + size_t(end - begin));
+    size_t n = kPad;
+    for (const Entry* x = begin; x != end; ++x) {  // no branch: which are stale is random
+      s_[n] = *x;
+      n += keep(*x);
+    }
+    s_.resize(n);
     heapify();
   }
   // Drops the entries for which keep() is false and restores the heap order, O(n).
   template <class F>
   void filter(F keep) {
     size_t n = kPad;
-    for (size_t i = kPad; i < s_.size(); ++i)
-      if (keep(s_[i])) s_[n++] = s_[i];
+    for (size_t i = kPad; i < s_.size(); ++i) {
+      s_[n] = s_[i];
+      n += keep(s_[i]);
+    }
     s_.resize(n);
     heapify();
   }
@@ -197,8 +204,10 @@ class EdgeQueue {
       std::vector<Entry>& b = buckets_[k];
       if (b.empty()) continue;
       size_t n = 0;
-      for (const Entry& x : b)
-        if (keep(x)) b[n++] = x;
+      for (const Entry& x : b) {
+        b[n] = x;
+        n += keep(x);
+      }
       b.resize(n);
       size_ += n;
     }

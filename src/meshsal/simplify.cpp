@@ -46,6 +46,17 @@ namespace {
 
 enum class Check { Ok, NotEdge, Refused };
 
+// Branch-free helpers for the hot loops below, where the outcome is a coin toss (GCC turns
+// the obvious ternaries into jumps there).
+inline uint32_t select_u32(bool c, uint32_t x, uint32_t y) {  // c ? x : y
+  const uint32_t m = 0u - uint32_t(c);
+  return (x & m) | (y & ~m);
+}
+inline uint64_t edge_key(uint32_t x, uint32_t y) {  // unordered pair as (min << 32) | max
+  const bool lt = x < y;
+  return (uint64_t(select_u32(lt, x, y)) << 32) | select_u32(lt, y, x);
+}
+
 inline void cross3(const double u[3], const double v[3], double o[3]) {
   o[0] = u[1] * v[2] - u[2] * v[1];
   o[1] = u[2] * v[0] - u[0] * v[2];
@@ -97,8 +108,11 @@ struct State {
   void compact(uint32_t v) {
     uint32_t* l = tris_of(v);
     uint32_t n = 0;
-    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i)
-      if (tri_alive[l[i]]) l[n++] = l[i];
+    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i) {  // no branch: deaths are random
+      const uint32_t t = l[i];
+      l[n] = t;
+      n += tri_alive[t];
+    }
     vt_count[v] = n;
   }
   std::vector<uint8_t> alive;
@@ -114,10 +128,9 @@ struct State {
   std::vector<Collapse> sequence;
   bool record = false;
   // scratch
-  std::vector<uint32_t> opp;
+  std::vector<uint32_t> opp, flip_a, flip_b;  // sized to the largest fan seen
   std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
   uint32_t link_stamp = 0;
-  std::vector<uint64_t> pairs_a;
 
   const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
 
@@ -132,8 +145,8 @@ struct State {
   bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
   void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
   // An entry is current while neither end has changed since its cost was computed.
-  bool current(const Entry& e) const {
-    return alive[e.a] && alive[e.b] && changed[e.a] <= e.stamp && changed[e.b] <= e.stamp;
+  bool current(const Entry& e) const {  // & not &&: no branches, it runs over whole buckets
+    return alive[e.a] & alive[e.b] & (changed[e.a] <= e.stamp) & (changed[e.b] <= e.stamp);
   }
   size_t collapses = 0;
   Mesh output(SimplifyReport* report) const;
@@ -347,6 +360,8 @@ bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
   return false;
 }
 
+// Branch-light: which triangles hold both ends is a coin toss per triangle, so the loops
+// below write unconditionally and advance their counts by the comparison instead.
 Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   for (uint32_t v : {a, b})  // scattered loads: issue them together
     for (uint32_t t : vt(v)) {
@@ -356,58 +371,81 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   // Drop dead triangles from both lists first (they are only ever appended to).
   compact(a);
   compact(b);
-  // Triangles on the edge and the vertices opposite it; the other neighbours of a get
-  // marked (link[] == in_a) for the link condition below.
+  const uint32_t na = vt_count[a], nb = vt_count[b];
+  if (opp.size() < na) {
+    opp.resize(na);
+    flip_a.resize(na);
+  }
+  if (flip_b.size() < nb) flip_b.resize(nb);
+  // a's triangles: those on the edge give the vertices opposite it (k of them); the two
+  // other corners of every triangle of a are marked (link[] == in_a) for the link
+  // condition. Marking b changes nothing below: b is never a corner of b's triangles.
   link_stamp += 2;
   const uint32_t in_a = link_stamp, counted = link_stamp + 1;
-  opp.clear();
-  pairs_a.clear();
-  for (uint32_t t : vt(a)) {
+  uint32_t* const op = opp.data();
+  uint32_t* const fa = flip_a.data();
+  uint32_t* const fb = flip_b.data();
+  size_t k = 0, nfa = 0, nfb = 0;
+  const uint32_t* la = tris_of(a);
+  for (uint32_t i = 0; i < na; ++i) {
+    const uint32_t t = la[i];
     const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) {
-      opp.push_back(v[0] ^ v[1] ^ v[2] ^ a ^ b);
-      continue;
-    }
-    const uint32_t x = v[0] == a ? v[1] : v[0], y = v[2] == a ? v[1] : v[2];
-    link[x] = link[y] = in_a;
-    pairs_a.push_back((uint64_t(std::min(x, y)) << 32) | std::max(x, y));
+    const bool has_b = (v[0] == b) | (v[1] == b) | (v[2] == b);
+    const uint32_t x = select_u32(v[0] == a, v[1], v[0]), y = select_u32(v[2] == a, v[1], v[2]);
+    link[x] = in_a;
+    link[y] = in_a;
+    op[k] = x ^ y ^ b;  // on the edge, {x, y} = {b, opposite}
+    k += has_b;
+    fa[nfa] = t;
+    nfa += !has_b;
   }
-  const size_t k = opp.size();
   if (k == 0) return Check::NotEdge;
   if (k > 2) return Check::Refused;                 // non-manifold edge
   if (k > faces - target) return Check::Refused;    // would overshoot the target
-  if (k == 2 && (opp[0] == opp[1] || (border[a] && border[b]))) return Check::Refused;
+  if (k == 2 && (op[0] == op[1] || (border[a] && border[b]))) return Check::Refused;
 
-  // Link condition on vertices: the common neighbours of a and b are exactly the opposites.
-  for (uint32_t o : opp) link[o] = in_a;
+  // Link condition on vertices: the common neighbours of a and b are exactly the k
+  // opposites (each counted once: marks turn from in_a to counted). b's triangles on the
+  // edge add a (never marked) and an opposite, which is counted here or in its other
+  // triangle.
+  // A triangle (b, x, y) would also land on a triangle (a, x, y) after the collapse (e.g.
+  // the tetrahedron). Then x and y are common neighbours, so when the link condition holds
+  // they are the two opposites: only the pair {opp0, opp1} has to be looked for, in both.
+  const uint32_t o0 = op[0], o1 = k == 2 ? op[1] : op[0];
+  auto is_opp_pair = [&](uint32_t x, uint32_t y) {
+    return k == 2 && (((x == o0) & (y == o1)) | ((x == o1) & (y == o0)));
+  };
+  bool b_has_pair = false, a_has_pair = false;
   size_t common = 0;
-  for (uint32_t t : vt(b)) {
+  const uint32_t* lb = tris_of(b);
+  for (uint32_t i = 0; i < nb; ++i) {
+    const uint32_t t = lb[i];
     const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == a || v[1] == a || v[2] == a) continue;
-    const uint32_t x = v[0] == b ? v[1] : v[0], y = v[2] == b ? v[1] : v[2];
-    // A triangle of b that would coincide with one of a after the collapse (e.g. the
-    // tetrahedron): refuse.
-    const uint64_t key = (uint64_t(std::min(x, y)) << 32) | std::max(x, y);
-    for (uint64_t pa : pairs_a)
-      if (pa == key) return Check::Refused;
-    for (uint32_t z : {x, y})
-      if (link[z] == in_a) { link[z] = counted; ++common; }
+    const bool has_a = (v[0] == a) | (v[1] == a) | (v[2] == a);
+    const uint32_t x = select_u32(v[0] == b, v[1], v[0]), y = select_u32(v[2] == b, v[1], v[2]);
+    b_has_pair |= is_opp_pair(x, y);
+    for (uint32_t z : {x, y}) {
+      const bool m = link[z] == in_a;
+      link[z] = select_u32(m, counted, link[z]);
+      common += m;
+    }
+    fb[nfb] = t;
+    nfb += !has_a;
   }
-  for (uint32_t o : opp)
-    if (link[o] == in_a) { link[o] = counted; ++common; }
   if (common != k) return Check::Refused;
+  if (b_has_pair) {
+    for (uint32_t i = 0; i < na; ++i) {
+      const uint32_t* v = &tri[3 * size_t(la[i])];
+      a_has_pair |= is_opp_pair(select_u32(v[0] == a, v[1], v[0]), select_u32(v[2] == a, v[1], v[2]));
+    }
+    if (a_has_pair) return Check::Refused;
+  }
 
   // Flips, fold-overs and degenerate triangles among those that remain.
-  for (uint32_t t : vt(a)) {
-    const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == b || v[1] == b || v[2] == b) continue;
-    if (bad_triangle(t, a, np)) return Check::Refused;
-  }
-  for (uint32_t t : vt(b)) {
-    const uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == a || v[1] == a || v[2] == a) continue;
-    if (bad_triangle(t, b, np)) return Check::Refused;
-  }
+  for (size_t i = 0; i < nfa; ++i)
+    if (bad_triangle(fa[i], a, np)) return Check::Refused;
+  for (size_t i = 0; i < nfb; ++i)
+    if (bad_triangle(fb[i], b, np)) return Check::Refused;
   return Check::Ok;
 }
 
@@ -431,18 +469,19 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   uint32_t* la = tris_of(a);
   uint32_t na_ = vt_count[a];
   const uint32_t* lb = tris_of(b);
+  // b's triangles on the edge die; the others take a for b and join a's list. Without
+  // branches (which of them is on the edge is a coin toss).
   for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
     const uint32_t t = lb[i];
-    if (!tri_alive[t]) continue;
     uint32_t* v = &tri[3 * size_t(t)];
-    if (v[0] == a || v[1] == a || v[2] == a) {
-      tri_alive[t] = 0;
-      --faces;
-    } else {
-      for (int k = 0; k < 3; ++k)
-        if (v[k] == b) v[k] = a;
-      la[na_++] = t;
-    }
+    const bool live = tri_alive[t];
+    const bool on_edge = (v[0] == a) | (v[1] == a) | (v[2] == a);
+    const bool moves = live & !on_edge;
+    tri_alive[t] = moves;
+    faces -= live & on_edge;
+    for (int k = 0; k < 3; ++k) v[k] = select_u32(moves & (v[k] == b), a, v[k]);
+    la[na_] = t;
+    na_ += moves;
   }
   vt_count[a] = na_;
   compact(a);
@@ -541,18 +580,20 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   std::vector<uint32_t> mark(s.nv, UINT32_MAX);
   std::vector<uint32_t> ring;
   double np[3], tmp[3];
-  // Current edges in the heap, about: 3 per vertex on a closed surface.
-  size_t vertices = 0;
-  for (uint32_t v = 0; v < s.nv; ++v) vertices += s.alive[v];
+  // Stale entries waiting in the queue only cost memory (they are dropped when their
+  // bucket comes up): sweep them out in one pass whenever the queue has doubled since the
+  // last sweep, so that sweeping costs O(1) per push and memory stays within 2x.
+  size_t sweep_at = 2 * heap.size() + 4096;
   const auto current = [&](const Entry& x) { return s.current(x); };
   while (s.faces > s.target) {
     // One face short on a closed manifold surface: every collapse removes two faces and
     // would overshoot, so the scan below would refuse every edge left. Stop now instead
     // (same result; the report's note says why).
     if (s.faces == s.target + 1 && s.border_vertices == 0) break;
-    // Stale entries waiting in the queue only cost memory (they are dropped when their
-    // bucket comes up): sweep them out in one pass when they outnumber the current edges.
-    if (heap.size() > 4 * (vertices - s.collapses) + 4096) heap.filter(current);
+    if (heap.size() > sweep_at) {
+      heap.filter(current);
+      sweep_at = 2 * heap.size() + 4096;
+    }
     if (!heap.ready(current)) break;
     const Entry e = heap.pop();
     if (heap.has_top()) {  // the next pick's data, while this one is worked on
@@ -584,16 +625,17 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     }
     const uint32_t now = uint32_t(s.collapses);
     // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
-    ring.clear();
     mark[a] = now;
     const uint32_t* tl = s.tris_of(a);
+    if (ring.size() < 2 * size_t(s.vt_count[a]) + 1) ring.resize(2 * size_t(s.vt_count[a]) + 1);
+    size_t nring = 0;
     for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
       const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 3; ++k) {  // no branch on the mark: seen or not is random
         const uint32_t y = tv[k];
-        if (mark[y] == now) continue;
+        ring[nring] = y;
+        nring += mark[y] != now;
         mark[y] = now;
-        ring.push_back(y);
         __builtin_prefetch(&s.quad[y]);
         __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
         __builtin_prefetch(&s.pos[3 * size_t(y)]);
@@ -601,10 +643,10 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     }
     // The 1-ring of a changed: refused edges there count again.
     release(a);
-    for (uint32_t y : ring) release(y);
-    for (uint32_t y : ring)
-      {
-      const uint32_t lo = std::min(a, y), hi = std::max(a, y);
+    for (size_t i = 0; i < nring; ++i) release(ring[i]);
+    for (size_t i = 0; i < nring; ++i) {
+      const uint32_t y = ring[i];
+      const uint32_t lo = select_u32(a < y, a, y), hi = select_u32(a < y, y, a);
       heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
     }
   }
