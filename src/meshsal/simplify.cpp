@@ -267,47 +267,57 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     }
   }
 
-  // Edges from the triangle runs: for each vertex a, its higher neighbours b with the
-  // triangles on (a, b), sorted by (b, triangle); one triangle is a border edge, more than two
-  // a non-manifold edge. The edges come out ordered by (a, b), and the border quadrics are
-  // added in that order. Cheaper than sorting all 3 * faces edge ends (vertices are in
-  // Morton order, so the runs are close in memory).
+  // Edges from the triangle runs: for each vertex a, its higher neighbours b, with the
+  // number of triangles on (a, b) counted in per-vertex scratch (stamped with a, so nothing
+  // is cleared between vertices). One triangle is a border edge, more than two a
+  // non-manifold edge. Border quadrics are added in the order of (a, b), as a sort of all
+  // edges would give. No branches in the fan loop: vertices are in Morton order, so the
+  // scratch entries of a's neighbours are close in memory, and which of them was seen
+  // before is a coin toss.
   border.assign(nv, 0);
   std::vector<uint32_t> unique_edges_a, unique_edges_b;
   unique_edges_a.reserve(nt * 3 / 2 + 16);
   unique_edges_b.reserve(nt * 3 / 2 + 16);
-  struct Ref { uint32_t b, t, corner; };
-  std::vector<Ref> refs;
+  std::vector<uint32_t> seen(nv, UINT32_MAX), on_edge(nv, 0), edge_tri(nv), edge_corner(nv);
+  std::vector<uint32_t> higher, border_b;
   for (uint32_t a = 0; a < nv; ++a) {
-    refs.clear();
+    const uint32_t deg_a = vt_count[a];
+    if (higher.size() < 2 * size_t(deg_a)) higher.resize(2 * size_t(deg_a));
+    size_t n = 0;
     for (uint32_t t : vt(a)) {
       const uint32_t* v = &tri[3 * size_t(t)];
-      const uint32_t k = v[0] == a ? 0 : v[1] == a ? 1 : 2;
+      const uint32_t k = uint32_t(v[1] == a) + 2 * uint32_t(v[2] == a);
       const uint32_t u1 = v[(k + 1) % 3], u2 = v[(k + 2) % 3];
-      if (u1 > a) refs.push_back({u1, t, k});            // edge a -> u1 starts at corner k
-      if (u2 > a) refs.push_back({u2, t, (k + 2) % 3});  // edge u2 -> a starts at k + 2
-    }
-    for (size_t i = 1; i < refs.size(); ++i)  // insertion sort: a dozen entries
-      for (size_t j = i; j > 0 && (refs[j].b < refs[j - 1].b ||
-                                   (refs[j].b == refs[j - 1].b && refs[j].t < refs[j - 1].t)); --j)
-        std::swap(refs[j], refs[j - 1]);
-    for (size_t i = 0; i < refs.size();) {
-      size_t j = i;
-      while (j < refs.size() && refs[j].b == refs[i].b) ++j;
-      const uint32_t b = refs[i].b;
-      if (j - i == 1) {
-        const uint32_t t = refs[i].t, k = refs[i].corner;
-        const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
-        const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
-        quad[v0] += q;
-        quad[v1] += q;
-        border[a] = border[b] = 1;
-      } else if (j - i > 2) {
-        border[a] = border[b] = 1;
+      // edge a -> u1 starts at corner k, edge u2 -> a at corner k + 2
+      const uint32_t corner[2] = {k, (k + 2) % 3};
+      const uint32_t ends[2] = {u1, u2};
+      for (int e = 0; e < 2; ++e) {
+        const uint32_t u = ends[e];
+        const bool fresh = seen[u] != a;
+        seen[u] = a;
+        on_edge[u] = fresh ? 1 : on_edge[u] + 1;
+        edge_tri[u] = t;  // the triangle of a border edge (read only when it is the one)
+        edge_corner[u] = corner[e];
+        higher[n] = u;
+        n += fresh & (u > a);
       }
+    }
+    border_b.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t b = higher[i], c = on_edge[b];
+      if (c == 1) border_b.push_back(b);
+      if (c > 2) border[a] = border[b] = 1;
       unique_edges_a.push_back(a);
       unique_edges_b.push_back(b);
-      i = j;
+    }
+    std::sort(border_b.begin(), border_b.end());
+    for (uint32_t b : border_b) {
+      const uint32_t t = edge_tri[b], k = edge_corner[b];
+      const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+      quad[v0] += q;
+      quad[v1] += q;
+      border[a] = border[b] = 1;
     }
   }
   if (w)
