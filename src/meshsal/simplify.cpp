@@ -118,7 +118,9 @@ struct State {
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
   size_t border_vertices = 0;                // live vertices with border[] set
-  std::vector<uint32_t> changed;             // collapse count when the vertex last moved
+  // Collapse count when the vertex last moved; UINT32_MAX once it is collapsed away, so
+  // that one 4-byte load per end tells whether an entry is current.
+  std::vector<uint32_t> changed;
   std::vector<uint32_t> order;               // internal vertex id -> input vertex
   std::vector<uint32_t> inv;                 // input vertex -> internal id
   size_t faces = 0;
@@ -144,9 +146,10 @@ struct State {
   // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
   bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
   void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
-  // An entry is current while neither end has changed since its cost was computed.
-  bool current(const Entry& e) const {  // & not &&: no branches, it runs over whole buckets
-    return alive[e.a] & alive[e.b] & (changed[e.a] <= e.stamp) & (changed[e.b] <= e.stamp);
+  // An entry is current while neither end has changed (or died) since its cost was
+  // computed. & not &&: no branches, it runs over whole buckets.
+  bool current(const Entry& e) const {
+    return (changed[e.a] <= e.stamp) & (changed[e.b] <= e.stamp);
   }
   size_t collapses = 0;
   Mesh output(SimplifyReport* report) const;
@@ -498,7 +501,8 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   vt_count[b] = 0;
   alive[b] = 0;
   ++collapses;
-  changed[a] = changed[b] = uint32_t(collapses);
+  changed[a] = uint32_t(collapses);
+  changed[b] = UINT32_MAX;
   if (record) sequence.push_back({order[a], order[b], c});
 }
 
