@@ -7,6 +7,7 @@
 
 #include "meshsal/mesh_io.h"
 #include "meshsal/saliency.h"
+#include "meshsal/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -163,5 +164,18 @@ TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
   Mesh salient = load_mesh((dir / "out" / "simplified_saliency.obj").string());
   CHECK(plain.triangle_count() == salient.triangle_count());
   CHECK(salient.triangle_count() < m.triangle_count() / 20);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: bench --json escapes model names", "[cli]") {
+  // A file name with a quote and a backslash: the JSON must still parse to the same name.
+  fs::path dir = scratch_dir("bench_json");
+  const std::string name = "odd \"name\" \\ 1.obj";
+  write_obj((dir / name).string(), make_sphere(1.0, 2));
+  RunResult r = run_cli("bench --json --repeat 1 --threads 1 '" + (dir / name).string() + "'", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"model\": \"odd \\\"name\\\" \\\\ 1.obj\"") != std::string::npos);
+  CHECK(r.out.find("\"device\": \"cpu") != std::string::npos);
   fs::remove_all(dir);
 }

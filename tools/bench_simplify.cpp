@@ -21,12 +21,14 @@
 #include "meshsal/saliency_weights.h"
 #include "meshsal/simplify.h"
 #include "meshsal/surface_distance.h"
+#include "json_string.h"
 
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER
 #include <meshoptimizer.h>
 #endif
 
 using namespace meshsal;
+using meshsal_cli::json_string;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -175,15 +177,15 @@ void print_table(const std::vector<Row>& rows) {
 void print_json(const std::vector<Row>& rows, const std::vector<std::pair<std::string, double>>& sal_times) {
   std::printf("{\"saliency_seconds\": {");
   for (size_t i = 0; i < sal_times.size(); ++i)
-    std::printf("%s\"%s\": %.6f", i ? ", " : "", sal_times[i].first.c_str(), sal_times[i].second);
+    std::printf("%s%s: %.6f", i ? ", " : "", json_string(sal_times[i].first).c_str(), sal_times[i].second);
   std::printf("},\n \"runs\": [\n");
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     std::printf(
-        "  {\"model\": \"%s\", \"ratio\": %g, \"method\": \"%s\", \"faces_in\": %zu, \"target\": %zu, "
+        "  {\"model\": %s, \"ratio\": %g, \"method\": \"%s\", \"faces_in\": %zu, \"target\": %zu, "
         "\"faces\": %zu, \"seconds\": %.6f, \"diagonal\": %.9g, \"hausdorff\": %.9g, \"rms\": %.9g, "
         "\"salient_error\": %.9g}%s\n",
-        r.model.c_str(), r.ratio, r.method.c_str(), r.faces_in, r.target, r.faces_out, r.seconds,
+        json_string(r.model).c_str(), r.ratio, r.method.c_str(), r.faces_in, r.target, r.faces_out, r.seconds,
         r.cmp.diagonal, r.cmp.hausdorff, r.cmp.rms, r.cmp.salient_error, i + 1 < rows.size() ? "," : "");
   }
   std::printf("]}\n");

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "command.h"
+#include "json_string.h"
 #include "meshsal/data_dir.h"
 #include "meshsal/error.h"
 #include "meshsal/gpu_saliency.h"
@@ -124,10 +125,11 @@ void print_json(const std::vector<Row>& rows) {
   std::printf("[\n");
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::printf("  {\"model\": \"%s\", \"vertices\": %zu, \"device\": \"%s\", \"read_s\": %.6f, \"stages\": {",
-                r.model.c_str(), r.vertices, r.device.c_str(), r.read);
+    std::printf("  {\"model\": %s, \"vertices\": %zu, \"device\": %s, \"read_s\": %.6f, \"stages\": {",
+                json_string(r.model).c_str(), r.vertices, json_string(r.device).c_str(), r.read);
     for (size_t s = 0; s < r.best.stages.size(); ++s)
-      std::printf("%s\"%s\": %.6f", s ? ", " : "", r.best.stages[s].name.c_str(), r.best.stages[s].seconds);
+      std::printf("%s%s: %.6f", s ? ", " : "", json_string(r.best.stages[s].name).c_str(),
+                  r.best.stages[s].seconds);
     std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g}%s\n", r.total,
                 (unsigned long long)r.best.pairs, r.total > 0 ? r.best.pairs / r.total : 0.0,
                 i + 1 < rows.size() ? "," : "");
