@@ -37,6 +37,19 @@ inline bool key_less(const Entry& x, const Entry& y) {
   return (kx < ky) | ((kx == ky) & (x.b < y.b));
 }
 
+// Keeps the elements of data[0, n) for which keep() is true, in order, at the front;
+// returns how many. No branch on keep(): which entries are stale or dead is a coin toss.
+template <class T, class F>
+size_t keep_if(T* data, size_t n, F keep) {
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const T x = data[i];
+    data[kept] = x;
+    kept += keep(x);
+  }
+  return kept;
+}
+
 // Allocator with 64-byte (cache line) alignment, for the heap below.
 template <class T>
 struct LineAlloc {
@@ -69,24 +82,13 @@ class EdgeHeap {
   template <class F>
   void assign(const Entry* begin, const Entry* end, F keep) {
     s_.resize(kPad);
-    s_.resize(kPad + size_t(end - begin));
-    size_t n = kPad;
-    for (const Entry* x = begin; x != end; ++x) {  // no branch: which are stale is random
-      s_[n] = *x;
-      n += keep(*x);
-    }
-    s_.resize(n);
-    heapify();
+    s_.insert(s_.end(), begin, end);
+    filter(keep);
   }
   // Drops the entries for which keep() is false and restores the heap order, O(n).
   template <class F>
   void filter(F keep) {
-    size_t n = kPad;
-    for (size_t i = kPad; i < s_.size(); ++i) {
-      s_[n] = s_[i];
-      n += keep(s_[i]);
-    }
-    s_.resize(n);
+    s_.resize(kPad + keep_if(s_.data() + kPad, size(), keep));
     heapify();
   }
   void push(const Entry& e) {
@@ -202,14 +204,8 @@ class EdgeQueue {
     size_ = heap_.size();
     for (size_t k = current_ + 1; k < kBuckets; ++k) {
       std::vector<Entry>& b = buckets_[k];
-      if (b.empty()) continue;
-      size_t n = 0;
-      for (const Entry& x : b) {
-        b[n] = x;
-        n += keep(x);
-      }
-      b.resize(n);
-      size_ += n;
+      b.resize(keep_if(b.data(), b.size(), keep));
+      size_ += b.size();
     }
   }
 

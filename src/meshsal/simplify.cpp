@@ -52,9 +52,14 @@ inline uint32_t select_u32(bool c, uint32_t x, uint32_t y) {  // c ? x : y
   const uint32_t m = 0u - uint32_t(c);
   return (x & m) | (y & ~m);
 }
-inline uint64_t edge_key(uint32_t x, uint32_t y) {  // unordered pair as (min << 32) | max
-  const bool lt = x < y;
-  return (uint64_t(select_u32(lt, x, y)) << 32) | select_u32(lt, y, x);
+// Triangle v (three corners) and one of its corners c: is c a corner of it, and which are
+// the other two (in an order that is not the triangle's orientation).
+inline bool has_corner(const uint32_t* v, uint32_t c) {
+  return (v[0] == c) | (v[1] == c) | (v[2] == c);
+}
+inline void other_corners(const uint32_t* v, uint32_t c, uint32_t* x, uint32_t* y) {
+  *x = select_u32(v[0] == c, v[1], v[0]);
+  *y = select_u32(v[2] == c, v[1], v[2]);
 }
 
 inline void cross3(const double u[3], const double v[3], double o[3]) {
@@ -106,14 +111,8 @@ struct State {
   }
   // Drops the dead triangles from v's run.
   void compact(uint32_t v) {
-    uint32_t* l = tris_of(v);
-    uint32_t n = 0;
-    for (uint32_t i = 0, c = vt_count[v]; i < c; ++i) {  // no branch: deaths are random
-      const uint32_t t = l[i];
-      l[n] = t;
-      n += tri_alive[t];
-    }
-    vt_count[v] = n;
+    const auto live = [&](uint32_t t) { return tri_alive[t] != 0; };
+    vt_count[v] = uint32_t(keep_if(tris_of(v), vt_count[v], live));
   }
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
@@ -403,8 +402,9 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   for (uint32_t i = 0; i < na; ++i) {
     const uint32_t t = la[i];
     const uint32_t* v = &tri[3 * size_t(t)];
-    const bool has_b = (v[0] == b) | (v[1] == b) | (v[2] == b);
-    const uint32_t x = select_u32(v[0] == a, v[1], v[0]), y = select_u32(v[2] == a, v[1], v[2]);
+    const bool has_b = has_corner(v, b);
+    uint32_t x, y;
+    other_corners(v, a, &x, &y);
     link[x] = in_a;
     link[y] = in_a;
     op[k] = x ^ y ^ b;  // on the edge, {x, y} = {b, opposite}
@@ -434,8 +434,9 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   for (uint32_t i = 0; i < nb; ++i) {
     const uint32_t t = lb[i];
     const uint32_t* v = &tri[3 * size_t(t)];
-    const bool has_a = (v[0] == a) | (v[1] == a) | (v[2] == a);
-    const uint32_t x = select_u32(v[0] == b, v[1], v[0]), y = select_u32(v[2] == b, v[1], v[2]);
+    const bool has_a = has_corner(v, a);
+    uint32_t x, y;
+    other_corners(v, b, &x, &y);
     b_has_pair |= is_opp_pair(x, y);
     for (uint32_t z : {x, y}) {
       const bool m = link[z] == in_a;
@@ -448,8 +449,9 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   if (common != k) return Check::Refused;
   if (b_has_pair) {
     for (uint32_t i = 0; i < na; ++i) {
-      const uint32_t* v = &tri[3 * size_t(la[i])];
-      a_has_pair |= is_opp_pair(select_u32(v[0] == a, v[1], v[0]), select_u32(v[2] == a, v[1], v[2]));
+      uint32_t x, y;
+      other_corners(&tri[3 * size_t(la[i])], a, &x, &y);
+      a_has_pair |= is_opp_pair(x, y);
     }
     if (a_has_pair) return Check::Refused;
   }
@@ -488,7 +490,7 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     const uint32_t t = lb[i];
     uint32_t* v = &tri[3 * size_t(t)];
     const bool live = tri_alive[t];
-    const bool on_edge = (v[0] == a) | (v[1] == a) | (v[2] == a);
+    const bool on_edge = has_corner(v, a);
     const bool moves = live & !on_edge;
     tri_alive[t] = moves;
     faces -= live & on_edge;
