@@ -5,9 +5,9 @@
 #include <sstream>
 #include <sys/wait.h>
 
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

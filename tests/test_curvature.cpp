@@ -1,9 +1,9 @@
 // Taubin mean curvature against analytic values (SPEC 1).
 #include <cmath>
 
-#include "meshsal/adjacency.h"
-#include "meshsal/curvature.h"
-#include "meshsal/synthetic.h"
+#include "core/adjacency.h"
+#include "saliency/curvature.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "meshsal/edge_queue.h"
+#include "simplify/edge_queue.h"
 
 using namespace meshsal::simplify_detail;
 

@@ -1,13 +1,13 @@
 // The grid sweep against the all-pairs oracle, both in double (SPEC 1).
 #include <cmath>
 
-#include "meshsal/adjacency.h"
-#include "meshsal/curvature.h"
-#include "meshsal/gaussian_filter.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/mesh_points.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
+#include "core/adjacency.h"
+#include "saliency/curvature.h"
+#include "saliency/gaussian_filter.h"
+#include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

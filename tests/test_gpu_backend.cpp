@@ -6,10 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "meshsal/gpu_saliency.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
-#include "meshsal/vk_context.h"
+#include "gpu/gpu_saliency.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
+#include "gpu/vk_context.h"
 #include "test_util.h"
 
 using namespace meshsal;

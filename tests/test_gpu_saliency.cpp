@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "meshsal/gpu_saliency.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
-#include "meshsal/vk_context.h"
+#include "gpu/gpu_saliency.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
+#include "gpu/vk_context.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "meshsal/error.h"
-#include "meshsal/gpu_saliency.h"
-#include "meshsal/vk_context.h"
+#include "meshsal/meshsal.h"
+#include "gpu/gpu_saliency.h"
+#include "gpu/vk_context.h"
 
 using namespace meshsal;
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "meshsal/mesh_io.h"
+#include "meshsal/meshsal.h"
 #include "test_io_util.h"
 
 using meshsal::Mesh;

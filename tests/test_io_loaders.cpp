@@ -3,7 +3,7 @@
 #include <cstring>
 #include <vector>
 
-#include "meshsal/mesh_io.h"
+#include "meshsal/meshsal.h"
 #include "test_io_util.h"
 #include "test_util.h"
 

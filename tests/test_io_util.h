@@ -13,8 +13,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal_test {
 

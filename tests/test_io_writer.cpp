@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "meshsal/mesh_io.h"
+#include "meshsal/meshsal.h"
 #include "test_io_util.h"
 
 using meshsal::Mesh;

@@ -11,14 +11,13 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
 
-#include "meshsal/camera.h"
-#include "meshsal/colormap.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/png_image.h"
-#include "meshsal/render.h"
-#include "meshsal/render_demo.h"
-#include "meshsal/synthetic.h"
+#include "view/camera.h"
+#include "core/colormap.h"
+#include "meshsal/meshsal.h"
+#include "io/png_image.h"
+#include "view/render.h"
+#include "cli/render_demo.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -1,9 +1,9 @@
 // Saliency end to end on synthetic meshes: the analytic cases and the paper's claim.
 #include <cmath>
 
-#include "meshsal/error.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

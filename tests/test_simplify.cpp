@@ -3,10 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/simplify.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "simplify/simplify.h"
+#include "core/synthetic.h"
 #include "test_simplify_util.h"
 #include "test_util.h"
 

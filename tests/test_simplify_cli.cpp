@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "meshsal/mesh_io.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;

@@ -2,12 +2,12 @@
 // the plain quadric method at the same face count (the paper's section 4 claim).
 #include <cmath>
 
-#include "meshsal/mesh_points.h"
-#include "meshsal/saliency.h"
-#include "meshsal/saliency_weights.h"
-#include "meshsal/simplify.h"
-#include "meshsal/surface_distance.h"
-#include "meshsal/synthetic.h"
+#include "core/mesh_points.h"
+#include "saliency/saliency.h"
+#include "simplify/saliency_weights.h"
+#include "simplify/simplify.h"
+#include "simplify/surface_distance.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "meshsal/mesh.h"
+#include "meshsal/meshsal.h"
 
 namespace simplify_test {
 

@@ -1,6 +1,6 @@
 // Itti suppression on hand-made maps over a path graph (SPEC 1, "Suppression").
-#include "meshsal/adjacency.h"
-#include "meshsal/suppression.h"
+#include "core/adjacency.h"
+#include "saliency/suppression.h"
 #include "test_util.h"
 
 using namespace meshsal;

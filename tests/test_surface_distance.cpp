@@ -3,10 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/surface_distance.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "simplify/surface_distance.h"
+#include "core/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

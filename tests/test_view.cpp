@@ -2,13 +2,12 @@
 #include <cmath>
 #include <numeric>
 
-#include "meshsal/camera.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
-#include "meshsal/viewpoint.h"
-#include "meshsal/visibility.h"
+#include "view/camera.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
+#include "view/viewpoint.h"
+#include "view/visibility.h"
 #include "test_util.h"
 
 using namespace meshsal;

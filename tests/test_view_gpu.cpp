@@ -1,15 +1,15 @@
 // Viewpoint selection on Vulkan (lavapipe here): GPU visibility against the CPU twin.
 #include <cmath>
 
-#include "meshsal/camera.h"
-#include "meshsal/gpu_visibility.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/synthetic.h"
-#include "meshsal/viewpoint.h"
-#include "meshsal/viewpoint_backend.h"
-#include "meshsal/visibility.h"
-#include "meshsal/vk_context.h"
+#include "view/camera.h"
+#include "gpu/gpu_visibility.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "core/synthetic.h"
+#include "view/viewpoint.h"
+#include "api/viewpoint_backend.h"
+#include "view/visibility.h"
+#include "gpu/vk_context.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -14,13 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "meshsal/data_dir.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/saliency_weights.h"
-#include "meshsal/simplify.h"
-#include "meshsal/surface_distance.h"
+#include "cli/data_dir.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "simplify/saliency_weights.h"
+#include "simplify/simplify.h"
+#include "simplify/surface_distance.h"
 #include "json_string.h"
 
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER

@@ -12,13 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "meshsal/error.h"
-#include "meshsal/gpu_visibility.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/parallel.h"
-#include "meshsal/viewpoint.h"
-#include "meshsal/visibility.h"
-#include "meshsal/vk_context.h"
+#include "meshsal/meshsal.h"
+#include "gpu/gpu_visibility.h"
+#include "core/parallel.h"
+#include "view/viewpoint.h"
+#include "view/visibility.h"
+#include "gpu/vk_context.h"
 
 using namespace meshsal;
 

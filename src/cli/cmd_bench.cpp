@@ -8,12 +8,13 @@
 
 #include "command.h"
 #include "json_string.h"
-#include "meshsal/data_dir.h"
-#include "meshsal/error.h"
-#include "meshsal/gpu_saliency.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/vk_context.h"
+#include "cli/data_dir.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#if MESHSAL_WITH_VULKAN
+#include "gpu/gpu_saliency.h"
+#include "gpu/vk_context.h"
+#endif
 
 namespace meshsal_cli {
 namespace {
@@ -63,7 +64,7 @@ std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
   cpu.threads = a.threads;
   std::vector<meshsal::SaliencyOptions> out{cpu};
   try {
-    for (const auto& d : meshsal::vk::list_devices()) {
+    for (const auto& d : meshsal::list_devices()) {
       if (!d.has_compute) continue;
       meshsal::SaliencyOptions gpu = cpu;
       gpu.backend = meshsal::Backend::Gpu;
@@ -86,11 +87,17 @@ Row bench_one(const std::string& path, const meshsal::SaliencyOptions& opt, int 
   row.vertices = mesh.vertex_count();
   // A Vulkan device is opened once for all repeats, so the driver's first compile of each
   // pipeline is paid once, as in a long-running program.
+#if MESHSAL_WITH_VULKAN
   std::unique_ptr<meshsal::vk::Context> ctx;
   if (opt.backend == meshsal::Backend::Gpu) ctx = std::make_unique<meshsal::vk::Context>(opt.device);
+#endif
   for (int i = 0; i < repeat; ++i) {
+#if MESHSAL_WITH_VULKAN
     meshsal::SaliencyResult r = ctx ? meshsal::compute_saliency_gpu(*ctx, mesh, opt)
                                     : meshsal::compute_saliency(mesh, opt);
+#else
+    meshsal::SaliencyResult r = meshsal::compute_saliency(mesh, opt);
+#endif
     double total = 0;
     for (const auto& s : r.stages) total += s.seconds;
     if (i == 0 || total < row.total) row.best = std::move(r), row.total = total;

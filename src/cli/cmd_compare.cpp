@@ -4,11 +4,10 @@
 #include <string>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
-#include "meshsal/saliency_weights.h"
-#include "meshsal/surface_distance.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "simplify/saliency_weights.h"
+#include "simplify/surface_distance.h"
 #include "json_string.h"
 #include "saliency_output.h"
 

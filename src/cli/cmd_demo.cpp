@@ -4,14 +4,13 @@
 #include <memory>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/render_demo.h"
-#include "meshsal/saliency.h"
-#include "meshsal/saliency_weights.h"
-#include "meshsal/simplify.h"
-#include "meshsal/surface_distance.h"
-#include "meshsal/synthetic.h"
+#include "meshsal/meshsal.h"
+#include "cli/render_demo.h"
+#include "saliency/saliency.h"
+#include "simplify/saliency_weights.h"
+#include "simplify/simplify.h"
+#include "simplify/surface_distance.h"
+#include "core/synthetic.h"
 #include "progress.h"
 #include "saliency_output.h"
 

@@ -4,11 +4,20 @@
 #include <memory>
 
 #include "command.h"
-#include "meshsal/gpu_saliency.h"
-#include "meshsal/vk_context.h"
+#if MESHSAL_WITH_VULKAN
+#include "gpu/vk_context.h"
+#endif
 
 namespace meshsal_cli {
 
+#if !MESHSAL_WITH_VULKAN
+static RunFn setup_devices(CLI::App&) {
+  return []() {
+    std::printf("this meshsal was built without Vulkan: the CPU path is used\n");
+    return 0;
+  };
+}
+#else
 static RunFn setup_devices(CLI::App& sub) {
   auto validation = std::make_shared<bool>(false);
   sub.add_flag("--validation", *validation, "enable the Khronos validation layer");
@@ -29,6 +38,8 @@ static RunFn setup_devices(CLI::App& sub) {
     return 0;
   };
 }
+
+#endif
 
 static bool registered = register_command(
     {"devices", "list the Vulkan devices (for --backend gpu --device N)", 90, setup_devices});

@@ -5,10 +5,9 @@
 #include <vector>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/render.h"
-#include "meshsal/viewpoint_score.h"
+#include "meshsal/meshsal.h"
+#include "view/render.h"
+#include "api/viewpoint_score.h"
 #include "progress.h"
 #include "saliency_output.h"
 

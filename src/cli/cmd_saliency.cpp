@@ -3,9 +3,8 @@
 #include <memory>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/saliency.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
 #include "progress.h"
 #include "saliency_output.h"
 

@@ -4,12 +4,11 @@
 #include <memory>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/mesh_points.h"
-#include "meshsal/saliency.h"
-#include "meshsal/saliency_weights.h"
-#include "meshsal/simplify.h"
+#include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
+#include "saliency/saliency.h"
+#include "simplify/saliency_weights.h"
+#include "simplify/simplify.h"
 #include "progress.h"
 #include "saliency_output.h"
 

@@ -5,12 +5,11 @@
 #include <string>
 
 #include "command.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
-#include "meshsal/render.h"
-#include "meshsal/viewpoint.h"
-#include "meshsal/viewpoint_backend.h"
-#include "meshsal/viewpoint_score.h"
+#include "meshsal/meshsal.h"
+#include "view/render.h"
+#include "view/viewpoint.h"
+#include "api/viewpoint_backend.h"
+#include "api/viewpoint_score.h"
 #include "json_string.h"
 #include "progress.h"
 #include "saliency_output.h"

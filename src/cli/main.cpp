@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "command.h"
-#include "meshsal/error.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal_cli {
 

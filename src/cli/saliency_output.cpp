@@ -2,9 +2,8 @@
 
 #include <cstdio>
 
-#include "meshsal/colormap.h"
-#include "meshsal/error.h"
-#include "meshsal/mesh_io.h"
+#include "core/colormap.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal_cli {
 

@@ -2,8 +2,8 @@
 #pragma once
 #include <string>
 
-#include "meshsal/mesh.h"
-#include "meshsal/saliency.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
 
 namespace meshsal_cli {
 

@@ -1,0 +1,349 @@
+// meshsal: mesh saliency (Lee, Varshney, Jacobs, "Mesh Saliency", SIGGRAPH 2005) on the CPU
+// and on Vulkan GPUs, saliency-guided simplification, best viewpoints and pictures.
+//
+// This is the whole public interface: link `meshsal::core` (CPU only, no Vulkan) or
+// `meshsal::gpu` (adds the Vulkan backend) from `find_package(meshsal)`.
+//
+// Conventions, for every function below:
+//  - A mesh is flat arrays, as in meshoptimizer: `positions` holds x,y,z per vertex (float,
+//    in the model's own units), `triangles` 3 vertex indices per triangle (uint32). Polygons
+//    are fan-triangulated by the loaders. Vertices no triangle uses are allowed: they keep
+//    their index and get curvature and saliency 0. The *mesh points* are the vertices that
+//    at least one triangle uses.
+//  - Distances and the saliency scale unit eps are in model units; eps is eps_frac times the
+//    bounding-box diagonal of the mesh points.
+//  - Bad input (an unreadable or malformed file, an index out of range, NaN coordinates, an
+//    option out of range) and device failures throw meshsal::Error, whose message is one
+//    line meant for a person. std::bad_alloc can escape when memory runs out.
+//  - Functions are reentrant: calls on different data may run on different threads at the
+//    same time. A result never refers to its inputs (everything returned is owned by value).
+//  - Results do not depend on the number of threads.
+// The method's fixed choices are documented in docs/method.md of the repository.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#define MESHSAL_VERSION 200  // 0.2.0
+
+namespace meshsal {
+
+// ------------------------------------------------------------------------------------------
+// Errors and meshes
+
+// The one exception type meshsal throws for bad input or a failed device. Its message is a
+// single line; the command-line tool prints it after "error: ".
+struct Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Mesh {
+  std::vector<float> positions;     // x,y,z per vertex, in input order
+  std::vector<uint32_t> triangles;  // 3 vertex indices per triangle
+
+  size_t vertex_count() const { return positions.size() / 3; }
+  size_t triangle_count() const { return triangles.size() / 3; }
+};
+
+// Copies flat arrays into a Mesh and validates it (validate_mesh). `positions` holds
+// 3 * vertex_count floats, `indices` index_count uint32 (a multiple of 3).
+Mesh make_mesh(const float* positions, size_t vertex_count, const uint32_t* indices,
+               size_t index_count);
+
+// Throws Error when the mesh is empty, an index is out of range, a coordinate is NaN/Inf
+// or no triangle has non-zero area.
+void validate_mesh(const Mesh& mesh);
+
+// ------------------------------------------------------------------------------------------
+// Reading and writing files
+
+// Scalar vertex properties found in a PLY besides x,y,z (e.g. "quality"), as floats.
+using VertexProperties = std::map<std::string, std::vector<float>>;
+
+// Loads OBJ, PLY (ascii, binary little/big endian) or OFF, optionally gzipped, chosen by
+// extension (.obj .ply .off, each optionally followed by .gz). Polygons are
+// fan-triangulated. The result is validated. Throws Error naming the file on any problem.
+// If `properties` is given, scalar PLY vertex properties are returned there.
+Mesh load_mesh(const std::string& path, VertexProperties* properties = nullptr);
+
+struct PlyFloatProperty {
+  std::string name;
+  const std::vector<double>* values;  // one per vertex, written as float
+};
+
+// Writes binary little-endian PLY: positions, the given float properties, optional uchar
+// red/green/blue (3 per vertex) and the triangles. Written to a fresh temporary file in the
+// same folder and renamed, so a failure never leaves a half-written file in place.
+void write_ply(const std::string& path, const Mesh& mesh,
+               const std::vector<PlyFloatProperty>& properties,
+               const std::vector<uint8_t>* rgb = nullptr);
+
+// Writes OBJ (v and f lines), the same atomic way.
+void write_obj(const std::string& path, const Mesh& mesh);
+
+// Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
+// property). Throws Error when the file has no quality property or its vertex count is not
+// `expected_vertices` (the saliency then belongs to another mesh).
+std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices);
+
+// ------------------------------------------------------------------------------------------
+// Saliency (the paper's section 3)
+
+enum class Backend {
+  Auto,  // a discrete or integrated GPU when there is one, else the CPU (with a notice on failure)
+  Cpu,   // the CPU reference path
+  Gpu    // a Vulkan device (Error when built without Vulkan or no device works)
+};
+
+struct SaliencyOptions {
+  double eps_frac = 0.003;                    // eps = eps_frac * bbox diagonal, in (0, 1]
+  std::vector<double> scales{2, 3, 4, 5, 6};  // s_i = scales[i] * eps, 1..16 positive values
+  unsigned threads = 0;                       // CPU threads, 0 = all cores
+  Backend backend = Backend::Cpu;
+  int device = -1;                            // Vulkan device index (list_devices), -1 = choose
+  bool smoothed = false;                      // also compute Sm = G(S, 3 eps) (simplification)
+  // Called with a stage name and the fraction done of that stage (0..1), from the calling
+  // thread. May be empty.
+  std::function<void(const char* stage, double fraction)> progress;
+  // Called with a one-line notice (e.g. "auto: no GPU, using the CPU path"). May be empty.
+  std::function<void(const std::string&)> notice;
+};
+
+struct StageTime {
+  std::string name;
+  double seconds;
+};
+
+struct SaliencyResult {
+  double eps = 0;                         // the scale unit, model units
+  std::vector<uint8_t> is_point;          // 1 for mesh points, per vertex
+  std::vector<double> curvature;          // mean curvature H per vertex (1/model units)
+  std::vector<std::vector<double>> raw;   // raw center-surround maps S_i, [scale][vertex]
+  std::vector<double> saliency;           // final saliency S per vertex (0 on non-points)
+  std::vector<double> smoothed;           // Sm = G(S, 3 eps) when options.smoothed, else empty
+  uint64_t pairs = 0;                     // neighbour pairs the sweep visited
+  std::vector<StageTime> stages;          // wall time per stage
+  std::string backend_name;               // "cpu (N threads)" or the Vulkan device name
+};
+
+// Saliency of every vertex, on options.backend. Throws Error on an invalid mesh or option,
+// or (Backend::Gpu) when no Vulkan device can run it; Backend::Auto falls back to the CPU.
+SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options);
+
+// The same over flat arrays (copied once; see make_mesh).
+SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
+                                const uint32_t* indices, size_t index_count,
+                                const SaliencyOptions& options);
+
+// Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, junk).
+std::vector<double> parse_scales(const std::string& text);
+
+// ------------------------------------------------------------------------------------------
+// Simplification (the paper's section 4)
+
+struct SimplifyOptions {
+  size_t target_faces = 0;    // face count to reach; 0 = use `ratio`
+  double ratio = 0;           // fraction of the input faces to keep, in (0, 1]
+  // Weight of the border-edge quadrics (times the squared edge length). Larger keeps open
+  // borders more exactly.
+  double border_weight = 10;
+  // A collapse is refused when it turns a remaining triangle's normal by more than
+  // acos(min_normal_cos). 0 = refuse turns of 90 degrees or more.
+  double min_normal_cos = 0;
+  unsigned threads = 0;          // threads for the initial edge costs (0 = all cores)
+  bool record_collapses = false; // record the collapse sequence (tests)
+};
+
+// One edge contraction: `removed` merges into `kept` (input indices); `cost` its quadric error.
+struct Collapse {
+  uint32_t kept;
+  uint32_t removed;
+  double cost;
+};
+
+struct SimplifyReport {
+  size_t input_faces = 0;     // non-degenerate input triangles
+  size_t target_faces = 0;    // the target actually used
+  size_t output_faces = 0;
+  size_t output_vertices = 0;
+  bool reached = false;       // output_faces == target_faces
+  std::string note;           // why the target was not reached (empty when it was)
+  size_t collapses = 0;
+  size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
+  double seconds = 0;         // wall time of the whole call
+  std::vector<Collapse> sequence;      // when options.record_collapses
+  std::vector<uint32_t> vertex_origin; // output vertex -> the input vertex it survived as
+};
+
+// Garland-Heckbert edge collapses with area-weighted plane quadrics, border quadrics and
+// optimal placement. vertex_weights (may be null): one weight W >= 0 per input vertex; each
+// vertex quadric is multiplied by W once before any collapse (the paper's section 4; build
+// W with saliency_weights()). The output is manifold and oriented where the input is, never
+// has fewer faces than the target, and has exactly the target when reachable (otherwise
+// report->note says why). Output vertices follow the input order of the survivors.
+// Throws Error on a bad target or weights.
+Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                   const std::vector<double>* vertex_weights = nullptr,
+                   SimplifyReport* report = nullptr);
+
+struct SaliencyWeightOptions {
+  double lambda = 100;            // amplification of salient vertices, >= 0
+  double alpha_percentile = 30;   // alpha = this percentile of Sm over mesh points, [0, 100]
+  // Not in the paper (0 = off): W is raised to at least floor * mean(W) over mesh points.
+  double floor = 0;
+};
+
+// W(v) = lambda * Sm(v) if Sm(v) >= alpha else Sm(v), alpha the alpha_percentile of Sm
+// over the mesh points (is_point != 0); 0 for other vertices. `alpha_out` receives alpha.
+std::vector<double> saliency_weights(const std::vector<double>& smoothed,
+                                     const std::vector<uint8_t>& is_point,
+                                     const SaliencyWeightOptions& options,
+                                     double* alpha_out = nullptr);
+
+// Smoothed saliency Sm = G(S, 3 eps) over the mesh points, eps = eps_frac * bbox diagonal.
+std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
+                                    double eps_frac = 0.003, unsigned threads = 0);
+
+// Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
+// or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into
+// weights and used by simplify_mesh. `alpha_out` receives alpha.
+Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
+                            const SaliencyWeightOptions& weight_options,
+                            const SaliencyOptions& saliency_options,
+                            const std::vector<double>* saliency = nullptr,
+                            SimplifyReport* report = nullptr, double* alpha_out = nullptr);
+
+// ------------------------------------------------------------------------------------------
+// Comparing two surfaces
+
+struct CompareOptions {
+  size_t face_samples = 200000;     // area samples per surface, on top of its vertices
+  double salient_fraction = 0.30;   // top fraction of the original's mesh points by saliency
+  unsigned threads = 0;             // 0 = all cores
+};
+
+// Distances in model units (divide by `diagonal` for a share of the model's size).
+struct SurfaceComparison {
+  double diagonal = 0;          // bbox diagonal of the original's mesh points
+  double forward_max = 0;       // original's samples -> simplified surface
+  double forward_rms = 0;
+  double backward_max = 0;      // simplified's samples -> original surface
+  double backward_rms = 0;
+  double hausdorff = 0;         // max(forward_max, backward_max)
+  double rms = 0;               // max(forward_rms, backward_rms)
+  double salient_error = -1;    // mean distance of the salient vertices; -1 without saliency
+  size_t salient_vertices = 0;
+  size_t forward_samples = 0, backward_samples = 0;
+};
+
+// Point-to-surface distances both ways (BVH). `saliency` (may be null): one value per vertex
+// of the original; its top salient_fraction of mesh points give salient_error.
+SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified,
+                                   const std::vector<double>* saliency,
+                                   const CompareOptions& options = {});
+
+// ------------------------------------------------------------------------------------------
+// Viewpoints (the paper's section 5) and pictures
+
+// Direction d(theta, phi) = (cos phi sin theta, sin phi, cos phi cos theta), y up:
+// (0, 0) looks from +z, theta = pi/2 from +x, phi = pi/2 from above. Radians.
+struct ViewAngles {
+  double theta = 0;  // longitude, in (-pi, pi]
+  double phi = 0;    // latitude, in [-pi/2, pi/2]
+};
+
+struct VisibilityOptions {
+  int resolution = 256;       // z-buffer side in pixels, 16..8192
+  double depth_tol_px = 2.0;  // depth tolerance in pixel widths, >= 0
+  unsigned threads = 0;       // CPU threads (views in parallel), 0 = all cores
+};
+
+struct OptimiserOptions {
+  int restarts = 8;              // random starts of the gradient ascent
+  uint64_t seed = 1;             // runs with the same seed repeat
+  double probe = 0.05;           // probe angle (radians) for the central differences
+  double initial_step = 0.25;    // first step length along the gradient (radians)
+  double min_step = 0.01;        // a restart stops when its step shrinks below this
+  int max_iterations = 60;       // per restart
+};
+
+struct OptimiserResult {
+  ViewAngles best;
+  double U = 0;                      // visible score of `best`
+  std::vector<ViewAngles> starts;    // the random start of each restart
+  std::vector<ViewAngles> finals;    // where each restart ended
+  std::vector<double> final_U;
+  uint64_t views_evaluated = 0;
+};
+
+struct ViewMap {
+  std::vector<ViewAngles> views;
+  std::vector<double> U;
+  size_t best = 0;  // index of the largest U
+};
+
+struct BestView {
+  OptimiserResult optimised;  // gradient ascent from seeded random starts
+  ViewMap map;                // exhaustive map over `views` Fibonacci directions (empty if 0)
+  std::string backend_name;   // where the views were scored
+};
+
+// The view of largest visible score U = sum of score over the visible mesh points
+// (`score`: one value per vertex, e.g. SaliencyResult::saliency). `views` > 0 also
+// evaluates that many directions exhaustively. backend as in SaliencyOptions.
+BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
+                        const OptimiserOptions& options = {}, int views = 0,
+                        const VisibilityOptions& visibility = {}, Backend backend = Backend::Cpu,
+                        int device = -1);
+
+// An 8-bit RGB image, rows top to bottom.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;  // 3 bytes per pixel
+
+  Image() = default;
+  Image(int w, int h, uint8_t r = 255, uint8_t g = 255, uint8_t b = 255);
+  uint8_t* at(int x, int y) { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
+  const uint8_t* at(int x, int y) const { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
+};
+
+struct RenderStyle {
+  int size = 512;            // square image side in pixels, 16..8192
+  double margin = 1.05;      // the image frames the bounding sphere times this, >= 1
+  bool smooth = true;        // interpolated vertex normals; false: flat faces
+  bool edges = false;        // darken the edges of triangles at least 4 px tall
+  uint8_t background[3] = {255, 255, 255};
+  uint8_t base[3] = {190, 190, 190};  // surface colour when there are no vertex colours
+};
+
+// The mesh seen from `view` (orthographic, framed by its bounding sphere), Lambert-shaded,
+// coloured by `score` (one value per vertex, may be null: plain grey) on the colour map.
+Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
+                  const RenderStyle& style = {});
+
+// Writes a PNG (atomically, as write_ply). Throws Error naming the file.
+void write_png(const std::string& path, const Image& image);
+
+// ------------------------------------------------------------------------------------------
+// Devices
+
+struct DeviceInfo {
+  int index = 0;                    // the `device` option's value for this device
+  std::string name;
+  std::string type;                 // "discrete", "integrated", "virtual", "cpu", "other"
+  uint64_t device_local_bytes = 0;  // largest device-local heap
+  std::string api_version;          // "1.3.239"
+  bool has_compute = false;         // a queue family with compute
+};
+
+// True when this build has the Vulkan backend (linked with meshsal::gpu).
+bool built_with_vulkan();
+
+// The Vulkan devices. Throws Error when built without Vulkan or no driver is installed.
+std::vector<DeviceInfo> list_devices();
+
+}  // namespace meshsal

@@ -1,0 +1,32 @@
+#include "api/gpu_backend.h"
+
+namespace meshsal {
+
+namespace {
+const GpuBackend* registered = nullptr;  // constant-initialised: set before main() or never
+}
+
+void register_gpu_backend(const GpuBackend* backend) { registered = backend; }
+
+const GpuBackend& gpu_backend() {
+  if (!registered)
+    throw Error(
+        "meshsal was built without Vulkan here (meshsal::gpu not linked, or MESHSAL_WITH_VULKAN=OFF): "
+        "use the cpu backend");
+  return *registered;
+}
+
+bool built_with_vulkan() { return registered != nullptr; }
+
+std::vector<DeviceInfo> list_devices() { return gpu_backend().list_devices(); }
+
+int pick_hardware_gpu(const std::vector<DeviceInfo>& devices) {
+  int best = -1, best_rank = 2;
+  for (const DeviceInfo& d : devices) {
+    const int rank = d.type == "discrete" ? 0 : d.type == "integrated" ? 1 : 2;
+    if (d.has_compute && rank < best_rank) best = d.index, best_rank = rank;
+  }
+  return best;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,39 @@
+// meshsal: the Vulkan backend's entry points as the CPU-only library sees them. src/gpu
+// fills them in when meshsal::gpu is linked (gpu/register_backend.cpp); in a build without
+// Vulkan nothing does, and every GPU request is refused with one clear message.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+#include "view/viewpoint.h"
+
+namespace meshsal {
+
+// A visibility scorer and what it runs on (see make_view_scorer).
+struct ViewScorerSetup {
+  ViewScorer scorer;
+  std::string backend_name;          // "cpu (N threads)" or "vulkan: <device>"
+  int batch = 64;                    // good batch size for exhaustive maps
+  std::shared_ptr<void> keep_alive;  // owns the GPU state the scorer uses
+};
+
+struct GpuBackend {
+  std::vector<DeviceInfo> (*list_devices)();
+  SaliencyResult (*saliency)(const Mesh& mesh, const SaliencyOptions& options);
+  ViewScorerSetup (*view_scorer)(const Mesh& mesh, const std::vector<double>& score,
+                                 const VisibilityOptions& options, int device);
+};
+
+// Called once, from a static initialiser of the Vulkan layer.
+void register_gpu_backend(const GpuBackend* backend);
+
+// The registered backend; throws Error when this build has none.
+const GpuBackend& gpu_backend();
+
+// Index of the device `auto` picks: the first discrete GPU with compute, else the first
+// integrated one; -1 if there is neither (e.g. only lavapipe, a CPU device).
+int pick_hardware_gpu(const std::vector<DeviceInfo>& devices);
+
+}  // namespace meshsal

@@ -1,0 +1,14 @@
+#include "meshsal/meshsal.h"
+#include "view/camera.h"
+#include "view/render.h"
+
+namespace meshsal {
+
+Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
+                  const RenderStyle& style) {
+  std::vector<uint8_t> colours;
+  if (score) colours = score_colours(mesh, *score);
+  return render_mesh(mesh, score ? &colours : nullptr, frame_mesh(mesh), view, style);
+}
+
+}  // namespace meshsal

@@ -1,0 +1,24 @@
+// meshsal: which vertices are "mesh points" (referenced by a triangle) and the scale unit eps.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+// 1 for every vertex referenced by at least one triangle, else 0 (SPEC 1, "Mesh points").
+std::vector<uint8_t> referenced_vertices(const Mesh& mesh);
+
+// Axis-aligned bounding box of the mesh points. Throws Error if there are none.
+struct BoundingBox {
+  double min[3];
+  double max[3];
+  double diagonal() const;
+};
+BoundingBox mesh_points_bbox(const Mesh& mesh, const std::vector<uint8_t>& is_point);
+
+// eps = eps_frac * |bbox diagonal| over the mesh points (SPEC 1, "Scale unit").
+double scale_unit(const Mesh& mesh, const std::vector<uint8_t>& is_point, double eps_frac);
+
+}  // namespace meshsal

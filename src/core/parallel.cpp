@@ -1,0 +1,51 @@
+#include "core/parallel.h"
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace meshsal {
+
+unsigned resolve_threads(unsigned requested) {
+  if (requested > 0) return requested;
+  unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? hw : 1;
+}
+
+void parallel_for(size_t n, unsigned threads, size_t chunk,
+                  const std::function<void(size_t, size_t)>& body) {
+  if (n == 0) return;
+  if (chunk == 0) chunk = 1;
+  unsigned t = resolve_threads(threads);
+  size_t chunks = (n + chunk - 1) / chunk;
+  if (t > chunks) t = unsigned(chunks);
+  if (t <= 1) {
+    body(0, n);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    try {
+      for (;;) {
+        size_t begin = next.fetch_add(chunk);
+        if (begin >= n) break;
+        body(begin, std::min(n, begin + chunk));
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next.store(n);  // stop handing out work
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < t; ++i) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace meshsal

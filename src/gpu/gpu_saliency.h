@@ -1,0 +1,32 @@
+// meshsal: SPEC section 1 on a Vulkan device, held to the CPU path (compute_saliency_cpu)
+// to 1e-4 of each map's maximum. Curvature and the 1-ring adjacency come from the CPU;
+// the grid, the neighbour sweep, the raw maps, suppression, the final sum and the smoothed
+// saliency G(S, 3 eps) run on the device.
+#pragma once
+#include <vector>
+
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "gpu/vk_context.h"
+
+namespace meshsal {
+
+// The Vulkan devices (index, name, type, memory); throws Error when there is no driver.
+std::vector<vk::DeviceInfo> gpu_devices();
+
+// Saliency on Vulkan device options.device (-1: the best one; lavapipe when it is the only
+// one). backend_name is the device name. validation: enable the Khronos validation layer
+// (also on with MESHSAL_VALIDATION=1). Throws Error for a missing/failed/lost device or a
+// mesh too large for the device.
+SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& options,
+                                    bool validation = false);
+
+// Same on an already open device (tests and the benchmark reuse one context).
+SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
+                                    const SaliencyOptions& options);
+
+// y[i] = a * x[i] + i on the device: a check of the Vulkan layer itself (buffers, push
+// constants, dispatches split over maxComputeWorkGroupCount).
+std::vector<float> gpu_selftest(vk::Context& ctx, const std::vector<float>& x, float a);
+
+}  // namespace meshsal

@@ -1,0 +1,139 @@
+#include "gpu/gpu_visibility.h"
+
+#include <algorithm>
+#include <string>
+
+#include "meshsal/meshsal.h"
+#include "gpu/vk_buffer.h"
+#include "gpu/vk_compute.h"
+#include "visibility_raster_comp.h"
+#include "visibility_test_comp.h"
+
+namespace meshsal {
+
+namespace {
+struct RasterPush {
+  uint32_t base, n, res, triangles, views;  // n: invocations per view group
+};
+const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
+struct TestPush {
+  uint32_t base, n, res, vertices;
+  float tol;
+  uint32_t views;
+};
+// Invocations per view: each loops over items with this stride. About 16 items each, at most
+// 4096 (raster) / 2048 (test) per view: a batch of 256 views is then up to a million
+// invocations on a GPU, while a CPU driver (lavapipe) pays the per-invocation cost rarely.
+uint32_t lanes(uint32_t items, uint32_t most) {
+  uint32_t l = (items / 16 + 63) / 64 * 64;
+  return std::clamp<uint32_t>(l, 64, most);
+}
+}  // namespace
+
+struct GpuVisibility::State {
+  vk::Context& ctx;
+  ViewFrame frame;
+  VisibilityOptions options;
+  uint32_t vertices = 0, triangles = 0, raster_lanes = 0, test_lanes = 0;
+  int batch = 1;
+  uint64_t submissions = 0;
+  vk::Buffer pos, tri, weights, rows, zbuf, partial;
+  vk::Kernel* raster = nullptr;
+  vk::Kernel* test = nullptr;
+  std::unique_ptr<vk::DescriptorPool> pool;
+  VkDescriptorSet raster_set = VK_NULL_HANDLE, test_set = VK_NULL_HANDLE;
+  explicit State(vk::Context& c) : ctx(c) {}
+};
+
+GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vector<float>& weights,
+                             const ViewFrame& frame, const VisibilityOptions& options, int max_batch)
+    : s_(std::make_unique<State>(ctx)) {
+  check_visibility_options(options);
+  if (weights.size() != mesh.vertex_count()) throw Error("visibility weights do not match the mesh");
+  if (mesh.vertex_count() == 0 || mesh.triangle_count() == 0) throw Error("empty mesh");
+  if (mesh.vertex_count() > (1u << 31) / 3 || mesh.triangle_count() > (1u << 31) / 3)
+    throw Error("mesh too large for the GPU visibility path; use --backend cpu");
+  State& s = *s_;
+  s.frame = frame;
+  s.options = options;
+  s.vertices = uint32_t(mesh.vertex_count());
+  s.triangles = uint32_t(mesh.triangle_count());
+  s.raster_lanes = lanes(s.triangles, 4096);
+  s.test_lanes = lanes(s.vertices, 2048);
+
+  const uint64_t layer = uint64_t(options.resolution) * uint64_t(options.resolution) * 4;
+  uint64_t cap = std::min<uint64_t>(64ull << 20, ctx.properties.limits.maxStorageBufferRange);
+  int fit = int(std::max<uint64_t>(1, cap / layer));
+  fit = std::min<int>(fit, 1024);
+  fit = std::min<int>(fit, int(ctx.properties.limits.maxComputeWorkGroupCount[1]));
+  s.batch = max_batch > 0 ? std::min(max_batch, fit) : fit;
+  if (layer > ctx.properties.limits.maxStorageBufferRange)
+    throw Error("resolution " + std::to_string(options.resolution) + " is too large for '" + ctx.info.name + "'");
+
+  s.pos = vk::Buffer(ctx, mesh.positions.size() * 4, "vertex positions");
+  s.pos.upload(mesh.positions.data(), mesh.positions.size() * 4);
+  s.tri = vk::Buffer(ctx, mesh.triangles.size() * 4, "triangles");
+  s.tri.upload(mesh.triangles.data(), mesh.triangles.size() * 4);
+  s.weights = vk::Buffer(ctx, weights.size() * 4, "visibility weights");
+  s.weights.upload(weights.data(), weights.size() * 4);
+  s.rows = vk::Buffer(ctx, size_t(s.batch) * sizeof(ViewRows), "view matrices");
+  s.zbuf = vk::Buffer(ctx, size_t(s.batch) * size_t(layer), "depth buffers");
+  s.partial = vk::Buffer(ctx, size_t(s.batch) * s.test_lanes * 4, "visibility partial sums");
+
+  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 4,
+                                sizeof(RasterPush), "visibility_raster");
+  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 5,
+                              sizeof(TestPush), "visibility_test");
+  s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 9);
+  s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf});
+  s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial});
+}
+
+GpuVisibility::~GpuVisibility() = default;
+
+int GpuVisibility::batch() const { return s_->batch; }
+uint64_t GpuVisibility::submissions() const { return s_->submissions; }
+
+std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
+  State& s = *s_;
+  std::vector<double> U(views.size(), 0.0);
+  const uint32_t res = uint32_t(s.options.resolution);
+  const VkDeviceSize layer = VkDeviceSize(res) * res * 4;
+  std::vector<ViewRows> rows;
+  std::vector<float> partial;
+  for (size_t first = 0; first < views.size(); first += size_t(s.batch)) {
+    const uint32_t count = uint32_t(std::min(views.size() - first, size_t(s.batch)));
+    rows.resize(count);
+    for (uint32_t v = 0; v < count; ++v) rows[v] = view_rows(s.frame, views[first + v]);
+    s.rows.upload(rows.data(), count * sizeof(ViewRows));
+    vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
+      vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
+      vk::barrier(cmd);
+      RasterPush rp{0, s.raster_lanes, res, s.triangles, count};
+      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, s.raster_lanes, 64,
+                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
+      vk::barrier(cmd);
+      TestPush tp{0, s.test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count};
+      vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, s.test_lanes, 64,
+                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
+      VkMemoryBarrier host{};  // the partial sums are read by the host after the fence
+      host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+      host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      host.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                           VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &host, 0,
+                           nullptr, 0, nullptr);
+    });
+    ++s.submissions;
+    partial.resize(size_t(count) * s.test_lanes);
+    s.partial.download(partial.data(), partial.size() * 4);
+    for (uint32_t v = 0; v < count; ++v) {
+      double sum = 0;
+      for (uint32_t g = 0; g < s.test_lanes; ++g) sum += partial[size_t(v) * s.test_lanes + g];
+      U[first + v] = sum;
+    }
+  }
+  return U;
+}
+
+}  // namespace meshsal

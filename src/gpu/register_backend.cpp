@@ -1,0 +1,58 @@
+// meshsal: plugs the Vulkan layer into the library's backend switch (api/gpu_backend.h).
+// meshsal::gpu's link interface names meshsal_gpu_backend_anchor as undefined, so the linker
+// always takes this file out of the static library and its initialiser runs.
+#include "api/gpu_backend.h"
+#include "gpu/gpu_saliency.h"
+#include "gpu/gpu_visibility.h"
+#include "gpu/vk_context.h"
+
+extern "C" {
+int meshsal_gpu_backend_anchor = 0;
+}
+
+namespace meshsal {
+namespace {
+
+std::vector<DeviceInfo> devices() {
+  std::vector<DeviceInfo> out;
+  for (const vk::DeviceInfo& d : vk::list_devices()) {
+    DeviceInfo p;
+    p.index = d.index;
+    p.name = d.name;
+    p.type = d.type;
+    p.device_local_bytes = d.device_local_bytes;
+    p.api_version = d.api_version;
+    p.has_compute = d.has_compute;
+    out.push_back(p);
+  }
+  return out;
+}
+
+SaliencyResult saliency(const Mesh& mesh, const SaliencyOptions& options) {
+  return compute_saliency_gpu(mesh, options);
+}
+
+ViewScorerSetup view_scorer(const Mesh& mesh, const std::vector<double>& score,
+                            const VisibilityOptions& options, int device) {
+  struct Gpu {
+    std::unique_ptr<vk::Context> ctx;
+    std::unique_ptr<GpuVisibility> vis;
+  };
+  auto g = std::make_shared<Gpu>();
+  g->ctx = std::make_unique<vk::Context>(device, vk::validation_requested_by_env());
+  g->vis = std::make_unique<GpuVisibility>(*g->ctx, mesh, visibility_weights(mesh, score),
+                                           frame_mesh(mesh), options);
+  ViewScorerSetup s;
+  GpuVisibility* vis = g->vis.get();
+  s.scorer = [vis](const std::vector<ViewAngles>& views) { return vis->score(views); };
+  s.backend_name = "vulkan: " + g->ctx->info.name;
+  s.batch = vis->batch();
+  s.keep_alive = g;
+  return s;
+}
+
+const GpuBackend backend{devices, saliency, view_scorer};
+const bool registered = (register_gpu_backend(&backend), true);
+
+}  // namespace
+}  // namespace meshsal

@@ -1,0 +1,72 @@
+// meshsal: compute pipelines from embedded SPIR-V, descriptor sets, and one command
+// submission per stage waited on with a finite fence timeout.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "gpu/vk_buffer.h"
+#include "gpu/vk_context.h"
+
+namespace meshsal::vk {
+
+// A compute shader whose bindings 0..n-1 are all storage buffers, plus push constants.
+// `specialization` gives the int specialization constants 0..n-1 (the driver compiles
+// the shader with them as constants).
+class Kernel {
+ public:
+  Kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, uint32_t bindings,
+         uint32_t push_bytes, const char* name, const std::vector<int32_t>& specialization = {});
+  ~Kernel();
+  Kernel(const Kernel&) = delete;
+  Kernel& operator=(const Kernel&) = delete;
+
+  const char* name;
+  uint32_t bindings;
+  uint32_t push_bytes;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+
+ private:
+  Context& ctx_;
+};
+
+// A pool of descriptor sets for one computation; all sets die with it.
+class DescriptorPool {
+ public:
+  DescriptorPool(Context& ctx, uint32_t max_sets, uint32_t max_buffers);
+  ~DescriptorPool();
+  DescriptorPool(const DescriptorPool&) = delete;
+  DescriptorPool& operator=(const DescriptorPool&) = delete;
+  // A set for `kernel` with buffers[i] at binding i (whole buffers).
+  VkDescriptorSet bind(const Kernel& kernel, const std::vector<const Buffer*>& buffers);
+
+ private:
+  Context& ctx_;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+};
+
+// Records with `record`, submits once, waits for the fence at most ctx.fence_timeout_s;
+// a timeout or a lost device becomes an Error naming `what`.
+void submit(Context& ctx, const char* what, const std::function<void(VkCommandBuffer)>& record);
+
+// Binds the kernel and set, and dispatches groups of `local_size` threads over the items
+// [begin, end) (times `groups_y` in y). The push block must begin with two uints
+// {base, n}: they are set to the first item of each dispatch and to `end`, so a long range
+// is split into several dispatches that stay under maxComputeWorkGroupCount[0].
+void dispatch(Context& ctx, VkCommandBuffer cmd, const Kernel& kernel, VkDescriptorSet set,
+              void* push, uint32_t begin, uint32_t end, uint32_t local_size,
+              uint32_t groups_y = 1);
+
+// The kernel for this SPIR-V on this context, created on first use and kept with the
+// context (pipeline creation and the driver's first compile are paid once).
+Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
+                      uint32_t bindings, uint32_t push_bytes, const char* name,
+                      const std::vector<int32_t>& specialization = {});
+
+// Makes shader writes (and transfers) before it visible to shader reads/writes after it.
+void barrier(VkCommandBuffer cmd);
+
+}  // namespace meshsal::vk

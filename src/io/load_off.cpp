@@ -1,0 +1,97 @@
+// meshsal: OFF reader. Accepts the OFF / COFF / NOFF / CNOFF / STOFF... header keywords
+// (extra vertex columns such as normals or colours are ignored), '#' comments, counts on
+// the header line or the next, and optional colour columns after a face's indices.
+// One vertex or face per line, as every OFF writer does.
+#include <string>
+#include <string_view>
+
+#include "io/mesh_io_internal.h"
+#include "io/text_scan.h"
+
+namespace meshsal {
+
+Mesh load_off_text(std::string_view text, const std::string& name) {
+  TextScan scan(text);
+  std::string_view line;
+  auto fail = [&](const std::string& problem) -> Error {
+    return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
+  };
+  // Next non-empty line after comments are stripped; false at the end.
+  auto content_line = [&](std::string_view& out) {
+    while (scan.next_line(out)) {
+      out = strip_comment(out);
+      if (!out.empty()) return true;
+    }
+    return false;
+  };
+
+  if (!content_line(line)) throw Error(name + ": empty file");
+  std::string_view keyword = next_token(line);
+  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF")
+    throw fail("not an OFF file (the first word is " + quoted(keyword) + ", expected OFF)");
+  for (char c : keyword.substr(0, keyword.size() - 3))
+    if (c != 'C' && c != 'N' && c != 'S' && c != 'T')
+      throw fail("unsupported OFF variant " + quoted(keyword));
+  if (line.find_first_not_of(" \t") != std::string_view::npos) {
+    std::string_view peek = line;
+    if (next_token(peek) == "BINARY") throw fail("binary OFF is not supported");
+  } else if (!content_line(line)) {
+    throw fail("missing the vertex / face / edge counts");
+  }
+  uint64_t counts[2];
+  for (uint64_t& c : counts) {
+    std::string_view tok = next_token(line);
+    if (!parse_number(tok, c)) throw fail("bad count " + quoted(tok) + " in the header");
+  }
+  // Every vertex takes at least 6 bytes ("0 0 0\n") and every face 8, so counts beyond
+  // the file size are rejected before anything is allocated.
+  const uint64_t left = text.size() - std::min(text.size(), scan.pos);
+  if (counts[0] > left / 6 || counts[1] > left / 8 || counts[0] > 0xFFFFFFFFull)
+    throw fail("header counts (" + std::to_string(counts[0]) + " vertices, " +
+               std::to_string(counts[1]) + " faces) are larger than the file can hold");
+
+  Mesh mesh;
+  mesh.positions.reserve(counts[0] * 3);
+  mesh.triangles.reserve(counts[1] * 3);
+  for (uint64_t v = 0; v < counts[0]; ++v) {
+    if (!content_line(line))
+      throw Error(name + ": truncated: the header says " + std::to_string(counts[0]) +
+                  " vertices but the file ends after " + std::to_string(v));
+    const std::string problem = take_xyz(line, mesh.positions);
+    if (!problem.empty()) throw fail(problem);
+  }
+  for (uint64_t f = 0; f < counts[1]; ++f) {
+    if (!content_line(line))
+      throw Error(name + ": truncated: the header says " + std::to_string(counts[1]) +
+                  " faces but the file ends after " + std::to_string(f));
+    std::string_view tok = next_token(line);
+    uint64_t n;
+    if (!parse_number(tok, n)) throw fail("bad face vertex count " + quoted(tok));
+    if (n < 3) throw fail("face with " + std::to_string(n) + " vertices (needs at least 3)");
+    uint32_t first = 0, prev = 0;
+    for (uint64_t i = 0; i < n; ++i) {
+      tok = next_token(line);
+      int64_t idx;
+      if (tok.empty()) throw fail("face lists fewer than its " + std::to_string(n) + " indices");
+      if (!parse_number(tok, idx)) throw fail("bad face index " + quoted(tok));
+      if (idx < 0 || idx >= static_cast<int64_t>(counts[0]))
+        throw fail("face index " + std::to_string(idx) + " is out of range (" +
+                   std::to_string(counts[0]) + " vertices)");
+      uint32_t cur = static_cast<uint32_t>(idx);
+      if (i == 0) first = cur;
+      if (i >= 2) {
+        mesh.triangles.push_back(first);
+        mesh.triangles.push_back(prev);
+        mesh.triangles.push_back(cur);
+      }
+      prev = cur;
+    }
+    // Whatever follows (a colour) is ignored.
+  }
+  if (content_line(line))
+    throw fail("more data after the " + std::to_string(counts[1]) +
+               " faces the header announces");
+  return mesh;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,483 @@
+// meshsal: PLY reader (ascii, binary_little_endian, binary_big_endian).
+// Reads the `vertex` element's x,y,z (any numeric type) plus its other scalar properties
+// (returned as float), the `face` element's `vertex_indices` / `vertex_index` list (any
+// count / index types), and skips every other property and element. Binary bodies are
+// read straight from the in-memory bytes with memcpy; ascii with std::from_chars.
+// Header counts are checked against the file size before anything is allocated, and the
+// body must hold exactly what the header announces.
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/mesh_io_internal.h"
+#include "io/text_scan.h"
+
+namespace meshsal {
+namespace {
+
+enum class PlyType : uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+size_t type_size(PlyType t) {
+  switch (t) {
+    case PlyType::Int8: case PlyType::UInt8: return 1;
+    case PlyType::Int16: case PlyType::UInt16: return 2;
+    case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
+    case PlyType::Float64: return 8;
+  }
+  return 0;
+}
+
+bool type_from_name(std::string_view s, PlyType& t) {
+  static const struct { const char* name; PlyType type; } names[] = {
+      {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+      {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+      {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+      {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+      {"float64", PlyType::Float64}};
+  for (const auto& n : names)
+    if (s == n.name) {
+      t = n.type;
+      return true;
+    }
+  return false;
+}
+
+struct Property {
+  std::string name;
+  PlyType type = PlyType::Float32;  // the item type for lists
+  bool is_list = false;
+  PlyType count_type = PlyType::UInt8;
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> props;
+};
+
+enum class Format { Ascii, BinaryLE, BinaryBE };
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  size_t body = 0;  // byte offset of the body
+  size_t body_line = 0;  // lines before the body (for ascii error messages)
+};
+
+Header parse_header(std::string_view bytes, const std::string& name) {
+  TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)));
+  auto fail = [&](const std::string& problem) -> Error {
+    return Error(name + ": header line " + std::to_string(scan.line_no) + ": " + problem);
+  };
+  std::string_view line;
+  if (!scan.next_line(line) || strip_comment(line) != "ply")
+    throw Error(name + ": not a PLY file (it does not start with 'ply')");
+  // A header cut short (truncated file) would otherwise be reported as its last odd line.
+  if (scan.text.find("end_header") == std::string_view::npos)
+    throw Error(name + ": PLY header has no end_header line (garbled or truncated file)");
+  Header h;
+  bool have_format = false, done = false;
+  while (!done && scan.next_line(line)) {
+    std::string_view rest = line;
+    std::string_view key = next_token(rest);
+    if (key.empty() || key == "comment" || key == "obj_info") continue;
+    if (key == "end_header") {
+      if (!have_format) throw fail("end_header before any 'format' line");
+      done = true;
+    } else if (key == "format") {
+      std::string_view f = next_token(rest);
+      if (f == "ascii") h.format = Format::Ascii;
+      else if (f == "binary_little_endian") h.format = Format::BinaryLE;
+      else if (f == "binary_big_endian") h.format = Format::BinaryBE;
+      else throw fail("unknown format " + quoted(f));
+      have_format = true;
+    } else if (key == "element") {
+      Element e;
+      e.name = std::string(next_token(rest));
+      std::string_view c = next_token(rest);
+      if (e.name.empty() || !parse_number(c, e.count))
+        throw fail("bad element line " + quoted(line));
+      h.elements.push_back(std::move(e));
+    } else if (key == "property") {
+      if (h.elements.empty()) throw fail("property before any element");
+      Property p;
+      std::string_view t = next_token(rest);
+      if (t == "list") {
+        p.is_list = true;
+        std::string_view ct = next_token(rest), it = next_token(rest);
+        if (!type_from_name(ct, p.count_type) || !type_from_name(it, p.type))
+          throw fail("bad list property " + quoted(line));
+        if (p.count_type == PlyType::Float32 || p.count_type == PlyType::Float64)
+          throw fail("list count type must be an integer type");
+      } else if (!type_from_name(t, p.type)) {
+        throw fail("unknown property type " + quoted(t));
+      }
+      p.name = std::string(next_token(rest));
+      if (p.name.empty()) throw fail("property without a name");
+      h.elements.back().props.push_back(std::move(p));
+    } else {
+      throw fail("unexpected header line " + quoted(line));
+    }
+  }
+  if (!done) throw Error(name + ": PLY header has no end_header line (garbled or truncated file)");
+  h.body = scan.pos;
+  h.body_line = scan.line_no;
+  return h;
+}
+
+constexpr bool host_big_endian() {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  return true;
+#else
+  return false;
+#endif
+}
+
+// One binary value at p as double (exact for every PLY type but 64-bit ints, which PLY lacks).
+template <bool Swap>
+inline double read_value(const char* p, PlyType t) {
+  unsigned char b[8];
+  size_t n = type_size(t);
+  std::memcpy(b, p, n);
+  if (Swap)
+    for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+  switch (t) {
+    case PlyType::Int8: { int8_t v; std::memcpy(&v, b, 1); return v; }
+    case PlyType::UInt8: return b[0];
+    case PlyType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
+    case PlyType::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
+    case PlyType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
+    case PlyType::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
+    case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
+    case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+  }
+  return 0;
+}
+
+// What the reader does with each property of the vertex / face elements.
+enum Role : int8_t { Skip = -1, X = 0, Y = 1, Z = 2, Extra = 3, Indices = 4 };
+
+struct Plan {
+  std::vector<Role> roles;        // per property
+  std::vector<float*> extra_out;  // per property: where an Extra value goes (advanced per vertex)
+};
+
+struct Reader {
+  std::string_view bytes;
+  const std::string& name;
+  Mesh& mesh;
+  uint64_t vertex_count = UINT64_MAX;  // known once the vertex element is seen
+
+  [[noreturn]] void fail(const std::string& problem) { throw Error(name + ": " + problem); }
+
+  // Appends the fan triangles of one polygon given its indices; `line` > 0 names the
+  // ascii line in errors.
+  void add_polygon(const int64_t* idx, uint64_t n, uint64_t face, size_t line) {
+    auto bad = [&](const std::string& problem) {
+      fail((line ? "line " + std::to_string(line) + ": " : std::string()) + "face " +
+           std::to_string(face) + problem);
+    };
+    if (n < 3) bad(" has " + std::to_string(n) + " vertices (needs at least 3)");
+    for (uint64_t i = 0; i < n; ++i)
+      if (idx[i] < 0 || static_cast<uint64_t>(idx[i]) >= vertex_count ||
+          static_cast<uint64_t>(idx[i]) > 0xFFFFFFFEull)
+        bad(" uses vertex index " + std::to_string(idx[i]) +
+            (vertex_count == UINT64_MAX ? std::string(", out of range")
+                                        : ", out of range (" + std::to_string(vertex_count) + " vertices)"));
+    for (uint64_t i = 1; i + 1 < n; ++i) {
+      mesh.triangles.push_back(static_cast<uint32_t>(idx[0]));
+      mesh.triangles.push_back(static_cast<uint32_t>(idx[i]));
+      mesh.triangles.push_back(static_cast<uint32_t>(idx[i + 1]));
+    }
+  }
+
+  template <bool Swap>
+  size_t read_binary(const Element& e, Plan& plan, size_t pos) {
+    const char* data = bytes.data();
+    const size_t end = bytes.size();
+    std::vector<int64_t> poly;
+    for (uint64_t k = 0; k < e.count; ++k) {
+      for (size_t j = 0; j < e.props.size(); ++j) {
+        const Property& p = e.props[j];
+        const Role role = plan.roles[j];
+        if (!p.is_list) {
+          size_t n = type_size(p.type);
+          if (end - pos < n) truncated(e, k);
+          if (role >= X && role <= Z) {
+            mesh.positions.push_back(static_cast<float>(read_value<Swap>(data + pos, p.type)));
+          } else if (role == Extra) {
+            *plan.extra_out[j]++ = static_cast<float>(read_value<Swap>(data + pos, p.type));
+          }
+          pos += n;
+          continue;
+        }
+        size_t cn = type_size(p.count_type);
+        if (end - pos < cn) truncated(e, k);
+        double c = read_value<Swap>(data + pos, p.count_type);
+        pos += cn;
+        if (c < 0) fail(e.name + " " + std::to_string(k) + " has a negative list length");
+        uint64_t count = static_cast<uint64_t>(c);
+        size_t in = type_size(p.type);
+        if (count > (end - pos) / in) truncated(e, k);
+        if (role == Indices) {
+          poly.resize(count);
+          for (uint64_t i = 0; i < count; ++i) {
+            double v = read_value<Swap>(data + pos + i * in, p.type);
+            if (!(std::fabs(v) < 9e18) || v != std::trunc(v))
+              fail("face " + std::to_string(k) + " has a non-integer vertex index");
+            poly[i] = static_cast<int64_t>(v);
+          }
+          add_polygon(poly.data(), count, k, 0);
+        }
+        pos += count * in;
+      }
+    }
+    return pos;
+  }
+
+  // Fast path for the common face layout: only the index list, uchar/char count and
+  // 32-bit indices in host byte order. Returns false when the element does not qualify.
+  bool read_faces_fast(const Element& e, const Plan& plan, size_t& pos, bool swap) {
+    if (swap || e.props.size() != 1 || plan.roles[0] != Indices) return false;
+    const Property& p = e.props[0];
+    if (type_size(p.count_type) != 1 || type_size(p.type) != 4 || p.type == PlyType::Float32) return false;
+    if (vertex_count == UINT64_MAX) return false;  // faces before vertices: use the slow path
+    const bool signed_count = p.count_type == PlyType::Int8;
+    const char* data = bytes.data();
+    const size_t end = bytes.size();
+    int64_t poly[256];
+    for (uint64_t k = 0; k < e.count; ++k) {
+      if (pos >= end) truncated(e, k);
+      int c = signed_count ? static_cast<int8_t>(data[pos]) : static_cast<uint8_t>(data[pos]);
+      if (c < 0) fail(e.name + " " + std::to_string(k) + " has a negative list length");
+      ++pos;
+      if (static_cast<size_t>(c) * 4 > end - pos) truncated(e, k);
+      if (c == 3) {
+        uint32_t t[3];
+        std::memcpy(t, data + pos, 12);
+        if (p.type == PlyType::UInt32 ? (t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count)
+                                      : (int32_t(t[0]) >= 0 && int32_t(t[1]) >= 0 && int32_t(t[2]) >= 0 &&
+                                         t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count)) {
+          mesh.triangles.insert(mesh.triangles.end(), t, t + 3);
+          pos += 12;
+          continue;
+        }
+      }
+      for (int i = 0; i < c; ++i) {
+        uint32_t u;
+        std::memcpy(&u, data + pos + 4 * i, 4);
+        poly[i] = p.type == PlyType::UInt32 ? int64_t(u) : int64_t(int32_t(u));
+      }
+      add_polygon(poly, static_cast<uint64_t>(c), k, 0);
+      pos += 4 * size_t(c);
+    }
+    return true;
+  }
+
+  // Fast path for a vertex element without lists: fixed stride, one bounds check.
+  template <bool Swap>
+  bool read_fixed_fast(const Element& e, Plan& plan, size_t& pos) {
+    size_t stride = 0;
+    for (const Property& p : e.props) {
+      if (p.is_list) return false;
+      stride += type_size(p.type);
+    }
+    if (e.count > (bytes.size() - pos) / stride) truncated(e, (bytes.size() - pos) / stride);
+    std::vector<size_t> offset(e.props.size());
+    for (size_t j = 0, o = 0; j < e.props.size(); o += type_size(e.props[j].type), ++j) offset[j] = o;
+    const char* base = bytes.data() + pos;
+    // x, y, z as adjacent host-order floats: one 12-byte copy per vertex.
+    const bool packed_xyz = !Swap && plan.roles.size() >= 3 && plan.roles[0] == X && plan.roles[1] == Y &&
+                            plan.roles[2] == Z && e.props[0].type == PlyType::Float32 &&
+                            e.props[1].type == PlyType::Float32 && e.props[2].type == PlyType::Float32;
+    const size_t first = packed_xyz ? 3 : 0;
+    const size_t old = mesh.positions.size();
+    mesh.positions.resize(old + 3 * e.count);
+    float* out = mesh.positions.data() + old;
+    for (uint64_t k = 0; k < e.count; ++k, base += stride, out += 3) {
+      if (packed_xyz) std::memcpy(out, base, 12);
+      for (size_t j = first; j < e.props.size(); ++j) {
+        const Role role = plan.roles[j];
+        if (role == Skip) continue;
+        const float v = static_cast<float>(read_value<Swap>(base + offset[j], e.props[j].type));
+        if (role == Extra) *plan.extra_out[j]++ = v;
+        else out[role] = v;
+      }
+    }
+    pos += e.count * stride;
+    return true;
+  }
+
+  [[noreturn]] void truncated(const Element& e, uint64_t k) {
+    fail("truncated: the file ends inside " + e.name + " " + std::to_string(k) + " of " +
+         std::to_string(e.count));
+  }
+
+  size_t read_ascii(const Element& e, Plan& plan, TextScan& scan) {
+    std::string_view line;
+    std::vector<int64_t> poly;
+    auto fail_line = [&](const std::string& problem) {
+      fail("line " + std::to_string(scan.line_no) + ": " + problem);
+    };
+    for (uint64_t k = 0; k < e.count; ++k) {
+      do {
+        if (!scan.next_line(line))
+          fail("truncated: the header says " + std::to_string(e.count) + " " + e.name +
+               " elements but the file ends after " + std::to_string(k));
+      } while (strip_comment(line).empty());
+      for (size_t j = 0; j < e.props.size(); ++j) {
+        const Property& p = e.props[j];
+        const Role role = plan.roles[j];
+        std::string_view tok = next_token(line);
+        if (tok.empty())
+          fail_line(e.name + " " + std::to_string(k) + " has fewer values than the header declares");
+        if (!p.is_list) {
+          if (role >= X && role <= Extra) {
+            float v;
+            if (!parse_coord(tok, v)) fail_line("bad number " + quoted(tok));
+            if (role == Extra) *plan.extra_out[j]++ = v;
+            else mesh.positions.push_back(v);
+          }
+          continue;
+        }
+        uint64_t count;
+        if (!parse_number(tok, count)) fail_line("bad list length " + quoted(tok));
+        if (count > line.size()) fail_line("list length " + std::to_string(count) + " is longer than the line");
+        poly.resize(count);
+        for (uint64_t i = 0; i < count; ++i) {
+          tok = next_token(line);
+          if (tok.empty()) fail_line("list has fewer than its " + std::to_string(count) + " values");
+          if (role == Indices && !parse_number(tok, poly[i])) fail_line("bad vertex index " + quoted(tok));
+        }
+        if (role == Indices) add_polygon(poly.data(), count, k, scan.line_no);
+      }
+      if (!next_token(line).empty())
+        fail_line(e.name + " " + std::to_string(k) + " has more values than the header declares");
+    }
+    return scan.pos;
+  }
+};
+
+}  // namespace
+
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
+  Header h = parse_header(bytes, name);
+  const bool ascii = h.format == Format::Ascii;
+  const size_t body_size = bytes.size() - h.body;
+
+  // Reject counts the body cannot possibly hold before allocating anything: a binary
+  // element needs at least the sum of its fixed-size parts, an ascii one 2 bytes per value.
+  const Element* vertex = nullptr;
+  const Element* face = nullptr;
+  unsigned __int128 min_total = 0;
+  for (const Element& e : h.elements) {
+    uint64_t min_size = 0;
+    for (const Property& p : e.props)
+      min_size += ascii ? 2 : type_size(p.is_list ? p.count_type : p.type);
+    min_total += static_cast<unsigned __int128>(min_size) * e.count;
+    if (e.name == "vertex" && !vertex) vertex = &e;
+    if (e.name == "face" && !face) face = &e;
+  }
+  if (min_total > body_size)
+    throw Error(name + ": header element counts need at least " +
+                std::to_string(static_cast<uint64_t>(std::min<unsigned __int128>(min_total, UINT64_MAX))) +
+                " bytes but the body has " + std::to_string(body_size) +
+                " (truncated file or bad header)");
+  if (!vertex) throw Error(name + ": PLY has no 'vertex' element");
+  if (vertex->count > 0xFFFFFFFFull) throw Error(name + ": too many vertices");
+
+  Mesh mesh;
+  Reader reader{bytes, name, mesh};
+  std::vector<std::vector<float>> extras;  // storage while reading, moved out at the end
+  std::vector<std::string> extra_names;
+  bool face_list_found = false;
+  std::vector<Plan> plans(h.elements.size());
+  for (size_t ei = 0; ei < h.elements.size(); ++ei) {
+    const Element& e = h.elements[ei];
+    Plan& plan = plans[ei];
+    plan.roles.assign(e.props.size(), Skip);
+    plan.extra_out.assign(e.props.size(), nullptr);
+    if (&e == vertex) {
+      int found[3] = {-1, -1, -1};
+      for (size_t j = 0; j < e.props.size(); ++j) {
+        const Property& p = e.props[j];
+        if (p.is_list) continue;
+        int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
+        if (axis >= 0 && found[axis] < 0) {
+          found[axis] = static_cast<int>(j);
+          plan.roles[j] = static_cast<Role>(axis);
+        } else if (properties) {
+          plan.roles[j] = Extra;
+          extras.emplace_back(e.count);
+          extra_names.push_back(p.name);
+        }
+      }
+      if (found[0] < 0 || found[1] < 0 || found[2] < 0)
+        throw Error(name + ": the vertex element lacks an x, y or z property");
+      // Positions are pushed in property order; x,y,z must therefore be in that order.
+      if (!(found[0] < found[1] && found[1] < found[2]))
+        throw Error(name + ": vertex properties x, y, z are not in x, y, z order");
+      size_t n = 0;
+      for (size_t j = 0; j < e.props.size(); ++j)
+        if (plan.roles[j] == Extra) plan.extra_out[j] = extras[n++].data();
+      mesh.positions.reserve(e.count * 3);
+    } else if (&e == face) {
+      for (size_t j = 0; j < e.props.size(); ++j)
+        if (e.props[j].is_list && !face_list_found &&
+            (e.props[j].name == "vertex_indices" || e.props[j].name == "vertex_index")) {
+          plan.roles[j] = Indices;
+          face_list_found = true;
+        }
+      if (!face_list_found)
+        throw Error(name + ": the face element has no vertex_indices list");
+      mesh.triangles.reserve(e.count * 3);
+    }
+  }
+  if (!face) {
+    bool strips = false;
+    for (const Element& e : h.elements) strips |= e.name == "tristrips";
+    throw Error(name + (strips ? ": PLY stores triangle strips (tristrips), which are not supported"
+                               : ": PLY has no 'face' element (a point cloud, not a mesh)"));
+  }
+
+  size_t end;
+  if (ascii) {
+    TextScan scan{bytes};
+    scan.pos = h.body;
+    scan.line_no = h.body_line;
+    for (size_t ei = 0; ei < h.elements.size(); ++ei) {
+      if (h.elements[ei].props.empty()) continue;
+      reader.read_ascii(h.elements[ei], plans[ei], scan);
+      if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
+    }
+    end = scan.pos;
+  } else {
+    const bool swap = (h.format == Format::BinaryBE) != host_big_endian();
+    end = h.body;
+    for (size_t ei = 0; ei < h.elements.size(); ++ei) {
+      if (h.elements[ei].props.empty()) continue;
+      const Element& e = h.elements[ei];
+      if (reader.read_faces_fast(e, plans[ei], end, swap)) continue;
+      if (&e == vertex && (swap ? reader.read_fixed_fast<true>(e, plans[ei], end)
+                                : reader.read_fixed_fast<false>(e, plans[ei], end))) {
+        reader.vertex_count = vertex->count;
+        continue;
+      }
+      end = swap ? reader.read_binary<true>(e, plans[ei], end) : reader.read_binary<false>(e, plans[ei], end);
+      if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
+    }
+  }
+  // The body must end where the header says (blank space aside).
+  for (size_t i = std::min(end, bytes.size()); i < bytes.size(); ++i)
+    if (!is_space(bytes[i]) && bytes[i] != '\n')
+      throw Error(name + ": " + std::to_string(bytes.size() - end) +
+                  " bytes of data after the last element: the header counts disagree with the body");
+  if (properties)
+    for (size_t i = 0; i < extras.size(); ++i) (*properties)[extra_names[i]] = std::move(extras[i]);
+  return mesh;
+}
+
+}  // namespace meshsal

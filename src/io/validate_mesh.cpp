@@ -1,0 +1,43 @@
+// meshsal: sanity checks every loaded mesh goes through (see mesh_io.h).
+// Unreferenced vertices and non-manifold or open surfaces are allowed: real scans have them.
+#include <cmath>
+#include <string>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+void validate_mesh(const Mesh& mesh) {
+  if (mesh.positions.size() % 3 != 0) throw Error("positions array length is not a multiple of 3");
+  if (mesh.triangles.size() % 3 != 0) throw Error("triangles array length is not a multiple of 3");
+  const size_t nv = mesh.vertex_count();
+  if (nv == 0) throw Error("mesh has no vertices");
+  if (mesh.triangle_count() == 0) throw Error("mesh has no faces");
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!std::isfinite(mesh.positions[i]))
+      throw Error("vertex " + std::to_string(i / 3) + " has a non-finite coordinate (" +
+                  std::to_string(mesh.positions[i]) + ")");
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= nv)
+      throw Error("triangle " + std::to_string(i / 3) + " uses vertex index " +
+                  std::to_string(mesh.triangles[i]) + " but the mesh has only " +
+                  std::to_string(nv) + " vertices");
+  const float* p = mesh.positions.data();
+  for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
+    const float* a = p + 3 * size_t(mesh.triangles[t]);
+    const float* b = p + 3 * size_t(mesh.triangles[t + 1]);
+    const float* c = p + 3 * size_t(mesh.triangles[t + 2]);
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = double(b[k]) - a[k];
+      v[k] = double(c[k]) - a[k];
+    }
+    double cx = u[1] * v[2] - u[2] * v[1];
+    double cy = u[2] * v[0] - u[0] * v[2];
+    double cz = u[0] * v[1] - u[1] * v[0];
+    if (cx != 0 || cy != 0 || cz != 0) return;  // found a triangle with area
+  }
+  throw Error("every triangle has zero area (degenerate mesh)");
+}
+
+}  // namespace meshsal

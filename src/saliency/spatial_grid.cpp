@@ -1,0 +1,67 @@
+#include "saliency/spatial_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
+
+namespace meshsal {
+
+SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                               double min_cell) {
+  SpatialGrid g;
+  BoundingBox box = mesh_points_bbox(mesh, is_point);
+  size_t points = 0;
+  for (uint8_t f : is_point) points += f;
+  if (points >= UINT32_MAX) throw Error("too many mesh points for the grid (4 billion)");
+
+  // Cell count limit: a few cells per point, at least 2^20; grow the cell when exceeded.
+  const double max_cells = std::max<double>(1 << 20, 4.0 * double(points));
+  double cell = min_cell;
+  for (;;) {
+    double cells = 1;
+    for (int a = 0; a < 3; ++a) cells *= std::floor((box.max[a] - box.min[a]) / cell) + 1;
+    if (cells <= max_cells) break;
+    cell *= 1.25;
+  }
+  g.cell = cell;
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = box.min[a];
+    g.dims[a] = int(std::floor((box.max[a] - box.min[a]) / cell)) + 1;
+  }
+  const size_t ncells = size_t(g.dims[0]) * g.dims[1] * g.dims[2];
+
+  // Counting sort of the points by cell key.
+  const size_t n = mesh.vertex_count();
+  std::vector<uint32_t> key(n);
+  g.cell_start.assign(ncells + 1, 0);
+  for (size_t v = 0; v < n; ++v) {
+    if (!is_point[v]) continue;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::min(g.dims[a] - 1,
+                      int((double(mesh.positions[3 * v + a]) - g.origin[a]) / cell));
+    key[v] = uint32_t((size_t(c[2]) * g.dims[1] + c[1]) * g.dims[0] + c[0]);
+    g.cell_start[key[v] + 1]++;
+  }
+  for (size_t c = 0; c < ncells; ++c) g.cell_start[c + 1] += g.cell_start[c];
+  std::vector<uint32_t> fill(g.cell_start.begin(), g.cell_start.end() - 1);
+  g.order.resize(points);
+  for (size_t v = 0; v < n; ++v)
+    if (is_point[v]) g.order[fill[key[v]]++] = uint32_t(v);
+
+  const double far = 1e300;  // padding points never pass a distance test
+  g.x.assign(points + 4, far);
+  g.y.assign(points + 4, far);
+  g.z.assign(points + 4, far);
+  for (size_t s = 0; s < points; ++s) {
+    uint32_t v = g.order[s];
+    g.x[s] = double(mesh.positions[3 * v]) - g.origin[0];
+    g.y[s] = double(mesh.positions[3 * v + 1]) - g.origin[1];
+    g.z[s] = double(mesh.positions[3 * v + 2]) - g.origin[2];
+  }
+  return g;
+}
+
+}  // namespace meshsal

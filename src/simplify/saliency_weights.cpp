@@ -1,0 +1,86 @@
+// meshsal: saliency weights for simplification (percentile threshold alpha, amplification).
+#include "simplify/saliency_weights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "meshsal/meshsal.h"
+#include "saliency/gaussian_filter.h"
+#include "core/mesh_points.h"
+
+namespace meshsal {
+
+double percentile(const std::vector<double>& values, const std::vector<uint8_t>& mask, double p) {
+  if (!(p >= 0 && p <= 100))
+    throw Error("percentile must be in [0, 100], got " + std::to_string(p));
+  std::vector<double> v;
+  v.reserve(values.size());
+  for (size_t i = 0; i < values.size(); ++i)
+    if (mask.empty() || (i < mask.size() && mask[i])) v.push_back(values[i]);
+  if (v.empty()) throw Error("percentile of an empty set");
+  const double rank = p / 100 * double(v.size() - 1);
+  const size_t lo = size_t(std::floor(rank));
+  const size_t hi = std::min(lo + 1, v.size() - 1);
+  std::nth_element(v.begin(), v.begin() + lo, v.end());
+  const double a = v[lo];
+  if (hi == lo) return a;
+  const double b = *std::min_element(v.begin() + lo + 1, v.end());
+  return a + (rank - double(lo)) * (b - a);
+}
+
+std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
+                                    double eps_frac, unsigned threads) {
+  if (saliency.size() != mesh.vertex_count())
+    throw Error("saliency has " + std::to_string(saliency.size()) + " values for a mesh of " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  const double eps = scale_unit(mesh, is_point, eps_frac);
+  return gaussian_filter(mesh, is_point, saliency, {3 * eps}, threads)[0];
+}
+
+std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices) {
+  VertexProperties props;
+  const Mesh m = load_mesh(path, &props);
+  auto it = props.find("quality");
+  if (it == props.end())
+    throw Error("'" + path + "' has no per-vertex `quality` property (write it with `meshsal saliency`)");
+  if (m.vertex_count() != expected_vertices || it->second.size() != expected_vertices)
+    throw Error("saliency file '" + path + "' has " + std::to_string(m.vertex_count()) +
+                " vertices but the mesh has " + std::to_string(expected_vertices));
+  return std::vector<double>(it->second.begin(), it->second.end());
+}
+
+std::vector<double> saliency_weights(const std::vector<double>& smoothed,
+                                     const std::vector<uint8_t>& is_point,
+                                     const SaliencyWeightOptions& options, double* alpha_out) {
+  if (smoothed.size() != is_point.size())
+    throw Error("saliency weights: " + std::to_string(smoothed.size()) +
+                " saliency values for " + std::to_string(is_point.size()) + " vertices");
+  if (!(options.lambda >= 0) || !std::isfinite(options.lambda))
+    throw Error("lambda must be finite and >= 0");
+  if (!(options.floor >= 0) || !std::isfinite(options.floor))
+    throw Error("weight floor must be finite and >= 0");
+  for (size_t i = 0; i < smoothed.size(); ++i)
+    if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
+      throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");
+  const double alpha = percentile(smoothed, is_point, options.alpha_percentile);
+  if (alpha_out) *alpha_out = alpha;
+  std::vector<double> w(smoothed.size(), 0.0);
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < smoothed.size(); ++i) {
+    if (!is_point[i]) continue;
+    w[i] = smoothed[i] >= alpha ? options.lambda * smoothed[i] : smoothed[i];
+    sum += w[i];
+    ++n;
+  }
+  if (options.floor > 0 && n > 0) {
+    const double lo = options.floor * sum / double(n);
+    for (size_t i = 0; i < w.size(); ++i)
+      if (is_point[i]) w[i] = std::max(w[i], lo);
+  }
+  return w;
+}
+
+}  // namespace meshsal

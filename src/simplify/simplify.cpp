@@ -1,0 +1,723 @@
+// meshsal: Garland-Heckbert edge-collapse simplification over flat arrays.
+// One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
+// the next collapse: a lazily invalidated queue of edges (simplify_mesh) and a full scan
+// (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
+#include "simplify/simplify.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "meshsal/meshsal.h"
+#include "core/parallel.h"
+#include "simplify/edge_queue.h"
+#include "simplify/quadric.h"
+
+namespace meshsal {
+
+size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) {
+  if (input_faces == 0) throw Error("simplify: the mesh has no non-degenerate triangles");
+  size_t target = options.target_faces;
+  if (target == 0) {
+    const double r = options.ratio;
+    if (r == 0)
+      throw Error("simplify: give a target face count (> 0) or a ratio in (0, 1]");
+    if (!(r > 0 && r <= 1))
+      throw Error("simplify: ratio must be in (0, 1], got " + std::to_string(r));
+    target = static_cast<size_t>(std::llround(r * static_cast<double>(input_faces)));
+    if (target == 0)
+      throw Error("simplify: ratio " + std::to_string(r) + " leaves no faces of " +
+                  std::to_string(input_faces));
+  }
+  if (target > input_faces)
+    throw Error("simplify: target of " + std::to_string(target) +
+                " faces is larger than the mesh (" + std::to_string(input_faces) + " faces)");
+  return target;
+}
+
+using namespace simplify_detail;
+
+namespace {
+
+enum class Check { Ok, NotEdge, Refused };
+
+// Branch-free helpers for the hot loops below, where the outcome is a coin toss (GCC turns
+// the obvious ternaries into jumps there).
+inline uint32_t select_u32(bool c, uint32_t x, uint32_t y) {  // c ? x : y
+  const uint32_t m = 0u - uint32_t(c);
+  return (x & m) | (y & ~m);
+}
+// Triangle v (three corners) and one of its corners c: is c a corner of it, and which are
+// the other two (in an order that is not the triangle's orientation).
+inline bool has_corner(const uint32_t* v, uint32_t c) {
+  return (v[0] == c) | (v[1] == c) | (v[2] == c);
+}
+inline void other_corners(const uint32_t* v, uint32_t c, uint32_t* x, uint32_t* y) {
+  *x = select_u32(v[0] == c, v[1], v[0]);
+  *y = select_u32(v[2] == c, v[1], v[2]);
+}
+
+inline void cross3(const double u[3], const double v[3], double o[3]) {
+  o[0] = u[1] * v[2] - u[2] * v[1];
+  o[1] = u[2] * v[0] - u[0] * v[2];
+  o[2] = u[0] * v[1] - u[1] * v[0];
+}
+inline double dot3(const double u[3], const double v[3]) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+struct State {
+  size_t nv = 0;
+  double center[3] = {0, 0, 0};
+  double scale = 1;                          // internal = (p - center) * scale
+  std::vector<double> pos;                   // 3 per vertex, internal coordinates
+  std::vector<Quadric> quad;
+  std::vector<uint32_t> tri;                 // 3 per triangle
+  std::vector<uint8_t> tri_alive;
+  // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
+  // from vt_start[v], room for vt_cap[v]; a run that outgrows its room moves to the end.
+  std::vector<uint32_t> vt_pool, vt_start, vt_count, vt_cap;
+  struct Run {
+    const uint32_t* b;
+    const uint32_t* e;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+  };
+  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
+  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
+  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  // Lays all runs out again in vertex order, live triangles only, each with room for half
+  // as many more: instead of growing the pool (a copy of all of it, and page faults), and it
+  // puts the runs back in Morton order.
+  void repack() {
+    std::vector<uint32_t> fresh;
+    fresh.reserve(vt_pool.capacity());
+    for (size_t v = 0; v < nv; ++v) {
+      const uint32_t start = uint32_t(fresh.size());
+      if (alive[v])
+        for (uint32_t t : vt(uint32_t(v)))
+          if (tri_alive[t]) fresh.push_back(t);
+      vt_start[v] = start;
+      vt_count[v] = uint32_t(fresh.size()) - start;
+      vt_cap[v] = vt_count[v] + vt_count[v] / 2;
+      fresh.resize(start + vt_cap[v]);
+    }
+    vt_pool.swap(fresh);
+  }
+  // Drops the dead triangles from v's run.
+  void compact(uint32_t v) {
+    const auto live = [&](uint32_t t) { return tri_alive[t] != 0; };
+    vt_count[v] = uint32_t(keep_if(tris_of(v), vt_count[v], live));
+  }
+  std::vector<uint8_t> alive;
+  std::vector<uint8_t> border;               // on an open border or a non-manifold edge
+  size_t border_vertices = 0;                // live vertices with border[] set
+  // Collapse count when the vertex last moved; UINT32_MAX once it is collapsed away, so
+  // that one 4-byte load per end tells whether an entry is current.
+  std::vector<uint32_t> changed;
+  std::vector<uint32_t> order;               // internal vertex id -> input vertex
+  std::vector<uint32_t> inv;                 // input vertex -> internal id
+  size_t faces = 0;
+  size_t target = 0;
+  double min_cos = 0;
+  size_t refused = 0;
+  std::vector<Collapse> sequence;
+  bool record = false;
+  // scratch
+  std::vector<uint32_t> opp, flip_a, flip_b;  // sized to the largest fan seen
+  std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
+  uint32_t link_stamp = 0;
+
+  const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
+
+  double cost(uint32_t a, uint32_t b, double out[3]) const {
+    return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
+  }
+
+  void init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+            std::vector<Entry>* edges);
+  Check check(uint32_t a, uint32_t b, const double np[3]);
+  // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
+  bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
+  void collapse(uint32_t a, uint32_t b, const double np[3], double cost);
+  // An entry is current while neither end has changed (or died) since its cost was
+  // computed. & not &&: no branches, it runs over whole buckets.
+  bool current(const Entry& e) const {
+    return (changed[e.a] <= e.stamp) & (changed[e.b] <= e.stamp);
+  }
+  size_t collapses = 0;
+  Mesh output(SimplifyReport* report) const;
+};
+
+void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
+                 std::vector<Entry>* edges) {
+  nv = mesh.vertex_count();
+  const size_t nt_in = mesh.triangle_count();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= nv)
+      throw Error("simplify: triangle " + std::to_string(i / 3) + " has a vertex index out of range");
+  if (w) {
+    if (w->size() != nv)
+      throw Error("simplify: " + std::to_string(w->size()) + " vertex weights for a mesh of " +
+                  std::to_string(nv) + " vertices");
+    for (double x : *w)
+      if (!(x >= 0) || !std::isfinite(x))
+        throw Error("simplify: vertex weights must be finite and >= 0");
+  }
+  // Triangles with a repeated index are not part of the surface: drop them.
+  tri.reserve(3 * nt_in);
+  for (size_t t = 0; t < nt_in; ++t) {
+    const uint32_t* v = &mesh.triangles[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    tri.insert(tri.end(), v, v + 3);
+  }
+  const size_t nt = tri.size() / 3;
+  faces = nt;
+  target = resolve_target_faces(options, nt);
+  min_cos = options.min_normal_cos;
+  record = options.record_collapses;
+
+  // Internal coordinates: centred on the bounding box and scaled to unit diagonal, so that
+  // the relative tolerances below mean the same on every mesh.
+  alive.assign(nv, 0);
+  for (uint32_t v : tri) alive[v] = 1;
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t v = 0; v < nv; ++v) {
+    if (!alive[v]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double x = mesh.positions[3 * v + k];
+      if (!std::isfinite(x)) throw Error("simplify: vertex " + std::to_string(v) + " is not finite");
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (lo[k] + hi[k]);
+  scale = diag > 0 ? 1 / diag : 1;
+  // Internal vertex ids follow a Morton curve, so that the vertices of one neighbourhood sit
+  // close together in memory: the collapse order jumps around the mesh, and this keeps each
+  // collapse on few cache lines. Unreferenced vertices go last.
+  order.resize(nv);
+  {
+    std::vector<uint32_t> code(nv);
+    const double inv_ext[3] = {hi[0] > lo[0] ? 1 / (hi[0] - lo[0]) : 0, hi[1] > lo[1] ? 1 / (hi[1] - lo[1]) : 0,
+                               hi[2] > lo[2] ? 1 / (hi[2] - lo[2]) : 0};
+    for (size_t v = 0; v < nv; ++v) {
+      uint64_t c = 0;
+      if (alive[v]) {
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k)
+          q[k] = uint32_t(std::min(1.0, std::max(0.0, (mesh.positions[3 * v + k] - lo[k]) * inv_ext[k])) * 1023.0);
+        for (int bit = 9; bit >= 0; --bit)
+          for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
+      } else {
+        c = uint64_t(1) << 30;  // after every 30-bit code
+      }
+      code[v] = uint32_t(c);
+      order[v] = uint32_t(v);
+    }
+    // Stable LSD radix sort on the 31-bit codes (11 + 10 + 10 bits): the order a stable
+    // comparison sort gives, several times faster.
+    std::vector<uint32_t> tmp(nv), count;
+    for (int shift : {0, 11, 21}) {
+      const uint32_t buckets = shift == 0 ? 2048 : 1024, mask = buckets - 1;
+      count.assign(buckets + 1, 0);
+      for (uint32_t v : order) ++count[((code[v] >> shift) & mask) + 1];
+      for (uint32_t i = 0; i < buckets; ++i) count[i + 1] += count[i];
+      for (uint32_t v : order) tmp[count[(code[v] >> shift) & mask]++] = v;
+      order.swap(tmp);
+    }
+  }
+  inv.resize(nv);
+  for (size_t i = 0; i < nv; ++i) inv[order[i]] = uint32_t(i);
+  for (uint32_t& v : tri) v = inv[v];
+  {
+    std::vector<uint8_t> a2(nv);
+    for (size_t i = 0; i < nv; ++i) a2[i] = alive[order[i]];
+    alive.swap(a2);
+  }
+  pos.resize(3 * nv);
+  for (size_t i = 0; i < nv; ++i)
+    for (int k = 0; k < 3; ++k)
+      pos[3 * i + k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
+
+  tri_alive.assign(nt, 1);
+  std::vector<uint32_t> deg(nv, 0);
+  for (uint32_t v : tri) ++deg[v];
+  vt_start.resize(nv);
+  vt_count.assign(nv, 0);
+  vt_cap.resize(nv);
+  {
+    size_t off = 0;
+    for (size_t v = 0; v < nv; ++v) { vt_start[v] = uint32_t(off); vt_cap[v] = deg[v]; off += deg[v]; }
+    vt_pool.reserve(2 * off + 64);
+    vt_pool.resize(off);
+  }
+  quad.assign(nv, Quadric{});
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t* v = &tri[3 * t];
+    const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
+    for (int k = 0; k < 3; ++k) {
+      vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
+      quad[v[k]] += q;
+    }
+  }
+
+  // Edges from the triangle runs: for each vertex a, its higher neighbours b, with the
+  // number of triangles on (a, b) counted in per-vertex scratch (stamped with a, so nothing
+  // is cleared between vertices). One triangle is a border edge, more than two a
+  // non-manifold edge. Border quadrics are added in the order of (a, b), as a sort of all
+  // edges would give. No branches in the fan loop: vertices are in Morton order, so the
+  // scratch entries of a's neighbours are close in memory, and which of them was seen
+  // before is a coin toss.
+  border.assign(nv, 0);
+  std::vector<uint32_t> unique_edges_a, unique_edges_b;
+  unique_edges_a.reserve(nt * 3 / 2 + 16);
+  unique_edges_b.reserve(nt * 3 / 2 + 16);
+  std::vector<uint32_t> seen(nv, UINT32_MAX), on_edge(nv, 0), edge_tri(nv), edge_corner(nv);
+  std::vector<uint32_t> higher, border_b;
+  for (uint32_t a = 0; a < nv; ++a) {
+    const uint32_t deg_a = vt_count[a];
+    if (higher.size() < 2 * size_t(deg_a)) higher.resize(2 * size_t(deg_a));
+    size_t n = 0;
+    for (uint32_t t : vt(a)) {
+      const uint32_t* v = &tri[3 * size_t(t)];
+      const uint32_t k = uint32_t(v[1] == a) + 2 * uint32_t(v[2] == a);
+      const uint32_t u1 = v[(k + 1) % 3], u2 = v[(k + 2) % 3];
+      // edge a -> u1 starts at corner k, edge u2 -> a at corner k + 2
+      const uint32_t corner[2] = {k, (k + 2) % 3};
+      const uint32_t ends[2] = {u1, u2};
+      for (int e = 0; e < 2; ++e) {
+        const uint32_t u = ends[e];
+        const bool fresh = seen[u] != a;
+        seen[u] = a;
+        on_edge[u] = fresh ? 1 : on_edge[u] + 1;
+        edge_tri[u] = t;  // the triangle of a border edge (read only when it is the one)
+        edge_corner[u] = corner[e];
+        higher[n] = u;
+        n += fresh & (u > a);
+      }
+    }
+    border_b.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t b = higher[i], c = on_edge[b];
+      if (c == 1) border_b.push_back(b);
+      if (c > 2) border[a] = border[b] = 1;
+      unique_edges_a.push_back(a);
+      unique_edges_b.push_back(b);
+    }
+    std::sort(border_b.begin(), border_b.end());
+    for (uint32_t b : border_b) {
+      const uint32_t t = edge_tri[b], k = edge_corner[b];
+      const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
+      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+      quad[v0] += q;
+      quad[v1] += q;
+      border[a] = border[b] = 1;
+    }
+  }
+  if (w)
+    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
+  changed.assign(nv, 0);
+  link.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
+
+  if (edges) {
+    edges->resize(unique_edges_a.size());
+    // Independent per edge: on all cores (a tenth of the whole run on one).
+    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
+      double tmp[3];
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
+      }
+    });
+  }
+}
+
+bool State::bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const {
+  const uint32_t* v = &tri[3 * size_t(t)];
+  const double* q[3] = {p(v[0]), p(v[1]), p(v[2])};
+  const double* r[3] = {q[0], q[1], q[2]};
+  for (int k = 0; k < 3; ++k)
+    if (v[k] == moved) r[k] = np;
+  double e1[3], e2[3], n_old[3], n_new[3];
+  for (int k = 0; k < 3; ++k) { e1[k] = q[1][k] - q[0][k]; e2[k] = q[2][k] - q[0][k]; }
+  cross3(e1, e2, n_old);
+  double l2max = 0;
+  for (int k = 0; k < 3; ++k) { e1[k] = r[1][k] - r[0][k]; e2[k] = r[2][k] - r[0][k]; }
+  cross3(e1, e2, n_new);
+  for (int i = 0; i < 3; ++i) {
+    const double* x = r[i];
+    const double* y = r[(i + 1) % 3];
+    const double d[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    l2max = std::max(l2max, dot3(d, d));
+  }
+  // Squared lengths compared: no square roots in the common case (min_cos 0).
+  const double len2_new = dot3(n_new, n_new);
+  // Degenerate: twice the area below 1e-6 of the longest edge squared (a needle or cap
+  // thinner than about a micro-radian), or no area at all.
+  if (!(len2_new > 1e-12 * l2max * l2max) || !(l2max > 0)) return true;
+  const double len2_old = dot3(n_old, n_old);
+  if (!(len2_old > 0)) return false;
+  const double d = dot3(n_old, n_new);
+  if (min_cos == 0) return d <= 0;
+  return d <= min_cos * std::sqrt(len2_old * len2_new);
+  return false;
+}
+
+// Branch-light: which triangles hold both ends is a coin toss per triangle, so the loops
+// below write unconditionally and advance their counts by the comparison instead.
+Check State::check(uint32_t a, uint32_t b, const double np[3]) {
+  for (uint32_t v : {a, b})  // scattered loads: issue them together
+    for (uint32_t t : vt(v)) {
+      __builtin_prefetch(&tri[3 * size_t(t)]);
+      __builtin_prefetch(&tri_alive[t]);
+    }
+  // Drop dead triangles from both lists first (they are only ever appended to).
+  compact(a);
+  compact(b);
+  const uint32_t na = vt_count[a], nb = vt_count[b];
+  if (opp.size() < na) {
+    opp.resize(na);
+    flip_a.resize(na);
+  }
+  if (flip_b.size() < nb) flip_b.resize(nb);
+  // a's triangles: those on the edge give the vertices opposite it (k of them); the two
+  // other corners of every triangle of a are marked (link[] == in_a) for the link
+  // condition. Marking b changes nothing below: b is never a corner of b's triangles.
+  link_stamp += 2;
+  const uint32_t in_a = link_stamp, counted = link_stamp + 1;
+  uint32_t* const op = opp.data();
+  uint32_t* const fa = flip_a.data();
+  uint32_t* const fb = flip_b.data();
+  size_t k = 0, nfa = 0, nfb = 0;
+  const uint32_t* la = tris_of(a);
+  for (uint32_t i = 0; i < na; ++i) {
+    const uint32_t t = la[i];
+    const uint32_t* v = &tri[3 * size_t(t)];
+    const bool has_b = has_corner(v, b);
+    uint32_t x, y;
+    other_corners(v, a, &x, &y);
+    link[x] = in_a;
+    link[y] = in_a;
+    op[k] = x ^ y ^ b;  // on the edge, {x, y} = {b, opposite}
+    k += has_b;
+    fa[nfa] = t;
+    nfa += !has_b;
+  }
+  if (k == 0) return Check::NotEdge;
+  if (k > 2) return Check::Refused;                 // non-manifold edge
+  if (k > faces - target) return Check::Refused;    // would overshoot the target
+  if (k == 2 && (op[0] == op[1] || (border[a] && border[b]))) return Check::Refused;
+
+  // Link condition on vertices: the common neighbours of a and b are exactly the k
+  // opposites (each counted once: marks turn from in_a to counted). b's triangles on the
+  // edge add a (never marked) and an opposite, which is counted here or in its other
+  // triangle.
+  // A triangle (b, x, y) would also land on a triangle (a, x, y) after the collapse (e.g.
+  // the tetrahedron). Then x and y are common neighbours, so when the link condition holds
+  // they are the two opposites: only the pair {opp0, opp1} has to be looked for, in both.
+  const uint32_t o0 = op[0], o1 = k == 2 ? op[1] : op[0];
+  auto is_opp_pair = [&](uint32_t x, uint32_t y) {
+    return k == 2 && (((x == o0) & (y == o1)) | ((x == o1) & (y == o0)));
+  };
+  bool b_has_pair = false, a_has_pair = false;
+  size_t common = 0;
+  const uint32_t* lb = tris_of(b);
+  for (uint32_t i = 0; i < nb; ++i) {
+    const uint32_t t = lb[i];
+    const uint32_t* v = &tri[3 * size_t(t)];
+    const bool has_a = has_corner(v, a);
+    uint32_t x, y;
+    other_corners(v, b, &x, &y);
+    b_has_pair |= is_opp_pair(x, y);
+    for (uint32_t z : {x, y}) {
+      const bool m = link[z] == in_a;
+      link[z] = select_u32(m, counted, link[z]);
+      common += m;
+    }
+    fb[nfb] = t;
+    nfb += !has_a;
+  }
+  if (common != k) return Check::Refused;
+  if (b_has_pair) {
+    for (uint32_t i = 0; i < na; ++i) {
+      uint32_t x, y;
+      other_corners(&tri[3 * size_t(la[i])], a, &x, &y);
+      a_has_pair |= is_opp_pair(x, y);
+    }
+    if (a_has_pair) return Check::Refused;
+  }
+
+  // Flips, fold-overs and degenerate triangles among those that remain.
+  for (size_t i = 0; i < nfa; ++i)
+    if (bad_triangle(fa[i], a, np)) return Check::Refused;
+  for (size_t i = 0; i < nfb; ++i)
+    if (bad_triangle(fb[i], b, np)) return Check::Refused;
+  return Check::Ok;
+}
+
+void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
+  for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
+  quad[a] += quad[b];
+  if (border[a] && border[b]) --border_vertices;
+  border[a] = border[a] | border[b];
+  compact(a);
+  const uint32_t need = vt_count[a] + vt_count[b];
+  if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
+    const uint32_t cap = need + need / 2;
+    if (vt_pool.size() + cap > vt_pool.capacity()) repack();
+    const size_t start = vt_pool.size();
+    vt_pool.resize(start + cap);
+    std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
+              vt_pool.begin() + start);
+    vt_start[a] = uint32_t(start);
+    vt_cap[a] = cap;
+  }
+  uint32_t* la = tris_of(a);
+  uint32_t na_ = vt_count[a];
+  const uint32_t* lb = tris_of(b);
+  // b's triangles on the edge die; the others take a for b and join a's list. Without
+  // branches (which of them is on the edge is a coin toss).
+  for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
+    const uint32_t t = lb[i];
+    uint32_t* v = &tri[3 * size_t(t)];
+    const bool live = tri_alive[t];
+    const bool on_edge = has_corner(v, a);
+    const bool moves = live & !on_edge;
+    tri_alive[t] = moves;
+    faces -= live & on_edge;
+    for (int k = 0; k < 3; ++k) v[k] = select_u32(moves & (v[k] == b), a, v[k]);
+    la[na_] = t;
+    na_ += moves;
+  }
+  vt_count[a] = na_;
+  compact(a);
+  vt_count[b] = 0;
+  alive[b] = 0;
+  ++collapses;
+  changed[a] = uint32_t(collapses);
+  changed[b] = UINT32_MAX;
+  if (record) sequence.push_back({order[a], order[b], c});
+}
+
+Mesh State::output(SimplifyReport* report) const {
+  std::vector<uint32_t> remap(nv, UINT32_MAX);
+  Mesh out;
+  std::vector<uint32_t> origin;
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) remap[tri[3 * t + k]] = 0;
+  for (size_t iv = 0; iv < nv; ++iv) {  // in input order
+    const uint32_t v = inv[iv];
+    if (remap[v] == UINT32_MAX) continue;
+    remap[v] = uint32_t(origin.size());
+    origin.push_back(uint32_t(iv));
+    for (int k = 0; k < 3; ++k)
+      out.positions.push_back(float(pos[3 * v + k] / scale + center[k]));
+  }
+  out.triangles.reserve(3 * faces);
+  for (size_t t = 0; t < tri_alive.size(); ++t)
+    if (tri_alive[t])
+      for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
+  if (report) {
+    report->input_faces = tri_alive.size();
+    report->target_faces = target;
+    report->output_faces = out.triangle_count();
+    report->output_vertices = out.vertex_count();
+    report->reached = report->output_faces == target;
+    report->note.clear();
+    if (!report->reached) {
+      bool any_border = false;
+      for (size_t v = 0; v < nv && !any_border; ++v) any_border = alive[v] && border[v];
+      if (!any_border && faces == target + 1)
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: a closed manifold mesh has an even face "
+                       "count; stopped at " + std::to_string(faces);
+      else
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: no further collapse keeps the mesh manifold "
+                       "and unfolded; stopped at " + std::to_string(faces);
+    }
+    report->refused = refused;
+    report->sequence = sequence;
+    report->collapses = tri_alive.size() - faces;  // overwritten by the callers
+    report->vertex_origin = std::move(origin);
+  }
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+// Invariant of the loop below: every current edge that is not refused has a current entry
+// in the heap, with its key; stale entries (an end collapsed or moved since) are skipped.
+// So the first current entry popped is the edge that a full scan would pick. A refused
+// edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
+// of them; then its entry goes back into the heap.
+Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                   const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  std::vector<Entry> initial;
+  s.init(mesh, options, vertex_weights, &initial);
+  EdgeQueue heap;
+  for (const Entry& x : initial) heap.push(x);
+  std::vector<Entry>().swap(initial);
+
+  std::vector<std::vector<Entry>> refused(s.nv);
+  // Puts the refused edges of w back (both ends' lists forget them).
+  // Whether refused[w] is not empty: one byte per vertex stays in cache, the vectors not.
+  std::vector<uint8_t> has_refused(s.nv, 0);
+  auto release = [&](uint32_t w) {
+    if (!has_refused[w]) return;
+    has_refused[w] = 0;
+    for (const Entry& e : refused[w]) {
+      const uint32_t z = e.a ^ e.b ^ w;
+      auto& l = refused[z];
+      for (size_t i = 0; i < l.size(); ++i)
+        if (l[i].a == e.a && l[i].b == e.b) { l[i] = l.back(); l.pop_back(); break; }
+      has_refused[z] = !l.empty();
+      if (s.current(e)) heap.push(e);
+    }
+    refused[w].clear();
+  };
+
+  std::vector<uint32_t> mark(s.nv, UINT32_MAX);
+  std::vector<uint32_t> ring;
+  double np[3], tmp[3];
+  // Stale entries waiting in the queue only cost memory (they are dropped when their
+  // bucket comes up): sweep them out in one pass whenever the queue has doubled since the
+  // last sweep, so that sweeping costs O(1) per push and memory stays within 2x.
+  size_t sweep_at = 2 * heap.size() + 4096;
+  const auto current = [&](const Entry& x) { return s.current(x); };
+  while (s.faces > s.target) {
+    // One face short on a closed manifold surface: every collapse removes two faces and
+    // would overshoot, so the scan below would refuse every edge left. Stop now instead
+    // (same result; the report's note says why).
+    if (s.faces == s.target + 1 && s.border_vertices == 0) break;
+    if (heap.size() > sweep_at) {
+      heap.filter(current);
+      sweep_at = 2 * heap.size() + 4096;
+    }
+    if (!heap.ready(current)) break;
+    const Entry e = heap.pop();
+    if (heap.has_top()) {  // the next pick's data, while this one is worked on
+      const Entry& n = heap.top();
+      __builtin_prefetch(&s.changed[n.a]);
+      __builtin_prefetch(&s.changed[n.b]);
+      __builtin_prefetch(&s.vt_start[n.a]);
+      __builtin_prefetch(&s.vt_start[n.b]);
+      __builtin_prefetch(&s.vt_count[n.a]);
+      __builtin_prefetch(&s.vt_count[n.b]);
+      __builtin_prefetch(&s.quad[n.a]);
+      __builtin_prefetch(&s.quad[n.b]);
+    }
+    if (!s.current(e)) continue;
+    const double exact = s.cost(e.a, e.b, np);
+    const Check c = s.check(e.a, e.b, np);
+    if (c != Check::Ok) {
+      ++s.refused;
+      refused[e.a].push_back(e);
+      refused[e.b].push_back(e);
+      has_refused[e.a] = has_refused[e.b] = 1;
+      continue;
+    }
+    const uint32_t a = e.a, b = e.b;
+    s.collapse(a, b, np, exact);
+    if (has_refused[b]) {
+      std::vector<Entry>().swap(refused[b]);
+      has_refused[b] = 0;
+    }
+    const uint32_t now = uint32_t(s.collapses);
+    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
+    mark[a] = now;
+    const uint32_t* tl = s.tris_of(a);
+    if (ring.size() < 2 * size_t(s.vt_count[a]) + 1) ring.resize(2 * size_t(s.vt_count[a]) + 1);
+    size_t nring = 0;
+    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
+      for (int k = 0; k < 3; ++k) {  // no branch on the mark: seen or not is random
+        const uint32_t y = tv[k];
+        ring[nring] = y;
+        nring += mark[y] != now;
+        mark[y] = now;
+        __builtin_prefetch(&s.quad[y]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
+        __builtin_prefetch(&s.pos[3 * size_t(y)]);
+      }
+    }
+    // The 1-ring of a changed: refused edges there count again.
+    release(a);
+    for (size_t i = 0; i < nring; ++i) release(ring[i]);
+    for (size_t i = 0; i < nring; ++i) {
+      const uint32_t y = ring[i];
+      const uint32_t lo = select_u32(a < y, a, y), hi = select_u32(a < y, y, a);
+      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
+    }
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = s.collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  State s;
+  s.init(mesh, options, vertex_weights, nullptr);
+  std::vector<Entry> cand;
+  while (s.faces > s.target) {
+    cand.clear();
+    for (size_t t = 0; t < s.tri_alive.size(); ++t) {
+      if (!s.tri_alive[t]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t x = s.tri[3 * t + k], y = s.tri[3 * t + (k + 1) % 3];
+        cand.push_back(make_entry(0, std::min(x, y), std::max(x, y), 0));
+      }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Entry& x, const Entry& y) {
+      return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    cand.erase(std::unique(cand.begin(), cand.end(),
+                           [](const Entry& x, const Entry& y) { return x.a == y.a && x.b == y.b; }),
+               cand.end());
+    double tmp[3];
+    for (Entry& e : cand) e.cost = float(s.cost(e.a, e.b, tmp));
+    std::sort(cand.begin(), cand.end(), key_less);
+    bool done = false;
+    for (const Entry& e : cand) {
+      double np[3];
+      const double exact = s.cost(e.a, e.b, np);
+      if (s.check(e.a, e.b, np) != Check::Ok) {
+        ++s.refused;
+        continue;
+      }
+      s.collapse(e.a, e.b, np, exact);
+      done = true;
+      break;
+    }
+    if (!done) break;
+  }
+  Mesh out = s.output(report);
+  if (report) {
+    report->collapses = s.collapses;
+    report->seconds = seconds_since(t0);
+  }
+  return out;
+}
+
+}  // namespace meshsal

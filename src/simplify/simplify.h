@@ -1,0 +1,26 @@
+// meshsal: Garland-Heckbert edge-collapse simplification, optionally saliency-weighted
+// (SPEC 2; Lee, Varshney, Jacobs 2005, section 4).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+// The test oracle: the same collapses, but every step recomputes the cost and validity of
+// every remaining edge and takes the minimum. Both order edges by (cost rounded to float,
+// then the internal ids of the two ends: vertices are renumbered along a Morton curve for
+// memory locality, identically in both), so with the same input both produce the same
+// collapse sequence. O(steps * edges).
+Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>* vertex_weights = nullptr,
+                         SimplifyReport* report = nullptr);
+
+// Target face count from options (target_faces or ratio) for `input_faces` faces, with the
+// checks above. Exposed for the CLI and the benchmark.
+size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces);
+
+}  // namespace meshsal

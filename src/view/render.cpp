@@ -1,0 +1,261 @@
+#include "view/render.h"
+
+#include "saliency/curvature.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/colormap.h"
+#include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
+
+namespace meshsal {
+
+static const double kPi = 3.14159265358979323846;
+
+void check_render_style(const RenderStyle& s) {
+  if (s.size < 16 || s.size > 8192)
+    throw Error("image size must be between 16 and 8192, got " + std::to_string(s.size));
+  if (!(s.margin >= 1.0) || !std::isfinite(s.margin)) throw Error("image margin must be >= 1");
+}
+
+Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, const ViewFrame& frame_in,
+                  const ViewAngles& view, const RenderStyle& style) {
+  check_render_style(style);
+  if (vertex_rgb && vertex_rgb->size() != 3 * mesh.vertex_count())
+    throw Error("internal: vertex colours do not match the mesh");
+  const int res = style.size;
+  ViewFrame frame = frame_in;
+  frame.radius *= style.margin;
+  double right[3], up[3], d[3];
+  view_basis(view, right, up, d);
+  // Light slightly above and left of the viewer, two-sided (open scans have no outside).
+  double light[3], ll = 0;
+  for (int k = 0; k < 3; ++k) {
+    light[k] = d[k] + 0.35 * up[k] - 0.25 * right[k];
+    ll += light[k] * light[k];
+  }
+  for (double& c : light) c /= std::sqrt(ll);
+
+  // Project in double (pictures need no bit-match with the GPU).
+  size_t n = mesh.vertex_count();
+  std::vector<double> sx(n), sy(n), sz(n);
+  const float* p = mesh.positions.data();
+  double half = 0.5 * res, inv_r = 1.0 / frame.radius;
+  for (size_t i = 0; i < n; ++i) {
+    double q[3] = {p[3 * i] - frame.centre[0], p[3 * i + 1] - frame.centre[1], p[3 * i + 2] - frame.centre[2]};
+    double x = (q[0] * right[0] + q[1] * right[1] + q[2] * right[2]) * inv_r;
+    double y = (q[0] * up[0] + q[1] * up[1] + q[2] * up[2]) * inv_r;
+    double z = (q[0] * d[0] + q[1] * d[1] + q[2] * d[2]) * inv_r;
+    sx[i] = (x + 1) * half;
+    sy[i] = (1 - y) * half;
+    sz[i] = (1 - z) * 0.5;
+  }
+  std::vector<double> normals = vertex_normals(mesh);  // the curvature stage's normals
+
+  Image img(res, res, style.background[0], style.background[1], style.background[2]);
+  std::vector<double> zbuf(size_t(res) * res, std::numeric_limits<double>::infinity());
+  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    const uint32_t* t = &mesh.triangles[3 * f];
+    uint32_t a = t[0], b = t[1], c = t[2];
+    double area = (sx[b] - sx[a]) * (sy[c] - sy[a]) - (sx[c] - sx[a]) * (sy[b] - sy[a]);
+    if (!(std::fabs(area) > 1e-12)) continue;
+    double s = area > 0 ? 1 : -1, inv = 1.0 / std::fabs(area);
+    // Edge lengths in pixels, for the distance of a pixel to each edge.
+    double len[3] = {std::hypot(sx[c] - sx[b], sy[c] - sy[b]), std::hypot(sx[a] - sx[c], sy[a] - sy[c]),
+                     std::hypot(sx[b] - sx[a], sy[b] - sy[a])};
+    // Edges only on triangles at least 4 px tall: dense regions stay readable, and the
+    // contrast between wireframe and smooth areas shows where triangles were kept.
+    bool draw_edges = style.edges && std::fabs(area) / std::max({len[0], len[1], len[2]}) >= 4.0;
+    double fn[3] = {0, 0, 0};
+    if (!style.smooth) {
+      double e1[3], e2[3];
+      for (int k = 0; k < 3; ++k) {
+        e1[k] = double(p[3 * b + k]) - p[3 * a + k];
+        e2[k] = double(p[3 * c + k]) - p[3 * a + k];
+      }
+      fn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      fn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      double l = std::sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+      if (l > 0)
+        for (double& v : fn) v /= l;
+    }
+    int x0 = std::max(0, int(std::floor(std::min({sx[a], sx[b], sx[c]}))));
+    int x1 = std::min(res - 1, int(std::floor(std::max({sx[a], sx[b], sx[c]}))));
+    int y0 = std::max(0, int(std::floor(std::min({sy[a], sy[b], sy[c]}))));
+    int y1 = std::min(res - 1, int(std::floor(std::max({sy[a], sy[b], sy[c]}))));
+    for (int y = y0; y <= y1; ++y) {
+      double cy = y + 0.5;
+      for (int x = x0; x <= x1; ++x) {
+        double cx = x + 0.5;
+        double w0 = s * ((sx[c] - sx[b]) * (cy - sy[b]) - (sy[c] - sy[b]) * (cx - sx[b]));
+        double w1 = s * ((sx[a] - sx[c]) * (cy - sy[c]) - (sy[a] - sy[c]) * (cx - sx[c]));
+        double w2 = s * ((sx[b] - sx[a]) * (cy - sy[a]) - (sy[b] - sy[a]) * (cx - sx[a]));
+        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        double z = (w0 * sz[a] + w1 * sz[b] + w2 * sz[c]) * inv;
+        double& dst = zbuf[size_t(y) * res + x];
+        if (!(z < dst)) continue;
+        dst = z;
+        double nn[3];
+        if (style.smooth) {
+          double l = 0;
+          for (int k = 0; k < 3; ++k) {
+            nn[k] = (w0 * normals[3 * a + k] + w1 * normals[3 * b + k] + w2 * normals[3 * c + k]) * inv;
+            l += nn[k] * nn[k];
+          }
+          l = std::sqrt(l);
+          for (double& v : nn) v = l > 0 ? v / l : 0;
+        } else {
+          for (int k = 0; k < 3; ++k) nn[k] = fn[k];
+        }
+        double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
+        if (draw_edges) {
+          double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
+          if (dist < 0.55) shade *= 0.45;
+        }
+        uint8_t* out = img.at(x, y);
+        for (int k = 0; k < 3; ++k) {
+          double col = vertex_rgb ? (w0 * (*vertex_rgb)[3 * a + k] + w1 * (*vertex_rgb)[3 * b + k] +
+                                     w2 * (*vertex_rgb)[3 * c + k]) * inv
+                                  : double(style.base[k]);
+          out[k] = uint8_t(std::clamp(col * shade + 0.5, 0.0, 255.0));
+        }
+      }
+    }
+  }
+  return img;
+}
+
+std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score) {
+  if (score.size() != mesh.vertex_count())
+    throw Error("score has " + std::to_string(score.size()) + " values for " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  std::vector<double> vals;
+  for (size_t i = 0; i < score.size(); ++i)
+    if (is_point[i] && std::isfinite(score[i])) vals.push_back(score[i]);
+  double lo = 0, hi = 1;
+  if (!vals.empty()) {
+    lo = *std::min_element(vals.begin(), vals.end());
+    size_t k = size_t(0.99 * double(vals.size() - 1));
+    std::nth_element(vals.begin(), vals.begin() + long(k), vals.end());
+    hi = vals[k];
+    if (!(hi > lo)) hi = *std::max_element(vals.begin(), vals.end());
+  }
+  std::vector<uint8_t> rgb(3 * score.size());
+  for (size_t i = 0; i < score.size(); ++i) {
+    double v = is_point[i] && std::isfinite(score[i]) ? score[i] : 0.0;
+    double t = hi > lo ? (v - lo) / (hi - lo) : 0.0;
+    colormap_rgb(std::clamp(t, 0.0, 1.0), &rgb[3 * i]);
+  }
+  return rgb;
+}
+
+void view_map_pixel(const ViewAngles& a, int width, int* x, int* y) {
+  int h = width / 2;
+  *x = std::clamp(int(std::floor((a.theta + kPi) / (2 * kPi) * width)), 0, width - 1);
+  *y = std::clamp(int(std::floor((kPi / 2 - a.phi) / kPi * h)), 0, h - 1);
+}
+
+Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, const ViewAngles* cross) {
+  if (width < 32 || width > 8192) throw Error("map width must be between 32 and 8192");
+  if (map.views.empty() || map.U.size() != map.views.size()) throw Error("internal: empty view map");
+  const int h = width / 2;
+  const size_t n = map.views.size();
+  std::vector<double> dirs(3 * n);
+  for (size_t i = 0; i < n; ++i) view_direction(map.views[i], &dirs[3 * i]);
+  double lo = *std::min_element(map.U.begin(), map.U.end());
+  double hi = *std::max_element(map.U.begin(), map.U.end());
+  // Gaussian smoothing over neighbours at about the spacing of the directions.
+  double spacing = std::sqrt(4 * kPi / double(n));
+  double sigma = 0.6 * spacing, cut = std::cos(std::min(kPi, 3 * sigma));
+  // Candidates of a row: directions whose latitude is within the cut (angle >= |dphi|).
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return map.views[a].phi < map.views[b].phi; });
+  std::vector<double> sorted_phi(n);
+  for (size_t i = 0; i < n; ++i) sorted_phi[i] = map.views[order[i]].phi;
+  const double window = std::acos(cut);
+  Image img(width, h);
+  for (int y = 0; y < h; ++y) {
+    ViewAngles a;
+    a.phi = kPi / 2 - (y + 0.5) / h * kPi;
+    size_t lo_i = size_t(std::lower_bound(sorted_phi.begin(), sorted_phi.end(), a.phi - window) - sorted_phi.begin());
+    size_t hi_i = size_t(std::upper_bound(sorted_phi.begin(), sorted_phi.end(), a.phi + window) - sorted_phi.begin());
+    for (int x = 0; x < width; ++x) {
+      a.theta = -kPi + (x + 0.5) / width * 2 * kPi;
+      double q[3];
+      view_direction(a, q);
+      double ws = 0, us = 0;
+      for (size_t k = lo_i; k < hi_i; ++k) {
+        size_t i = order[k];
+        double dot = q[0] * dirs[3 * i] + q[1] * dirs[3 * i + 1] + q[2] * dirs[3 * i + 2];
+        if (dot < cut) continue;
+        double ang = std::acos(std::min(1.0, dot));
+        double w = std::exp(-ang * ang / (2 * sigma * sigma));
+        ws += w;
+        us += w * map.U[i];
+      }
+      if (!(ws > 0)) {  // no direction nearby (a sparse map): the nearest one
+        double best_dot = -2;
+        for (size_t i = 0; i < n; ++i) {
+          double dot = q[0] * dirs[3 * i] + q[1] * dirs[3 * i + 1] + q[2] * dirs[3 * i + 2];
+          if (dot > best_dot) {
+            best_dot = dot;
+            us = map.U[i];
+          }
+        }
+        ws = 1;
+      }
+      double u = us / ws;
+      double t = hi > lo ? (u - lo) / (hi - lo) : 0.5;
+      uint8_t* px = img.at(x, y);
+      colormap_rgb(std::clamp(t, 0.0, 1.0), px);
+      // Grid lines every 30 degrees of longitude and latitude.
+      bool grid = (x * 12) % width < 12 || (y * 6) % h < 6;
+      if (grid)
+        for (int k = 0; k < 3; ++k) px[k] = uint8_t((px[k] + 255) / 2);
+    }
+  }
+  auto put = [&](int x, int y, uint8_t v) {
+    if (x < 0 || y < 0 || x >= width || y >= h) return;
+    uint8_t* px = img.at(x, y);
+    px[0] = px[1] = px[2] = v;
+  };
+  int r = std::max(4, width / 100);
+  if (ring) {
+    int cx, cy;
+    view_map_pixel(*ring, width, &cx, &cy);
+    for (int dy = -r - 1; dy <= r + 1; ++dy)
+      for (int dx = -r - 1; dx <= r + 1; ++dx) {
+        double dd = std::sqrt(double(dx * dx + dy * dy));
+        if (std::fabs(dd - r) < 1.0) put((cx + dx + width) % width, cy + dy, 255);
+      }
+  }
+  if (cross) {
+    int cx, cy;
+    view_map_pixel(*cross, width, &cx, &cy);
+    for (int k = -r; k <= r; ++k)
+      for (int w = -1; w <= 0; ++w) {
+        put((cx + k + width) % width, cy + w, 0);
+        put((cx + w + width) % width, cy + k, 0);
+      }
+  }
+  return img;
+}
+
+Image render_side_by_side(const std::vector<const Mesh*>& meshes,
+                          const std::vector<const std::vector<uint8_t>*>& colours,
+                          const ViewFrame& frame, const ViewAngles& view, const RenderStyle& style) {
+  if (meshes.empty() || colours.size() != meshes.size()) throw Error("internal: nothing to compare");
+  const int gap = 4, n = int(meshes.size());
+  Image out(n * style.size + (n - 1) * gap, style.size, 128, 128, 128);
+  for (int i = 0; i < n; ++i)
+    blit(out, render_mesh(*meshes[size_t(i)], colours[size_t(i)], frame, view, style), i * (style.size + gap), 0);
+  return out;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,44 @@
+// meshsal: pictures. A small CPU z-buffer renderer (the orthographic camera of camera.h),
+// Lambert shading with a light near the viewer, per-vertex colours; the equirectangular map
+// of U over view directions (the paper's figure 10); side-by-side comparisons.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "view/camera.h"
+#include "meshsal/meshsal.h"
+#include "io/png_image.h"
+#include "view/viewpoint.h"
+
+namespace meshsal {
+
+// Checks size (16..8192) and margin (>= 1); throws Error otherwise.
+void check_render_style(const RenderStyle& style);
+
+// Renders the mesh seen from `view`, framed by `frame`. vertex_rgb: 3 bytes per vertex
+// (nullptr = style.base). Colours are interpolated across triangles, then shaded.
+Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb,
+                  const ViewFrame& frame, const ViewAngles& view, const RenderStyle& style);
+
+// Colours of a per-vertex score for pictures: the colour map (low blue, high red) of the
+// value scaled from its minimum to its 99th percentile over the mesh points (clamped above),
+// so that a few extreme vertices do not wash the rest out. Non-points get the colour of 0.
+std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score);
+
+// Equirectangular plot (width x width/2) of U over directions: theta -180..180 degrees left to
+// right, phi 90..-90 top to bottom, U smoothed over the nearby map directions and coloured from
+// its minimum (blue) to its maximum (red); grid lines every 30 degrees. A white ring marks
+// `ring` (e.g. the exhaustive maximum) and a black cross `cross` (e.g. the optimiser's result).
+Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring = nullptr,
+                      const ViewAngles* cross = nullptr);
+
+// Pixel of a direction in render_view_map's image.
+void view_map_pixel(const ViewAngles& a, int width, int* x, int* y);
+
+// The meshes side by side (left to right, same camera and framing `frame`), each with its
+// colours (nullptr = style.base), separated by a 4-pixel gap.
+Image render_side_by_side(const std::vector<const Mesh*>& meshes,
+                          const std::vector<const std::vector<uint8_t>*>& colours,
+                          const ViewFrame& frame, const ViewAngles& view, const RenderStyle& style);
+
+}  // namespace meshsal

@@ -1,0 +1,163 @@
+#include "view/viewpoint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+static const double kPi = 3.14159265358979323846;
+
+std::vector<ViewAngles> fibonacci_directions(int n) {
+  if (n < 1) throw Error("the number of views must be at least 1, got " + std::to_string(n));
+  std::vector<ViewAngles> v(static_cast<size_t>(n));
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    double y = 1.0 - (2.0 * i + 1.0) / n;
+    double t = std::remainder(golden * i, 2 * kPi);  // in [-pi, pi]
+    v[size_t(i)].phi = std::asin(std::clamp(y, -1.0, 1.0));
+    v[size_t(i)].theta = t;
+  }
+  return v;
+}
+
+ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch) {
+  ViewMap m;
+  m.views = fibonacci_directions(n);
+  m.U.reserve(m.views.size());
+  batch = std::max(batch, 1);
+  for (size_t b = 0; b < m.views.size(); b += size_t(batch)) {
+    size_t e = std::min(m.views.size(), b + size_t(batch));
+    std::vector<ViewAngles> part(m.views.begin() + long(b), m.views.begin() + long(e));
+    std::vector<double> u = scorer(part);
+    if (u.size() != part.size()) throw Error("internal: view scorer returned a wrong count");
+    m.U.insert(m.U.end(), u.begin(), u.end());
+  }
+  m.best = size_t(std::max_element(m.U.begin(), m.U.end()) - m.U.begin());
+  return m;
+}
+
+ViewAngles rotate_towards(const ViewAngles& a, const double t[3], double angle) {
+  double d[3];
+  view_direction(a, d);
+  double c = std::cos(angle), s = std::sin(angle), r[3];
+  for (int k = 0; k < 3; ++k) r[k] = c * d[k] + s * t[k];
+  return direction_angles(r);
+}
+
+namespace {
+struct Restart {
+  ViewAngles at;
+  double U = 0;
+  double step = 0;
+  int iterations = 0;
+  bool active = true;
+};
+}  // namespace
+
+OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& o) {
+  if (o.restarts < 1) throw Error("restarts must be at least 1");
+  if (!(o.probe > 0) || !(o.initial_step > 0) || !(o.min_step > 0))
+    throw Error("optimiser probe and step sizes must be positive");
+  OptimiserResult res;
+  std::mt19937_64 rng(o.seed);
+  auto uniform = [&rng]() { return double(rng() >> 11) * (1.0 / 9007199254740992.0); };
+  std::vector<Restart> rs(size_t(o.restarts));
+  std::vector<ViewAngles> batch;
+  for (Restart& r : rs) {
+    // Uniform on the sphere: y = sin(phi) uniform in [-1, 1], theta uniform.
+    r.at.phi = std::asin(2.0 * uniform() - 1.0);
+    r.at.theta = (2.0 * uniform() - 1.0) * kPi;
+    r.step = o.initial_step;
+    res.starts.push_back(r.at);
+    batch.push_back(r.at);
+  }
+  auto evaluate = [&](const std::vector<ViewAngles>& views) {
+    std::vector<double> u = scorer(views);
+    if (u.size() != views.size()) throw Error("internal: view scorer returned a wrong count");
+    res.views_evaluated += views.size();
+    return u;
+  };
+  std::vector<double> u0 = evaluate(batch);
+  for (size_t i = 0; i < rs.size(); ++i) rs[i].U = u0[i];
+
+  for (;;) {
+    // Round 1: probes of every active restart.
+    std::vector<size_t> active;
+    batch.clear();
+    for (size_t i = 0; i < rs.size(); ++i) {
+      Restart& r = rs[i];
+      if (!r.active) continue;
+      active.push_back(i);
+      double right[3], up[3], d[3], h = std::min(o.probe, r.step), neg[3];
+      view_basis(r.at, right, up, d);
+      for (const double* t : {right, up}) {
+        batch.push_back(rotate_towards(r.at, t, h));
+        for (int k = 0; k < 3; ++k) neg[k] = -t[k];
+        batch.push_back(rotate_towards(r.at, neg, h));
+      }
+    }
+    if (active.empty()) break;
+    std::vector<double> pu = evaluate(batch);
+    // Round 2: one step along each gradient.
+    batch.clear();
+    std::vector<size_t> moving;
+    for (size_t k = 0; k < active.size(); ++k) {
+      Restart& r = rs[active[k]];
+      double right[3], up[3], d[3];
+      view_basis(r.at, right, up, d);
+      double gr = pu[4 * k] - pu[4 * k + 1], gu = pu[4 * k + 2] - pu[4 * k + 3];
+      double norm = std::sqrt(gr * gr + gu * gu);
+      if (!(norm > 0)) {
+        // Flat here at this probe size: if a probe itself is better, move there; else shrink.
+        size_t bi = size_t(std::max_element(pu.begin() + long(4 * k), pu.begin() + long(4 * k + 4)) - pu.begin());
+        if (pu[bi] > r.U) {
+          r.U = pu[bi];
+          double t[3];
+          int which = int(bi - 4 * k);
+          const double* axis = which < 2 ? right : up;
+          for (int q = 0; q < 3; ++q) t[q] = which % 2 == 0 ? axis[q] : -axis[q];
+          r.at = rotate_towards(r.at, t, std::min(o.probe, r.step));
+        } else {
+          r.step *= 0.5;
+        }
+        continue;
+      }
+      double t[3];
+      for (int q = 0; q < 3; ++q) t[q] = (gr * right[q] + gu * up[q]) / norm;
+      batch.push_back(rotate_towards(r.at, t, r.step));
+      moving.push_back(active[k]);
+    }
+    if (!moving.empty()) {
+      std::vector<double> mu = evaluate(batch);
+      for (size_t k = 0; k < moving.size(); ++k) {
+        Restart& r = rs[moving[k]];
+        if (mu[k] > r.U) {
+          r.U = mu[k];
+          r.at = batch[k];
+          r.step = std::min(r.step * 1.5, 4.0 * o.initial_step);
+        } else {
+          r.step *= 0.5;
+        }
+      }
+    }
+    for (size_t i : active) {
+      Restart& r = rs[i];
+      if (++r.iterations >= o.max_iterations || r.step < o.min_step) r.active = false;
+    }
+  }
+  size_t best = 0;
+  for (size_t i = 0; i < rs.size(); ++i) {
+    res.finals.push_back(rs[i].at);
+    res.final_U.push_back(rs[i].U);
+    if (rs[i].U > rs[best].U) best = i;
+  }
+  res.best = rs[best].at;
+  res.U = rs[best].U;
+  return res;
+}
+
+}  // namespace meshsal

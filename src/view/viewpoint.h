@@ -1,0 +1,35 @@
+// meshsal: best viewpoint by visible score (SPEC 3): gradient ascent from seeded random
+// starts, and the exhaustive map over a Fibonacci sphere of directions.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "view/camera.h"
+
+namespace meshsal {
+
+// U for a batch of views (the CPU twin or the GPU path); batches let the GPU path evaluate
+// all probes of all restarts in one submission.
+using ViewScorer = std::function<std::vector<double>(const std::vector<ViewAngles>&)>;
+
+// n directions spread evenly over the sphere (golden-angle spiral in the y = sin(phi) axis):
+// y_i = 1 - (2 i + 1) / n, theta_i = i * pi (3 - sqrt 5).
+std::vector<ViewAngles> fibonacci_directions(int n);
+
+// U over n Fibonacci directions, evaluated in batches of `batch` views.
+ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch = 256);
+
+// Gradient ascent on the sphere of directions. Each iteration of each restart probes the
+// four neighbours of the current direction d at angle h along the camera's right and up
+// axes (these are the theta and phi directions, right being d_theta / cos phi, so this is
+// the gradient in (theta, phi) with the sphere's metric), then moves d by `step` along the
+// gradient. A move that raises U is taken and the step grows 1.5x (up to 4x the initial),
+// otherwise the step halves; the probe angle follows the step down (h = min(probe, step)).
+// All restarts advance in lockstep so each round is one scorer batch.
+OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& options);
+
+// Rotates d by `angle` towards the unit tangent t (both unit, t orthogonal to d).
+ViewAngles rotate_towards(const ViewAngles& a, const double t[3], double angle);
+
+}  // namespace meshsal
