@@ -19,7 +19,7 @@ struct Image {
 // Copies `src` into `dst` with its top-left corner at (x, y) (clipped).
 void blit(Image& dst, const Image& src, int x, int y);
 
-// Writes a PNG (to a temporary file in the same folder, then renamed). Throws Error.
+// Writes a PNG through write_file_atomically (atomic_write.h). Throws Error naming path.
 void write_png(const std::string& path, const Image& image);
 
 }  // namespace meshsal
