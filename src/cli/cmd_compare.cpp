@@ -10,6 +10,7 @@
 #include "meshsal/saliency_weights.h"
 #include "meshsal/surface_distance.h"
 #include "json_string.h"
+#include "number_options.h"
 #include "saliency_output.h"
 
 namespace meshsal_cli {
@@ -24,8 +25,6 @@ struct Args {
 
 int run(const Args& a) {
   using namespace meshsal;
-  if (a.samples < 0) throw Error("--samples must be >= 0");
-  if (!(a.fraction > 0 && a.fraction <= 1)) throw Error("--salient-fraction must be in (0, 1]");
   const Mesh original = load_mesh(a.original);
   const Mesh simplified = load_mesh(a.simplified);
   std::vector<double> s;
@@ -72,11 +71,11 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
   sub.add_option("--saliency", a->saliency, "Saliency PLY of the original (`meshsal saliency`)");
   sub.add_option("--samples", a->samples, "Area samples per surface besides its vertices")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_in(0, 100000000));
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_in(0, 1, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
-  sub.add_option("--threads", a->threads, "Threads (0 = all cores)")->capture_default_str();
+  add_threads_option(sub, a->threads, "Threads (0 = all cores)");
   return [a] { return run(*a); };
 }
 

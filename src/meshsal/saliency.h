@@ -50,7 +50,15 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
 // The distinct sigmas (in eps units) the filter needs for these scales: each k and 2k, sorted.
 std::vector<double> filter_sigma_units(const std::vector<double>& scales);
 
-// Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, junk).
+// Limits of the options: eps_frac in (0, kMaxEpsFrac], each scale in (0, kMaxScale], and
+// 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bounding-box diagonal).
+constexpr double kMaxEpsFrac = 0.1;
+constexpr double kMaxScale = 100;
+
+// Throws Error when options break the limits above (compute_saliency* call it).
+void check_saliency_options(const SaliencyOptions& options);
+
+// Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);
 
 }  // namespace meshsal

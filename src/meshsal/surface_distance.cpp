@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "meshsal/error.h"
+#include "meshsal/parallel.h"
 
 namespace meshsal {
 
@@ -26,20 +27,6 @@ double point_segment_distance_sq(const double p[3], const double a[3], const dou
   t = std::min(1.0, std::max(0.0, t));
   const double d[3] = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
   return dot3(d, d);
-}
-
-// Runs body(begin, end) over [0, n) on up to `threads` threads (static chunks).
-void run_chunks(size_t n, unsigned threads, const std::function<void(size_t, size_t)>& body) {
-  unsigned t = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  if (n < 4096) t = 1;
-  if (t <= 1) { body(0, n); return; }
-  std::vector<std::thread> pool;
-  const size_t chunk = (n + t - 1) / t;
-  for (unsigned i = 0; i < t; ++i) {
-    const size_t b = std::min(n, i * chunk), e = std::min(n, b + chunk);
-    if (b < e) pool.emplace_back(body, b, e);
-  }
-  for (auto& th : pool) th.join();
 }
 
 void check_mesh(const Mesh& mesh, const char* what) {
@@ -257,7 +244,8 @@ std::vector<double> distances(const std::vector<double>& pts, const TriangleBvh&
                               unsigned threads) {
   const size_t n = pts.size() / 3;
   std::vector<double> d(n);
-  run_chunks(n, threads, [&](size_t b, size_t e) {
+  // parallel_for: a thread that cannot be started means fewer threads, not std::terminate.
+  parallel_for(n, n < 4096 ? 1 : threads, 1024, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) d[i] = surface_distance(bvh, &pts[3 * i]);
   });
   return d;
