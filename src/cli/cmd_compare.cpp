@@ -30,7 +30,7 @@ int run(const Args& a) {
   std::vector<double> s;
   std::string source;
   if (!a.saliency.empty()) {
-    s = load_saliency_ply(a.saliency, original.vertex_count());
+    s = load_saliency_ply(a.saliency, original);
     source = "file";
   } else {
     SaliencyOptions so;

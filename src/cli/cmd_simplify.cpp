@@ -62,7 +62,7 @@ int run(const Args& a) {
     std::vector<double> smoothed;
     const std::vector<uint8_t> is_point = referenced_vertices(mesh);
     if (!a.saliency_from.empty()) {
-      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh.vertex_count());
+      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
       smoothed = smooth_saliency(mesh, s, a.eps_frac, a.threads);
     } else {

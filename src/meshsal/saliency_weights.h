@@ -29,9 +29,10 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
                                     double eps_frac = 0.003, unsigned threads = 0);
 
 // Reads S back from a saliency PLY written by `meshsal saliency` (its `quality` vertex
-// property). Throws Error when the file has no quality property or its vertex count is not
-// `expected_vertices` (the saliency then belongs to another mesh).
-std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices);
+// property) for `mesh`. Throws Error when the file has no quality property, a quality is
+// not finite, or the file belongs to another mesh: another vertex count, or a vertex at
+// another position (beyond float precision: 1e-6 of the bounding-box diagonal), named.
+std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh);
 
 // W(v) = lambda * Sm(v) if Sm(v) >= alpha else Sm(v), with alpha the alpha_percentile of Sm
 // over the mesh points (is_point != 0); 0 for other vertices. `alpha_out` receives alpha.
