@@ -63,7 +63,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--backend", a->backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
                  "included) or cpu")->capture_default_str();
-  sub.add_option("--device", a->device, "Vulkan device index for the gpu backend (see `meshsal devices`)");
+  sub.add_option("--device", a->device, "Vulkan device index for the gpu backend (see `meshsal devices`)")->check(whole_in(-1, 255));
   sub.add_option("--scales", a->scales,
                  "Center-surround scales in units of eps: scale k compares the Gaussian averages "
                  "of curvature at k*eps and 2k*eps")->capture_default_str()->check(scales_list());

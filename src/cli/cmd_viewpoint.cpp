@@ -121,7 +121,7 @@ RunFn setup(CLI::App& app) {
   app.add_option("--depth-tol", o->depth_tol, "visibility depth tolerance in pixel widths")
       ->capture_default_str()->check(finite_in(0, 1000));
   app.add_option("--backend", o->backend, "visibility (and saliency) backend: auto, gpu or cpu")->capture_default_str();
-  app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)");
+  app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)")->check(whole_in(-1, 255));
   add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
   app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");
   app.add_option("--map", o->map_png, "PNG of U over all directions (equirectangular)");

@@ -10,6 +10,7 @@
 #include "meshsal/gaussian_filter.h"
 #include "meshsal/mesh_io.h"
 #include "meshsal/mesh_points.h"
+#include "meshsal/saliency.h"
 
 namespace meshsal {
 
@@ -36,6 +37,11 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
   if (saliency.size() != mesh.vertex_count())
     throw Error("saliency has " + std::to_string(saliency.size()) + " values for a mesh of " +
                 std::to_string(mesh.vertex_count()) + " vertices");
+  if (!(eps_frac > 0 && eps_frac <= kMaxEpsFrac)) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "eps-frac must be a finite number in (0, %g], got %g", kMaxEpsFrac, eps_frac);
+    throw Error(buf);
+  }
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
   const double eps = scale_unit(mesh, is_point, eps_frac);
   return gaussian_filter(mesh, is_point, saliency, {3 * eps}, threads)[0];
