@@ -87,10 +87,11 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
   if (smoothed.size() != is_point.size())
     throw Error("saliency weights: " + std::to_string(smoothed.size()) +
                 " saliency values for " + std::to_string(is_point.size()) + " vertices");
-  if (!(options.lambda >= 0) || !std::isfinite(options.lambda))
-    throw Error("lambda must be finite and >= 0");
-  if (!(options.floor >= 0) || !std::isfinite(options.floor))
-    throw Error("weight floor must be finite and >= 0");
+  // Bounded so that W times a quadric stays far from overflow.
+  if (!(options.lambda >= 0 && options.lambda <= 1e6))
+    throw Error("lambda must be a finite number in [0, 1e+06]");
+  if (!(options.floor >= 0 && options.floor <= 100))
+    throw Error("weight floor must be a finite number in [0, 100]");
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
       throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");
