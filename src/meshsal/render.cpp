@@ -125,56 +125,55 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
     int y0 = std::max(0, int(std::floor(std::min({sy[a], sy[b], sy[c]}))));
     int y1 = std::min(res - 1, int(std::floor(std::max({sy[a], sy[b], sy[c]}))));
     const bool large = (x1 - x0 + 1) * double(y1 - y0 + 1) >= kLarge;
-    // The smallest depth the interpolation below can give (depths are >= 0): the smallest
-    // corner depth less the worst rounding of the weights against the area.
-    const double box = box_pixels(a, b, c) + std::max({sx[a], sx[b], sx[c]}) - std::min({sx[a], sx[b], sx[c]}) +
-                       std::max({sy[a], sy[b], sy[c]}) - std::min({sy[a], sy[b], sy[c]}) + 2;  // (w + 1)(h + 1)
-    const double slack = 64 * std::ldexp(1.0, -52) * box * inv + 32 * std::ldexp(1.0, -52);
-    const double zmin = std::max(0.0, std::min({sz[a], sz[b], sz[c]}) * (1 - slack));
-    auto draw = [&](int x0, int x1, int y0, int y1) {
-        for (int y = y0; y <= y1; ++y) {
-          double cy = y + 0.5;
-          for (int x = x0; x <= x1; ++x) {
-            double cx = x + 0.5;
-            double w0 = s * ((sx[c] - sx[b]) * (cy - sy[b]) - (sy[c] - sy[b]) * (cx - sx[b]));
-            double w1 = s * ((sx[a] - sx[c]) * (cy - sy[c]) - (sy[a] - sy[c]) * (cx - sx[c]));
-            double w2 = s * ((sx[b] - sx[a]) * (cy - sy[a]) - (sy[b] - sy[a]) * (cx - sx[a]));
-            if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-            double z = (w0 * sz[a] + w1 * sz[b] + w2 * sz[c]) * inv;
-            double& dst = zbuf[size_t(y) * res + x];
-            if (!(z < dst)) continue;
-            if (large) {
-              const size_t k = size_t(y >> 3) * tiles_across + size_t(x >> 3);
-              tile_filled[k] += std::isinf(dst);
-              tile_max[k] = std::max(tile_max[k], z);
-            }
-            dst = z;
-            double nn[3];
-            if (style.smooth) {
-              double l = 0;
-              for (int k = 0; k < 3; ++k) {
-                nn[k] = (w0 * normals[3 * a + k] + w1 * normals[3 * b + k] + w2 * normals[3 * c + k]) * inv;
-                l += nn[k] * nn[k];
-              }
-              l = std::sqrt(l);
-              for (double& v : nn) v = l > 0 ? v / l : 0;
-            } else {
-              for (int k = 0; k < 3; ++k) nn[k] = fn[k];
-            }
-            double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
-            if (draw_edges) {
-              double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
-              if (dist < 0.55) shade *= 0.45;
-            }
-            uint8_t* out = img.at(x, y);
+    // The smallest depth the interpolation below can give: the smallest corner depth less
+    // the worst rounding of the weights (their sum against the area) times the largest depth.
+    const double slack = 64 * std::ldexp(1.0, -52) * box_pixels(a, b, c) * inv + 32 * std::ldexp(1.0, -52);
+    const double zmin = std::min({sz[a], sz[b], sz[c]}) -
+                        slack * std::max({std::fabs(sz[a]), std::fabs(sz[b]), std::fabs(sz[c])});
+    auto draw = [&](int xa, int xb, int ya, int yb) {
+      for (int y = ya; y <= yb; ++y) {
+        double cy = y + 0.5;
+        for (int x = xa; x <= xb; ++x) {
+          double cx = x + 0.5;
+          double w0 = s * ((sx[c] - sx[b]) * (cy - sy[b]) - (sy[c] - sy[b]) * (cx - sx[b]));
+          double w1 = s * ((sx[a] - sx[c]) * (cy - sy[c]) - (sy[a] - sy[c]) * (cx - sx[c]));
+          double w2 = s * ((sx[b] - sx[a]) * (cy - sy[a]) - (sy[b] - sy[a]) * (cx - sx[a]));
+          if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+          double z = (w0 * sz[a] + w1 * sz[b] + w2 * sz[c]) * inv;
+          double& dst = zbuf[size_t(y) * res + x];
+          if (!(z < dst)) continue;
+          if (large) {
+            const size_t k = size_t(y >> 3) * tiles_across + size_t(x >> 3);
+            tile_filled[k] += std::isinf(dst);
+            tile_max[k] = std::max(tile_max[k], z);
+          }
+          dst = z;
+          double nn[3];
+          if (style.smooth) {
+            double l = 0;
             for (int k = 0; k < 3; ++k) {
-              double col = vertex_rgb ? (w0 * (*vertex_rgb)[3 * a + k] + w1 * (*vertex_rgb)[3 * b + k] +
-                                         w2 * (*vertex_rgb)[3 * c + k]) * inv
-                                      : double(style.base[k]);
-              out[k] = uint8_t(std::clamp(col * shade + 0.5, 0.0, 255.0));
+              nn[k] = (w0 * normals[3 * a + k] + w1 * normals[3 * b + k] + w2 * normals[3 * c + k]) * inv;
+              l += nn[k] * nn[k];
             }
+            l = std::sqrt(l);
+            for (double& v : nn) v = l > 0 ? v / l : 0;
+          } else {
+            for (int k = 0; k < 3; ++k) nn[k] = fn[k];
+          }
+          double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
+          if (draw_edges) {
+            double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
+            if (dist < 0.55) shade *= 0.45;
+          }
+          uint8_t* out = img.at(x, y);
+          for (int k = 0; k < 3; ++k) {
+            double col = vertex_rgb ? (w0 * (*vertex_rgb)[3 * a + k] + w1 * (*vertex_rgb)[3 * b + k] +
+                                       w2 * (*vertex_rgb)[3 * c + k]) * inv
+                                    : double(style.base[k]);
+            out[k] = uint8_t(std::clamp(col * shade + 0.5, 0.0, 255.0));
           }
         }
+      }
     };
     if (!large) {
       draw(x0, x1, y0, y1);

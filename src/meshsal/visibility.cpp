@@ -147,17 +147,19 @@ static void raster_depth_plain(const Mesh& mesh, const std::vector<float>& proj,
 // A triangle whose box covers at least this many pixels goes through the tile test.
 constexpr int kLargeTrianglePixels = 256;
 
-// A lower bound of every depth the rule computes for t (the depths are >= 0): the minimum
-// vertex depth, less the worst rounding of the weights (each within ~8 ulp of the box area,
-// their sum against the triangle's area) and of the products and sum.
+// A lower bound of every depth the rule computes for t: the minimum vertex depth, less the
+// worst rounding of the weights (each within ~8 ulp of the box area, their sum against the
+// triangle's area) and of the products and the sum, times the largest vertex depth. A float
+// rounded from it stays below every computed depth (those are floats above it).
 static float min_depth_bound(const RasterTriangle& t) {
   const float* p[3] = {t.a, t.b, t.c};
   const float w = max3(p[0][0], p[1][0], p[2][0]) - min3(p[0][0], p[1][0], p[2][0]) + 1.0f;
   const float h = max3(p[0][1], p[1][1], p[2][1]) - min3(p[0][1], p[1][1], p[2][1]) + 1.0f;
   const double u = std::ldexp(1.0, -24);
   const double slack = 64 * u * double(w) * double(h) * double(t.inv) + 32 * u;
-  const double m = min3(p[0][2], p[1][2], p[2][2]);
-  return slack >= 1 ? 0.0f : float(std::max(0.0, m * (1 - slack)));
+  const double lo = min3(p[0][2], p[1][2], p[2][2]);
+  const double hi = max3(std::fabs(p[0][2]), std::fabs(p[1][2]), std::fabs(p[2][2]));
+  return float(lo - slack * hi);
 }
 
 // The same z-buffer as raster_depth_plain (the minimum is order-free and a skipped
