@@ -111,7 +111,10 @@ TEST_CASE("cli: bad input gets one error line and exit code 1", "[cli]") {
   }
   SECTION("bad scales") {
     write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    check_clean_failure(run_cli("saliency " + (dir / "t.obj").string() + " -o " + out + " --scales 2,x", dir));
+    // A usage error: exit 2, the option and its range named.
+    RunResult r = run_cli("saliency " + (dir / "t.obj").string() + " -o " + out + " --scales 2,x", dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.rfind("error: --scales: must be a comma-separated list of numbers in (0, 100], got '2,x'", 0) == 0);
   }
   SECTION("output not .ply") {
     write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

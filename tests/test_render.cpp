@@ -266,8 +266,10 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(out.find("error: --score must be saliency or curvature") != std::string::npos);
   write_ply(dir + "/noq.ply", s, {});
   CHECK(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply", &out) == 1);
-  CHECK(out.find("no vertex property 'quality'") != std::string::npos);
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu", &out) == 1);
-  CHECK(out.find("error: resolution") != std::string::npos);
-  CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 1);
+  CHECK(out.find("has no per-vertex `quality` property") != std::string::npos);
+  // Numbers out of range are usage errors: exit code 2, the option and its range named.
+  CHECK(run_cli("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu", &out) == 2);
+  CHECK(out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
+  CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 2);
+  CHECK(out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
 }

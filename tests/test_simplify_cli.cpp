@@ -71,20 +71,21 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   const fs::path dir = temp_dir();
   const std::string out = (dir / "out.obj").string();
   const std::string base = "simplify '" + bunny + "' -o '" + out + "' --weights none ";
-  struct Case { std::string args, message; };
+  // Out-of-range numbers are usage errors (exit 2), the rest bad input (exit 1).
+  struct Case { std::string args, message; int rc; };
   const Case cases[] = {
-      {"--target-faces 100000", "larger than the mesh (6966 faces)"},
-      {"--target-faces 0", "--target-faces must be a positive face count"},
-      {"--target-faces -5", "--target-faces must be a positive face count"},
-      {"--ratio 0", "--ratio must be in (0, 1]"},
-      {"--ratio 1.5", "--ratio must be in (0, 1]"},
-      {"", "give exactly one of --target-faces N and --ratio R"},
-      {"--target-faces 10 --ratio 0.5", "give exactly one of"},
+      {"--target-faces 100000", "larger than the mesh (6966 faces)", 1},
+      {"--target-faces 0", "--target-faces: must be a whole number in [1, 4000000000]", 2},
+      {"--target-faces -5", "--target-faces: must be a whole number in [1, 4000000000]", 2},
+      {"--ratio 0", "--ratio: must be a finite number in (0, 1]", 2},
+      {"--ratio 1.5", "--ratio: must be a finite number in (0, 1]", 2},
+      {"", "give exactly one of --target-faces N and --ratio R", 1},
+      {"--target-faces 10 --ratio 0.5", "give exactly one of", 1},
   };
   for (const Case& c : cases) {
     const Run r = run_cli(base + c.args);
     INFO(c.args << "\n" << r.out);
-    CHECK(r.rc == 1);
+    CHECK(r.rc == c.rc);
     CHECK(r.out.find("error: ") != std::string::npos);
     CHECK(r.out.find(c.message) != std::string::npos);
   }
@@ -100,7 +101,7 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
   r = run_cli("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
   CHECK(r.rc == 1);
-  CHECK(r.out.find("output must be a .obj or .ply file") != std::string::npos);
+  CHECK(r.out.find("x.stl: -o must be a .obj or .ply file") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }

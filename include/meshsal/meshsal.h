@@ -86,9 +86,10 @@ void write_ply(const std::string& path, const Mesh& mesh,
 void write_obj(const std::string& path, const Mesh& mesh);
 
 // Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
-// property). Throws Error when the file has no quality property or its vertex count is not
-// `expected_vertices` (the saliency then belongs to another mesh).
-std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices);
+// property) for `mesh`. Throws Error when the file has no quality property, a quality is
+// not finite, or the file belongs to another mesh: another vertex count, or a vertex at
+// another position (beyond float precision: 1e-6 of the bounding-box diagonal), named.
+std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh);
 
 // ------------------------------------------------------------------------------------------
 // Saliency (the paper's section 3)
@@ -100,9 +101,11 @@ enum class Backend {
 };
 
 struct SaliencyOptions {
-  double eps_frac = 0.003;                    // eps = eps_frac * bbox diagonal, in (0, 1]
-  std::vector<double> scales{2, 3, 4, 5, 6};  // s_i = scales[i] * eps, 1..16 positive values
-  unsigned threads = 0;                       // CPU threads, 0 = all cores
+  // Limits (Error otherwise): eps_frac in (0, 0.1], 1..16 scales each in (0, 100], and
+  // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bbox diagonal).
+  double eps_frac = 0.003;                    // eps = eps_frac * bbox diagonal
+  std::vector<double> scales{2, 3, 4, 5, 6};  // s_i = scales[i] * eps
+  unsigned threads = 0;                       // CPU threads, 0 = all cores (at most 1024)
   Backend backend = Backend::Cpu;
   int device = -1;                            // Vulkan device index (list_devices), -1 = choose
   bool smoothed = false;                      // also compute Sm = G(S, 3 eps) (simplification)
@@ -139,7 +142,7 @@ SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
                                 const uint32_t* indices, size_t index_count,
                                 const SaliencyOptions& options);
 
-// Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, junk).
+// Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);
 
 // ------------------------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 // compute_saliency(): the backend switch and the option parsing shared by every front end.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -43,9 +45,36 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
   }
 }
 
+std::string number_text(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 }  // namespace
 
+void check_saliency_options(const SaliencyOptions& options) {
+  if (!(options.eps_frac > 0 && options.eps_frac <= kMaxEpsFrac))
+    throw Error("eps-frac must be a finite number in (0, " + number_text(kMaxEpsFrac) + "], got " +
+                number_text(options.eps_frac));
+  if (options.scales.empty() || options.scales.size() > 16)
+    throw Error("scales: give 1 to 16 scales, got " + std::to_string(options.scales.size()));
+  double largest = 0;
+  for (double k : options.scales) {
+    if (!(k > 0 && k <= kMaxScale))
+      throw Error("scales must be finite numbers in (0, " + number_text(kMaxScale) + "], got " + number_text(k));
+    largest = std::max(largest, k);
+  }
+  // The surround Gaussian 2k eps wider than the whole mesh averages everything alike: the
+  // center-surround maps would be ~0 (what `--scales 1e300` gave).
+  if (2 * largest * options.eps_frac > 1)
+    throw Error("scales and eps-frac: the widest surround sigma, 2 x " + number_text(largest) +
+                " x " + number_text(options.eps_frac) +
+                " of the bounding-box diagonal, must be at most 1 diagonal");
+}
+
 SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options) {
+  check_saliency_options(options);
   switch (options.backend) {
     case Backend::Cpu:
       return compute_saliency_cpu(mesh, options);
@@ -64,8 +93,8 @@ std::vector<double> parse_scales(const std::string& text) {
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
     double k = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !(k > 0) || !std::isfinite(k))
-      throw Error("--scales must be a comma-separated list of positive numbers, got '" + text + "'");
+    if (item.empty() || end == item.c_str() || *end != '\0' || !(k > 0 && k <= kMaxScale))
+      throw Error("--scales must be a comma-separated list of numbers in (0, 100], got '" + text + "'");
     scales.push_back(k);
   }
   if (scales.empty()) throw Error("--scales must list at least one scale");

@@ -5,6 +5,7 @@
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
 #include "meshsal/meshsal.h"
+#include "simplify/saliency_weights.h"
 
 namespace meshsal {
 
@@ -25,17 +26,7 @@ std::vector<double> vertex_score(const Mesh& mesh, ViewScore kind, const std::st
     return h;
   }
   if (!saliency_from.empty()) {
-    VertexProperties props;
-    Mesh other = load_mesh(saliency_from, &props);
-    auto it = props.find("quality");
-    if (it == props.end())
-      throw Error(saliency_from + " has no vertex property 'quality' (write it with `meshsal saliency`)");
-    if (it->second.size() != mesh.vertex_count())
-      throw Error(saliency_from + " has " + std::to_string(it->second.size()) + " vertices, the mesh has " +
-                  std::to_string(mesh.vertex_count()));
-    std::vector<double> s(it->second.begin(), it->second.end());
-    for (double v : s)
-      if (!std::isfinite(v)) throw Error(saliency_from + " has a quality value that is not finite");
+    std::vector<double> s = load_saliency_ply(saliency_from, mesh);
     if (source) *source = saliency_from;
     return s;
   }

@@ -14,7 +14,7 @@ enum class ViewScore { Saliency, Curvature };
 ViewScore parse_view_score(const std::string& text);
 
 // Saliency S per vertex: the `quality` property of `saliency_from` (a PLY written by
-// `meshsal saliency`, same vertex count as the mesh) when given, else computed with
+// `meshsal saliency` for this mesh: load_saliency_ply) when given, else computed with
 // `options`. Curvature: |H| (the paper's baseline), computed. Throws Error.
 std::vector<double> vertex_score(const Mesh& mesh, ViewScore kind, const std::string& saliency_from,
                                  const SaliencyOptions& options, std::string* source = nullptr);

@@ -10,6 +10,7 @@
 #include "json_string.h"
 #include "cli/data_dir.h"
 #include "meshsal/meshsal.h"
+#include "number_options.h"
 #include "saliency/saliency.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/gpu_saliency.h"
@@ -145,7 +146,6 @@ void print_json(const std::vector<Row>& rows) {
 }
 
 int run(const Args& a) {
-  if (a.repeat < 1) throw meshsal::Error("--repeat must be at least 1");
   std::vector<std::string> paths = a.meshes;
   const std::string dir = a.data_dir.empty() ? meshsal::benchmark_data_dir() : a.data_dir;
   if (a.simplify) return exec_simplify_benchmark(a, dir);
@@ -189,9 +189,9 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--simplify", a->simplify,
                "Benchmark simplification instead (plain, saliency-weighted, meshoptimizer) at 1% "
                "and 5% of the faces of armadillo_43k, dragon_50k and igea_134k");
-  sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
+  add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
   sub.add_option("--repeat", a->repeat, "Runs per mesh and device; the fastest is reported")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_in(1, 1000));
   return [a] { return run(*a); };
 }
 

@@ -9,6 +9,7 @@
 #include "simplify/saliency_weights.h"
 #include "simplify/surface_distance.h"
 #include "json_string.h"
+#include "number_options.h"
 #include "saliency_output.h"
 
 namespace meshsal_cli {
@@ -23,14 +24,12 @@ struct Args {
 
 int run(const Args& a) {
   using namespace meshsal;
-  if (a.samples < 0) throw Error("--samples must be >= 0");
-  if (!(a.fraction > 0 && a.fraction <= 1)) throw Error("--salient-fraction must be in (0, 1]");
   const Mesh original = load_mesh(a.original);
   const Mesh simplified = load_mesh(a.simplified);
   std::vector<double> s;
   std::string source;
   if (!a.saliency.empty()) {
-    s = load_saliency_ply(a.saliency, original.vertex_count());
+    s = load_saliency_ply(a.saliency, original);
     source = "file";
   } else {
     SaliencyOptions so;
@@ -71,11 +70,11 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
   sub.add_option("--saliency", a->saliency, "Saliency PLY of the original (`meshsal saliency`)");
   sub.add_option("--samples", a->samples, "Area samples per surface besides its vertices")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_in(0, 100000000));
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_in(0, 1, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
-  sub.add_option("--threads", a->threads, "Threads (0 = all cores)")->capture_default_str();
+  add_threads_option(sub, a->threads, "Threads (0 = all cores)");
   return [a] { return run(*a); };
 }
 

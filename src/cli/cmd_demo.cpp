@@ -11,6 +11,8 @@
 #include "simplify/simplify.h"
 #include "simplify/surface_distance.h"
 #include "core/synthetic.h"
+#include "number_options.h"
+#include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -47,11 +49,8 @@ double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& 
 
 int run(const Args& a) {
   using namespace meshsal;
-  if (a.subdivisions < 5 || a.subdivisions > 8)
-    throw Error("--subdivisions must be between 5 and 8");
-  std::error_code ec;
-  std::filesystem::create_directories(a.dir, ec);
-  if (ec) throw Error("cannot create output folder '" + a.dir + "': " + ec.message());
+  // Before any work: the folder exists (or is made) and is writable.
+  prepare_output_folder(a.dir);
 
   std::vector<uint8_t> feature, bumps;
   Mesh mesh = make_bumpy_sphere(a.subdivisions, &feature, &bumps);
@@ -110,8 +109,8 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("-o,--output", a->dir, "Output folder (created if missing)")->capture_default_str();
   sub.add_option("--backend", a->backend, "auto, gpu or cpu")->capture_default_str();
   sub.add_option("--subdivisions", a->subdivisions, "Icosphere subdivisions (5..8; 6 = 41k vertices)")
-      ->capture_default_str();
-  sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
+      ->capture_default_str()->check(whole_in(5, 8));
+  add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
   return [a] { return run(*a); };
 }
 

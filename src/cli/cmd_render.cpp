@@ -8,6 +8,8 @@
 #include "meshsal/meshsal.h"
 #include "view/render.h"
 #include "api/viewpoint_score.h"
+#include "number_options.h"
+#include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -25,6 +27,10 @@ struct Options {
 
 int run(const Options& o) {
   using namespace meshsal;
+  // Before any work: the picture is a writable .png that is none of the inputs.
+  std::vector<std::string> inputs{o.input, o.saliency_from};
+  inputs.insert(inputs.end(), o.compare.begin(), o.compare.end());
+  check_outputs({{o.output, "-o", {".png"}}}, inputs);
   RenderStyle style;
   style.size = o.size;
   style.smooth = !o.flat && o.compare.empty();
@@ -33,7 +39,6 @@ int run(const Options& o) {
   if (!o.compare.empty() && o.compare.size() != 2)
     throw Error("--compare takes two meshes: PLAIN SALIENT");
   const double rad = 3.14159265358979323846 / 180.0;
-  if (!(o.phi_deg >= -90 && o.phi_deg <= 90)) throw Error("--phi must be between -90 and 90 degrees");
   ViewAngles view{o.theta_deg * rad, o.phi_deg * rad};
 
   Mesh mesh = load_mesh(o.input);
@@ -63,17 +68,19 @@ RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz)")->required();
   app.add_option("-o,--output", o->output, "PNG to write")->required();
-  app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from +z, 90 from +x)")->capture_default_str();
-  app.add_option("--phi", o->phi_deg, "view latitude in degrees (90 looks from +y, above)")->capture_default_str();
+  app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from +z, 90 from +x)")
+      ->capture_default_str()->check(finite_in(-360, 360));
+  app.add_option("--phi", o->phi_deg, "view latitude in degrees (90 looks from +y, above)")
+      ->capture_default_str()->check(finite_in(-90, 90));
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' instead of computing saliency");
   app.add_option("--score", o->score, "colour by saliency or curvature (|H|)")->capture_default_str();
   app.add_option("--compare", o->compare, "PLAIN SALIENT: two simplified meshes drawn right of IN, same camera")->expected(2);
-  app.add_option("--size", o->size, "image side in pixels (per panel)")->capture_default_str();
+  app.add_option("--size", o->size, "image side in pixels (per panel)")->capture_default_str()->check(whole_in(16, 8192));
   app.add_flag("--grey", o->grey, "no saliency colours");
   app.add_flag("--flat", o->flat, "flat shading (always on with --compare, shows the triangles)");
   app.add_flag("--edges", o->edges, "darken triangle edges");
   app.add_option("--backend", o->backend, "saliency backend: auto, gpu or cpu")->capture_default_str();
-  app.add_option("--threads", o->threads, "CPU threads, 0 = all cores")->capture_default_str();
+  add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
   return [o]() { return run(*o); };
 }
 

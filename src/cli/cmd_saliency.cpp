@@ -5,6 +5,8 @@
 #include "command.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
+#include "number_options.h"
+#include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -19,22 +21,17 @@ struct Args {
   int device = -1;
 };
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 int run(const Args& a) {
   using namespace meshsal;
-  if (!ends_with(a.output, ".ply") && !ends_with(a.output, ".PLY"))
-    throw Error("output must be a .ply file (binary PLY with per-vertex quality), got '" + a.output + "'");
-  if (!(a.eps_frac > 0) || a.eps_frac > 1)
-    throw Error("--eps-frac must be in (0, 1], got " + std::to_string(a.eps_frac));
+  // Before any work: the output is a writable .ply that is not the input.
+  check_outputs({{a.output, "-o", {".ply"}}}, {a.input});
   SaliencyOptions opt;
   opt.eps_frac = a.eps_frac;
   opt.scales = parse_scales(a.scales);
   opt.threads = a.threads;
   opt.backend = parse_backend(a.backend);
   opt.device = a.device;
+  check_saliency_options(opt);
   Progress progress(!a.quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
   opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -65,15 +62,15 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--backend", a->backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
                  "included) or cpu")->capture_default_str();
-  sub.add_option("--device", a->device, "Vulkan device index for the gpu backend (see `meshsal devices`)");
+  sub.add_option("--device", a->device, "Vulkan device index for the gpu backend (see `meshsal devices`)")->check(whole_in(-1, 255));
   sub.add_option("--scales", a->scales,
                  "Center-surround scales in units of eps: scale k compares the Gaussian averages "
-                 "of curvature at k*eps and 2k*eps")->capture_default_str();
+                 "of curvature at k*eps and 2k*eps")->capture_default_str()->check(scales_list());
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
-  sub.add_option("--threads", a->threads, "CPU threads (0 = all cores)")->capture_default_str();
+  add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
   sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   return [a] { return run(*a); };
 }

@@ -9,6 +9,8 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
+#include "number_options.h"
+#include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -24,26 +26,17 @@ struct Args {
   unsigned threads = 0;
 };
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  for (size_t i = 0; i < suffix.size(); ++i)
-    if (std::tolower((unsigned char)s[s.size() - suffix.size() + i]) != suffix[i]) return false;
-  return true;
-}
-
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 int run(const Args& a) {
   using namespace meshsal;
-  const bool obj = ends_with(a.output, ".obj"), ply = ends_with(a.output, ".ply");
-  if (!obj && !ply) throw Error("output must be a .obj or .ply file, got '" + a.output + "'");
+  // Before any work: the output is a writable .obj/.ply that is none of the inputs.
+  check_outputs({{a.output, "-o", {".obj", ".ply"}}}, {a.input, a.saliency_from});
+  const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
+                                            a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
   if (a.has_target == a.has_ratio) throw Error("give exactly one of --target-faces N and --ratio R");
-  if (a.has_target && a.target_faces <= 0)
-    throw Error("--target-faces must be a positive face count, got " + std::to_string(a.target_faces));
-  if (a.has_ratio && !(a.ratio > 0 && a.ratio <= 1))
-    throw Error("--ratio must be in (0, 1], got " + std::to_string(a.ratio));
   if (a.weights != "saliency" && a.weights != "none")
     throw Error("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
   if (a.weights == "none" && !a.saliency_from.empty())
@@ -68,7 +61,7 @@ int run(const Args& a) {
     std::vector<double> smoothed;
     const std::vector<uint8_t> is_point = referenced_vertices(mesh);
     if (!a.saliency_from.empty()) {
-      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh.vertex_count());
+      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
       smoothed = smooth_saliency(mesh, s, a.eps_frac, a.threads);
     } else {
@@ -125,23 +118,25 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub.add_option_function<long long>(
       "--target-faces", [a](long long n) { a->target_faces = n; a->has_target = true; },
-      "Number of faces to keep");
+      "Number of faces to keep")->check(whole_in(1, 4000000000LL));
   sub.add_option_function<double>(
       "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
-      "Fraction of the faces to keep, in (0, 1]");
+      "Fraction of the faces to keep, in (0, 1]")->check(finite_in(0, 1, true));
   sub.add_option("--weights", a->weights, "saliency or none (plain quadric error)")->capture_default_str();
-  sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices")->capture_default_str();
+  sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices")
+      ->capture_default_str()->check(finite_in(0, 1e6));
   sub.add_option("--alpha-percentile", a->alpha_percentile,
-                 "Percentile of Sm above which vertices are amplified")->capture_default_str();
+                 "Percentile of Sm above which vertices are amplified")
+      ->capture_default_str()->check(finite_in(0, 100));
   sub.add_option("--saliency-from", a->saliency_from,
                  "Reuse S from this saliency PLY (`quality` property) instead of computing it");
   sub.add_option("--weight-floor", a->weight_floor,
                  "Not in the paper: raise W to at least this fraction of its mean (0 = off)")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_in(0, 100));
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
-  sub.add_option("--threads", a->threads, "CPU threads for saliency (0 = all cores)")->capture_default_str();
+  add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
   sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   return [a] { return run(*a); };
 }

@@ -11,6 +11,8 @@
 #include "api/viewpoint_backend.h"
 #include "api/viewpoint_score.h"
 #include "json_string.h"
+#include "number_options.h"
+#include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -41,13 +43,11 @@ std::string json_view(const meshsal::ViewAngles& a, double U) {
 int run(const Options& o) {
   using namespace meshsal;
   auto t0 = std::chrono::steady_clock::now();
-  if (o.restarts < 1 || o.restarts > 1000) throw Error("--restarts must be between 1 and 1000");
-  if (o.views < 0 || o.views > 1000000) throw Error("--views must be between 0 and 1000000");
+  // Before any work: the pictures are writable .png files, distinct, none of them an input.
+  check_outputs({{o.out_png, "-o", {".png"}}, {o.map_png, "--map", {".png"}}}, {o.input, o.saliency_from});
   RenderStyle style;
   style.size = o.size;
   if (!o.out_png.empty()) check_render_style(style);
-  if (!o.map_png.empty() && (o.map_width < 32 || o.map_width > 8192))
-    throw Error("--map-width must be between 32 and 8192");
   Backend backend = parse_backend(o.backend);
   ViewScore kind = parse_view_score(o.score);
   Mesh mesh = load_mesh(o.input);
@@ -111,18 +111,22 @@ RunFn setup(CLI::App& app) {
   app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz)")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
   app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
-  app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")->capture_default_str();
+  app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")
+      ->capture_default_str()->check(whole_in(1, 1000));
   app.add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();
-  app.add_option("--views", o->views, "also evaluate N Fibonacci-sphere directions exhaustively (0: only with --map, 2000)")->capture_default_str();
-  app.add_option("--resolution", o->resolution, "z-buffer side in pixels")->capture_default_str();
-  app.add_option("--depth-tol", o->depth_tol, "visibility depth tolerance in pixel widths")->capture_default_str();
+  app.add_option("--views", o->views, "also evaluate N Fibonacci-sphere directions exhaustively (0: only with --map, 2000)")
+      ->capture_default_str()->check(whole_in(0, 1000000));
+  app.add_option("--resolution", o->resolution, "z-buffer side in pixels")->capture_default_str()->check(whole_in(16, 8192));
+  app.add_option("--depth-tol", o->depth_tol, "visibility depth tolerance in pixel widths")
+      ->capture_default_str()->check(finite_in(0, 1000));
   app.add_option("--backend", o->backend, "visibility (and saliency) backend: auto, gpu or cpu")->capture_default_str();
-  app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)");
-  app.add_option("--threads", o->threads, "CPU threads, 0 = all cores")->capture_default_str();
+  app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)")->check(whole_in(-1, 255));
+  add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
   app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");
   app.add_option("--map", o->map_png, "PNG of U over all directions (equirectangular)");
-  app.add_option("--size", o->size, "side of the -o picture in pixels")->capture_default_str();
-  app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")->capture_default_str();
+  app.add_option("--size", o->size, "side of the -o picture in pixels")->capture_default_str()->check(whole_in(16, 8192));
+  app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")
+      ->capture_default_str()->check(whole_in(32, 8192));
   return [o]() { return run(*o); };
 }
 

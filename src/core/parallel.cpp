@@ -1,21 +1,28 @@
 #include "core/parallel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace meshsal {
 
 unsigned resolve_threads(unsigned requested) {
-  if (requested > 0) return requested;
+  if (requested > 0) return std::min(requested, kMaxThreads);
   unsigned hw = std::thread::hardware_concurrency();
-  return hw > 0 ? hw : 1;
+  return hw > 0 ? std::min(hw, kMaxThreads) : 1;
 }
 
 void parallel_for(size_t n, unsigned threads, size_t chunk,
                   const std::function<void(size_t, size_t)>& body) {
+  parallel_for(n, threads, chunk, body, [](std::function<void()> f) { return std::thread(std::move(f)); });
+}
+
+void parallel_for(size_t n, unsigned threads, size_t chunk,
+                  const std::function<void(size_t, size_t)>& body, const ThreadStarter& start) {
   if (n == 0) return;
   if (chunk == 0) chunk = 1;
   unsigned t = resolve_threads(threads);
@@ -42,7 +49,14 @@ void parallel_for(size_t n, unsigned threads, size_t chunk,
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < t; ++i) pool.emplace_back(worker);
+  pool.reserve(t - 1);
+  for (unsigned i = 1; i < t; ++i) {
+    try {
+      pool.push_back(start(worker));
+    } catch (const std::system_error&) {
+      break;  // no more threads to be had (EAGAIN): the ones running share the work
+    }
+  }
   worker();
   for (auto& th : pool) th.join();
   if (failure) std::rethrow_exception(failure);

@@ -2,16 +2,28 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <thread>
 
 namespace meshsal {
 
-// Number of worker threads for a request: 0 means all hardware threads.
+// The most threads a request gets: more only costs memory and can exhaust a process limit.
+constexpr unsigned kMaxThreads = 1024;
+
+// Number of worker threads for a request: 0 means all hardware threads; capped at kMaxThreads.
 unsigned resolve_threads(unsigned requested);
 
 // Calls body(begin, end) on disjoint chunks covering [0, n), from `threads` threads
 // (0 = all cores). Chunks are handed out dynamically so uneven work balances.
-// An exception thrown by body is rethrown on the calling thread.
+// An exception thrown by body is rethrown on the calling thread. A thread that cannot be
+// started (a process limit) is not an error: the loop runs on the threads it has, at
+// worst on the calling thread alone.
 void parallel_for(size_t n, unsigned threads, size_t chunk,
                   const std::function<void(size_t begin, size_t end)>& body);
+
+// The same with the way a thread is started given (tests make it fail): `start` returns a
+// running std::thread or throws std::system_error.
+using ThreadStarter = std::function<std::thread(std::function<void()>)>;
+void parallel_for(size_t n, unsigned threads, size_t chunk,
+                  const std::function<void(size_t begin, size_t end)>& body, const ThreadStarter& start);
 
 }  // namespace meshsal

@@ -1,6 +1,5 @@
 #include "io/png_image.h"
 
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
@@ -11,6 +10,7 @@
 #include <stb_image_write.h>
 #pragma GCC diagnostic pop
 
+#include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -45,21 +45,12 @@ static void append(void* context, void* data, int size) {
 void write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgb.size() != size_t(image.width) * size_t(image.height) * 3)
-    throw Error("internal: bad image for " + path);
+    throw Error(path + ": internal: bad image");
   std::vector<uint8_t> bytes;
   if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 3, image.rgb.data(),
                               image.width * 3))
-    throw Error("cannot encode PNG " + path);
-  std::string tmp = path + ".tmp";
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw Error("cannot write " + path + ": " + std::strerror(errno));
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    int e = errno;
-    std::remove(tmp.c_str());
-    throw Error("cannot write " + path + ": " + std::strerror(e));
-  }
+    throw Error(path + ": cannot encode the PNG");
+  write_file_atomically(path, [&](std::FILE* f) { write_all(f, bytes.data(), bytes.size(), path); });
 }
 
 }  // namespace meshsal

@@ -1,11 +1,6 @@
 // meshsal: result writers (binary little-endian PLY per SPEC section 4, and OBJ).
-// Both write a temporary file next to the target and rename it over the target only when
-// every byte was written, so a failure never leaves a half-written or clobbered file.
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
+// Both go through write_file_atomically (atomic_write.h): a failure never leaves a
+// half-written or clobbered file.
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -13,66 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 namespace {
-
-std::string folder_of(const std::string& path) {
-  size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-// Runs `body` on a temporary FILE* in the target's folder, then renames it to `path`.
-void write_atomically(const std::string& path, const std::function<void(std::FILE*)>& body) {
-  const std::string folder = folder_of(path);
-  struct stat st;
-  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
-    throw Error(path + ": cannot write: folder '" + folder + "' does not exist");
-  std::vector<char> tmp(path.begin(), path.end());
-  const char suffix[] = ".tmp.XXXXXX";
-  tmp.insert(tmp.end(), suffix, suffix + sizeof suffix);  // includes the terminating 0
-  int fd = ::mkstemp(tmp.data());
-  if (fd < 0) throw Error(path + ": cannot write: " + std::strerror(errno));
-  const std::string tmp_path(tmp.data());
-  // mkstemp makes the file 0600; give it the usual permissions (0666 minus the umask).
-  mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  std::FILE* f = ::fdopen(fd, "wb");
-  if (!f) {
-    ::close(fd);
-    ::unlink(tmp_path.c_str());
-    throw Error(path + ": cannot write: " + std::strerror(errno));
-  }
-  try {
-    body(f);
-  } catch (...) {
-    std::fclose(f);
-    ::unlink(tmp_path.c_str());
-    throw;
-  }
-  bool ok = !std::ferror(f);
-  int err = errno;
-  if (std::fclose(f) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (!ok) {
-    ::unlink(tmp_path.c_str());
-    throw Error(path + ": write failed: " + std::strerror(err));
-  }
-  if (std::rename(tmp_path.c_str(), path.c_str()) != 0) {
-    err = errno;
-    ::unlink(tmp_path.c_str());
-    throw Error(path + ": cannot replace the file: " + std::strerror(err));
-  }
-}
-
-void put(std::FILE* f, const void* data, size_t n) {
-  if (n && std::fwrite(data, 1, n, f) != n) throw Error(std::string("write failed: ") + std::strerror(errno));
-}
 
 // Appends the little-endian bytes of a 4-byte value.
 template <typename T>
@@ -123,8 +63,8 @@ void write_ply(const std::string& path, const Mesh& mesh,
   header += "element face " + std::to_string(mesh.triangle_count()) + "\n";
   header += "property list uchar int vertex_indices\nend_header\n";
 
-  write_atomically(path, [&](std::FILE* f) {
-    put(f, header.data(), header.size());
+  write_file_atomically(path, [&](std::FILE* f) {
+    write_all(f, header.data(), header.size(), path);
     std::vector<char> buf;
     const size_t chunk = 1 << 16;
     buf.reserve(chunk * (12 + 4 * properties.size() + 3));
@@ -133,7 +73,7 @@ void write_ply(const std::string& path, const Mesh& mesh,
       for (const PlyFloatProperty& p : properties) append_le(buf, static_cast<float>((*p.values)[v]));
       if (rgb) buf.insert(buf.end(), rgb->begin() + 3 * v, rgb->begin() + 3 * v + 3);
       if (buf.size() >= chunk * 12) {
-        put(f, buf.data(), buf.size());
+        write_all(f, buf.data(), buf.size(), path);
         buf.clear();
       }
     }
@@ -141,17 +81,17 @@ void write_ply(const std::string& path, const Mesh& mesh,
       buf.push_back(3);
       for (int k = 0; k < 3; ++k) append_le(buf, static_cast<int32_t>(mesh.triangles[t + k]));
       if (buf.size() >= chunk * 12) {
-        put(f, buf.data(), buf.size());
+        write_all(f, buf.data(), buf.size(), path);
         buf.clear();
       }
     }
-    put(f, buf.data(), buf.size());
+    write_all(f, buf.data(), buf.size(), path);
   });
 }
 
 void write_obj(const std::string& path, const Mesh& mesh) {
   check_mesh(path, mesh);
-  write_atomically(path, [&](std::FILE* f) {
+  write_file_atomically(path, [&](std::FILE* f) {
     std::string out;
     out.reserve(1 << 20);
     char num[64];
@@ -166,7 +106,7 @@ void write_obj(const std::string& path, const Mesh& mesh) {
       }
       out += '\n';
       if (out.size() > (1 << 20) - 256) {
-        put(f, out.data(), out.size());
+        write_all(f, out.data(), out.size(), path);
         out.clear();
       }
     };
@@ -176,7 +116,7 @@ void write_obj(const std::string& path, const Mesh& mesh) {
     const uint32_t* t = mesh.triangles.data();
     for (size_t i = 0; i < mesh.triangles.size(); i += 3)
       add_line('f', uint64_t(t[i]) + 1, uint64_t(t[i + 1]) + 1, uint64_t(t[i + 2]) + 1);
-    put(f, out.data(), out.size());
+    write_all(f, out.data(), out.size(), path);
   });
 }
 

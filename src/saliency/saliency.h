@@ -15,4 +15,12 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
 // The distinct sigmas (in eps units) the filter needs for these scales: each k and 2k, sorted.
 std::vector<double> filter_sigma_units(const std::vector<double>& scales);
 
+// Limits of the options: eps_frac in (0, kMaxEpsFrac], each scale in (0, kMaxScale], and
+// 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bounding-box diagonal).
+constexpr double kMaxEpsFrac = 0.1;
+constexpr double kMaxScale = 100;
+
+// Throws Error when options break the limits above (compute_saliency* call it).
+void check_saliency_options(const SaliencyOptions& options);
+
 }  // namespace meshsal

@@ -43,7 +43,7 @@ std::vector<double> filter_sigma_units(const std::vector<double>& scales) {
 }
 
 SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt) {
-  if (opt.scales.empty()) throw Error("at least one scale is needed");
+  check_saliency_options(opt);
   SaliencyResult r;
   r.backend_name = "cpu (" + std::to_string(resolve_threads(opt.threads)) + " threads)";
   auto report = [&](const char* stage, double f) {

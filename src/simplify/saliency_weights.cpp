@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "meshsal/meshsal.h"
 #include "saliency/gaussian_filter.h"
 #include "core/mesh_points.h"
+#include "saliency/saliency.h"
 
 namespace meshsal {
 
@@ -34,20 +36,47 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
   if (saliency.size() != mesh.vertex_count())
     throw Error("saliency has " + std::to_string(saliency.size()) + " values for a mesh of " +
                 std::to_string(mesh.vertex_count()) + " vertices");
+  if (!(eps_frac > 0 && eps_frac <= kMaxEpsFrac)) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "eps-frac must be a finite number in (0, %g], got %g", kMaxEpsFrac, eps_frac);
+    throw Error(buf);
+  }
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
   const double eps = scale_unit(mesh, is_point, eps_frac);
   return gaussian_filter(mesh, is_point, saliency, {3 * eps}, threads)[0];
 }
 
-std::vector<double> load_saliency_ply(const std::string& path, size_t expected_vertices) {
+std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh) {
   VertexProperties props;
   const Mesh m = load_mesh(path, &props);
   auto it = props.find("quality");
   if (it == props.end())
     throw Error("'" + path + "' has no per-vertex `quality` property (write it with `meshsal saliency`)");
-  if (m.vertex_count() != expected_vertices || it->second.size() != expected_vertices)
+  const size_t n = mesh.vertex_count();
+  if (m.vertex_count() != n || it->second.size() != n)
     throw Error("saliency file '" + path + "' has " + std::to_string(m.vertex_count()) +
-                " vertices but the mesh has " + std::to_string(expected_vertices));
+                " vertices but the mesh has " + std::to_string(n));
+  // Same count is not enough: the saliency of another mesh would be silently misapplied.
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t i = 0; i < 3 * n; ++i) {
+    lo[i % 3] = std::min(lo[i % 3], double(mesh.positions[i]));
+    hi[i % 3] = std::max(hi[i % 3], double(mesh.positions[i]));
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double tol = 1e-6 * diag;
+  for (size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(double(m.positions[3 * v + k]) - double(mesh.positions[3 * v + k])) <= tol)) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "vertex %zu is at (%.9g, %.9g, %.9g) there but at (%.9g, %.9g, %.9g) in the mesh",
+                      v, m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2],
+                      mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+        throw Error("saliency file '" + path + "' belongs to another mesh: " + buf);
+      }
+  for (size_t v = 0; v < n; ++v)
+    if (!std::isfinite(it->second[v]))
+      throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is not finite");
   return std::vector<double>(it->second.begin(), it->second.end());
 }
 
@@ -57,10 +86,11 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
   if (smoothed.size() != is_point.size())
     throw Error("saliency weights: " + std::to_string(smoothed.size()) +
                 " saliency values for " + std::to_string(is_point.size()) + " vertices");
-  if (!(options.lambda >= 0) || !std::isfinite(options.lambda))
-    throw Error("lambda must be finite and >= 0");
-  if (!(options.floor >= 0) || !std::isfinite(options.floor))
-    throw Error("weight floor must be finite and >= 0");
+  // Bounded so that W times a quadric stays far from overflow.
+  if (!(options.lambda >= 0 && options.lambda <= 1e6))
+    throw Error("lambda must be a finite number in [0, 1e+06]");
+  if (!(options.floor >= 0 && options.floor <= 100))
+    throw Error("weight floor must be a finite number in [0, 100]");
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
       throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");

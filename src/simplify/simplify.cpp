@@ -75,6 +75,9 @@ struct State {
   size_t nv = 0;
   double center[3] = {0, 0, 0};
   double scale = 1;                          // internal = (p - center) * scale
+  // The input's positions (3 per input vertex): a vertex no collapse moved is written back
+  // with these exact values, not through the rounding of (p - center) * scale and back.
+  const float* input_positions = nullptr;
   std::vector<double> pos;                   // 3 per vertex, internal coordinates
   std::vector<Quadric> quad;
   std::vector<uint32_t> tri;                 // 3 per triangle
@@ -157,6 +160,7 @@ struct State {
 void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
                  std::vector<Entry>* edges) {
   nv = mesh.vertex_count();
+  input_positions = mesh.positions.data();
   const size_t nt_in = mesh.triangle_count();
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
     if (mesh.triangles[i] >= nv)
@@ -520,8 +524,10 @@ Mesh State::output(SimplifyReport* report) const {
     if (remap[v] == UINT32_MAX) continue;
     remap[v] = uint32_t(origin.size());
     origin.push_back(uint32_t(iv));
+    // changed[v] == 0: no collapse ever moved v (a moved vertex has its collapse count).
     for (int k = 0; k < 3; ++k)
-      out.positions.push_back(float(pos[3 * v + k] / scale + center[k]));
+      out.positions.push_back(changed[v] == 0 ? input_positions[3 * size_t(iv) + k]
+                                              : float(pos[3 * v + k] / scale + center[k]));
   }
   out.triangles.reserve(3 * faces);
   for (size_t t = 0; t < tri_alive.size(); ++t)

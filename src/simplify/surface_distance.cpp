@@ -7,8 +7,8 @@
 #include <numeric>
 #include <string>
 
-#include "core/parallel.h"
 #include "meshsal/meshsal.h"
+#include "core/parallel.h"
 
 namespace meshsal {
 
@@ -243,7 +243,8 @@ std::vector<double> distances(const std::vector<double>& pts, const TriangleBvh&
                               unsigned threads) {
   const size_t n = pts.size() / 3;
   std::vector<double> d(n);
-  parallel_for(n, threads, 1024, [&](size_t b, size_t e) {
+  // parallel_for: a thread that cannot be started means fewer threads, not std::terminate.
+  parallel_for(n, n < 4096 ? 1 : threads, 1024, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) d[i] = surface_distance(bvh, &pts[3 * i]);
   });
   return d;

@@ -57,7 +57,44 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
 
   Image img(res, res, style.background[0], style.background[1], style.background[2]);
   std::vector<double> zbuf(size_t(res) * res, std::numeric_limits<double>::infinity());
+  // A triangle only wins a pixel with a strictly smaller depth, so an exact copy of an
+  // earlier triangle (same projected corners in the same order) never draws anything: large
+  // copies are dropped up front. Large triangles also skip 8x8 tiles already covered no
+  // deeper than they can reach. Both keep the picture identical and bound the cost of a
+  // stack of copies of one large triangle by its pixels once.
+  auto box_pixels = [&](uint32_t a, uint32_t b, uint32_t c) {
+    double w = std::max({sx[a], sx[b], sx[c]}) - std::min({sx[a], sx[b], sx[c]}) + 1;
+    double h = std::max({sy[a], sy[b], sy[c]}) - std::min({sy[a], sy[b], sy[c]}) + 1;
+    return w * h;
+  };
+  const double kLarge = 256;  // box pixels from which a triangle goes through the tile test
+  std::vector<uint8_t> copy(mesh.triangle_count(), 0);
+  {
+    std::vector<uint32_t> large;
+    for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+      const uint32_t* t = &mesh.triangles[3 * f];
+      if (box_pixels(t[0], t[1], t[2]) >= kLarge) large.push_back(uint32_t(f));
+    }
+    auto key = [&](uint32_t f, int i) {
+      const uint32_t v = mesh.triangles[3 * size_t(f) + i / 3];
+      return i % 3 == 0 ? sx[v] : i % 3 == 1 ? sy[v] : sz[v];
+    };
+    std::sort(large.begin(), large.end(), [&](uint32_t f, uint32_t g) {
+      for (int i = 0; i < 9; ++i)
+        if (key(f, i) != key(g, i)) return key(f, i) < key(g, i);
+      return f < g;  // the first in mesh order is the one kept
+    });
+    for (size_t i = 1; i < large.size(); ++i) {
+      bool same = true;
+      for (int k = 0; k < 9 && same; ++k) same = key(large[i], k) == key(large[i - 1], k);
+      copy[large[i]] = same;
+    }
+  }
+  const int tiles_across = (res + 7) / 8;
+  std::vector<uint8_t> tile_filled(size_t(tiles_across) * tiles_across, 0);
+  std::vector<double> tile_max(tile_filled.size(), 0.0);
   for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    if (copy[f]) continue;
     const uint32_t* t = &mesh.triangles[3 * f];
     uint32_t a = t[0], b = t[1], c = t[2];
     double area = (sx[b] - sx[a]) * (sy[c] - sy[a]) - (sx[c] - sx[a]) * (sy[b] - sy[a]);
@@ -87,44 +124,68 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
     int x1 = std::min(res - 1, int(std::floor(std::max({sx[a], sx[b], sx[c]}))));
     int y0 = std::max(0, int(std::floor(std::min({sy[a], sy[b], sy[c]}))));
     int y1 = std::min(res - 1, int(std::floor(std::max({sy[a], sy[b], sy[c]}))));
-    for (int y = y0; y <= y1; ++y) {
-      double cy = y + 0.5;
-      for (int x = x0; x <= x1; ++x) {
-        double cx = x + 0.5;
-        double w0 = s * ((sx[c] - sx[b]) * (cy - sy[b]) - (sy[c] - sy[b]) * (cx - sx[b]));
-        double w1 = s * ((sx[a] - sx[c]) * (cy - sy[c]) - (sy[a] - sy[c]) * (cx - sx[c]));
-        double w2 = s * ((sx[b] - sx[a]) * (cy - sy[a]) - (sy[b] - sy[a]) * (cx - sx[a]));
-        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-        double z = (w0 * sz[a] + w1 * sz[b] + w2 * sz[c]) * inv;
-        double& dst = zbuf[size_t(y) * res + x];
-        if (!(z < dst)) continue;
-        dst = z;
-        double nn[3];
-        if (style.smooth) {
-          double l = 0;
-          for (int k = 0; k < 3; ++k) {
-            nn[k] = (w0 * normals[3 * a + k] + w1 * normals[3 * b + k] + w2 * normals[3 * c + k]) * inv;
-            l += nn[k] * nn[k];
+    const bool large = (x1 - x0 + 1) * double(y1 - y0 + 1) >= kLarge;
+    // The smallest depth the interpolation below can give: the smallest corner depth less
+    // the worst rounding of the weights (their sum against the area) times the largest depth.
+    const double slack = 64 * std::ldexp(1.0, -52) * box_pixels(a, b, c) * inv + 32 * std::ldexp(1.0, -52);
+    const double zmin = std::min({sz[a], sz[b], sz[c]}) -
+                        slack * std::max({std::fabs(sz[a]), std::fabs(sz[b]), std::fabs(sz[c])});
+    auto draw = [&](int xa, int xb, int ya, int yb) {
+      for (int y = ya; y <= yb; ++y) {
+        double cy = y + 0.5;
+        for (int x = xa; x <= xb; ++x) {
+          double cx = x + 0.5;
+          double w0 = s * ((sx[c] - sx[b]) * (cy - sy[b]) - (sy[c] - sy[b]) * (cx - sx[b]));
+          double w1 = s * ((sx[a] - sx[c]) * (cy - sy[c]) - (sy[a] - sy[c]) * (cx - sx[c]));
+          double w2 = s * ((sx[b] - sx[a]) * (cy - sy[a]) - (sy[b] - sy[a]) * (cx - sx[a]));
+          if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+          double z = (w0 * sz[a] + w1 * sz[b] + w2 * sz[c]) * inv;
+          double& dst = zbuf[size_t(y) * res + x];
+          if (!(z < dst)) continue;
+          if (large) {
+            const size_t k = size_t(y >> 3) * tiles_across + size_t(x >> 3);
+            tile_filled[k] += std::isinf(dst);
+            tile_max[k] = std::max(tile_max[k], z);
           }
-          l = std::sqrt(l);
-          for (double& v : nn) v = l > 0 ? v / l : 0;
-        } else {
-          for (int k = 0; k < 3; ++k) nn[k] = fn[k];
-        }
-        double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
-        if (draw_edges) {
-          double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
-          if (dist < 0.55) shade *= 0.45;
-        }
-        uint8_t* out = img.at(x, y);
-        for (int k = 0; k < 3; ++k) {
-          double col = vertex_rgb ? (w0 * (*vertex_rgb)[3 * a + k] + w1 * (*vertex_rgb)[3 * b + k] +
-                                     w2 * (*vertex_rgb)[3 * c + k]) * inv
-                                  : double(style.base[k]);
-          out[k] = uint8_t(std::clamp(col * shade + 0.5, 0.0, 255.0));
+          dst = z;
+          double nn[3];
+          if (style.smooth) {
+            double l = 0;
+            for (int k = 0; k < 3; ++k) {
+              nn[k] = (w0 * normals[3 * a + k] + w1 * normals[3 * b + k] + w2 * normals[3 * c + k]) * inv;
+              l += nn[k] * nn[k];
+            }
+            l = std::sqrt(l);
+            for (double& v : nn) v = l > 0 ? v / l : 0;
+          } else {
+            for (int k = 0; k < 3; ++k) nn[k] = fn[k];
+          }
+          double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
+          if (draw_edges) {
+            double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
+            if (dist < 0.55) shade *= 0.45;
+          }
+          uint8_t* out = img.at(x, y);
+          for (int k = 0; k < 3; ++k) {
+            double col = vertex_rgb ? (w0 * (*vertex_rgb)[3 * a + k] + w1 * (*vertex_rgb)[3 * b + k] +
+                                       w2 * (*vertex_rgb)[3 * c + k]) * inv
+                                    : double(style.base[k]);
+            out[k] = uint8_t(std::clamp(col * shade + 0.5, 0.0, 255.0));
+          }
         }
       }
+    };
+    if (!large) {
+      draw(x0, x1, y0, y1);
+      continue;
     }
+    for (int ty = y0 >> 3; ty <= y1 >> 3; ++ty)
+      for (int tx = x0 >> 3; tx <= x1 >> 3; ++tx) {
+        const size_t k = size_t(ty) * tiles_across + size_t(tx);
+        const int pixels = std::min(8, res - 8 * tx) * std::min(8, res - 8 * ty);
+        if (tile_filled[k] == pixels && tile_max[k] <= zmin) continue;  // nothing here can win
+        draw(std::max(x0, 8 * tx), std::min(x1, 8 * tx + 7), std::max(y0, 8 * ty), std::min(y1, 8 * ty + 7));
+      }
   }
   return img;
 }

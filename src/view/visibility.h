@@ -31,7 +31,15 @@ void check_visibility_options(const VisibilityOptions& options);
 std::vector<float> visibility_weights(const Mesh& mesh, const std::vector<double>& score);
 
 // The z-buffer of one view (res*res floats, +inf where empty), the CPU reference rasteriser.
+// Its cost is bounded by the pixels and the triangles (large triangles nearest first, exact
+// copies dropped, 8x8 tiles already covered nearer skipped), even for a stack of copies of
+// one large triangle.
 std::vector<float> depth_buffer_cpu(const Mesh& mesh, const ViewRows& view, int resolution);
+
+// The same z-buffer from the plain rasteriser (every triangle over its whole bounding box),
+// cost proportional to the triangles' pixel area: the oracle depth_buffer_cpu is tested
+// against.
+std::vector<float> depth_buffer_plain_cpu(const Mesh& mesh, const ViewRows& view, int resolution);
 
 // 1 for the mesh points visible in one view.
 std::vector<uint8_t> visible_vertices_cpu(const Mesh& mesh, const ViewFrame& frame,

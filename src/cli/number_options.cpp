@@ -1,0 +1,72 @@
+#include "number_options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+
+namespace meshsal_cli {
+namespace {
+
+std::string number_text(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+}  // namespace
+
+CLI::Validator finite_in(double lo, double hi, bool lo_open) {
+  const std::string range = (lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double x = std::strtod(text.c_str(), &end);
+        const bool parsed = !text.empty() && end && *end == '\0' && errno != ERANGE;
+        if (!parsed || !std::isfinite(x) || x > hi || (lo_open ? !(x > lo) : !(x >= lo)))
+          return "must be a finite number in " + range + ", got '" + text + "'";
+        return "";
+      },
+      "in " + range);
+}
+
+CLI::Validator whole_in(long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const long long x = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || !end || *end != '\0' || errno == ERANGE || x < lo || x > hi)
+          return "must be a whole number in " + range + ", got '" + text + "'";
+        return "";
+      },
+      "in " + range);
+}
+
+CLI::Validator scales_list() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          meshsal::parse_scales(text);
+        } catch (const meshsal::Error& e) {
+          std::string message = e.what();  // CLI11 puts "--scales: " in front already
+          if (message.rfind("--scales ", 0) == 0) message.erase(0, 9);
+          return message;
+        }
+        return "";
+      },
+      "list");
+}
+
+CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help) {
+  return app.add_option("--threads", threads, help)
+      ->capture_default_str()
+      ->check(whole_in(0, kMaxThreadsOption));
+}
+
+}  // namespace meshsal_cli

@@ -1,0 +1,26 @@
+// meshsal CLI: range checks for numeric options. A value outside its range (or NaN, Inf,
+// junk) is a usage error: exit 2, "error: --OPTION: must be ... in [LO, HI], got X".
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace meshsal_cli {
+
+// Most threads any command starts (--threads): more gains nothing and can exhaust the
+// process limit. The library caps the same way (meshsal::kMaxThreads).
+constexpr unsigned kMaxThreadsOption = 1024;
+
+// The value must be a finite number in [lo, hi] ((lo, hi] when lo_open).
+CLI::Validator finite_in(double lo, double hi, bool lo_open = false);
+
+// The value must be a whole number in [lo, hi].
+CLI::Validator whole_in(long long lo, long long hi);
+
+// --scales: a comma-separated list of numbers in (0, 100] (meshsal::parse_scales).
+CLI::Validator scales_list();
+
+// Adds `--threads N` bound to `threads`, 0..kMaxThreadsOption (0 = all cores).
+CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
+
+}  // namespace meshsal_cli

@@ -1,0 +1,86 @@
+#include "output_check.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal_cli {
+namespace {
+
+using meshsal::Error;
+
+bool ends_with_nocase(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower((unsigned char)s[s.size() - suffix.size() + i]) != suffix[i]) return false;
+  return true;
+}
+
+std::string folder_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string joined(const std::vector<std::string>& items, const char* last_sep) {
+  std::string s;
+  for (size_t i = 0; i < items.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == items.size() ? last_sep : ", ") + items[i];
+  return s;
+}
+
+void check_writable_folder(const std::string& path, const std::string& folder) {
+  struct stat st;
+  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    throw Error(path + ": cannot write: folder '" + folder + "' does not exist");
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw Error(path + ": cannot write: folder '" + folder + "' is not writable (" +
+                std::strerror(errno) + ")");
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std::string>& inputs) {
+  std::vector<std::pair<std::string, std::filesystem::path>> seen;  // option, canonical path
+  for (const OutputFile& out : outputs) {
+    if (out.path.empty()) continue;
+    bool known = out.extensions.empty();
+    for (const std::string& ext : out.extensions) known = known || ends_with_nocase(out.path, ext);
+    if (!known)
+      throw Error(out.path + ": " + out.option + " must be a " + joined(out.extensions, " or ") + " file");
+    check_writable_folder(out.path, folder_of(out.path));
+    struct stat os;
+    if (::stat(out.path.c_str(), &os) == 0) {
+      if (S_ISDIR(os.st_mode)) throw Error(out.path + ": cannot write: it is a folder");
+      for (const std::string& in : inputs) {
+        struct stat is;
+        if (!in.empty() && ::stat(in.c_str(), &is) == 0 && is.st_dev == os.st_dev && is.st_ino == os.st_ino)
+          throw Error(out.path + ": " + out.option + " is the input file '" + in +
+                      "' (an output never replaces an input)");
+      }
+    }
+    std::error_code ec;
+    std::filesystem::path canonical = std::filesystem::weakly_canonical(out.path, ec);
+    if (ec) canonical = out.path;
+    for (const auto& [option, other] : seen)
+      if (other == canonical)
+        throw Error(out.path + ": given for both " + option + " and " + out.option);
+    seen.emplace_back(out.option, canonical);
+  }
+}
+
+void prepare_output_folder(const std::string& dir) {
+  if (dir.empty()) throw Error("the output folder name is empty");
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(dir + ": cannot create the output folder: " + ec.message());
+  check_writable_folder(dir + "/", dir);
+}
+
+}  // namespace meshsal_cli
