@@ -13,6 +13,7 @@
 #include "meshsal/mesh_points.h"
 #include "meshsal/vk_buffer.h"
 #include "meshsal/vk_compute.h"
+#include "meshsal/vk_staging.h"
 
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
@@ -98,6 +99,19 @@ struct DeviceMesh {
   vk::Buffer cell_count, starts, key, slot, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
 };
+
+// Device bytes of one saliency computation: the buffers below, the largest grid
+// plan_grid() allows (cell counts and starts), and the staging area when transfers use it.
+uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t neighbors,
+                             bool staging) {
+  const uint64_t groups = (nv + kLocal - 1) / kLocal;
+  uint64_t bytes = nv * (32 + 4 + 4 + 4 + 4 + 8 * nsc + 8) + np * (32 + 4 + 4) +
+                   neighbors * 4 + groups * nsc * (8 + 16) + (uint64_t(1) << 16);
+  const uint64_t cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
+  bytes += cells * 8;
+  if (staging) bytes += vk::staging_bytes_for(nv * nsc * 8);
+  return bytes;
+}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -347,14 +361,14 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     m.np += res.is_point[v];
   }
 
-  // Memory: refuse up front what cannot fit the largest device-local heap.
-  const uint64_t need = uint64_t(nv) * (32 * 2 + 4 * 6 + 8 * nsc + 8 + 8) +
-                        uint64_t(adj.neighbors.size()) * 4 + (uint64_t(32) << 20);
-  if (ctx.info.device_local_bytes && need > ctx.info.device_local_bytes * 0.9)
+  // Memory: refuse up front what cannot fit the device-local heap (or its budget).
+  const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
+                                            ctx.use_staging);
+  const uint64_t have = vk::device_memory_available(ctx.info);
+  if (have && need > have * 0.9)
     throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
                 std::to_string(need >> 20) + " MiB of device memory, the device has " +
-                std::to_string(ctx.info.device_local_bytes >> 20) +
-                " MiB; use the CPU path (--backend cpu)");
+                std::to_string(have >> 20) + " MiB; use the CPU path (--backend cpu)");
 
   const uint32_t groups = static_cast<uint32_t>((nv + kLocal - 1) / kLocal);
   m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");

@@ -1,0 +1,44 @@
+// meshsal: the staging area of the discrete-GPU memory path. Device buffers there live in
+// device-local memory the host does not map; every upload and download is copied through
+// one host-visible buffer (host-cached where the device has it, for fast read-back) that
+// the Context keeps and reuses, in chunks of at most its size.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "meshsal/vk_context.h"
+
+namespace meshsal::vk {
+
+// Largest staging area: longer transfers go through it in chunks of this size.
+constexpr size_t kStagingMaxBytes = size_t(64) << 20;
+
+class StagingArea {
+ public:
+  StagingArea(Context& ctx, size_t bytes);
+  ~StagingArea();
+  StagingArea(const StagingArea&) = delete;
+  StagingArea& operator=(const StagingArea&) = delete;
+
+  VkBuffer buffer = VK_NULL_HANDLE;
+  size_t size = 0;
+  char* mapped = nullptr;
+  bool coherent = false;  // else host writes are flushed and reads invalidated by hand
+
+  void flush_host_writes() const;        // host writes -> visible to the device's copies
+  void invalidate_for_host_reads() const;  // device writes (made available) -> host reads
+
+ private:
+  Context& ctx_;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+};
+
+// Staging bytes the context will allocate for transfers of up to `largest` bytes.
+size_t staging_bytes_for(size_t largest);
+
+// Copies host data into dst[offset, offset + bytes) / dst's range out to the host through
+// ctx.staging (made or grown on first use); one fenced submission per chunk.
+void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes);
+void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes);
+
+}  // namespace meshsal::vk
