@@ -9,6 +9,7 @@
 
 #include "meshsal/adjacency.h"
 #include "meshsal/curvature.h"
+#include "meshsal/gpu_grid.h"
 #include "meshsal/error.h"
 #include "meshsal/mesh_points.h"
 #include "meshsal/vk_buffer.h"
@@ -17,10 +18,6 @@
 
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
-#include "grid_key_comp.h"
-#include "grid_scan_comp.h"
-#include "grid_scatter_comp.h"
-#include "grid_sort_cells_comp.h"
 #include "local_max_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
@@ -65,38 +62,11 @@ struct SweepParams {
   double bcoef;  // sweep8: b = exp(-d2 * bcoef) (sweep_point_default in gaussian_filter.cpp)
 };
 
-// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of min_cell, grown
-// by 1.25 while there are more than max(2^20, 4 points) cells (or more than one buffer
-// holds); coordinates relative to the bbox minimum.
-struct GridPlan {
-  uint32_t nx = 1, ny = 1, nz = 1;
-  double h = 1;
-  uint64_t cells() const { return uint64_t(nx) * ny * nz; }
-};
-
-GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uint64_t limit) {
-  const double max_cells = std::min<double>(std::max<double>(1 << 20, 4.0 * double(points)),
-                                            double(limit));
-  GridPlan g;
-  double cell = min_cell;
-  for (;;) {
-    double cells = 1;
-    for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / cell) + 1;
-    if (cells <= max_cells) break;
-    cell *= 1.25;
-  }
-  g.h = cell;
-  g.nx = uint32_t(std::floor(extent[0] / cell)) + 1;
-  g.ny = uint32_t(std::floor(extent[1] / cell)) + 1;
-  g.nz = uint32_t(std::floor(extent[2] / cell)) + 1;
-  return g;
-}
-
 // Everything on the device for one saliency computation.
 struct DeviceMesh {
   uint32_t nv = 0, np = 0;  // vertices, mesh points
   vk::Buffer pos, flags, offsets, neighbors;
-  vk::Buffer cell_count, starts, key, slot, sorted_pos, sorted_vertex;
+  vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
 };
 
@@ -105,10 +75,10 @@ struct DeviceMesh {
 uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t neighbors,
                              bool staging) {
   const uint64_t groups = (nv + kLocal - 1) / kLocal;
-  uint64_t bytes = nv * (32 + 4 + 4 + 4 + 4 + 8 * nsc + 8) + np * (32 + 4 + 4) +
-                   neighbors * 4 + groups * nsc * (8 + 16) + (uint64_t(1) << 16);
+  uint64_t bytes = nv * (32 + 4 + 4 + 8 * nsc + 8) + np * (32 + 4 + 4) + neighbors * 4 +
+                   groups * nsc * (8 + 16) + (uint64_t(1) << 16);
   const uint64_t cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
-  bytes += cells * 8;
+  bytes += cells * 4 + gpu_grid_scratch_bytes(nv, cells);
   if (staging) bytes += vk::staging_bytes_for(nv * nsc * 8);
   return bytes;
 }
@@ -117,50 +87,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Builds the grid for `radius` over the current pos[] (counting sort on the device) and
-// returns its plan and the downloaded cell starts (for planning the sweep slices).
-GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
-                    const double extent[3], double cell, std::vector<uint32_t>* starts_out) {
-  GridPlan g = plan_grid(extent, cell, m.np, ctx.properties.limits.maxStorageBufferRange / 4 - 1);
-  const uint32_t cells = static_cast<uint32_t>(g.cells());
-  m.cell_count = vk::Buffer(ctx, size_t(cells) * 4, "the grid cell counts");
-  m.starts = vk::Buffer(ctx, size_t(cells + 1) * 4, "the grid cell starts");
-
-  auto& k_key = KERNEL(ctx, spv_grid_key_comp, 5, GridKeyPush);
-  auto& k_scan = KERNEL(ctx, spv_grid_scan_comp, 2, RangePush);
-  auto& k_scatter = KERNEL(ctx, spv_grid_scatter_comp, 6, RangePush);
-  auto& k_order = KERNEL(ctx, spv_grid_sort_cells_comp, 3, RangePush);
-  VkDescriptorSet s_key = pool.bind(k_key, {&m.pos, &m.flags, &m.cell_count, &m.key, &m.slot});
-  VkDescriptorSet s_scan = pool.bind(k_scan, {&m.cell_count, &m.starts});
-  VkDescriptorSet s_scatter = pool.bind(
-      k_scatter, {&m.pos, &m.key, &m.slot, &m.starts, &m.sorted_pos, &m.sorted_vertex});
-  VkDescriptorSet s_order = pool.bind(k_order, {&m.starts, &m.sorted_pos, &m.sorted_vertex});
-  vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, m.cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
-    vk::barrier(cmd);
-    GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
-    vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, m.nv, kLocal);
-    vk::barrier(cmd);
-    // One work group scans all cells.
-    RangePush sp{0, cells};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k_scan.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k_scan.layout, 0, 1, &s_scan, 0, nullptr);
-    vkCmdPushConstants(cmd, k_scan.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof sp, &sp);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    vk::barrier(cmd);
-    RangePush cp{0, 0};
-    vk::dispatch(ctx, cmd, k_scatter, s_scatter, &cp, 0, m.nv, kLocal);
-    vk::barrier(cmd);
-    RangePush op{0, 0};
-    vk::dispatch(ctx, cmd, k_order, s_order, &op, 0, cells, kLocal);
-    vk::barrier(cmd);
-  });
-  starts_out->resize(size_t(cells) + 1);
-  m.starts.download(starts_out->data(), starts_out->size() * 4);
-  if ((*starts_out)[cells] != m.np)
-    throw Error("internal: the GPU grid holds " + std::to_string((*starts_out)[cells]) +
-                " points instead of " + std::to_string(m.np));
-  return g;
+// Builds the grid of cells >= `cell` over the current pos[] (gpu_grid.h) and returns its
+// plan and the downloaded cell starts (for planning the sweep slices).
+GridPlan build_grid(vk::Context& ctx, DeviceMesh& m, const double extent[3], double cell,
+                    std::vector<uint32_t>* starts_out) {
+  return build_gpu_grid(ctx, {&m.pos, &m.flags, &m.starts, &m.sorted_pos, &m.sorted_vertex},
+                        m.nv, m.np, extent, cell, starts_out);
 }
 
 // Splits the sorted points into submissions of at most ~budget candidate pairs each
@@ -375,8 +307,6 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
   m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
   m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
-  m.key = vk::Buffer(ctx, nv * 4, "the cell keys");
-  m.slot = vk::Buffer(ctx, nv * 4, "the cell slots");
   m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
   m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
@@ -407,7 +337,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
   // point, where short rows would leave lanes idle.
   const bool rows = shared_rows(ctx, fast8);
-  GridPlan g = build_grid(ctx, pool, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
+  GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
@@ -476,7 +406,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     sp.out_a[0] = 0;
     sp.out_b[0] = -1;
     m.params.upload(&sp, sizeof sp);
-    GridPlan g2 = build_grid(ctx, pool, m, extent, 0.5 * 6 * eps, &starts);
+    GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
     sweep(ctx, pool, m, g2, starts, false, sp, 1, 1, 6 * eps, options, "smoothing");
     res.smoothed.resize(nv);
     m.result.download(res.smoothed.data(), nv * 8);
