@@ -10,6 +10,7 @@
 #include "meshsal/adjacency.h"
 #include "meshsal/curvature.h"
 #include "meshsal/gpu_grid.h"
+#include "meshsal/gpu_slices.h"
 #include "meshsal/error.h"
 #include "meshsal/mesh_points.h"
 #include "meshsal/vk_buffer.h"
@@ -95,37 +96,6 @@ GridPlan build_grid(vk::Context& ctx, DeviceMesh& m, const double extent[3], dou
                         m.nv, m.np, extent, cell, starts_out);
 }
 
-// Splits the sorted points into submissions of at most ~budget candidate pairs each
-// (whole cells), so no single submission runs into a driver time-out.
-std::vector<uint32_t> plan_slices(const GridPlan& g, const std::vector<uint32_t>& starts,
-                                  double radius, double budget) {
-  const int r = int(std::ceil(radius / g.h));
-  std::vector<uint32_t> cuts{0};
-  double acc = 0;
-  const int nx = g.nx, ny = g.ny, nz = g.nz;
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x) {
-        uint32_t c = uint32_t(x) + g.nx * (uint32_t(y) + g.ny * uint32_t(z));
-        uint32_t pts = starts[c + 1] - starts[c];
-        if (!pts) continue;
-        double cand = 0;
-        int x0 = std::max(x - r, 0), x1 = std::min(x + r, nx - 1);
-        for (int zz = std::max(z - r, 0); zz <= std::min(z + r, nz - 1); ++zz)
-          for (int yy = std::max(y - r, 0); yy <= std::min(y + r, ny - 1); ++yy) {
-            uint32_t row = g.nx * (uint32_t(yy) + g.ny * uint32_t(zz));
-            cand += starts[row + x1 + 1] - starts[row + x0];
-          }
-        if (acc > 0 && acc + cand * pts > budget) {
-          cuts.push_back(starts[c]);
-          acc = 0;
-        }
-        acc += cand * pts;
-      }
-  cuts.push_back(starts.back());
-  return cuts;
-}
-
 // Whether the sweep runs a lane per point over rows shared by the subgroup (sweep8_rows:
 // the default plan on CPU devices, or as Context::sweep_variant says) rather than a
 // subgroup per point.
@@ -158,24 +128,35 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
                                       &m.result, &m.pairs});
-  // Candidate pairs per submission: about a second on lavapipe, and on a GPU with slow
-  // FP64 (consumer cards run doubles at 1/32..1/64 rate) still well under the usual 2 s
-  // driver watchdog; our own fence time-out is never near.
-  const bool cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  const double budget = ctx.sweep_pairs_per_submission > 0 ? ctx.sweep_pairs_per_submission
-                        : cpu_device                         ? 1e8
-                                                             : 5e9;
-  std::vector<uint32_t> cuts = plan_slices(g, starts, radius, budget);
+  // Slices of whole cells, each one submission: the first small and timed, the rest
+  // sized to ~ctx.submission_target_s of device time (gpu_slices.h); a fixed budget of
+  // candidate pairs when ctx.sweep_pairs_per_submission says so (tests).
+  const bool fixed = ctx.sweep_pairs_per_submission > 0;
+  const SweepWork work = sweep_work(g, starts, radius);
+  double budget = fixed ? ctx.sweep_pairs_per_submission
+                        : first_slice_budget(ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU,
+                                             work.before.back());
   SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig, nout, 0, g.h, radius * radius};
-  for (size_t s = 0; s + 1 < cuts.size(); ++s) {
+  ctx.sweep_slices = 0;
+  ctx.sweep_longest_s = 0;
+  for (size_t at = 0; at + 1 < work.first.size();) {
+    const size_t next = next_cut(work, at, budget);
+    const auto t_slice = Clock::now();
     vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-      if (s == 0) {  // vertices that are not mesh points get 0, not stale memory
+      if (at == 0) {  // vertices that are not mesh points get 0, not stale memory
         vkCmdFillBuffer(cmd, m.result.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], per_group);
+      vk::dispatch(ctx, cmd, k, set, &p, work.first[at], work.first[next], per_group);
     });
-    if (options.progress) options.progress(stage, double(cuts[s + 1]) / std::max<uint32_t>(m.np, 1));
+    const double took = seconds_since(t_slice);  // host time: an upper bound of device time
+    ctx.sweep_slices++;
+    ctx.sweep_longest_s = std::max(ctx.sweep_longest_s, took);
+    if (!fixed)
+      budget = next_budget(budget, work.before[next] - work.before[at], took,
+                           ctx.submission_target_s);
+    at = next;
+    if (options.progress) options.progress(stage, double(work.first[at]) / std::max<uint32_t>(m.np, 1));
   }
   std::vector<uint32_t> pairs(m.np);
   m.pairs.download(pairs.data(), pairs.size() * 4);

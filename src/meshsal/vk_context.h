@@ -93,8 +93,8 @@ class Context {
   // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
   // 0 shared rows, 1 subgroup per point. Tests run both.
   int sweep_variant = -1;
-  // Candidate pairs per sweep submission; 0: by device type (1e8 on CPU devices, 5e9 on
-  // GPUs, see sweep() in gpu_saliency.cpp). Tests set it small to split a small mesh.
+  // Candidate pairs per sweep submission; 0: sized by time (submission_target_s, see
+  // gpu_slices.h). Tests set it small to split a small mesh.
   double sweep_pairs_per_submission = 0;
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   // Buffers live in device-local memory and transfers go through the staging area: on
@@ -106,6 +106,8 @@ class Context {
   // Target device time of one sweep submission (seconds): the first slice is timed and
   // the rest sized to it, far below a desktop driver's ~2 s watchdog.
   double submission_target_s = 0.15;
+  uint64_t sweep_slices = 0;     // submissions of the last sweep
+  double sweep_longest_s = 0;    // and the longest of them (host time, waits included)
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only once the destructor has seen their fences signal.
