@@ -1,8 +1,8 @@
 // meshsal: visible score per view. Invocation x of view group y (workgroup y: views
 // 4y .. 4y+3) tests vertices x, x + stride, ... against each view's depth like
-// test_vertices() in visibility.cpp and writes the sums of the visible weights to
-// partial[view * stride + x]; the host adds the partials in double (no barriers, no float
-// atomics).
+// test_vertices() in visibility.cpp; the work group adds its 64 sums per view in shared
+// memory and writes one value per view and work group, partial[view * (stride / 64) +
+// group]; the host adds those few in double (no float atomics).
 #version 450
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
@@ -12,6 +12,7 @@ layout(std430, binding = 3) readonly buffer Depth { uint zbuf[]; };
 layout(std430, binding = 4) writeonly buffer Partial { float partial[]; };
 layout(push_constant) uniform Push { uint base; uint n; uint res; uint vertices; float tol; uint views; } pc;
 const uint VIEWS_PER_GROUP = 4u;
+shared float sums[VIEWS_PER_GROUP][64];
 
 vec3 project_point(vec3 p, uint view, float half_res) {
   vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
@@ -41,7 +42,7 @@ bool visible(vec3 q, uint view, int res) {
 
 void main() {
   uint lane = pc.base + gl_GlobalInvocationID.x;
-  if (lane >= pc.n) return;
+  if (lane >= pc.n) return;  // n is a multiple of 64: whole work groups return
   uint first = gl_WorkGroupID.y * VIEWS_PER_GROUP;
   uint count = min(first + VIEWS_PER_GROUP, pc.views) - first;
   int res = int(pc.res);
@@ -56,8 +57,19 @@ void main() {
     if (count > 2u && visible(q, first + 2u, res)) s2 += w;
     if (count > 3u && visible(q, first + 3u, res)) s3 += w;
   }
-  partial[first * pc.n + lane] = s0;
-  if (count > 1u) partial[(first + 1u) * pc.n + lane] = s1;
-  if (count > 2u) partial[(first + 2u) * pc.n + lane] = s2;
-  if (count > 3u) partial[(first + 3u) * pc.n + lane] = s3;
+  uint t = gl_LocalInvocationID.x;
+  sums[0][t] = s0;
+  sums[1][t] = s1;
+  sums[2][t] = s2;
+  sums[3][t] = s3;
+  barrier();
+  for (uint half_ = 32u; half_ > 0u; half_ >>= 1u) {
+    if (t < half_)
+      for (uint k = 0u; k < VIEWS_PER_GROUP; ++k) sums[k][t] += sums[k][t + half_];
+    barrier();
+  }
+  if (t == 0u) {
+    uint groups = pc.n / 64u, group = lane / 64u;
+    for (uint k = 0u; k < count; ++k) partial[(first + k) * groups + group] = sums[k][0];
+  }
 }
