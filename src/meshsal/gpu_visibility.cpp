@@ -6,6 +6,7 @@
 #include "meshsal/error.h"
 #include "meshsal/vk_buffer.h"
 #include "meshsal/vk_compute.h"
+#include "meshsal/vk_staging.h"
 #include "visibility_raster_comp.h"
 #include "visibility_test_comp.h"
 
@@ -122,11 +123,16 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     const uint32_t count = uint32_t(std::min(views.size() - first, size_t(s.batch)));
     rows.resize(count);
     for (uint32_t v = 0; v < count; ++v) rows[v] = view_rows(s.frame, views[first + v]);
-    s.rows.upload(rows.data(), count * sizeof(ViewRows));
+    const size_t row_bytes = count * sizeof(ViewRows);
+    const bool inline_rows = row_bytes <= 65536;  // vkCmdUpdateBuffer's limit
+    if (!inline_rows) s.rows.upload(rows.data(), row_bytes);
+    vk::RecordedDownload readback;
     const uint32_t raster_lanes = visibility_lanes(s.triangles, kRasterMost, count, s.cpu_device);
     const uint32_t test_lanes = visibility_lanes(s.vertices, kTestMost, count, s.cpu_device);
     const uint32_t groups = test_lanes / 64;
     vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
+      // The view matrices go in the command buffer itself: no transfer of their own.
+      if (inline_rows) vkCmdUpdateBuffer(cmd, s.rows.handle(), 0, row_bytes, rows.data());
       vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
       vk::barrier(cmd);
       RasterPush rp{0, raster_lanes, res, s.triangles, count};
@@ -136,11 +142,13 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
       TestPush tp{0, test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count};
       vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, test_lanes, 64,
                    (count + kViewsPerGroup - 1) / kViewsPerGroup);
-      // vk::submit() ends with the barrier that makes the partial sums visible to the host.
+      // Read back in the same submission; vk::submit() ends with the barrier that makes
+      // the partial sums (or their staging copy) visible to the host.
+      readback.record(s.ctx, cmd, s.partial, 0, size_t(count) * groups * 4);
     });
     ++s.submissions;
     partial.resize(size_t(count) * groups);
-    s.partial.download(partial.data(), partial.size() * 4);
+    readback.finish(partial.data());
     s.values_read += partial.size();
     for (uint32_t v = 0; v < count; ++v) {
       double sum = 0;

@@ -60,8 +60,7 @@ size_t staging_bytes_for(size_t largest) {
   return bytes;
 }
 
-// The context's staging area, at least min(bytes, kStagingMaxBytes) large.
-static StagingArea& area(Context& ctx, size_t bytes) {
+StagingArea& staging_area(Context& ctx, size_t bytes) {
   const size_t want = staging_bytes_for(bytes);
   if (!ctx.staging || ctx.staging->size < want) {
     ctx.staging.reset();
@@ -80,7 +79,7 @@ static void host_to_transfer(VkCommandBuffer cmd) {
 }
 
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes) {
-  StagingArea& s = area(ctx, bytes);
+  StagingArea& s = staging_area(ctx, bytes);
   for (size_t done = 0; done < bytes; done += s.size) {
     const size_t n = std::min(s.size, bytes - done);
     std::memcpy(s.mapped, static_cast<const char*>(data) + done, n);
@@ -96,7 +95,7 @@ void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, 
 }
 
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes) {
-  StagingArea& s = area(ctx, bytes);
+  StagingArea& s = staging_area(ctx, bytes);
   for (size_t done = 0; done < bytes; done += s.size) {
     const size_t n = std::min(s.size, bytes - done);
     // The earlier submissions' closing barriers made the shader writes visible to this
@@ -109,6 +108,37 @@ void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size
     s.invalidate_for_host_reads();
     std::memcpy(static_cast<char*>(data) + done, s.mapped, n);
   }
+}
+
+}  // namespace meshsal::vk
+
+namespace meshsal::vk {
+
+void RecordedDownload::record(Context& ctx, VkCommandBuffer cmd, const Buffer& src,
+                              size_t offset, size_t bytes) {
+  if (offset + bytes > src.size() || bytes > kStagingMaxBytes)
+    throw Error("internal: a recorded download past its buffer or the staging area");
+  src_ = &src;
+  offset_ = offset;
+  bytes_ = bytes;
+  area_ = nullptr;
+  if (src.mapped() || bytes == 0) return;
+  area_ = &staging_area(ctx, bytes);
+  barrier(cmd);  // the shader writes before it -> this copy
+  VkBufferCopy c{offset, 0, bytes};
+  vkCmdCopyBuffer(cmd, src.handle(), area_->buffer, 1, &c);
+  ++ctx.staged_copies;
+  // submit() closes the command buffer with the barrier to the host.
+}
+
+void RecordedDownload::finish(void* data) {
+  if (!src_ || bytes_ == 0) return;
+  if (!area_) {
+    src_->download(data, bytes_, offset_);  // mapped: a memcpy
+    return;
+  }
+  area_->invalidate_for_host_reads();
+  std::memcpy(data, area_->mapped, bytes_);
 }
 
 }  // namespace meshsal::vk

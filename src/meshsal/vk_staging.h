@@ -13,6 +13,8 @@ namespace meshsal::vk {
 // Largest staging area: longer transfers go through it in chunks of this size.
 constexpr size_t kStagingMaxBytes = size_t(64) << 20;
 
+class Buffer;  // vk_buffer.h
+
 class StagingArea {
  public:
   StagingArea(Context& ctx, size_t bytes);
@@ -40,5 +42,23 @@ size_t staging_bytes_for(size_t largest);
 // ctx.staging (made or grown on first use); one fenced submission per chunk.
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes);
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes);
+
+// The context's staging area, made or grown to hold min(bytes, kStagingMaxBytes).
+StagingArea& staging_area(Context& ctx, size_t bytes);
+
+// A download recorded into a command buffer of the caller's own submission (no submission
+// of its own): record() copies src[offset, offset + bytes) into the staging area
+// (bytes <= kStagingMaxBytes); after that submission's fence, finish() copies it out.
+// Where src is mapped, record() does nothing and finish() reads the mapping.
+struct RecordedDownload {
+  void record(Context& ctx, VkCommandBuffer cmd, const Buffer& src, size_t offset,
+              size_t bytes);
+  void finish(void* data);
+
+ private:
+  const Buffer* src_ = nullptr;
+  StagingArea* area_ = nullptr;
+  size_t offset_ = 0, bytes_ = 0;
+};
 
 }  // namespace meshsal::vk
