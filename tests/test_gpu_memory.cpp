@@ -141,3 +141,22 @@ TEST_CASE("forced staging: visibility reads back within its own submission, same
   CHECK(ua == ub);
   CHECK(vk::validation_message_count() == before);
 }
+
+TEST_CASE("forced staging: after a timed-out transfer the next one takes a fresh staging area", "[gpu]") {
+  const uint64_t before = vk::validation_message_count();
+  {
+    vk::Context ctx(-1, true);
+    ctx.use_staging = true;
+    std::vector<float> x(size_t(1) << 20, 1.0f);
+    ctx.fence_timeout_s = 1e-9;  // the upload's copy cannot finish in a nanosecond
+    CHECK_THROWS_WITH(gpu_selftest(ctx, x, 2.0f), Catch::Contains("did not finish within"));
+    REQUIRE(ctx.has_abandoned_work());
+    REQUIRE(ctx.staging);
+    const VkBuffer old = ctx.staging->buffer;  // not destroyed yet: a new one differs
+    ctx.fence_timeout_s = 60;
+    std::vector<float> y = gpu_selftest(ctx, x, 2.0f);
+    CHECK(ctx.staging->buffer != old);  // the abandoned copy may still use the old one
+    CHECK(y[12345] == 2.0f + 12345.0f);
+  }  // the context waits (bounded) for the abandoned copy, then frees everything
+  CHECK(vk::validation_message_count() == before);
+}

@@ -62,7 +62,9 @@ size_t staging_bytes_for(size_t largest) {
 
 StagingArea& staging_area(Context& ctx, size_t bytes) {
   const size_t want = staging_bytes_for(bytes);
-  if (!ctx.staging || ctx.staging->size < want) {
+  // After a timed-out submission the area may still be in use by it: take a new one (the
+  // old one is destroyed with the abandoned work, see Context::~Context).
+  if (!ctx.staging || ctx.staging->size < want || ctx.has_abandoned_work()) {
     ctx.staging.reset();
     ctx.staging = std::make_unique<StagingArea>(ctx, want);
   }
