@@ -42,7 +42,6 @@ constexpr int kMaxSigmas = 16;      // sweep.glsl's arrays
 constexpr int kMaxScales = 16;      // mbar.comp's factor layout
 
 // Push blocks: each begins with {base, n} (vk::dispatch fills them in).
-struct GridKeyPush { uint32_t base, n, nx, ny, nz, pad; double h; };
 struct RangePush { uint32_t base, n; };
 struct SweepPush {
   uint32_t base, n, nx, ny, nz;
@@ -80,7 +79,7 @@ uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t ne
                    groups * nsc * (8 + 16) + (uint64_t(1) << 16);
   const uint64_t cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
   bytes += cells * 4 + gpu_grid_scratch_bytes(nv, cells);
-  if (staging) bytes += vk::staging_bytes_for(nv * nsc * 8);
+  if (staging) bytes += vk::staging_bytes_for(std::max(nv * 32, nv * nsc * 8));  // largest copy
   return bytes;
 }
 
