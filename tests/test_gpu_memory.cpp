@@ -160,3 +160,16 @@ TEST_CASE("forced staging: after a timed-out transfer the next one takes a fresh
   }  // the context waits (bounded) for the abandoned copy, then frees everything
   CHECK(vk::validation_message_count() == before);
 }
+
+TEST_CASE("an allocation larger than what its heap has left is refused clearly", "[gpu]") {
+  vk::Context ctx(-1, true);
+  for (bool staging : {false, true}) {
+    ctx.use_staging = staging;
+    ctx.info.has_memory_budget = false;  // the budgets below stand for the extension's
+    for (auto& h : ctx.info.heaps) h.budget = uint64_t(1) << 20;
+    CHECK_NOTHROW(vk::Buffer(ctx, 512 << 10, "half a MiB"));
+    CHECK_THROWS_WITH(vk::Buffer(ctx, 2 << 20, "two MiB"),
+                      Catch::Contains("two MiB needs 2 MiB") &&
+                          Catch::Contains("its memory heap has 1 MiB left"));
+  }
+}

@@ -44,12 +44,10 @@ Allocation allocate_buffer(Context& ctx, size_t bytes, VkBufferUsageFlags usage,
   if (type < 0) fail("no suitable Vulkan memory type for " + what);
   out.flags = ctx.memory.memoryTypes[type].propertyFlags;
   const uint32_t heap = ctx.memory.memoryTypes[type].heapIndex;
-  uint64_t room = ctx.memory.memoryHeaps[heap].size;
-  if (heap < ctx.info.heaps.size() && ctx.info.heaps[heap].budget)
-    room = std::min<uint64_t>(room, ctx.info.heaps[heap].budget);
+  const uint64_t room = heap_room(ctx, heap);
   if (req.size > room)
     fail("out of memory on '" + ctx.info.name + "': " + what + " needs " + mib(req.size) +
-         ", its memory heap holds " + mib(room) + "; use the CPU path (--backend cpu)");
+         ", its memory heap has " + mib(room) + " left" + "; use the CPU path (--backend cpu)");
   VkMemoryAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   ai.allocationSize = req.size;

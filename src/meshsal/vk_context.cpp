@@ -68,6 +68,23 @@ uint64_t device_memory_available(const DeviceInfo& info) {
   return best;
 }
 
+uint64_t heap_room(const Context& ctx, uint32_t heap) {
+  uint64_t room = ctx.memory.memoryHeaps[heap].size;
+  if (ctx.info.has_memory_budget) {
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{};
+    budget.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT;
+    VkPhysicalDeviceMemoryProperties2 m2{};
+    m2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2;
+    m2.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(ctx.physical, &m2);
+    const uint64_t b = budget.heapBudget[heap], used = budget.heapUsage[heap];
+    if (b) room = std::min(room, b > used ? b - used : 0);
+  } else if (heap < ctx.info.heaps.size() && ctx.info.heaps[heap].budget) {
+    room = std::min(room, ctx.info.heaps[heap].budget);  // set by hand (tests)
+  }
+  return room;
+}
+
 uint64_t validation_message_count() { return g_validation_messages.load(); }
 
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(

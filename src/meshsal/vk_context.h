@@ -18,7 +18,9 @@ class Kernel;  // vk_compute.h
 struct HeapInfo {
   uint64_t bytes = 0;
   bool device_local = false;
-  uint64_t budget = 0;  // VK_EXT_memory_budget: what this process may still use; 0 unknown
+  // VK_EXT_memory_budget: what this process may use of the heap (its own use included)
+  // when the device was described; 0 unknown.
+  uint64_t budget = 0;
 };
 
 // One physical device as `meshsal devices` lists it.
@@ -120,6 +122,10 @@ class Context {
  private:
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
+
+// Bytes of memory heap `heap` this process may still allocate: the heap size, or with
+// VK_EXT_memory_budget the current budget less the current use (asked afresh each time).
+uint64_t heap_room(const Context& ctx, uint32_t heap);
 
 // Throws Error("<what>: <VkResult name>") unless r is VK_SUCCESS.
 void check(VkResult r, const char* what);
