@@ -84,8 +84,13 @@ Buffer::Buffer(Context& ctx, size_t bytes, const std::string& what) : ctx_(&ctx)
                                  : allocate_buffer(ctx, size_, usage, {mappable, local, 0}, false, what);
   buffer_ = a.buffer;
   memory_ = a.memory;
-  if (!ctx.use_staging && (a.flags & mappable) == mappable)
-    check(vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+  if (!ctx.use_staging && (a.flags & mappable) == mappable) {
+    VkResult r = vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_);
+    if (r != VK_SUCCESS) {
+      release();
+      check(r, "vkMapMemory");
+    }
+  }
 }
 
 Buffer::~Buffer() { release(); }
