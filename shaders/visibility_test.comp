@@ -10,7 +10,8 @@ layout(std430, binding = 1) readonly buffer Weights { float weight[]; };
 layout(std430, binding = 2) readonly buffer Views { vec4 rows[]; };
 layout(std430, binding = 3) readonly buffer Depth { uint zbuf[]; };
 layout(std430, binding = 4) writeonly buffer Partial { float partial[]; };
-layout(push_constant) uniform Push { uint base; uint n; uint res; uint vertices; float tol; uint views; } pc;
+layout(std430, binding = 5) buffer Status { uint over_budget; };  // see visibility_raster.comp
+layout(push_constant) uniform Push { uint base; uint n; uint res; uint vertices; float tol; uint views; uint budget; } pc;
 const uint VIEWS_PER_GROUP = 4u;
 shared float sums[VIEWS_PER_GROUP][64];
 
@@ -23,7 +24,8 @@ vec3 project_point(vec3 p, uint view, float half_res) {
   return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
 }
 
-bool visible(vec3 q, uint view, int res) {
+// steps: the loop steps taken, for the budget (see visibility_raster.comp).
+bool visible(vec3 q, uint view, int res, inout uint steps) {
   vec3 p = project_point(q, view, 0.5 * float(res));
   float fres = float(res);
   if (!(p.x >= 0.0 && p.y >= 0.0 && p.x < fres && p.y < fres)) return false;
@@ -33,6 +35,7 @@ bool visible(vec3 q, uint view, int res) {
   float z = uintBitsToFloat(zbuf[zbase + uint(y * res + x)]);
   if (isinf(z)) {
     // Empty pixel (on the silhouette): the nearest surface of the 3x3 around it.
+    steps += 12u;
     for (int yy = max(y - 1, 0); yy <= min(y + 1, res - 1); ++yy)
       for (int xx = max(x - 1, 0); xx <= min(x + 1, res - 1); ++xx)
         z = min(z, uintBitsToFloat(zbuf[zbase + uint(yy * res + xx)]));
@@ -48,15 +51,18 @@ void main() {
   int res = int(pc.res);
   // Four named sums (no dynamically indexed array: GPUs would spill it to memory).
   float s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  uint steps = 0u;
   for (uint i = lane; i < pc.vertices; i += pc.n) {
+    ++steps;
     float w = weight[i];
     if (w == 0.0) continue;
     vec3 q = vec3(pos[3u * i], pos[3u * i + 1u], pos[3u * i + 2u]);
-    if (visible(q, first, res)) s0 += w;
-    if (count > 1u && visible(q, first + 1u, res)) s1 += w;
-    if (count > 2u && visible(q, first + 2u, res)) s2 += w;
-    if (count > 3u && visible(q, first + 3u, res)) s3 += w;
+    if (visible(q, first, res, steps)) s0 += w;
+    if (count > 1u && visible(q, first + 1u, res, steps)) s1 += w;
+    if (count > 2u && visible(q, first + 2u, res, steps)) s2 += w;
+    if (count > 3u && visible(q, first + 3u, res, steps)) s3 += w;
   }
+  if (pc.budget != 0u && steps > pc.budget) atomicMax(over_budget, 1u);
   uint t = gl_LocalInvocationID.x;
   sums[0][t] = s0;
   sums[1][t] = s1;

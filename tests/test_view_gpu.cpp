@@ -116,3 +116,26 @@ TEST_CASE("gpu visibility: the viewpoint scorer on the GPU finds the CPU twin's 
   CHECK(db[1] > 0.9);
   CHECK(a.U == Approx(b.U).epsilon(0.005));
 }
+
+TEST_CASE("gpu visibility: lavapipe's loop limit is an error, never silently wrong depths", "[view][gpu]") {
+  // Lavapipe ends all loops of an invocation once they have taken 65535 steps in all; a
+  // cube's 12 triangles at 512 px need far more per invocation (before this check it
+  // returned views with hidden corners counted as visible: 8 instead of 6).
+  vk::Context ctx(-1, true);
+  if (ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    WARN("skipped: not a CPU Vulkan device (no loop limit)");
+    return;
+  }
+  Mesh cube = make_cube(1);
+  std::vector<float> w(cube.vertex_count(), 1.0f);
+  VisibilityOptions o;
+  o.resolution = 512;
+  GpuVisibility gpu(ctx, cube, w, frame_mesh(cube), o);
+  CHECK_THROWS_WITH(gpu.score(fibonacci_directions(8)),
+                    Catch::Contains("65535 loop steps") && Catch::Contains("--backend cpu"));
+  // At 64 px the same views are within the limit, and right.
+  o.resolution = 64;
+  GpuVisibility small(ctx, cube, w, frame_mesh(cube), o);
+  std::vector<ViewAngles> dirs = fibonacci_directions(8);
+  CHECK(small.score(dirs) == visible_score_cpu(cube, w, frame_mesh(cube), dirs, o));
+}

@@ -14,15 +14,19 @@ namespace meshsal {
 
 namespace {
 struct RasterPush {
-  uint32_t base, n, res, triangles, views;  // n: invocations per view group
+  uint32_t base, n, res, triangles, views, budget;  // n: invocations per view group
 };
 const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
 const uint32_t kRasterMost = 4096, kTestMost = 2048;  // invocations per view (CPU plan)
 struct TestPush {
   uint32_t base, n, res, vertices;
   float tol;
-  uint32_t views;
+  uint32_t views, budget;
 };
+// Lavapipe (gallivm) ends every loop of an invocation, silently, once its loops have taken
+// 65535 steps in all. On CPU devices the shaders count their steps and flag an invocation
+// that may reach that (a little below, to keep a margin for the loops they do not count).
+const uint32_t kCpuLoopBudget = 60000;
 }  // namespace
 
 // Invocations per view: each loops over items with this stride. About 16 items each, at
@@ -51,7 +55,7 @@ struct GpuVisibility::State {
   uint32_t vertices = 0, triangles = 0;
   int batch = 1;
   uint64_t submissions = 0;
-  vk::Buffer pos, tri, weights, rows, zbuf, partial;
+  vk::Buffer pos, tri, weights, rows, zbuf, partial, status;
   vk::Kernel* raster = nullptr;
   vk::Kernel* test = nullptr;
   std::unique_ptr<vk::DescriptorPool> pool;
@@ -97,13 +101,14 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
     partials = std::max<size_t>(partials, size_t(views) * visibility_lanes(s.vertices, kTestMost, views, s.cpu_device) / 64);
   s.partial = vk::Buffer(ctx, partials * 4, "visibility partial sums");
 
-  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 4,
+  s.status = vk::Buffer(ctx, 16, "visibility status");
+  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 5,
                                 sizeof(RasterPush), "visibility_raster");
-  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 5,
+  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 6,
                               sizeof(TestPush), "visibility_test");
-  s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 9);
-  s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf});
-  s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial});
+  s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 11);
+  s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf, &s.status});
+  s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial, &s.status});
 }
 
 GpuVisibility::~GpuVisibility() = default;
@@ -126,29 +131,42 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     const size_t row_bytes = count * sizeof(ViewRows);
     const bool inline_rows = row_bytes <= 65536;  // vkCmdUpdateBuffer's limit
     if (!inline_rows) s.rows.upload(rows.data(), row_bytes);
-    vk::RecordedDownload readback;
+    vk::RecordedDownload readback, read_status;
+    const uint32_t budget = s.cpu_device ? kCpuLoopBudget : 0;
     const uint32_t raster_lanes = visibility_lanes(s.triangles, kRasterMost, count, s.cpu_device);
     const uint32_t test_lanes = visibility_lanes(s.vertices, kTestMost, count, s.cpu_device);
     const uint32_t groups = test_lanes / 64;
+    const size_t partial_bytes = size_t(count) * groups * 4;
+    const size_t status_at = (partial_bytes + 255) / 256 * 256;  // after the sums
+    if (!s.partial.mapped()) vk::staging_area(s.ctx, status_at + 4);
     vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
       // The view matrices go in the command buffer itself: no transfer of their own.
       if (inline_rows) vkCmdUpdateBuffer(cmd, s.rows.handle(), 0, row_bytes, rows.data());
       vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
+      vkCmdFillBuffer(cmd, s.status.handle(), 0, VK_WHOLE_SIZE, 0);
       vk::barrier(cmd);
-      RasterPush rp{0, raster_lanes, res, s.triangles, count};
+      RasterPush rp{0, raster_lanes, res, s.triangles, count, budget};
       vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, raster_lanes, 64,
                    (count + kViewsPerGroup - 1) / kViewsPerGroup);
       vk::barrier(cmd);
-      TestPush tp{0, test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count};
+      TestPush tp{0, test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count, budget};
       vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, test_lanes, 64,
                    (count + kViewsPerGroup - 1) / kViewsPerGroup);
       // Read back in the same submission; vk::submit() ends with the barrier that makes
       // the partial sums (or their staging copy) visible to the host.
-      readback.record(s.ctx, cmd, s.partial, 0, size_t(count) * groups * 4);
+      readback.record(s.ctx, cmd, s.partial, 0, partial_bytes);
+      read_status.record(s.ctx, cmd, s.status, 0, 4, status_at);
     });
     ++s.submissions;
     partial.resize(size_t(count) * groups);
     readback.finish(partial.data());
+    uint32_t over_budget = 0;
+    read_status.finish(&over_budget);
+    if (over_budget)
+      throw Error("the visibility shaders would pass the Vulkan driver's limit of 65535 loop "
+                  "steps per invocation on '" + s.ctx.info.name + "' (lavapipe), which would "
+                  "silently give wrong results at this resolution; use a lower --resolution "
+                  "or --backend cpu");
     s.values_read += partial.size();
     for (uint32_t v = 0; v < count; ++v) {
       double sum = 0;

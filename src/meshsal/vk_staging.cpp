@@ -117,17 +117,21 @@ void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size
 namespace meshsal::vk {
 
 void RecordedDownload::record(Context& ctx, VkCommandBuffer cmd, const Buffer& src,
-                              size_t offset, size_t bytes) {
-  if (offset + bytes > src.size() || bytes > kStagingMaxBytes)
+                              size_t offset, size_t bytes, size_t at) {
+  if (offset + bytes > src.size() || at + bytes > kStagingMaxBytes)
     throw Error("internal: a recorded download past its buffer or the staging area");
   src_ = &src;
   offset_ = offset;
   bytes_ = bytes;
+  at_ = at;
   area_ = nullptr;
   if (src.mapped() || bytes == 0) return;
-  area_ = &staging_area(ctx, bytes);
+  // Growing the area here would free one an earlier record() of this command buffer uses.
+  if (!ctx.staging || ctx.staging->size < at + bytes)
+    throw Error("internal: reserve the staging area (staging_area) before recording downloads");
+  area_ = ctx.staging.get();
   barrier(cmd);  // the shader writes before it -> this copy
-  VkBufferCopy c{offset, 0, bytes};
+  VkBufferCopy c{offset, at, bytes};
   vkCmdCopyBuffer(cmd, src.handle(), area_->buffer, 1, &c);
   ++ctx.staged_copies;
   // submit() closes the command buffer with the barrier to the host.
@@ -140,7 +144,7 @@ void RecordedDownload::finish(void* data) {
     return;
   }
   area_->invalidate_for_host_reads();
-  std::memcpy(data, area_->mapped, bytes_);
+  std::memcpy(data, area_->mapped + at_, bytes_);
 }
 
 }  // namespace meshsal::vk

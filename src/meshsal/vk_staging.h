@@ -47,18 +47,20 @@ void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size
 StagingArea& staging_area(Context& ctx, size_t bytes);
 
 // A download recorded into a command buffer of the caller's own submission (no submission
-// of its own): record() copies src[offset, offset + bytes) into the staging area
-// (bytes <= kStagingMaxBytes); after that submission's fence, finish() copies it out.
-// Where src is mapped, record() does nothing and finish() reads the mapping.
+// of its own): record() copies src[offset, offset + bytes) into the staging area at
+// `at` (several downloads in one submission need disjoint places, and the area must be
+// reserved for all of them with staging_area() before recording); after that
+// submission's fence, finish() copies it out. Where src is mapped, record() does nothing
+// and finish() reads the mapping.
 struct RecordedDownload {
   void record(Context& ctx, VkCommandBuffer cmd, const Buffer& src, size_t offset,
-              size_t bytes);
+              size_t bytes, size_t at = 0);
   void finish(void* data);
 
  private:
   const Buffer* src_ = nullptr;
   StagingArea* area_ = nullptr;
-  size_t offset_ = 0, bytes_ = 0;
+  size_t offset_ = 0, bytes_ = 0, at_ = 0;
 };
 
 }  // namespace meshsal::vk
