@@ -98,4 +98,19 @@ TEST_CASE("meshsal devices lists the Vulkan devices", "[gpu]") {
   REQUIRE(!devices.empty());
   CHECK(r.out.find(devices[0].name) != std::string::npos);
   CHECK(r.out.find(devices[0].type) != std::string::npos);
+  const auto& d = devices[0];
+  CHECK(r.out.find("device 0: " + d.name) != std::string::npos);
+  CHECK(r.out.find("  type: " + d.type + ", Vulkan " + d.api_version) != std::string::npos);
+  CHECK(r.out.find("subgroup size: " + std::to_string(d.subgroup_size) + ", fp64: " +
+                   (d.has_float64 ? "yes" : "no") + ", largest storage buffer: ") != std::string::npos);
+  CHECK(r.out.find("heap 0: ") != std::string::npos);
+  CHECK(r.out.find(d.unified_memory ? "unified memory: yes" : "unified memory: no") != std::string::npos);
+  if (d.type == "cpu") {  // lavapipe: 8 lanes (4 or 16 at other vector widths), 2 GiB heap
+    CHECK(d.subgroup_size >= 4);
+    CHECK(d.has_float64);
+    CHECK(d.unified_memory);
+    CHECK(r.out.find("device-local") != std::string::npos);
+  }
+  Run forced = run("MESHSAL_FORCE_STAGING=1 " + std::string(MESHSAL_CLI) + " devices");
+  CHECK(forced.out.find("MESHSAL_FORCE_STAGING is set") != std::string::npos);
 }

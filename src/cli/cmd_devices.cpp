@@ -1,7 +1,10 @@
 // meshsal CLI: `meshsal devices` lists the Vulkan devices (index for --device, name, type,
-// memory) and says which one `--backend auto` would take.
+// subgroup size, fp64, largest storage buffer, memory heaps, unified memory or not) and
+// says which one `--backend auto` would take.
 #include <cstdio>
+#include <cstdint>
 #include <memory>
+#include <string>
 
 #include "command.h"
 #if MESHSAL_WITH_VULKAN
@@ -18,6 +21,15 @@ static RunFn setup_devices(CLI::App&) {
   };
 }
 #else
+static std::string size_text(uint64_t bytes) {
+  char buf[32];
+  if (bytes >= (uint64_t(1) << 30))
+    std::snprintf(buf, sizeof buf, "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
+  else
+    std::snprintf(buf, sizeof buf, "%.0f MiB", double(bytes) / double(1u << 20));
+  return buf;
+}
+
 static RunFn setup_devices(CLI::App& sub) {
   auto validation = std::make_shared<bool>(false);
   sub.add_flag("--validation", *validation, "enable the Khronos validation layer");
@@ -28,12 +40,24 @@ static RunFn setup_devices(CLI::App& sub) {
       return 0;
     }
     int hw = meshsal::vk::pick_hardware_gpu(devices);
-    std::printf("%-3s %-40s %-11s %10s  %s\n", "#", "name", "type", "memory", "vulkan");
-    for (const auto& d : devices)
-      std::printf("%-3d %-40s %-11s %7.1f GiB  %s%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
-                  d.device_local_bytes / double(1u << 30), d.api_version.c_str(),
-                  d.has_compute ? "" : "  (no compute queue)",
-                  d.index == hw ? "  <- auto" : "");
+    for (const auto& d : devices) {
+      std::printf("device %d: %s%s\n", d.index, d.name.c_str(), d.index == hw ? "  <- auto" : "");
+      std::printf("  type: %s, Vulkan %s%s\n", d.type.c_str(), d.api_version.c_str(),
+                  d.has_compute ? "" : ", no compute queue");
+      std::printf("  subgroup size: %u, fp64: %s, largest storage buffer: %s\n", d.subgroup_size,
+                  d.has_float64 ? "yes" : "no", size_text(d.max_storage_buffer).c_str());
+      for (size_t h = 0; h < d.heaps.size(); ++h) {
+        std::printf("  heap %zu: %s%s", h, size_text(d.heaps[h].bytes).c_str(),
+                    d.heaps[h].device_local ? " device-local" : " host");
+        if (d.heaps[h].budget) std::printf(", budget %s", size_text(d.heaps[h].budget).c_str());
+        std::printf("\n");
+      }
+      std::printf("  unified memory: %s\n",
+                  d.unified_memory ? "yes (buffers mapped, no staging copies)"
+                                   : "no (device-local buffers, transfers through staging)");
+    }
+    if (meshsal::vk::force_staging_by_env())
+      std::printf("MESHSAL_FORCE_STAGING is set: every device uses staging copies\n");
     if (hw < 0) std::printf("--backend auto uses the CPU path (no discrete or integrated GPU)\n");
     return 0;
   };
@@ -42,6 +66,10 @@ static RunFn setup_devices(CLI::App& sub) {
 #endif
 
 static bool registered = register_command(
-    {"devices", "list the Vulkan devices (for --backend gpu --device N)", 90, setup_devices});
+    {"devices",
+     "list the Vulkan devices (for --backend gpu --device N): type, subgroup size, fp64, "
+     "largest storage buffer, memory heaps, unified memory (else transfers go through a "
+     "staging area; MESHSAL_FORCE_STAGING=1 forces that on any device)",
+     90, setup_devices});
 
 }  // namespace meshsal_cli

@@ -9,17 +9,16 @@
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
+#include "gpu/gpu_grid.h"
+#include "gpu/gpu_slices.h"
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
+#include "gpu/vk_staging.h"
 
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
-#include "grid_key_comp.h"
-#include "grid_scan_comp.h"
-#include "grid_scatter_comp.h"
-#include "grid_sort_cells_comp.h"
 #include "local_max_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
@@ -43,7 +42,6 @@ constexpr int kMaxSigmas = 16;      // sweep.glsl's arrays
 constexpr int kMaxScales = 16;      // mbar.comp's factor layout
 
 // Push blocks: each begins with {base, n} (vk::dispatch fills them in).
-struct GridKeyPush { uint32_t base, n, nx, ny, nz, pad; double h; };
 struct RangePush { uint32_t base, n; };
 struct SweepPush {
   uint32_t base, n, nx, ny, nz;
@@ -64,120 +62,37 @@ struct SweepParams {
   double bcoef;  // sweep8: b = exp(-d2 * bcoef) (sweep_point_default in gaussian_filter.cpp)
 };
 
-// The uniform grid of build_spatial_grid() (spatial_grid.cpp): cells of min_cell, grown
-// by 1.25 while there are more than max(2^20, 4 points) cells (or more than one buffer
-// holds); coordinates relative to the bbox minimum.
-struct GridPlan {
-  uint32_t nx = 1, ny = 1, nz = 1;
-  double h = 1;
-  uint64_t cells() const { return uint64_t(nx) * ny * nz; }
-};
-
-GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uint64_t limit) {
-  const double max_cells = std::min<double>(std::max<double>(1 << 20, 4.0 * double(points)),
-                                            double(limit));
-  GridPlan g;
-  double cell = min_cell;
-  for (;;) {
-    double cells = 1;
-    for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / cell) + 1;
-    if (cells <= max_cells) break;
-    cell *= 1.25;
-  }
-  g.h = cell;
-  g.nx = uint32_t(std::floor(extent[0] / cell)) + 1;
-  g.ny = uint32_t(std::floor(extent[1] / cell)) + 1;
-  g.nz = uint32_t(std::floor(extent[2] / cell)) + 1;
-  return g;
-}
-
 // Everything on the device for one saliency computation.
 struct DeviceMesh {
   uint32_t nv = 0, np = 0;  // vertices, mesh points
   vk::Buffer pos, flags, offsets, neighbors;
-  vk::Buffer cell_count, starts, key, slot, sorted_pos, sorted_vertex;
+  vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
 };
+
+// Device bytes of one saliency computation: the buffers below, the largest grid
+// plan_grid() allows (cell counts and starts), and the staging area when transfers use it.
+uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t neighbors,
+                             bool staging) {
+  const uint64_t groups = (nv + kLocal - 1) / kLocal;
+  uint64_t bytes = nv * (32 + 4 + 4 + 8 * nsc + 8) + np * (32 + 4 + 4) + neighbors * 4 +
+                   groups * nsc * (8 + 16) + (uint64_t(1) << 16);
+  const uint64_t cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
+  bytes += cells * 4 + gpu_grid_scratch_bytes(nv, cells);
+  if (staging) bytes += vk::staging_bytes_for(std::max(nv * 32, nv * nsc * 8));  // largest copy
+  return bytes;
+}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Builds the grid for `radius` over the current pos[] (counting sort on the device) and
-// returns its plan and the downloaded cell starts (for planning the sweep slices).
-GridPlan build_grid(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
-                    const double extent[3], double cell, std::vector<uint32_t>* starts_out) {
-  GridPlan g = plan_grid(extent, cell, m.np, ctx.properties.limits.maxStorageBufferRange / 4 - 1);
-  const uint32_t cells = static_cast<uint32_t>(g.cells());
-  m.cell_count = vk::Buffer(ctx, size_t(cells) * 4, "the grid cell counts");
-  m.starts = vk::Buffer(ctx, size_t(cells + 1) * 4, "the grid cell starts");
-
-  auto& k_key = KERNEL(ctx, spv_grid_key_comp, 5, GridKeyPush);
-  auto& k_scan = KERNEL(ctx, spv_grid_scan_comp, 2, RangePush);
-  auto& k_scatter = KERNEL(ctx, spv_grid_scatter_comp, 6, RangePush);
-  auto& k_order = KERNEL(ctx, spv_grid_sort_cells_comp, 3, RangePush);
-  VkDescriptorSet s_key = pool.bind(k_key, {&m.pos, &m.flags, &m.cell_count, &m.key, &m.slot});
-  VkDescriptorSet s_scan = pool.bind(k_scan, {&m.cell_count, &m.starts});
-  VkDescriptorSet s_scatter = pool.bind(
-      k_scatter, {&m.pos, &m.key, &m.slot, &m.starts, &m.sorted_pos, &m.sorted_vertex});
-  VkDescriptorSet s_order = pool.bind(k_order, {&m.starts, &m.sorted_pos, &m.sorted_vertex});
-  vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, m.cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
-    vk::barrier(cmd);
-    GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
-    vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, m.nv, kLocal);
-    vk::barrier(cmd);
-    // One work group scans all cells.
-    RangePush sp{0, cells};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k_scan.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k_scan.layout, 0, 1, &s_scan, 0, nullptr);
-    vkCmdPushConstants(cmd, k_scan.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof sp, &sp);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    vk::barrier(cmd);
-    RangePush cp{0, 0};
-    vk::dispatch(ctx, cmd, k_scatter, s_scatter, &cp, 0, m.nv, kLocal);
-    vk::barrier(cmd);
-    RangePush op{0, 0};
-    vk::dispatch(ctx, cmd, k_order, s_order, &op, 0, cells, kLocal);
-    vk::barrier(cmd);
-  });
-  starts_out->resize(size_t(cells) + 1);
-  m.starts.download(starts_out->data(), starts_out->size() * 4);
-  if ((*starts_out)[cells] != m.np)
-    throw Error("internal: the GPU grid holds " + std::to_string((*starts_out)[cells]) +
-                " points instead of " + std::to_string(m.np));
-  return g;
-}
-
-// Splits the sorted points into submissions of at most ~budget candidate pairs each
-// (whole cells), so no single submission runs into a driver time-out.
-std::vector<uint32_t> plan_slices(const GridPlan& g, const std::vector<uint32_t>& starts,
-                                  double radius, double budget) {
-  const int r = int(std::ceil(radius / g.h));
-  std::vector<uint32_t> cuts{0};
-  double acc = 0;
-  const int nx = g.nx, ny = g.ny, nz = g.nz;
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x) {
-        uint32_t c = uint32_t(x) + g.nx * (uint32_t(y) + g.ny * uint32_t(z));
-        uint32_t pts = starts[c + 1] - starts[c];
-        if (!pts) continue;
-        double cand = 0;
-        int x0 = std::max(x - r, 0), x1 = std::min(x + r, nx - 1);
-        for (int zz = std::max(z - r, 0); zz <= std::min(z + r, nz - 1); ++zz)
-          for (int yy = std::max(y - r, 0); yy <= std::min(y + r, ny - 1); ++yy) {
-            uint32_t row = g.nx * (uint32_t(yy) + g.ny * uint32_t(zz));
-            cand += starts[row + x1 + 1] - starts[row + x0];
-          }
-        if (acc > 0 && acc + cand * pts > budget) {
-          cuts.push_back(starts[c]);
-          acc = 0;
-        }
-        acc += cand * pts;
-      }
-  cuts.push_back(starts.back());
-  return cuts;
+// Builds the grid of cells >= `cell` over the current pos[] (gpu_grid.h) and returns its
+// plan and the downloaded cell starts (for planning the sweep slices).
+GridPlan build_grid(vk::Context& ctx, DeviceMesh& m, const double extent[3], double cell,
+                    std::vector<uint32_t>* starts_out) {
+  return build_gpu_grid(ctx, {&m.pos, &m.flags, &m.starts, &m.sorted_pos, &m.sorted_vertex},
+                        m.nv, m.np, extent, cell, starts_out);
 }
 
 // Whether the sweep runs a lane per point over rows shared by the subgroup (sweep8_rows:
@@ -212,24 +127,35 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
   VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
                                       &m.result, &m.pairs});
-  // Candidate pairs per submission: about a second on lavapipe, and on a GPU with slow
-  // FP64 (consumer cards run doubles at 1/32..1/64 rate) still well under the usual 2 s
-  // driver watchdog; our own fence time-out is never near.
-  const bool cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  const double budget = ctx.sweep_pairs_per_submission > 0 ? ctx.sweep_pairs_per_submission
-                        : cpu_device                         ? 1e8
-                                                             : 5e9;
-  std::vector<uint32_t> cuts = plan_slices(g, starts, radius, budget);
+  // Slices of whole cells, each one submission: the first small and timed, the rest
+  // sized to ~ctx.submission_target_s of device time (gpu_slices.h); a fixed budget of
+  // candidate pairs when ctx.sweep_pairs_per_submission says so (tests).
+  const bool fixed = ctx.sweep_pairs_per_submission > 0;
+  const SweepWork work = sweep_work(g, starts, radius);
+  double budget = fixed ? ctx.sweep_pairs_per_submission
+                        : first_slice_budget(ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU,
+                                             work.before.back());
   SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig, nout, 0, g.h, radius * radius};
-  for (size_t s = 0; s + 1 < cuts.size(); ++s) {
+  ctx.sweep_slices = 0;
+  ctx.sweep_longest_s = 0;
+  for (size_t at = 0; at + 1 < work.first.size();) {
+    const size_t next = next_cut(work, at, budget);
+    const auto t_slice = Clock::now();
     vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-      if (s == 0) {  // vertices that are not mesh points get 0, not stale memory
+      if (at == 0) {  // vertices that are not mesh points get 0, not stale memory
         vkCmdFillBuffer(cmd, m.result.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      vk::dispatch(ctx, cmd, k, set, &p, cuts[s], cuts[s + 1], per_group);
+      vk::dispatch(ctx, cmd, k, set, &p, work.first[at], work.first[next], per_group);
     });
-    if (options.progress) options.progress(stage, double(cuts[s + 1]) / std::max<uint32_t>(m.np, 1));
+    const double took = seconds_since(t_slice);  // host time: an upper bound of device time
+    ctx.sweep_slices++;
+    ctx.sweep_longest_s = std::max(ctx.sweep_longest_s, took);
+    if (!fixed)
+      budget = next_budget(budget, work.before[next] - work.before[at], took,
+                           ctx.submission_target_s);
+    at = next;
+    if (options.progress) options.progress(stage, double(work.first[at]) / std::max<uint32_t>(m.np, 1));
   }
   std::vector<uint32_t> pairs(m.np);
   m.pairs.download(pairs.data(), pairs.size() * 4);
@@ -347,22 +273,20 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     m.np += res.is_point[v];
   }
 
-  // Memory: refuse up front what cannot fit the largest device-local heap.
-  const uint64_t need = uint64_t(nv) * (32 * 2 + 4 * 6 + 8 * nsc + 8 + 8) +
-                        uint64_t(adj.neighbors.size()) * 4 + (uint64_t(32) << 20);
-  if (ctx.info.device_local_bytes && need > ctx.info.device_local_bytes * 0.9)
+  // Memory: refuse up front what cannot fit the device-local heap (or its budget).
+  const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
+                                            ctx.use_staging);
+  const uint64_t have = vk::device_memory_available(ctx.info);
+  if (have && need > have * 0.9)
     throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
                 std::to_string(need >> 20) + " MiB of device memory, the device has " +
-                std::to_string(ctx.info.device_local_bytes >> 20) +
-                " MiB; use the CPU path (--backend cpu)");
+                std::to_string(have >> 20) + " MiB; use the CPU path (--backend cpu)");
 
   const uint32_t groups = static_cast<uint32_t>((nv + kLocal - 1) / kLocal);
   m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");
   m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
   m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
   m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
-  m.key = vk::Buffer(ctx, nv * 4, "the cell keys");
-  m.slot = vk::Buffer(ctx, nv * 4, "the cell slots");
   m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
   m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
@@ -393,7 +317,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
   // point, where short rows would leave lanes idle.
   const bool rows = shared_rows(ctx, fast8);
-  GridPlan g = build_grid(ctx, pool, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
+  GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
@@ -462,7 +386,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     sp.out_a[0] = 0;
     sp.out_b[0] = -1;
     m.params.upload(&sp, sizeof sp);
-    GridPlan g2 = build_grid(ctx, pool, m, extent, 0.5 * 6 * eps, &starts);
+    GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
     sweep(ctx, pool, m, g2, starts, false, sp, 1, 1, 6 * eps, options, "smoothing");
     res.smoothed.resize(nv);
     m.result.download(res.smoothed.data(), nv * 8);

@@ -6,6 +6,7 @@
 #include "meshsal/meshsal.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
+#include "gpu/vk_staging.h"
 #include "visibility_raster_comp.h"
 #include "visibility_test_comp.h"
 
@@ -13,31 +14,48 @@ namespace meshsal {
 
 namespace {
 struct RasterPush {
-  uint32_t base, n, res, triangles, views;  // n: invocations per view group
+  uint32_t base, n, res, triangles, views, budget;  // n: invocations per view group
 };
 const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
+const uint32_t kRasterMost = 4096, kTestMost = 2048;  // invocations per view (CPU plan)
 struct TestPush {
   uint32_t base, n, res, vertices;
   float tol;
-  uint32_t views;
+  uint32_t views, budget;
 };
-// Invocations per view: each loops over items with this stride. About 16 items each, at most
-// 4096 (raster) / 2048 (test) per view: a batch of 256 views is then up to a million
-// invocations on a GPU, while a CPU driver (lavapipe) pays the per-invocation cost rarely.
-uint32_t lanes(uint32_t items, uint32_t most) {
-  uint32_t l = (items / 16 + 63) / 64 * 64;
-  return std::clamp<uint32_t>(l, 64, most);
+// Lavapipe (gallivm) ends every loop of an invocation, silently, once its loops have taken
+// 65535 steps in all. On CPU devices the shaders count their steps and flag an invocation
+// that may reach that (a little below, to keep a margin for the loops they do not count).
+const uint32_t kCpuLoopBudget = 60000;
+}  // namespace
+
+// Invocations per view: each loops over items with this stride. About 16 items each, at
+// most `most` per view, which suits a CPU driver (lavapipe pays per invocation). On a GPU a
+// small batch (the optimiser's ~40 views) would then leave most of the device idle, so
+// there the views of a batch share about a million invocations (at least one item each).
+uint32_t visibility_lanes(uint32_t items, uint32_t most, uint32_t views, bool cpu_device) {
+  auto round64 = [](uint64_t x) { return uint32_t((x + 63) / 64 * 64); };
+  uint32_t l = std::clamp<uint32_t>(round64(items / 16), 64, most);
+  if (!cpu_device && views > 0) {
+    const uint64_t share = round64((uint64_t(1) << 20) / views);
+    l = std::max(l, uint32_t(std::min<uint64_t>(share, round64(items))));
+  }
+  return l;
 }
+
+namespace {
 }  // namespace
 
 struct GpuVisibility::State {
+  bool cpu_device = false;
+  uint64_t values_read = 0;
   vk::Context& ctx;
   ViewFrame frame;
   VisibilityOptions options;
-  uint32_t vertices = 0, triangles = 0, raster_lanes = 0, test_lanes = 0;
+  uint32_t vertices = 0, triangles = 0;
   int batch = 1;
   uint64_t submissions = 0;
-  vk::Buffer pos, tri, weights, rows, zbuf, partial;
+  vk::Buffer pos, tri, weights, rows, zbuf, partial, status;
   vk::Kernel* raster = nullptr;
   vk::Kernel* test = nullptr;
   std::unique_ptr<vk::DescriptorPool> pool;
@@ -58,8 +76,7 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
   s.options = options;
   s.vertices = uint32_t(mesh.vertex_count());
   s.triangles = uint32_t(mesh.triangle_count());
-  s.raster_lanes = lanes(s.triangles, 4096);
-  s.test_lanes = lanes(s.vertices, 2048);
+  s.cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 
   const uint64_t layer = uint64_t(options.resolution) * uint64_t(options.resolution) * 4;
   uint64_t cap = std::min<uint64_t>(64ull << 20, ctx.properties.limits.maxStorageBufferRange);
@@ -78,21 +95,27 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
   s.weights.upload(weights.data(), weights.size() * 4);
   s.rows = vk::Buffer(ctx, size_t(s.batch) * sizeof(ViewRows), "view matrices");
   s.zbuf = vk::Buffer(ctx, size_t(s.batch) * size_t(layer), "depth buffers");
-  s.partial = vk::Buffer(ctx, size_t(s.batch) * s.test_lanes * 4, "visibility partial sums");
+  // One value per view and work group; a smaller batch has more groups per view.
+  size_t partials = 0;
+  for (uint32_t views = 1; views <= uint32_t(s.batch); ++views)
+    partials = std::max<size_t>(partials, size_t(views) * visibility_lanes(s.vertices, kTestMost, views, s.cpu_device) / 64);
+  s.partial = vk::Buffer(ctx, partials * 4, "visibility partial sums");
 
-  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 4,
+  s.status = vk::Buffer(ctx, 16, "visibility status");
+  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 5,
                                 sizeof(RasterPush), "visibility_raster");
-  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 5,
+  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 6,
                               sizeof(TestPush), "visibility_test");
-  s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 9);
-  s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf});
-  s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial});
+  s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 11);
+  s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf, &s.status});
+  s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial, &s.status});
 }
 
 GpuVisibility::~GpuVisibility() = default;
 
 int GpuVisibility::batch() const { return s_->batch; }
 uint64_t GpuVisibility::submissions() const { return s_->submissions; }
+uint64_t GpuVisibility::values_read() const { return s_->values_read; }
 
 std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
   State& s = *s_;
@@ -105,31 +128,49 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     const uint32_t count = uint32_t(std::min(views.size() - first, size_t(s.batch)));
     rows.resize(count);
     for (uint32_t v = 0; v < count; ++v) rows[v] = view_rows(s.frame, views[first + v]);
-    s.rows.upload(rows.data(), count * sizeof(ViewRows));
+    const size_t row_bytes = count * sizeof(ViewRows);
+    const bool inline_rows = row_bytes <= 65536;  // vkCmdUpdateBuffer's limit
+    if (!inline_rows) s.rows.upload(rows.data(), row_bytes);
+    vk::RecordedDownload readback, read_status;
+    const uint32_t budget = s.cpu_device ? kCpuLoopBudget : 0;
+    const uint32_t raster_lanes = visibility_lanes(s.triangles, kRasterMost, count, s.cpu_device);
+    const uint32_t test_lanes = visibility_lanes(s.vertices, kTestMost, count, s.cpu_device);
+    const uint32_t groups = test_lanes / 64;
+    const size_t partial_bytes = size_t(count) * groups * 4;
+    const size_t status_at = (partial_bytes + 255) / 256 * 256;  // after the sums
+    if (!s.partial.mapped()) vk::staging_area(s.ctx, status_at + 4);
     vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
+      // The view matrices go in the command buffer itself: no transfer of their own.
+      if (inline_rows) vkCmdUpdateBuffer(cmd, s.rows.handle(), 0, row_bytes, rows.data());
       vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
+      vkCmdFillBuffer(cmd, s.status.handle(), 0, VK_WHOLE_SIZE, 0);
       vk::barrier(cmd);
-      RasterPush rp{0, s.raster_lanes, res, s.triangles, count};
-      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, s.raster_lanes, 64,
+      RasterPush rp{0, raster_lanes, res, s.triangles, count, budget};
+      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, raster_lanes, 64,
                    (count + kViewsPerGroup - 1) / kViewsPerGroup);
       vk::barrier(cmd);
-      TestPush tp{0, s.test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count};
-      vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, s.test_lanes, 64,
+      TestPush tp{0, test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count, budget};
+      vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, test_lanes, 64,
                    (count + kViewsPerGroup - 1) / kViewsPerGroup);
-      VkMemoryBarrier host{};  // the partial sums are read by the host after the fence
-      host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-      host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      host.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                           VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &host, 0,
-                           nullptr, 0, nullptr);
+      // Read back in the same submission; vk::submit() ends with the barrier that makes
+      // the partial sums (or their staging copy) visible to the host.
+      readback.record(s.ctx, cmd, s.partial, 0, partial_bytes);
+      read_status.record(s.ctx, cmd, s.status, 0, 4, status_at);
     });
     ++s.submissions;
-    partial.resize(size_t(count) * s.test_lanes);
-    s.partial.download(partial.data(), partial.size() * 4);
+    partial.resize(size_t(count) * groups);
+    readback.finish(partial.data());
+    uint32_t over_budget = 0;
+    read_status.finish(&over_budget);
+    if (over_budget)
+      throw Error("the visibility shaders would pass the Vulkan driver's limit of 65535 loop "
+                  "steps per invocation on '" + s.ctx.info.name + "' (lavapipe), which would "
+                  "silently give wrong results at this resolution; use a lower --resolution "
+                  "or --backend cpu");
+    s.values_read += partial.size();
     for (uint32_t v = 0; v < count; ++v) {
       double sum = 0;
-      for (uint32_t g = 0; g < s.test_lanes; ++g) sum += partial[size_t(v) * s.test_lanes + g];
+      for (uint32_t g = 0; g < groups; ++g) sum += partial[size_t(v) * groups + g];
       U[first + v] = sum;
     }
   }

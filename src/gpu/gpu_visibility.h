@@ -2,8 +2,9 @@
 // visible_score_cpu). Per batch of views: fill the z-buffers (one res x res layer per view)
 // with +inf, rasterise every (triangle, view) pair in a compute shader with atomicMin on
 // the depth bits (shaders/visibility_raster.comp), then test every (vertex, view) pair and
-// reduce the visible weights per work group (shaders/visibility_test.comp); the host sums
-// the partials in double. No render pass, no images: plain storage buffers.
+// reduce the visible weights on the device to one value per view and work group
+// (shaders/visibility_test.comp); the host adds those few in double. No render pass, no
+// images: plain storage buffers.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -15,6 +16,11 @@
 #include "gpu/vk_context.h"
 
 namespace meshsal {
+
+// Invocations per view for `items` triangles or vertices in a batch of `views` (see
+// gpu_visibility.cpp): ~16 items each up to `most` on CPU devices; on GPUs small batches
+// get more, so that a batch has about a million invocations.
+uint32_t visibility_lanes(uint32_t items, uint32_t most, uint32_t views, bool cpu_device);
 
 class GpuVisibility {
  public:
@@ -31,6 +37,7 @@ class GpuVisibility {
 
   int batch() const;              // views per submission
   uint64_t submissions() const;   // submissions made so far
+  uint64_t values_read() const;   // partial sums read back so far (views x work groups)
 
  private:
   struct State;

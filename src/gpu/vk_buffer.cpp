@@ -7,6 +7,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/vk_compute.h"
+#include "gpu/vk_staging.h"
 
 namespace meshsal::vk {
 
@@ -21,64 +22,75 @@ static std::string mib(size_t bytes) {
   return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
 
-// Creates buffer + memory; `storage` adds the storage-buffer usage and its range check.
-static void create(Context& ctx, size_t bytes, bool storage, bool host, const std::string& what,
-                   VkBuffer* buffer, VkDeviceMemory* memory, void** mapped) {
-  if (storage && bytes > ctx.properties.limits.maxStorageBufferRange)
-    throw Error("mesh too large for '" + ctx.info.name + "': " + what + " needs " + mib(bytes) +
-                ", the device allows " + mib(ctx.properties.limits.maxStorageBufferRange) +
-                " per buffer (maxStorageBufferRange); use the CPU path (--backend cpu)");
+Allocation allocate_buffer(Context& ctx, size_t bytes, VkBufferUsageFlags usage,
+                           std::initializer_list<VkMemoryPropertyFlags> prefer, bool map,
+                           const std::string& what) {
+  Allocation out;
   VkBufferCreateInfo bi{};
   bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
   bi.size = bytes;
-  bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-             (storage ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT : 0);
+  bi.usage = usage;
   bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  check(vkCreateBuffer(ctx.device, &bi, nullptr, buffer), "vkCreateBuffer");
+  check(vkCreateBuffer(ctx.device, &bi, nullptr, &out.buffer), "vkCreateBuffer");
+  auto fail = [&](const std::string& message) {
+    vkDestroyBuffer(ctx.device, out.buffer, nullptr);
+    throw Error(message);
+  };
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(ctx.device, *buffer, &req);
-  const VkMemoryPropertyFlags hv =
-      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  vkGetBufferMemoryRequirements(ctx.device, out.buffer, &req);
   int type = -1;
-  bool is_mapped = false;
-  if (host) {
-    type = find_memory_type(ctx, req.memoryTypeBits, hv | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-    if (type < 0) type = find_memory_type(ctx, req.memoryTypeBits, hv);
-    is_mapped = type >= 0;
-  } else {
-    // Device-local memory that the host can also see (lavapipe, integrated, resizable BAR)
-    // needs no staging copy.
-    type = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | hv);
-    is_mapped = type >= 0;
-    if (type < 0) type = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type < 0) type = find_memory_type(ctx, req.memoryTypeBits, 0);
-  }
-  if (type < 0) {
-    vkDestroyBuffer(ctx.device, *buffer, nullptr);
-    *buffer = VK_NULL_HANDLE;
-    throw Error("no suitable Vulkan memory type for " + what);
-  }
+  for (VkMemoryPropertyFlags flags : prefer)
+    if (type < 0) type = find_memory_type(ctx, req.memoryTypeBits, flags);
+  if (type < 0) fail("no suitable Vulkan memory type for " + what);
+  out.flags = ctx.memory.memoryTypes[type].propertyFlags;
+  const uint32_t heap = ctx.memory.memoryTypes[type].heapIndex;
+  const uint64_t room = heap_room(ctx, heap);
+  if (req.size > room)
+    fail("out of memory on '" + ctx.info.name + "': " + what + " needs " + mib(req.size) +
+         ", its memory heap has " + mib(room) + " left" + "; use the CPU path (--backend cpu)");
   VkMemoryAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = static_cast<uint32_t>(type);
-  VkResult r = vkAllocateMemory(ctx.device, &ai, nullptr, memory);
+  VkResult r = vkAllocateMemory(ctx.device, &ai, nullptr, &out.memory);
+  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+    fail("out of memory on '" + ctx.info.name + "' allocating " + mib(bytes) + " for " + what +
+         "; use the CPU path (--backend cpu)");
+  if (r != VK_SUCCESS) fail(std::string("vkAllocateMemory failed: ") + result_name(r));
+  r = vkBindBufferMemory(ctx.device, out.buffer, out.memory, 0);
+  if (r == VK_SUCCESS && map) r = vkMapMemory(ctx.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
   if (r != VK_SUCCESS) {
-    vkDestroyBuffer(ctx.device, *buffer, nullptr);
-    *buffer = VK_NULL_HANDLE;
-    if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-      throw Error("out of memory on '" + ctx.info.name + "' allocating " + mib(bytes) + " for " +
-                  what + "; use the CPU path (--backend cpu)");
-    check(r, "vkAllocateMemory");
+    vkFreeMemory(ctx.device, out.memory, nullptr);
+    fail(std::string("binding or mapping Vulkan memory failed: ") + result_name(r));
   }
-  check(vkBindBufferMemory(ctx.device, *buffer, *memory, 0), "vkBindBufferMemory");
-  *mapped = nullptr;
-  if (is_mapped) check(vkMapMemory(ctx.device, *memory, 0, VK_WHOLE_SIZE, 0, mapped), "vkMapMemory");
+  return out;
 }
 
 Buffer::Buffer(Context& ctx, size_t bytes, const std::string& what) : ctx_(&ctx) {
   size_ = (std::max<size_t>(bytes, 16) + 15) & ~size_t(15);
-  create(ctx, size_, true, false, what, &buffer_, &memory_, &mapped_);
+  if (size_ > ctx.properties.limits.maxStorageBufferRange)
+    throw Error("mesh too large for '" + ctx.info.name + "': " + what + " needs " + mib(size_) +
+                ", the device allows " + mib(ctx.properties.limits.maxStorageBufferRange) +
+                " per buffer (maxStorageBufferRange); use the CPU path (--backend cpu)");
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkMemoryPropertyFlags local = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  const VkMemoryPropertyFlags mappable = local | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                         VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  // Unified memory: mapped device memory, no copies. Otherwise device-local memory that
+  // only the staging copies touch (the host never maps it, even where it could).
+  Allocation a = ctx.use_staging ? allocate_buffer(ctx, size_, usage, {local, 0}, false, what)
+                                 : allocate_buffer(ctx, size_, usage, {mappable, local, 0}, false, what);
+  buffer_ = a.buffer;
+  memory_ = a.memory;
+  if (!ctx.use_staging && (a.flags & mappable) == mappable) {
+    VkResult r = vkMapMemory(ctx.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_);
+    if (r != VK_SUCCESS) {
+      release();
+      check(r, "vkMapMemory");
+    }
+  }
 }
 
 Buffer::~Buffer() { release(); }
@@ -117,31 +129,6 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
   return *this;
 }
 
-// A host-visible transfer buffer, freed at scope exit.
-struct Staging {
-  Context& ctx;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* mapped = nullptr;
-  Staging(Context& c, size_t bytes) : ctx(c) {
-    create(ctx, bytes, false, true, "a staging buffer", &buffer, &memory, &mapped);
-    if (!mapped) throw Error("no host-visible Vulkan memory for staging");
-  }
-  ~Staging() {
-    VkDevice device = ctx.device;
-    VkBuffer b = buffer;
-    VkDeviceMemory mem = memory;
-    auto destroy = [device, b, mem] {
-      vkDestroyBuffer(device, b, nullptr);
-      vkFreeMemory(device, mem, nullptr);  // also unmaps
-    };
-    if (ctx.has_abandoned_work())
-      ctx.deferred_destroy.push_back(destroy);
-    else
-      destroy();
-  }
-};
-
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_) throw Error("internal: upload past the end of a Vulkan buffer");
@@ -149,12 +136,7 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
     std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
     return;
   }
-  Staging s(*ctx_, bytes);
-  std::memcpy(s.mapped, data, bytes);
-  submit(*ctx_, "upload", [&](VkCommandBuffer cmd) {
-    VkBufferCopy c{0, offset, bytes};
-    vkCmdCopyBuffer(cmd, s.buffer, buffer_, 1, &c);
-  });
+  staged_upload(*ctx_, buffer_, offset, data, bytes);
 }
 
 void Buffer::download(void* data, size_t bytes, size_t offset) const {
@@ -164,12 +146,7 @@ void Buffer::download(void* data, size_t bytes, size_t offset) const {
     std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
     return;
   }
-  Staging s(*ctx_, bytes);
-  submit(*ctx_, "download", [&](VkCommandBuffer cmd) {
-    VkBufferCopy c{offset, 0, bytes};
-    vkCmdCopyBuffer(cmd, buffer_, s.buffer, 1, &c);
-  });
-  std::memcpy(data, s.mapped, bytes);
+  staged_download(*ctx_, buffer_, offset, data, bytes);
 }
 
 }  // namespace meshsal::vk

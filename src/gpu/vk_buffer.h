@@ -1,8 +1,11 @@
-// meshsal: storage buffers on a Vulkan device, with upload/download through a staging
-// buffer (or a plain memcpy where device memory is host-visible, as on lavapipe).
+// meshsal: storage buffers on a Vulkan device. With unified memory (lavapipe, integrated
+// GPUs) a buffer is mapped and transfers are a memcpy; otherwise (discrete GPUs, or
+// Context::use_staging forced) it lives in device-local memory and transfers go through
+// the context's staging area (vk_staging.h).
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 
 #include "gpu/vk_context.h"
@@ -23,6 +26,7 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   size_t size() const { return size_; }
+  bool mapped() const { return mapped_ != nullptr; }  // host maps it (no staging copies)
 
   void upload(const void* data, size_t bytes, size_t offset = 0);
   void download(void* data, size_t bytes, size_t offset = 0) const;
@@ -35,6 +39,19 @@ class Buffer {
   void* mapped_ = nullptr;  // persistent mapping when the memory is host-visible+coherent
   size_t size_ = 0;
 };
+
+// A new buffer with memory of the first type that has all the flags of one of `prefer`
+// (tried in order), mapped persistently when `map`. Throws Error naming `what` when the
+// allocation exceeds its heap (or the heap's VK_EXT_memory_budget) or memory runs out.
+struct Allocation {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;
+  VkMemoryPropertyFlags flags = 0;  // of the memory type taken
+};
+Allocation allocate_buffer(Context& ctx, size_t bytes, VkBufferUsageFlags usage,
+                           std::initializer_list<VkMemoryPropertyFlags> prefer, bool map,
+                           const std::string& what);
 
 // Index of a memory type allowed by `type_bits` with all of `flags`, or -1.
 int find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags flags);

@@ -2,6 +2,7 @@
 #include "gpu/vk_compute.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -9,6 +10,8 @@
 #include "meshsal/meshsal.h"
 
 namespace meshsal::vk {
+
+std::atomic<uint64_t> host_barriers_recorded{0};
 
 Kernel::Kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, uint32_t n_bindings,
                uint32_t push, const char* kernel_name, const std::vector<int32_t>& specialization)
@@ -139,6 +142,7 @@ void submit(Context& ctx, const char* what, const std::function<void(VkCommandBu
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
     record(cmd);
+    host_barrier(cmd);
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
@@ -195,6 +199,20 @@ Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
   if (!slot)
     slot = std::make_unique<Kernel>(ctx, spirv, spirv_bytes, bindings, push_bytes, name, specialization);
   return *slot;
+}
+
+void host_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier b{};
+  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  b.dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
+                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                    VK_ACCESS_TRANSFER_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                           VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       0, 1, &b, 0, nullptr, 0, nullptr);
+  ++host_barriers_recorded;
 }
 
 void barrier(VkCommandBuffer cmd) {

@@ -1,6 +1,7 @@
 // meshsal: compute pipelines from embedded SPIR-V, descriptor sets, and one command
 // submission per stage waited on with a finite fence timeout.
 #pragma once
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -48,8 +49,9 @@ class DescriptorPool {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
 };
 
-// Records with `record`, submits once, waits for the fence at most ctx.fence_timeout_s;
-// a timeout or a lost device becomes an Error naming `what`.
+// Records with `record`, closes the command buffer with host_barrier(), submits once and
+// waits for the fence at most ctx.fence_timeout_s; a timeout or a lost device becomes an
+// Error naming `what`.
 void submit(Context& ctx, const char* what, const std::function<void(VkCommandBuffer)>& record);
 
 // Binds the kernel and set, and dispatches groups of `local_size` threads over the items
@@ -65,6 +67,12 @@ void dispatch(Context& ctx, VkCommandBuffer cmd, const Kernel& kernel, VkDescrip
 Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
                       uint32_t bindings, uint32_t push_bytes, const char* name,
                       const std::vector<int32_t>& specialization = {});
+
+// Ends every submission: makes its shader and transfer writes visible to the host (the
+// Vulkan memory model: a fence wait alone makes them available, not visible) and to the
+// shaders and copies of later submissions.
+void host_barrier(VkCommandBuffer cmd);
+extern std::atomic<uint64_t> host_barriers_recorded;  // how many (tests check submit())
 
 // Makes shader writes (and transfers) before it visible to shader reads/writes after it.
 void barrier(VkCommandBuffer cmd);

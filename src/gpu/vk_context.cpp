@@ -9,6 +9,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/vk_compute.h"
+#include "gpu/vk_staging.h"
 
 namespace meshsal::vk {
 
@@ -48,6 +49,40 @@ void check(VkResult r, const char* what) {
 bool validation_requested_by_env() {
   const char* v = std::getenv("MESHSAL_VALIDATION");
   return v && *v && std::strcmp(v, "0") != 0;
+}
+
+bool force_staging_by_env() {
+  const char* v = std::getenv("MESHSAL_FORCE_STAGING");
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+uint64_t device_memory_available(const DeviceInfo& info) {
+  uint64_t best = 0;
+  for (const HeapInfo& h : info.heaps) {
+    if (!h.device_local) continue;
+    uint64_t usable = h.budget ? std::min(h.budget, h.bytes) : h.bytes;
+    best = std::max(best, usable);
+  }
+  if (!best || (info.device_local_bytes && info.device_local_bytes < best))
+    best = info.device_local_bytes;
+  return best;
+}
+
+uint64_t heap_room(const Context& ctx, uint32_t heap) {
+  uint64_t room = ctx.memory.memoryHeaps[heap].size;
+  if (ctx.info.has_memory_budget) {
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{};
+    budget.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT;
+    VkPhysicalDeviceMemoryProperties2 m2{};
+    m2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2;
+    m2.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(ctx.physical, &m2);
+    const uint64_t b = budget.heapBudget[heap], used = budget.heapUsage[heap];
+    if (b) room = std::min(room, b > used ? b - used : 0);
+  } else if (heap < ctx.info.heaps.size() && ctx.info.heaps[heap].budget) {
+    room = std::min(room, ctx.info.heaps[heap].budget);  // set by hand (tests)
+  }
+  return room;
 }
 
 uint64_t validation_message_count() { return g_validation_messages.load(); }
@@ -151,11 +186,55 @@ static int compute_family(VkPhysicalDevice pd) {
   return -1;
 }
 
+static bool has_device_extension(VkPhysicalDevice pd, const char* name) {
+  uint32_t n = 0;
+  if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> ext(n);
+  if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, ext.data()) != VK_SUCCESS) return false;
+  for (const auto& e : ext)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+// Heaps, their budgets (VK_EXT_memory_budget) and whether the memory is unified.
+static void describe_memory(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& p,
+                            DeviceInfo* d) {
+  VkPhysicalDeviceMemoryProperties m;
+  vkGetPhysicalDeviceMemoryProperties(pd, &m);
+  VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{};
+  budget.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT;
+  d->has_memory_budget = p.apiVersion >= VK_API_VERSION_1_1 &&
+                         has_device_extension(pd, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+  if (d->has_memory_budget) {
+    VkPhysicalDeviceMemoryProperties2 m2{};
+    m2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2;
+    m2.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(pd, &m2);
+  }
+  for (uint32_t i = 0; i < m.memoryHeapCount; ++i) {
+    HeapInfo h;
+    h.bytes = m.memoryHeaps[i].size;
+    h.device_local = (m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0;
+    h.budget = d->has_memory_budget ? budget.heapBudget[i] : 0;
+    d->heaps.push_back(h);
+    if (h.device_local) d->device_local_bytes = std::max(d->device_local_bytes, h.bytes);
+  }
+  const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT |
+                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                       VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  bool host_maps_device_memory = false;
+  for (uint32_t i = 0; i < m.memoryTypeCount; ++i)
+    if ((m.memoryTypes[i].propertyFlags & mapped) == mapped &&
+        m.memoryHeaps[m.memoryTypes[i].heapIndex].size >= d->device_local_bytes)
+      host_maps_device_memory = true;
+  d->unified_memory = host_maps_device_memory &&
+                      (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ||
+                       p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+}
+
 static DeviceInfo describe(VkPhysicalDevice pd, int index) {
   VkPhysicalDeviceProperties p;
   vkGetPhysicalDeviceProperties(pd, &p);
-  VkPhysicalDeviceMemoryProperties m;
-  vkGetPhysicalDeviceMemoryProperties(pd, &m);
   DeviceInfo d;
   d.index = index;
   d.name = p.deviceName;
@@ -167,9 +246,20 @@ static DeviceInfo describe(VkPhysicalDevice pd, int index) {
     case VK_PHYSICAL_DEVICE_TYPE_CPU: d.type = "cpu"; break;
     default: d.type = "other"; break;
   }
-  for (uint32_t i = 0; i < m.memoryHeapCount; ++i)
-    if (m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-      d.device_local_bytes = std::max<uint64_t>(d.device_local_bytes, m.memoryHeaps[i].size);
+  describe_memory(pd, p, &d);
+  d.max_storage_buffer = p.limits.maxStorageBufferRange;
+  if (p.apiVersion >= VK_API_VERSION_1_1) {
+    VkPhysicalDeviceSubgroupProperties sub{};
+    sub.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+    VkPhysicalDeviceProperties2 p2{};
+    p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    p2.pNext = &sub;
+    vkGetPhysicalDeviceProperties2(pd, &p2);
+    d.subgroup_size = sub.subgroupSize;
+  }
+  VkPhysicalDeviceFeatures features{};
+  vkGetPhysicalDeviceFeatures(pd, &features);
+  d.has_float64 = features.shaderFloat64 == VK_TRUE;
   d.api_version = std::to_string(VK_API_VERSION_MAJOR(p.apiVersion)) + "." +
                   std::to_string(VK_API_VERSION_MINOR(p.apiVersion)) + "." +
                   std::to_string(VK_API_VERSION_PATCH(p.apiVersion));
@@ -241,6 +331,7 @@ Context::Context(int device_index, bool want_validation) {
     queue_family = static_cast<uint32_t>(family);
     vkGetPhysicalDeviceProperties(physical, &properties);
     vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+    use_staging = !info.unified_memory || force_staging_by_env();
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qi{};
@@ -285,9 +376,25 @@ Context::Context(int device_index, bool want_validation) {
   }
 }
 
+// Every submission is waited for by its own fence, so only abandoned (timed-out) work can
+// still run here: wait for those fences, bounded, instead of an unbounded vkDeviceWaitIdle.
+// If they still do not signal, the device and what it may use are left to the driver's
+// process tear-down rather than destroyed under running work (or waited for forever).
 Context::~Context() {
+  if (device && !abandoned_fences.empty()) {
+    const uint64_t timeout_ns = uint64_t(std::max(fence_timeout_s, 1.0) * 1e9);
+    VkResult r = vkWaitForFences(device, uint32_t(abandoned_fences.size()),
+                                 abandoned_fences.data(), VK_TRUE, timeout_ns);
+    if (r != VK_SUCCESS) {
+      std::fprintf(stderr, "meshsal: abandoned Vulkan work on '%s' did not finish; "
+                           "its device is not destroyed\n", info.name.c_str());
+      staging.release();
+      for (auto& kernel : kernel_cache) kernel.second.release();
+      return;
+    }
+  }
   if (device) {
-    vkDeviceWaitIdle(device);
+    staging.reset();
     for (auto& destroy : deferred_destroy) destroy();
     kernel_cache.clear();
     for (VkFence f : abandoned_fences) vkDestroyFence(device, f, nullptr);

@@ -14,6 +14,15 @@ namespace meshsal::vk {
 
 class Kernel;  // vk_compute.h
 
+// One memory heap of a device.
+struct HeapInfo {
+  uint64_t bytes = 0;
+  bool device_local = false;
+  // VK_EXT_memory_budget: what this process may use of the heap (its own use included)
+  // when the device was described; 0 unknown.
+  uint64_t budget = 0;
+};
+
 // One physical device as `meshsal devices` lists it.
 struct DeviceInfo {
   int index = 0;                  // position in vkEnumeratePhysicalDevices order
@@ -23,7 +32,27 @@ struct DeviceInfo {
   uint64_t device_local_bytes = 0;  // largest device-local heap
   std::string api_version;        // "1.3.239"
   bool has_compute = false;       // a queue family with compute
+  uint32_t subgroup_size = 0;     // lanes per subgroup (0: Vulkan 1.0 device)
+  bool has_float64 = false;       // shaderFloat64
+  uint64_t max_storage_buffer = 0;  // maxStorageBufferRange
+  std::vector<HeapInfo> heaps;
+  bool has_memory_budget = false;   // VK_EXT_memory_budget
+  // Unified memory: an integrated or CPU device with a device-local memory type the host
+  // maps coherently, so buffers are mapped and no staging copies are needed. Discrete GPUs
+  // (even with resizable BAR) keep buffers in device memory the host does not map.
+  bool unified_memory = false;
 };
+
+// True when MESHSAL_FORCE_STAGING is set to something other than "" or "0": the
+// discrete-GPU memory path (device-local buffers, copies through a staging area) on any
+// device, so that lavapipe tests it.
+bool force_staging_by_env();
+
+// The bytes a device-local allocation may still take: the smallest of the largest
+// device-local heap and its VK_EXT_memory_budget budget (when the device reports one).
+uint64_t device_memory_available(const DeviceInfo& info);
+
+class StagingArea;  // vk_staging.h
 
 // True when MESHSAL_VALIDATION is set to something other than "" or "0".
 bool validation_requested_by_env();
@@ -66,13 +95,24 @@ class Context {
   // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
   // 0 shared rows, 1 subgroup per point. Tests run both.
   int sweep_variant = -1;
-  // Candidate pairs per sweep submission; 0: by device type (1e8 on CPU devices, 5e9 on
-  // GPUs, see sweep() in gpu_saliency.cpp). Tests set it small to split a small mesh.
+  // Candidate pairs per sweep submission; 0: sized by time (submission_target_s, see
+  // gpu_slices.h). Tests set it small to split a small mesh.
   double sweep_pairs_per_submission = 0;
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
+  // Buffers live in device-local memory and transfers go through the staging area: on
+  // devices without unified memory, or when forced (MESHSAL_FORCE_STAGING=1, or set
+  // before any buffer is made). Otherwise buffers are mapped and copied with memcpy.
+  bool use_staging = false;
+  std::unique_ptr<StagingArea> staging;  // made on first use, reused (vk_staging.h)
+  uint64_t staged_copies = 0;            // copy submissions through it (tests count them)
+  // Target device time of one sweep submission (seconds): the first slice is timed and
+  // the rest sized to it, far below a desktop driver's ~2 s watchdog.
+  double submission_target_s = 0.15;
+  uint64_t sweep_slices = 0;     // submissions of the last sweep
+  double sweep_longest_s = 0;    // and the longest of them (host time, waits included)
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
-  // them, so they are freed only after the final vkDeviceWaitIdle.
+  // them, so they are freed only once the destructor has seen their fences signal.
   std::vector<VkFence> abandoned_fences;
   std::vector<VkCommandBuffer> abandoned_commands;
   // While work is abandoned, buffers and descriptor pools are destroyed here, later.
@@ -82,6 +122,10 @@ class Context {
  private:
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
+
+// Bytes of memory heap `heap` this process may still allocate: the heap size, or with
+// VK_EXT_memory_budget the current budget less the current use (asked afresh each time).
+uint64_t heap_room(const Context& ctx, uint32_t heap);
 
 // Throws Error("<what>: <VkResult name>") unless r is VK_SUCCESS.
 void check(VkResult r, const char* what);

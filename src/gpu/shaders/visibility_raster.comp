@@ -11,7 +11,11 @@ layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
 layout(std430, binding = 2) readonly buffer Views { vec4 rows[]; };
 layout(std430, binding = 3) buffer Depth { uint zbuf[]; };
-layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; } pc;
+layout(std430, binding = 4) buffer Status { uint over_budget; };
+// budget: lavapipe (gallivm) silently ends every loop of an invocation once its loops have
+// taken 65535 steps in all; where budget is not 0 an invocation that may reach it says so
+// in over_budget (the host then refuses the result instead of returning wrong depths).
+layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; uint budget; } pc;
 const uint VIEWS_PER_GROUP = 4u;  // views rasterised per invocation (positions loaded once)
 
 vec3 project_point(vec3 p, uint view, float half_res) {
@@ -23,12 +27,13 @@ vec3 project_point(vec3 p, uint view, float half_res) {
   return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
 }
 
-void rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, uint zbase) {
+// Returns the loop steps it took (an upper bound: rows + pixels of the box).
+uint rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, uint zbase) {
   vec3 a = project_point(pa, view, half_res);
   vec3 b = project_point(pb, view, half_res);
   vec3 c = project_point(pc_, view, half_res);
   float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-  if (!(abs(area) > 1e-12)) return;
+  if (!(abs(area) > 1e-12)) return 0u;
   float s = area > 0.0 ? 1.0 : -1.0;
   float inv = 1.0 / abs(area);
   // Pixels whose centre x + 0.5 lies in the bounding box (tiny triangles often have none).
@@ -49,6 +54,8 @@ void rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, u
       if (z < zbuf[at]) atomicMin(zbuf[at], z);  // most hidden fragments skip the atomic
     }
   }
+  uint rows = uint(max(y1 - y0 + 1, 0)), cols = uint(max(x1 - x0 + 1, 0));
+  return rows + rows * cols;
 }
 
 vec3 load(uint v) { return vec3(pos[3u * v], pos[3u * v + 1u], pos[3u * v + 2u]); }
@@ -60,9 +67,12 @@ void main() {
   uint last = min(first + VIEWS_PER_GROUP, pc.views);
   int res = int(pc.res);
   float half_res = 0.5 * float(res);
+  float steps_f = 0.0;  // loop steps taken (a float: the sum can pass 2^32)
   for (uint t = lane; t < pc.triangles; t += pc.n) {
     vec3 pa = load(tri[3u * t]), pb = load(tri[3u * t + 1u]), pc_ = load(tri[3u * t + 2u]);
+    steps_f += 1.0;
     for (uint view = first; view < last; ++view)
-      rasterise(pa, pb, pc_, view, res, half_res, view * uint(res) * uint(res));
+      steps_f += 1.0 + float(rasterise(pa, pb, pc_, view, res, half_res, view * uint(res) * uint(res)));
   }
+  if (pc.budget != 0u && steps_f > float(pc.budget)) atomicMax(over_budget, 1u);
 }
