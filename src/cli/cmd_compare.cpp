@@ -16,6 +16,7 @@ namespace meshsal_cli {
 namespace {
 
 struct Args {
+  std::string precision = "auto";  // --precision
   std::string original, simplified, saliency, backend = "auto";
   long long samples = 200000;
   double fraction = 0.30;
@@ -36,6 +37,7 @@ int run(const Args& a) {
   } else {
     SaliencyOptions so;
     so.backend = parse_backend(a.backend);
+    so.precision = meshsal::parse_precision(a.precision);
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     s = compute_saliency(original, so).saliency;
@@ -76,6 +78,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")
       ->capture_default_str();
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
+  add_precision_option(sub, &a->precision);
   sub.add_option("--threads", a->threads, "Threads (0 = all cores)")->capture_default_str();
   return [a] { return run(*a); };
 }
