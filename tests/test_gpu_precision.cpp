@@ -137,3 +137,35 @@ TEST_CASE("precision names parse", "[precision]") {
   CHECK_THROWS_WITH(parse_precision("float"),
                     "--precision must be auto, mixed or double, got 'float'");
 }
+
+TEST_CASE("the near-tie recheck replaces the flagged points' maps by double sweeps", "[gpu][precision]") {
+  // Mixed maps differ from double ones by ~1e-7 of the maximum; the points the recheck
+  // sweeps again must agree with the double sweep to ~1e-16 (1e-12 allowed), and without
+  // the recheck (test hook) those points keep their mixed values.
+  MESHSAL_REQUIRE_MESH(path, "fandisk_6k.obj");
+  Mesh mesh = load_mesh(path);
+  SaliencyOptions opt;
+  opt.precision = Precision::Double;
+  SaliencyResult dbl = compute_saliency_gpu(context(), mesh, opt);
+  auto points_equal_to_double = [&](const SaliencyResult& r) {
+    size_t n = 0;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      bool same = dbl.is_point[v] != 0;
+      for (size_t i = 0; i < r.raw.size(); ++i)
+        same = same && std::fabs(r.raw[i][v] - dbl.raw[i][v]) <= 1e-12 * max_abs(dbl.raw[i]);
+      n += same;
+    }
+    return n;
+  };
+  opt.precision = Precision::Mixed;
+  gpu::test_skip_recheck = true;
+  SaliencyResult unchecked = compute_saliency_gpu(context(), mesh, opt);
+  gpu::test_skip_recheck = false;
+  SaliencyResult checked = compute_saliency_gpu(context(), mesh, opt);
+  REQUIRE(checked.rechecked > 100);
+  CHECK(unchecked.rechecked == checked.rechecked);
+  const size_t before = points_equal_to_double(unchecked), after = points_equal_to_double(checked);
+  CHECK(before < checked.rechecked / 2);  // flat parts of fandisk: exact zeros either way
+  CHECK(after >= checked.rechecked);
+  CHECK(after <= checked.rechecked + before);
+}

@@ -13,6 +13,7 @@
 namespace meshsal::gpu {
 
 uint32_t test_sweep_gap_at = UINT32_MAX;
+bool test_skip_recheck = false;
 
 namespace {
 constexpr uint32_t kLocal = 64;
@@ -63,7 +64,7 @@ uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const Nea
   std::vector<uint32_t> list;
   for (uint32_t v = 0; v < nv; ++v)
     if (marks[v]) list.push_back(v);
-  if (list.empty()) return 0;
+  if (list.empty() || test_skip_recheck) return static_cast<uint32_t>(list.size());
 
   vk::Buffer list_buf(ctx, list.size() * 4, "the near-tie points");
   list_buf.upload(list.data(), list.size() * 4);

@@ -44,4 +44,8 @@ uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const Nea
 // so the check above must catch it; UINT32_MAX (the default) for none.
 extern uint32_t test_sweep_gap_at;
 
+// Test hook: when set, recheck_near_ties() only counts the points it would sweep again
+// and leaves the mixed-precision maps as they are.
+extern bool test_skip_recheck;
+
 }  // namespace meshsal::gpu
