@@ -1,15 +1,19 @@
 // meshsal: the neighbour sweep, GPU twin of gaussian_filter() / sweep_point()
-// (gaussian_filter.cpp), in double like the CPU so that near-ties in the local-maximum
-// test fall the same way. GPUs give each mesh point a subgroup, in cell order: like the
-// CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU devices
-// (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of cells are
-// culled against the ball as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
-// candidate adds its weight to all sigma sums at once, masked by each sigma's strict
-// cutoff d < 2 s (no branches: lavapipe runs 8 lanes of AVX2). Weights of a sigma half of
-// another are w(s) = w(2s)^4, as in the CPU's KernelPlan. The center-surround step
-// S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
-// Included by sweep8.comp and sweep8_rows.comp (the default sigmas 12,10,8,6,5,4,3,2 eps,
-// fixed plan: FAST8) and sweepn.comp (any plan of up to 16 sigmas, specialised per plan).
+// (gaussian_filter.cpp), in double like the CPU, or in mixed precision (MIXED below:
+// float distances and weights, float sums of a few terms folded into doubles, exact
+// cutoffs, and an error bound per map with which gpu_sweep.cpp rechecks near ties of the
+// local-maximum test in double). GPUs give each mesh point a subgroup, in cell order: like
+// the CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU
+// devices (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of
+// cells are culled against the ball as on the CPU; the cells of a row are one contiguous
+// range of the sorted points. Every candidate adds its weight to all sigma sums at once,
+// masked by each sigma's strict cutoff d < 2 s (no branches: lavapipe runs 8 lanes of
+// AVX2). Weights of a sigma half of another are w(s) = w(2s)^4, as in the CPU's
+// KernelPlan. The center-surround step S_i = |G(s_i) - G(2 s_i)| is done here too, so only
+// the raw maps are written. Included by sweep8.comp and sweep8_rows.comp (the default
+// sigmas 12,10,8,6,5,4,3,2 eps, fixed plan: FAST8), their _mixed twins, sweep8_list.comp
+// (the double recheck of listed vertices: POINT_LIST) and sweepn.comp (any plan of up to
+// 16 sigmas, specialised per plan).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 layout(local_size_x = 64) in;
