@@ -86,3 +86,21 @@ TEST_CASE("cli: a bad --precision is a usage error", "[cli][precision]") {
   CHECK(!fs::exists(dir / "out.ply"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("cli: bench has a row per sweep precision for each Vulkan device", "[cli][gpu][precision]") {
+  MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
+  fs::path dir = scratch_dir();
+  Run r = run_cli("bench " + input + " --repeat 1 --json", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  auto count = [&](const std::string& s) {
+    size_t n = 0;
+    for (size_t at = r.out.find(s); at != std::string::npos; at = r.out.find(s, at + 1)) ++n;
+    return n;
+  };
+  // The CPU row is double; each Vulkan device (lavapipe here) adds a mixed and a double row.
+  CHECK(count("\"precision\": \"mixed\"") >= 1);
+  CHECK(count("\"precision\": \"double\"") == count("\"precision\": \"mixed\"") + 1);
+  CHECK(count("\"rechecked\": ") == count("\"model\": "));
+  fs::remove_all(dir);
+}
