@@ -205,16 +205,22 @@ void candidate_weights(double d2, const double cf[NS], out double w[NS]) {
 //   a^64, 2 eps a^144. A power m errs by at most 2m u (the base), 12u (at most 12
 //   roundings of the products) and 14u (the argument: t is within 7u relative and the
 //   weight's exponent is below 2 where it counts).
-// * The value H as a float (u), the product w H (u) and the float sums of at most
-//   CHUNK * PER_STEP = 16 terms before each is added into a double (16u of the sum of
-//   |terms|): every numerator N = sum w H and denominator D = sum w errs by at most
-//   rho = (2m + 48)u relative to A = sum w |H| and to D.
+// * The value H as a float (u), the product w H (u) and the float sums: a lane sums at
+//   most CHUNK * PER_STEP = 16 terms (lane per point) or, a subgroup per point, at most
+//   FOLDS = 8 float sums of CHUNK = 8 terms each, before adding into a double (at most
+//   15u or 14u of the sum of |terms|; on GPUs with fp64 at 1/32..1/64 rate the double
+//   adds would cost more than the float work if they came every 8 candidates): every
+//   numerator N = sum w H and denominator D = sum w errs by at most rho = (2m + 48)u
+//   relative to A = sum w |H| and to D.
 // * G = N / D then errs by at most rho (A / D + |G|) <= 2 rho A / D, and
 //   S = |G(s) - G(2s)| by the sum of that for both sigmas. The bound written per map is
 //   1.25 times that (the A are summed alongside, in the same arithmetic).
 // A comparison of two neighbours' raw values further apart than the sum of their bounds
 // falls as in double; near_tie.comp sends the others to a double recheck.
 #define CHUNK 8u
+#ifndef UNIFORM_ROWS
+#define FOLDS 8u  // a subgroup per point: two levels of float sums
+#endif
 const float kCutoffTol = 1.0 / 524288.0;  // 32u = 2^-19
 const float kU = 1.0 / 16777216.0;        // 2^-24
 // exp(-y) for 0 <= y (<= 1/2 where it counts). Clamped at 1/2, so that a^144 >= e^-72
@@ -285,9 +291,22 @@ void sweep_point(uint i, dvec4 p, dvec3 lo, dvec3 hi, uint first, uint step, boo
       uint j0 = starts[row + uint(xa)];
       uint j1 = starts[row + uint(xb) + 1u];
 #ifdef MIXED
-      // Float sums over chunks of at most CHUNK steps, each then added into the doubles.
+      // Float sums over chunks of at most CHUNK steps; FOLDS of them summed in float, then
+      // added into the doubles.
       for (uint j = j0 + first; j < j1;) {
+#ifdef FOLDS
+        const uint jfold = min(j1, j + FOLDS * CHUNK * PER_STEP * step);
+        float gw[NS], gh[NS], ga[NS];
+        for (int k = 0; k < NS; ++k) {
+          gw[k] = 0.0;
+          gh[k] = 0.0;
+          ga[k] = 0.0;
+        }
+        while (j < jfold) {
+        const uint jend = min(jfold, j + CHUNK * PER_STEP * step);
+#else
         const uint jend = min(j1, j + CHUNK * PER_STEP * step);
+#endif
         float fw[NS], fh[NS], fa[NS];
         for (int k = 0; k < NS; ++k) {
           fw[k] = 0.0;
@@ -345,11 +364,25 @@ void sweep_point(uint i, dvec4 p, dvec3 lo, dvec3 hi, uint first, uint step, boo
             fa[k] += ab;
           }
         }
+#ifdef FOLDS
+        for (int k = 0; k < NS; ++k) {
+          gh[k] += fh[k];
+          gw[k] += fw[k];
+          ga[k] += fa[k];
+        }
+        }
+        for (int k = 0; k < NS; ++k) {
+          sh[k] += double(gh[k]);
+          sw[k] += double(gw[k]);
+          sa[k] += double(ga[k]);
+        }
+#else
         for (int k = 0; k < NS; ++k) {
           sh[k] += double(fh[k]);
           sw[k] += double(fw[k]);
           sa[k] += double(fa[k]);
         }
+#endif
       }
 #else
       // Each lane takes PER_STEP candidates per iteration, `step` apart; one past the row's
