@@ -41,12 +41,15 @@ void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what
 
 void compare(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
   // Both sweep variants: the one for this device and the other one (on lavapipe that is
-  // the GPU variant, a subgroup per point, which CI could not run otherwise).
-  for (int variant : {0, 1}) {
-    context().sweep_variant = variant;
-    INFO("sweep variant " << variant);
-    compare_once(mesh, opt, what);
-  }
+  // the GPU variant, a subgroup per point, which CI could not run otherwise); and both
+  // precisions (mixed applies to the default sigmas; other plans run in double).
+  for (Precision precision : {Precision::Mixed, Precision::Double})
+    for (int variant : {0, 1}) {
+      context().sweep_variant = variant;
+      INFO("sweep variant " << variant << (precision == Precision::Mixed ? ", mixed" : ", double"));
+      opt.precision = precision;
+      compare_once(mesh, opt, what);
+    }
   context().sweep_variant = -1;
 }
 

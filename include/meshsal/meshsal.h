@@ -100,6 +100,13 @@ enum class Backend {
   Gpu    // a Vulkan device (Error when built without Vulkan or no device works)
 };
 
+// The GPU sweep's arithmetic. Mixed: distances and weights in float, sums folded into
+// doubles, cutoffs decided exactly and near ties of the local-maximum test rechecked in
+// double (the default scales; other scales run in double). Double: all in double.
+// Auto: mixed on GPUs (fp64 at 1/2..1/64 of the fp32 rate), double on CPU devices
+// (lavapipe), where the double sweep measured faster. The CPU path is always double.
+enum class Precision { Auto, Mixed, Double };
+
 struct SaliencyOptions {
   // Limits (Error otherwise): eps_frac in (0, 0.1], 1..16 scales each in (0, 100], and
   // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bbox diagonal).
@@ -109,6 +116,7 @@ struct SaliencyOptions {
   Backend backend = Backend::Cpu;
   int device = -1;                            // Vulkan device index (list_devices), -1 = choose
   bool smoothed = false;                      // also compute Sm = G(S, 3 eps) (simplification)
+  Precision precision = Precision::Auto;      // the GPU sweep's arithmetic
   // Called with a stage name and the fraction done of that stage (0..1), from the calling
   // thread. May be empty.
   std::function<void(const char* stage, double fraction)> progress;
@@ -129,6 +137,8 @@ struct SaliencyResult {
   std::vector<double> saliency;           // final saliency S per vertex (0 on non-points)
   std::vector<double> smoothed;           // Sm = G(S, 3 eps) when options.smoothed, else empty
   uint64_t pairs = 0;                     // neighbour pairs the sweep visited
+  bool mixed_precision = false;           // the GPU sweep ran in mixed precision
+  uint64_t rechecked = 0;                 // points a mixed sweep swept again in double
   std::vector<StageTime> stages;          // wall time per stage
   std::string backend_name;               // "cpu (N threads)" or the Vulkan device name
 };
@@ -141,6 +151,9 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
 SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
                                 const uint32_t* indices, size_t index_count,
                                 const SaliencyOptions& options);
+
+// "auto", "mixed" or "double"; throws Error on anything else.
+Precision parse_precision(const std::string& name);
 
 // Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);

@@ -86,6 +86,13 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
   throw Error("unknown backend");
 }
 
+Precision parse_precision(const std::string& name) {
+  if (name == "auto") return Precision::Auto;
+  if (name == "mixed") return Precision::Mixed;
+  if (name == "double") return Precision::Double;
+  throw Error("--precision must be auto, mixed or double, got '" + name + "'");
+}
+
 std::vector<double> parse_scales(const std::string& text) {
   std::vector<double> scales;
   std::stringstream ss(text);

@@ -52,13 +52,15 @@ int exec_simplify_benchmark(const Args& a, const std::string& data_dir) {
 
 struct Row {
   std::string model, device;
+  std::string precision;  // of the sweep: "mixed" or "double"
   size_t vertices = 0;
   double read = 0;
   meshsal::SaliencyResult best;  // the fastest of the repeats
   double total = 0;
 };
 
-// Each backend the table has a row for: the CPU path and every Vulkan device with compute.
+// Each backend the table has a row for: the CPU path and every Vulkan device with compute,
+// once per sweep precision.
 std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
   meshsal::SaliencyOptions cpu;
   cpu.backend = meshsal::Backend::Cpu;
@@ -70,7 +72,10 @@ std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
       meshsal::SaliencyOptions gpu = cpu;
       gpu.backend = meshsal::Backend::Gpu;
       gpu.device = d.index;
-      out.push_back(gpu);
+      for (auto precision : {meshsal::Precision::Mixed, meshsal::Precision::Double}) {  // both, explicitly
+        gpu.precision = precision;
+        out.push_back(gpu);
+      }
     }
   } catch (const meshsal::Error& e) {
     std::fprintf(stderr, "no Vulkan rows: %s\n", e.what());
@@ -104,6 +109,9 @@ Row bench_one(const std::string& path, const meshsal::SaliencyOptions& opt, int 
     if (i == 0 || total < row.total) row.best = std::move(r), row.total = total;
   }
   row.device = row.best.backend_name;
+  row.precision = opt.backend == meshsal::Backend::Cpu ? "double"
+                  : row.best.mixed_precision           ? "mixed"
+                                                       : "double";
   return row;
 }
 
@@ -114,32 +122,37 @@ double stage(const Row& row, const char* name) {
 }
 
 void print_table(const std::vector<Row>& rows) {
-  std::printf("%-24s %9s  %-22s %9s %9s %9s %9s %9s %9s %10s %10s\n", "model", "vertices",
-              "device", "curvature", "sweep", "c-s", "suppress", "other", "total", "pairs", "pairs/s");
+  std::printf("%-24s %9s  %-22s %-6s %9s %9s %9s %9s %9s %9s %10s %10s %8s\n", "model", "vertices",
+              "device", "prec", "curvature", "sweep", "c-s", "suppress", "other", "total", "pairs", "pairs/s", "recheck");
   for (const Row& r : rows) {
     const double listed = stage(r, "curvature") + stage(r, "gaussian sweep") +
                           stage(r, "center-surround") + stage(r, "suppression");
-    std::printf("%-24s %9zu  %-22.22s %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %10.3g %10.3g\n",
-                r.model.c_str(), r.vertices, r.device.c_str(), stage(r, "curvature"),
+    std::printf("%-24s %9zu  %-22.22s %-6s %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %10.3g %10.3g %8llu\n",
+                r.model.c_str(), r.vertices, r.device.c_str(), r.precision.c_str(), stage(r, "curvature"),
                 stage(r, "gaussian sweep"), stage(r, "center-surround"), stage(r, "suppression"),
                 std::max(0.0, r.total - listed), r.total, double(r.best.pairs),
-                r.total > 0 ? r.best.pairs / r.total : 0.0);
+                r.total > 0 ? r.best.pairs / r.total : 0.0, (unsigned long long)r.best.rechecked);
   }
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
-              " center-surround maps come out of the sweep, and `other` is upload, grid and download)\n");
+              " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
+              " in mixed precision, the double recheck of near ties; prec: the sweep's arithmetic;\n"
+              " recheck: points swept again in double)\n");
 }
 
 void print_json(const std::vector<Row>& rows) {
   std::printf("[\n");
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::printf("  {\"model\": %s, \"vertices\": %zu, \"device\": %s, \"read_s\": %.6f, \"stages\": {",
-                json_string(r.model).c_str(), r.vertices, json_string(r.device).c_str(), r.read);
+    std::printf("  {\"model\": %s, \"vertices\": %zu, \"device\": %s, \"precision\": %s, "
+                "\"read_s\": %.6f, \"stages\": {",
+                json_string(r.model).c_str(), r.vertices, json_string(r.device).c_str(),
+                json_string(r.precision).c_str(), r.read);
     for (size_t s = 0; s < r.best.stages.size(); ++s)
       std::printf("%s%s: %.6f", s ? ", " : "", json_string(r.best.stages[s].name).c_str(),
                   r.best.stages[s].seconds);
-    std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g}%s\n", r.total,
-                (unsigned long long)r.best.pairs, r.total > 0 ? r.best.pairs / r.total : 0.0,
+    std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g, \"rechecked\": %llu}%s\n",
+                r.total, (unsigned long long)r.best.pairs, r.total > 0 ? r.best.pairs / r.total : 0.0,
+                (unsigned long long)r.best.rechecked,
                 i + 1 < rows.size() ? "," : "");
   }
   std::printf("]\n");

@@ -16,6 +16,7 @@ namespace meshsal_cli {
 namespace {
 
 struct Args {
+  std::string precision = "auto";  // --precision
   std::string original, simplified, saliency, backend = "auto";
   long long samples = 200000;
   double fraction = 0.30;
@@ -34,6 +35,7 @@ int run(const Args& a) {
   } else {
     SaliencyOptions so;
     so.backend = parse_backend(a.backend);
+    so.precision = meshsal::parse_precision(a.precision);
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     s = compute_saliency(original, so).saliency;
@@ -74,6 +76,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")
       ->capture_default_str()->check(finite_in(0, 1, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
+  add_precision_option(sub, &a->precision);
   add_threads_option(sub, a->threads, "Threads (0 = all cores)");
   return [a] { return run(*a); };
 }

@@ -18,6 +18,7 @@ namespace meshsal_cli {
 namespace {
 
 struct Args {
+  std::string precision = "auto";  // --precision
   std::string input, output, weights = "saliency", saliency_from, backend = "auto";
   long long target_faces = 0;
   double ratio = 0;
@@ -69,6 +70,7 @@ int run(const Args& a) {
       so.eps_frac = a.eps_frac;
       so.threads = a.threads;
       so.backend = parse_backend(a.backend);
+      so.precision = meshsal::parse_precision(a.precision);
       so.smoothed = true;
       so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
       so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -136,6 +138,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
       ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
+  add_precision_option(sub, &a->precision);
   add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
   sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   return [a] { return run(*a); };

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <CLI/CLI.hpp>
+
 #include "core/colormap.h"
 #include "meshsal/meshsal.h"
 
@@ -29,6 +31,8 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   std::printf("faces      %zu triangles\n", mesh.triangle_count());
   std::printf("eps        %.6g\n", r.eps);
   std::printf("backend    %s\n", r.backend_name.c_str());
+  if (r.mixed_precision)
+    std::printf("precision  mixed (%llu points rechecked in double)\n", (unsigned long long)r.rechecked);
   std::printf("read       %8.3f s\n", load_seconds);
   double total = 0;
   for (const StageTime& s : r.stages) {
@@ -44,6 +48,14 @@ Backend parse_backend(const std::string& name) {
   if (name == "cpu") return Backend::Cpu;
   if (name == "gpu") return Backend::Gpu;
   throw Error("--backend must be auto, cpu or gpu, got '" + name + "'");
+}
+
+void add_precision_option(CLI::App& app, std::string* name) {
+  app.add_option("--precision", *name,
+                 "GPU sweep arithmetic: mixed (float distances and weights, sums and near ties "
+                 "in double), double, or auto (mixed on GPUs, double on CPU devices)")
+      ->check(CLI::IsMember({"auto", "mixed", "double"}))
+      ->capture_default_str();
 }
 
 }  // namespace meshsal_cli

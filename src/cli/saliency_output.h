@@ -5,6 +5,10 @@
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 
+namespace CLI {
+class App;
+}
+
 namespace meshsal_cli {
 
 // quality = S, red/green/blue = colour map of S; with dump_scales also curvature and
@@ -18,5 +22,9 @@ void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyRe
 
 // Parses "auto" / "cpu" / "gpu".
 meshsal::Backend parse_backend(const std::string& name);
+
+// --precision auto|mixed|double (the GPU sweep's arithmetic) into *name, for every
+// command that has --backend; meshsal::parse_precision() turns it into the option.
+void add_precision_option(CLI::App& app, std::string* name);
 
 }  // namespace meshsal_cli

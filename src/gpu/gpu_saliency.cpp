@@ -9,13 +9,14 @@
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
+#include "meshsal/meshsal.h"
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_slices.h"
-#include "meshsal/meshsal.h"
+#include "gpu/gpu_sweep.h"
+#include "gpu/vk_staging.h"
 #include "core/mesh_points.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
-#include "gpu/vk_staging.h"
 
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
@@ -25,7 +26,9 @@
 #include "mbar_comp.h"
 #include "selftest_comp.h"
 #include "sweep8_comp.h"
+#include "sweep8_mixed_comp.h"
 #include "sweep8_rows_comp.h"
+#include "sweep8_rows_mixed_comp.h"
 #include "sweepn_comp.h"
 
 namespace meshsal {
@@ -43,12 +46,7 @@ constexpr int kMaxScales = 16;      // mbar.comp's factor layout
 
 // Push blocks: each begins with {base, n} (vk::dispatch fills them in).
 struct RangePush { uint32_t base, n; };
-struct SweepPush {
-  uint32_t base, n, nx, ny, nz;
-  int32_t pad0;
-  uint32_t stride, nsig, nout, pad;
-  double h, radius2;
-};
+using gpu::SweepPush;
 struct ScalesPush { uint32_t base, n, nscales; };
 struct GroupsPush { uint32_t base, n, groups; };
 
@@ -68,6 +66,7 @@ struct DeviceMesh {
   vk::Buffer pos, flags, offsets, neighbors;
   vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
+  vk::Buffer sorted_pos32, bound;  // the mixed-precision sweep's (gpu_sweep.h)
 };
 
 // Device bytes of one saliency computation: the buffers below, the largest grid
@@ -107,7 +106,7 @@ bool shared_rows(const vk::Context& ctx, bool fast8) {
 // One neighbour sweep over the grid (gaussian_filter): result[o][v] as the plan in
 // m.params says; returns the number of pairs strictly inside `radius` (v itself included).
 uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const GridPlan& g,
-               const std::vector<uint32_t>& starts, bool fast8, const SweepParams& params,
+               const std::vector<uint32_t>& starts, bool fast8, bool mixed, const SweepParams& params,
                uint32_t nsig, uint32_t nout,
                double radius, const SaliencyOptions& options, const char* stage) {
   // sweep8 has the default plan built in; sweepn is specialised to this plan (count and
@@ -120,13 +119,21 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   // CPU devices (lavapipe) run the default plan with a lane per point over rows shared by
   // the subgroup (sweep8_rows); otherwise each point gets a subgroup (see sweep.glsl).
   const bool rows = shared_rows(ctx, fast8);
-  auto& k = rows ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
+  // Mixed precision (the default plan only) adds the float points and the error bounds.
+  auto& k = mixed ? (rows ? KERNEL(ctx, spv_sweep8_rows_mixed_comp, 8, SweepPush)
+                          : KERNEL(ctx, spv_sweep8_mixed_comp, 8, SweepPush))
+            : rows  ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
             : fast8 ? KERNEL(ctx, spv_sweep8_comp, 6, SweepPush)
                   : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
                                       sizeof(SweepPush), "sweepn", spec);
+  // A lane per point (rows): 64 points per work group whatever the subgroup size. A
+  // subgroup per point: sized by the size the device reports; the shader strides over
+  // the subgroups the driver really made, so another size still sweeps every point.
   const uint32_t per_group = rows ? kLocal : kLocal / ctx.subgroup_size;
-  VkDescriptorSet set = pool.bind(k, {&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
-                                      &m.result, &m.pairs});
+  std::vector<const vk::Buffer*> bufs{&m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params,
+                                      &m.result, &m.pairs};
+  if (mixed) bufs.insert(bufs.end(), {&m.sorted_pos32, &m.bound});
+  VkDescriptorSet set = pool.bind(k, bufs);
   // Slices of whole cells, each one submission: the first small and timed, the rest
   // sized to ~ctx.submission_target_s of device time (gpu_slices.h); a fixed budget of
   // candidate pairs when ctx.sweep_pairs_per_submission says so (tests).
@@ -135,18 +142,28 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   double budget = fixed ? ctx.sweep_pairs_per_submission
                         : first_slice_budget(ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU,
                                              work.before.back());
-  SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig, nout, 0, g.h, radius * radius};
+  SweepPush p{0, 0, g.nx, g.ny, g.nz, per_group, m.nv, nsig, nout, 0, g.h, radius * radius};
   ctx.sweep_slices = 0;
   ctx.sweep_longest_s = 0;
   for (size_t at = 0; at + 1 < work.first.size();) {
     const size_t next = next_cut(work, at, budget);
     const auto t_slice = Clock::now();
     vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-      if (at == 0) {  // vertices that are not mesh points get 0, not stale memory
+      if (at == 0) {  // vertices that are not mesh points get 0, not stale memory; every
+                      // point's pair count starts at 0 so that a point never swept shows
         vkCmdFillBuffer(cmd, m.result.handle(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, m.pairs.handle(), 0, VK_WHOLE_SIZE, 0);
+        if (mixed) vkCmdFillBuffer(cmd, m.bound.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      vk::dispatch(ctx, cmd, k, set, &p, work.first[at], work.first[next], per_group);
+      const uint32_t begin = work.first[at], end = work.first[next];
+      const uint32_t gap = gpu::test_sweep_gap_at;  // test hook: a plan that leaves one point out
+      if (gap >= begin && gap < end) {
+        if (gap > begin) vk::dispatch(ctx, cmd, k, set, &p, begin, gap, per_group);
+        if (gap + 1 < end) vk::dispatch(ctx, cmd, k, set, &p, gap + 1, end, per_group);
+      } else {
+        vk::dispatch(ctx, cmd, k, set, &p, begin, end, per_group);
+      }
     });
     const double took = seconds_since(t_slice);  // host time: an upper bound of device time
     ctx.sweep_slices++;
@@ -159,9 +176,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   }
   std::vector<uint32_t> pairs(m.np);
   m.pairs.download(pairs.data(), pairs.size() * 4);
-  uint64_t total = 0;
-  for (uint32_t c : pairs) total += c;
-  return total;
+  return gpu::total_swept_pairs(pairs);
 }
 
 // The sweep plan for `units` (sigmas in eps, any order): largest first, a sigma whose
@@ -321,9 +336,32 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
-  res.pairs = sweep(ctx, pool, m, g, starts, fast8, params, static_cast<uint32_t>(units.size()),
-                    static_cast<uint32_t>(nsc), radius, options, "gaussian sweep");
+  // Mixed precision where its accuracy is worked out (sweep.glsl): the default sigmas.
+  // Auto takes it on GPUs; on CPU devices (lavapipe) the double sweep was faster (a float
+  // lane costs lavapipe about what a double one does there: loads and masked stores of
+  // the sums dominate, and the mixed sweep adds the bound sums and the cutoff check).
+  const bool mixed = fast8 && (options.precision == Precision::Mixed ||
+                               (options.precision == Precision::Auto &&
+                                ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+  res.mixed_precision = mixed;
+  if (mixed) {
+    m.sorted_pos32 = vk::Buffer(ctx, size_t(m.np) * 16, "the float points");
+    m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
+    gpu::make_float_points(ctx, pool, m.sorted_pos, m.sorted_pos32, m.np, bb.min);
+  }
+  res.pairs = sweep(ctx, pool, m, g, starts, fast8, mixed, params,
+                    static_cast<uint32_t>(units.size()), static_cast<uint32_t>(nsc), radius,
+                    options, "gaussian sweep");
   res.stages.push_back({"gaussian sweep", seconds_since(t0)});
+  if (mixed) {
+    t0 = Clock::now();
+    gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
+                           &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
+    SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, static_cast<uint32_t>(units.size()),
+                static_cast<uint32_t>(nsc), 0, g.h, radius * radius};
+    res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);
+    res.stages.push_back({"near-tie recheck", seconds_since(t0)});
+  }
 
   // --- suppress() of every map and the final sum ------------------------------------
   t0 = Clock::now();
@@ -387,7 +425,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     sp.out_b[0] = -1;
     m.params.upload(&sp, sizeof sp);
     GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
-    sweep(ctx, pool, m, g2, starts, false, sp, 1, 1, 6 * eps, options, "smoothing");
+    sweep(ctx, pool, m, g2, starts, false, false, sp, 1, 1, 6 * eps, options, "smoothing");
     res.smoothed.resize(nv);
     m.result.download(res.smoothed.data(), nv * 8);
     for (size_t v = 0; v < nv; ++v)

@@ -1,5 +1,6 @@
 // meshsal: SPEC section 1 on a Vulkan device, held to the CPU path (compute_saliency_cpu)
-// to 1e-4 of each map's maximum. Curvature and the 1-ring adjacency come from the CPU;
+// to 1e-4 of each map's maximum, with the same local maxima, in both sweep precisions
+// (options.precision, see saliency.h). Curvature and the 1-ring adjacency come from the CPU;
 // the grid, the neighbour sweep, the raw maps, suppression, the final sum and the smoothed
 // saliency G(S, 3 eps) run on the device.
 #pragma once

@@ -1,15 +1,19 @@
 // meshsal: the neighbour sweep, GPU twin of gaussian_filter() / sweep_point()
-// (gaussian_filter.cpp), in double like the CPU so that near-ties in the local-maximum
-// test fall the same way. GPUs give each mesh point a subgroup, in cell order: like the
-// CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU devices
-// (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of cells are
-// culled against the ball as on the CPU; the cells of a row are one contiguous range of the sorted points. Every
-// candidate adds its weight to all sigma sums at once, masked by each sigma's strict
-// cutoff d < 2 s (no branches: lavapipe runs 8 lanes of AVX2). Weights of a sigma half of
-// another are w(s) = w(2s)^4, as in the CPU's KernelPlan. The center-surround step
-// S_i = |G(s_i) - G(2 s_i)| is done here too, so only the raw maps are written.
-// Included by sweep8.comp and sweep8_rows.comp (the default sigmas 12,10,8,6,5,4,3,2 eps,
-// fixed plan: FAST8) and sweepn.comp (any plan of up to 16 sigmas, specialised per plan).
+// (gaussian_filter.cpp), in double like the CPU, or in mixed precision (MIXED below:
+// float distances and weights, float sums of a few terms folded into doubles, exact
+// cutoffs, and an error bound per map with which gpu_sweep.cpp rechecks near ties of the
+// local-maximum test in double). GPUs give each mesh point a subgroup, in cell order: like
+// the CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU
+// devices (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of
+// cells are culled against the ball as on the CPU; the cells of a row are one contiguous
+// range of the sorted points. Every candidate adds its weight to all sigma sums at once,
+// masked by each sigma's strict cutoff d < 2 s (no branches: lavapipe runs 8 lanes of
+// AVX2). Weights of a sigma half of another are w(s) = w(2s)^4, as in the CPU's
+// KernelPlan. The center-surround step S_i = |G(s_i) - G(2 s_i)| is done here too, so only
+// the raw maps are written. Included by sweep8.comp and sweep8_rows.comp (the default
+// sigmas 12,10,8,6,5,4,3,2 eps, fixed plan: FAST8), their _mixed twins, sweep8_list.comp
+// (the double recheck of listed vertices: POINT_LIST) and sweepn.comp (any plan of up to
+// 16 sigmas, specialised per plan).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 layout(local_size_x = 64) in;
@@ -24,10 +28,24 @@ layout(std430, binding = 3) readonly buffer Params {
 };
 layout(std430, binding = 4) writeonly buffer Out { double result[]; };  // [output][vertex]
 layout(std430, binding = 5) writeonly buffer Pairs { uint pairs[]; };   // per sorted point
+#ifdef MIXED
+// The mixed-precision sweep (sweep8_mixed, sweep8_rows_mixed): the points again as the
+// input's float coordinates (not shifted: then q - p rounds with a relative error of at
+// most 2^-24 per component) and the value as a float; and per vertex the bound on the
+// error of every raw map that near_tie.comp uses.
+layout(std430, binding = 6) readonly buffer Sorted32 { vec4 sorted_pos32[]; };
+layout(std430, binding = 7) writeonly buffer Bound { float error_bound[]; };
+#endif
+#ifdef POINT_LIST
+// The double recheck of listed vertices (sweep8_list): positions by vertex, as pos[] holds
+// them (the same doubles as sorted_pos), and the vertices to sweep.
+layout(std430, binding = 6) readonly buffer VertexPos { dvec4 vertex_pos[]; };
+layout(std430, binding = 7) readonly buffer List { uint point_list[]; };
+#endif
 layout(push_constant) uniform Push {
   uint base; uint n;          // sorted points [base, n) of this submission
   uint nx; uint ny; uint nz;  // grid size in cells
-  int pad0;
+  uint per_group;             // points per work group the host counted on (subgroup per point)
   uint stride;                // vertex count (row length of `result`)
   uint nsig;                  // sigmas in the plan (8 in sweep8)
   uint nout;                  // outputs
@@ -43,6 +61,9 @@ layout(push_constant) uniform Push {
 #define PER_STEP 2u
 #else
 #define PER_STEP 1u
+#endif
+#if defined(UNIFORM_ROWS) || defined(POINT_LIST)
+#define ONE_LANE_PER_POINT
 #endif
 
 #ifdef FAST8
@@ -167,47 +188,61 @@ void candidate_weights(double d2, const double cf[NS], out double w[NS]) {
 #endif
 }
 
-void main() {
-#ifdef UNIFORM_ROWS
-  // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
-  // take consecutive sorted points and walk the rows of cells around the box of those of
-  // the group's points that lie in their own row of cells, so they load the same
-  // candidates at once and their loop bounds agree (except where a group straddles two
-  // rows). Any box that holds the lane's own point gives the right sums; the group only
-  // decides how much is shared. The box must stay small: with the box of all the
-  // subgroup's points (by subgroupMin/Max or by these loads alike), a group straddling
-  // rows walked a box across the whole mesh, and lavapipe gave fewer pairs than the CPU
-  // and wrong sums for ~100 of igea_loop1's 537k points. Why lavapipe loses them there
-  // was not found; with boxes of one row of cells igea_loop1 matches the CPU exactly.
-  const uint gid = gl_GlobalInvocationID.x;
-  const uint i = min(pc.base + gid, pc.n - 1u);
-  const bool live = pc.base + gid < pc.n;
-  const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
-  dvec4 p = sorted_pos[i];
-  dvec3 lo = p.xyz, hi = p.xyz;
-  const ivec2 my_row = ivec2(p.yz / pc.h);
-  for (uint e = 0u; e < gl_SubgroupSize; ++e) {
-    dvec3 o = sorted_pos[min(g0 + e, pc.n - 1u)].xyz;
-    if (ivec2(o.yz / pc.h) == my_row) {
-      lo = min(lo, o);
-      hi = max(hi, o);
-    }
-  }
-  // A row whose points lie far apart (two crossings of the surface): each lane alone.
-  if (hi.x - lo.x > 2.0LF * pc.h) {
-    lo = p.xyz;
-    hi = p.xyz;
-  }
-  const uint first = 0u, step = 1u;
-#else
-  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
-  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
-  uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID;
-  if (i >= pc.n) return;
-  dvec4 p = sorted_pos[i];
-  const dvec3 lo = p.xyz, hi = p.xyz;
-  const uint first = gl_SubgroupInvocationID, step = gl_SubgroupSize;
+#ifdef MIXED
+// The mixed sweep's accuracy, and the error bound it writes for every raw map (u = 2^-24,
+// first order in u throughout):
+// * d2 = |q - p|^2 from float coordinates: each q - p rounds once (relative u), then three
+//   squares and two adds: d2 within 5u of the exact squared distance.
+// * The strict cutoffs are decided exactly: with n = d2 / (4 eps^2) every cutoff is an
+//   integer (144, 100, 64, 36, 25, 16, 9, 4), and a float comparison can differ from the
+//   CPU's double one only when n is within ~13u n of one; every candidate within 32u n of
+//   an integer has its d2 recomputed in double from sorted_pos and is put on the side of
+//   the nearby cutoff that the double says (the other cutoffs are >= 20% away).
+// * Weights: with t = d2 / (2 eps^2), a = exp(-t/576) and c = exp(-t/400) are degree-8
+//   Taylor polynomials in float (y = t/576 or t/400 <= 1/2 where they count: truncation
+//   below u/10, Horner rounding <= (1 + 2y)u <= 2u) and every weight is a power a^m or
+//   c^m: 12 eps a^4, 10 eps c^4, 8 eps a^9, 6 eps a^16, 5 eps c^16, 4 eps a^36, 3 eps
+//   a^64, 2 eps a^144. A power m errs by at most 2m u (the base), 12u (at most 12
+//   roundings of the products) and 14u (the argument: t is within 7u relative and the
+//   weight's exponent is below 2 where it counts).
+// * The value H as a float (u), the product w H (u) and the float sums: a lane sums at
+//   most CHUNK * PER_STEP = 16 terms (lane per point) or, a subgroup per point, at most
+//   FOLDS = 8 float sums of CHUNK = 8 terms each, before adding into a double (at most
+//   15u or 14u of the sum of |terms|; on GPUs with fp64 at 1/32..1/64 rate the double
+//   adds would cost more than the float work if they came every 8 candidates): every
+//   numerator N = sum w H and denominator D = sum w errs by at most rho = (2m + 48)u
+//   relative to A = sum w |H| and to D.
+// * G = N / D then errs by at most rho (A / D + |G|) <= 2 rho A / D, and
+//   S = |G(s) - G(2s)| by the sum of that for both sigmas. The bound written per map is
+//   1.25 times that (the A are summed alongside, in the same arithmetic).
+// A comparison of two neighbours' raw values further apart than the sum of their bounds
+// falls as in double; near_tie.comp sends the others to a double recheck.
+#define CHUNK 8u
+#ifndef UNIFORM_ROWS
+#define FOLDS 8u  // a subgroup per point: two levels of float sums
 #endif
+const float kCutoffTol = 1.0 / 524288.0;  // 32u = 2^-19
+const float kU = 1.0 / 16777216.0;        // 2^-24
+// exp(-y) for 0 <= y (<= 1/2 where it counts). Clamped at 1/2, so that a^144 >= e^-72
+// stays a normal float: an underflow to a denormal costs a microcode assist on x86.
+float exp_neg_half(float y) {
+  y = min(y, 0.5);
+  float p = 1.0 / 40320.0;
+  p = p * -y + 1.0 / 5040.0;
+  p = p * -y + 1.0 / 720.0;
+  p = p * -y + 1.0 / 120.0;
+  p = p * -y + 1.0 / 24.0;
+  p = p * -y + 1.0 / 6.0;
+  p = p * -y + 0.5;
+  p = p * -y + 1.0;
+  return p * -y + 1.0;
+}
+#endif
+
+// Sweeps point p (its sums over the rows of cells around the box [lo, hi], which holds p):
+// lanes first, first + step, ... of the rows' candidates; writes output vertex v unless
+// !live (a lane past the end that only helps its subgroup's loads) or !elect.
+void sweep_point(uint i, dvec4 p, dvec3 lo, dvec3 hi, uint first, uint step, bool live, uint v) {
   double sw[NS];
   double sh[NS];
   for (int k = 0; k < NS; ++k) {
@@ -219,7 +254,17 @@ void main() {
   // registers (a dynamic index would move it to memory).
   double ct[NS];
   for (int k = 0; k < NS; ++k) ct[k] = cut2[k];
-#ifdef FAST8
+#ifdef MIXED
+  float ctf[NS];
+  for (int k = 0; k < NS; ++k) ctf[k] = float(ct[k]);
+  const double eps2 = ct[NS - 1] / 16.0LF;  // eps^2: the 2 eps cutoff is 16 eps^2
+  const float inv4e2 = float(0.25LF / eps2);
+  const float ca = float(1.0LF / (2.0LF * eps2 * 576.0LF));  // a = exp(-d2 ca)
+  const float cc = float(1.0LF / (2.0LF * eps2 * 400.0LF));  // c = exp(-d2 cc)
+  const vec3 p32 = sorted_pos32[i].xyz;
+  double sa[NS];  // A = sum w |H|, for the error bound
+  for (int k = 0; k < NS; ++k) sa[k] = 0.0LF;
+#elif defined(FAST8)
   const double cb = bcoef;  // 1 / (2 eps^2 14400), computed as the CPU computes it
 #else
   double cf[NS];
@@ -245,6 +290,101 @@ void main() {
       uint row = pc.nx * (uint(y) + pc.ny * uint(z));
       uint j0 = starts[row + uint(xa)];
       uint j1 = starts[row + uint(xb) + 1u];
+#ifdef MIXED
+      // Float sums over chunks of at most CHUNK steps; FOLDS of them summed in float, then
+      // added into the doubles.
+      for (uint j = j0 + first; j < j1;) {
+#ifdef FOLDS
+        const uint jfold = min(j1, j + FOLDS * CHUNK * PER_STEP * step);
+        float gw[NS], gh[NS], ga[NS];
+        for (int k = 0; k < NS; ++k) {
+          gw[k] = 0.0;
+          gh[k] = 0.0;
+          ga[k] = 0.0;
+        }
+        while (j < jfold) {
+        const uint jend = min(jfold, j + CHUNK * PER_STEP * step);
+#else
+        const uint jend = min(j1, j + CHUNK * PER_STEP * step);
+#endif
+        float fw[NS], fh[NS], fa[NS];
+        for (int k = 0; k < NS; ++k) {
+          fw[k] = 0.0;
+          fh[k] = 0.0;
+          fa[k] = 0.0;
+        }
+        for (; j < jend; j += PER_STEP * step) {
+          float w[PER_STEP][NS];
+          float dist2[PER_STEP], value[PER_STEP];
+          for (uint u = 0u; u < PER_STEP; ++u) {
+            const uint ju = j + u * step;
+            const bool inside = u == 0u || ju < j1;
+            const uint jq = inside ? ju : j;
+            vec4 q = sorted_pos32[jq];
+            vec3 d = q.xyz - p32;
+            float d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+            const float n = d2 * inv4e2;
+            const float nr = roundEven(n);
+            if (abs(n - nr) <= kCutoffTol * n) {
+              // Near a cutoff: which side of it, in double as on the CPU (rare).
+              dvec3 e = sorted_pos[jq].xyz - p.xyz;
+              double d2d = e.x * e.x + e.y * e.y + e.z * e.z;
+              for (int k = 0; k < NS; ++k)
+                if (abs(ctf[k] * inv4e2 - nr) < 0.5)
+                  d2 = d2d < ct[k] ? min(d2, ctf[k] * (1.0 - 1.0 / 8388608.0)) : max(d2, ctf[k]);
+            }
+            d2 = inside ? d2 : ctf[0];
+            count += (d2 < ctf[0]) ? 1u : 0u;
+            // Powers of a = exp(-t/576) and c = exp(-t/400) (see above).
+            const float a = exp_neg_half(d2 * ca), c = exp_neg_half(d2 * cc);
+            const float a2 = a * a, a4 = a2 * a2, a8 = a4 * a4, a16 = a8 * a8, a32 = a16 * a16,
+                        a64 = a32 * a32, a128 = a64 * a64, c2 = c * c, c4 = c2 * c2, c8 = c4 * c4;
+            w[u][0] = a4;           // 12 eps
+            w[u][1] = c4;           // 10 eps
+            w[u][2] = a8 * a;       //  8 eps
+            w[u][3] = a16;          //  6 eps
+            w[u][4] = c8 * c8;      //  5 eps
+            w[u][5] = a32 * a4;     //  4 eps
+            w[u][6] = a64;          //  3 eps
+            w[u][7] = a128 * a16;   //  2 eps
+            dist2[u] = d2;
+            value[u] = q.w;
+          }
+          for (int k = 0; k < NS; ++k) {
+            float m = (dist2[0] < ctf[k]) ? w[0][k] : 0.0;
+            float h = m * value[0], s = m, ab = m * abs(value[0]);
+            for (uint u = 1u; u < PER_STEP; ++u) {
+              m = (dist2[u] < ctf[k]) ? w[u][k] : 0.0;
+              h += m * value[u];
+              s += m;
+              ab += m * abs(value[u]);
+            }
+            fh[k] += h;
+            fw[k] += s;
+            fa[k] += ab;
+          }
+        }
+#ifdef FOLDS
+        for (int k = 0; k < NS; ++k) {
+          gh[k] += fh[k];
+          gw[k] += fw[k];
+          ga[k] += fa[k];
+        }
+        }
+        for (int k = 0; k < NS; ++k) {
+          sh[k] += double(gh[k]);
+          sw[k] += double(gw[k]);
+          sa[k] += double(ga[k]);
+        }
+#else
+        for (int k = 0; k < NS; ++k) {
+          sh[k] += double(fh[k]);
+          sw[k] += double(fw[k]);
+          sa[k] += double(fa[k]);
+        }
+#endif
+      }
+#else
       // Each lane takes PER_STEP candidates per iteration, `step` apart; one past the row's
       // end is replaced by candidate j at distance^2 R2, where every (strict) cutoff masks it.
       for (uint j = j0 + first; j < j1; j += PER_STEP * step) {
@@ -280,9 +420,10 @@ void main() {
           sw[k] += s;
         }
       }
+#endif
     }
   }
-#ifdef UNIFORM_ROWS
+#ifdef ONE_LANE_PER_POINT
   if (!live) return;
 #else
   for (int k = 0; k < NS; ++k) {  // no early exit: constant indices keep the sums in registers
@@ -290,16 +431,85 @@ void main() {
     sh[k] = subgroupAdd(sh[k]);
   }
   count = subgroupAdd(count);
+#ifdef MIXED
+  for (int k = 0; k < NS; ++k) sa[k] = subgroupAdd(sa[k]);
+#endif
   if (!subgroupElect()) return;
 #endif
   // The averages go to their own array: indexing the accumulators with out_a/out_b would
   // force them out of registers into memory for the whole loop.
   double g[NS];
   for (int k = 0; k < NS; ++k) g[k] = sh[k] / max(sw[k], 1.0LF);  // sw >= 1 (the point itself)
-  uint v = sorted_vertex[i];
   for (int o = 0; o < int(pc.nout); ++o) {
     int a = out_a[o], b = out_b[o];
     result[uint(o) * pc.stride + v] = (b < 0) ? g[a] : abs(g[a] - g[b]);
   }
-  pairs[i] = count;
+#ifdef MIXED
+  // Per map: 1.25 (2 rho_a A_a / D_a + 2 rho_b A_b / D_b), rho = (2m + 48)u (see above).
+  const float power[NS] = float[NS](4.0, 4.0, 9.0, 16.0, 16.0, 36.0, 64.0, 144.0);
+  double e[NS];
+  for (int k = 0; k < NS; ++k) e[k] = 2.5LF * double((2.0 * power[k] + 48.0) * kU) * sa[k] / max(sw[k], 1.0LF);
+  for (int o = 0; o < int(pc.nout); ++o) {
+    int a = out_a[o], b = out_b[o];
+    error_bound[uint(o) * pc.stride + v] = float(e[a] + ((b < 0) ? 0.0LF : e[b]));
+  }
+#endif
+#ifndef POINT_LIST
+  pairs[i] = count;  // >= 1 (the point itself): the host checks that no point was left out
+#endif
+}
+
+void main() {
+#ifdef POINT_LIST
+  // One lane per listed vertex, its own box.
+  const uint gid = gl_GlobalInvocationID.x;
+  if (pc.base + gid >= pc.n) return;
+  const uint v = point_list[pc.base + gid];
+  dvec4 p = vertex_pos[v];
+  sweep_point(0u, p, p.xyz, p.xyz, 0u, 1u, true, v);
+#elif defined(UNIFORM_ROWS)
+  // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
+  // take consecutive sorted points and walk the rows of cells around the box of those of
+  // the group's points that lie in their own row of cells, so they load the same
+  // candidates at once and their loop bounds agree (except where a group straddles two
+  // rows). Any box that holds the lane's own point gives the right sums; the group only
+  // decides how much is shared, so a work group holds 64 points whatever the subgroup
+  // size. The box must stay small: with the box of all the
+  // subgroup's points (by subgroupMin/Max or by these loads alike), a group straddling
+  // rows walked a box across the whole mesh, and lavapipe gave fewer pairs than the CPU
+  // and wrong sums for ~100 of igea_loop1's 537k points. Why lavapipe loses them there
+  // was not found; with boxes of one row of cells igea_loop1 matches the CPU exactly.
+  const uint gid = gl_GlobalInvocationID.x;
+  const uint i = min(pc.base + gid, pc.n - 1u);
+  const bool live = pc.base + gid < pc.n;
+  const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
+  dvec4 p = sorted_pos[i];
+  dvec3 lo = p.xyz, hi = p.xyz;
+  const ivec2 my_row = ivec2(p.yz / pc.h);
+  for (uint e = 0u; e < gl_SubgroupSize; ++e) {
+    dvec3 o = sorted_pos[min(g0 + e, pc.n - 1u)].xyz;
+    if (ivec2(o.yz / pc.h) == my_row) {
+      lo = min(lo, o);
+      hi = max(hi, o);
+    }
+  }
+  // A row whose points lie far apart (two crossings of the surface): each lane alone.
+  if (hi.x - lo.x > 2.0LF * pc.h) {
+    lo = p.xyz;
+    hi = p.xyz;
+  }
+  sweep_point(i, p, lo, hi, 0u, 1u, live, sorted_vertex[i]);
+#else
+  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
+  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
+  // The points are strided over the subgroups the driver actually made, so every point is
+  // swept whatever subgroup size it picked (the host sizes the dispatch by the size the
+  // device reports; a larger one only gives some subgroups two points).
+  const uint stride = gl_NumWorkGroups.x * gl_NumSubgroups;
+  const uint end = min(pc.n, pc.base + gl_NumWorkGroups.x * pc.per_group);  // this dispatch's
+  for (uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID; i < end; i += stride) {
+    dvec4 p = sorted_pos[i];
+    sweep_point(i, p, p.xyz, p.xyz, gl_SubgroupInvocationID, gl_SubgroupSize, true, sorted_vertex[i]);
+  }
+#endif
 }
