@@ -295,3 +295,17 @@ TEST_CASE("load_mesh_bytes: the in-memory entry names the input in errors", "[io
   CHECK_THROWS_WITH(meshsal::load_mesh_bytes("v 0 0 0\n", "mem.obj"), "mem.obj: mesh has no faces");
   CHECK_THROWS_WITH(meshsal::load_mesh_bytes(kObj, "mem.stl"), Catch::StartsWith("mem.stl: unknown mesh format"));
 }
+
+TEST_CASE("hostile input: messages hold only printable text, whatever the file holds", "[io]") {
+  TempDir dir;
+  // A long token used to be quoted raw (control bytes and all) once it passed 40 characters.
+  const std::string junk = "1" + std::string(20, '\x1b') + "[2J" + std::string(30, '\x07');
+  const std::string obj_path = dir.write("junk.obj", "v 0 0 " + junk + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string msg = meshsal_test::load_error(obj_path);
+  CHECK(msg.find("bad vertex coordinate '1????") != std::string::npos);
+  for (char c : msg.substr(obj_path.size())) CHECK((static_cast<unsigned char>(c) >= 32 && c != 127));
+  expect_error(dir.write("name.ply", "ply\nformat ascii 1.0\nelement ve\x01rtex 3\nend_header\n"),
+               "bad element line 'element ve?rtex 3'");
+  expect_error(dir.write("prop.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float \x1b[x\nend_header\n"),
+               "property name '?[x' has unprintable characters");
+}

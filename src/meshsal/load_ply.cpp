@@ -67,6 +67,13 @@ struct Header {
   size_t body_line = 0;  // lines before the body (for ascii error messages)
 };
 
+// Names end up in error messages: printable ASCII only.
+bool printable(std::string_view s) {
+  for (char c : s)
+    if (static_cast<unsigned char>(c) < 33 || static_cast<unsigned char>(c) > 126) return false;
+  return true;
+}
+
 Header parse_header(std::string_view bytes, const std::string& name) {
   TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)), name);
   auto fail = [&](const std::string& problem) -> Error {
@@ -85,11 +92,12 @@ Header parse_header(std::string_view bytes, const std::string& name) {
     std::string_view rest = line;
     std::string_view key = next_token(rest);
     if (key.empty() || key == "comment" || key == "obj_info") continue;
-    if (key == "end_header") {
+    if (key.substr(0, 10) == "end_header") {
       if (!have_format) throw fail("end_header before any 'format' line");
-      // The body starts right after this line's line end: anything else on the line, or
-      // no line end at all, would put it in the wrong place.
-      if (!next_token(rest).empty()) throw fail("more text after end_header on its line");
+      // The body starts right after this line's line end: anything else on the line (the
+      // body glued on by a missing newline), or no line end at all, would misplace it.
+      if (key.size() > 10 || !next_token(rest).empty())
+        throw fail("more text after end_header on its line (a missing newline?)");
       if (scan.line_end == 0)
         throw fail("end_header is not followed by a newline (truncated file or a broken writer)");
       if (h.format != Format::Ascii && scan.line_end == '\r')
@@ -110,7 +118,7 @@ Header parse_header(std::string_view bytes, const std::string& name) {
       Element e;
       e.name = std::string(next_token(rest));
       std::string_view c = next_token(rest);
-      if (e.name.empty() || !parse_number(c, e.count))
+      if (e.name.empty() || !parse_number(c, e.count) || !printable(e.name))
         throw fail("bad element line " + quoted(line));
       h.elements.push_back(std::move(e));
     } else if (key == "property") {
@@ -129,6 +137,7 @@ Header parse_header(std::string_view bytes, const std::string& name) {
       }
       p.name = std::string(next_token(rest));
       if (p.name.empty()) throw fail("property without a name");
+      if (!printable(p.name)) throw fail("property name " + quoted(p.name) + " has unprintable characters");
       h.elements.back().props.push_back(std::move(p));
     } else {
       throw fail("unexpected header line " + quoted(line));

@@ -122,12 +122,13 @@ inline bool parse_int_prefix(std::string_view tok, int64_t& out) {
   return r.ec == std::errc() && (r.ptr == tok.data() + tok.size() || *r.ptr == '/');
 }
 
+// A token for an error message: at most 40 characters, anything but printable ASCII as
+// '?' (a message is one printable line, whatever bytes the file holds).
 inline std::string quoted(std::string_view tok) {
-  if (tok.size() > 40) return "'" + std::string(tok.substr(0, 40)) + "...'";
-  std::string s(tok);
+  std::string s(tok.substr(0, 40));
   for (char& c : s)
     if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return "'" + s + "'";
+  return "'" + s + (tok.size() > 40 ? "...'" : "'");
 }
 
 // Reads the next three coordinates of `line` (consumed from it) onto `out`. Returns what
