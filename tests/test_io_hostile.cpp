@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -308,4 +309,40 @@ TEST_CASE("hostile input: messages hold only printable text, whatever the file h
                "bad element line 'element ve?rtex 3'");
   expect_error(dir.write("prop.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float \x1b[x\nend_header\n"),
                "property name '?[x' has unprintable characters");
+}
+
+namespace {
+
+// Runs the meshsal CLI with `env` in front; returns the exit status, stderr in `err`.
+int run_cli(const std::string& env, const std::string& args, const TempDir& dir, std::string& err) {
+  const std::string err_path = dir.file("stderr.txt");
+  const std::string cmd = env + " " + MESHSAL_CLI + " " + args + " > /dev/null 2> " + err_path + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  err = meshsal_test::read_file(err_path);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("hostile input: every command honours MESHSAL_MAX_INPUT and --help says so", "[io]") {
+  TempDir dir;
+  std::string obj = kObj;
+  while (obj.size() < 4096) obj += "# padding so that the file inflates past one KiB\n";
+  const std::string gz = dir.write_gz("pad.obj.gz", obj);
+  std::string err;
+  CHECK(run_cli("", "saliency " + gz + " -o " + dir.file("ok.ply") + " -q", dir, err) == 0);
+  for (const std::string& args : {"saliency " + gz + " -o " + dir.file("s.ply"), "compare " + gz + " " + gz,
+                                  "render " + gz + " -o " + dir.file("r.png")}) {
+    INFO(args);
+    CHECK(run_cli("MESHSAL_MAX_INPUT=1K", args, dir, err) == 1);
+    CHECK(err == "error: " + gz + ": gzip data inflates to more than 1024 bytes, the limit for this file "
+                                  "(a gzip bomb?); MESHSAL_MAX_INPUT=BYTES raises it\n");
+  }
+  std::string help;
+  {
+    const std::string out_path = dir.file("help.txt");
+    REQUIRE(std::system((std::string(MESHSAL_CLI) + " --help > " + out_path).c_str()) == 0);
+    help = meshsal_test::read_file(out_path);
+  }
+  CHECK(help.find("MESHSAL_MAX_INPUT=BYTES") != std::string::npos);
 }
