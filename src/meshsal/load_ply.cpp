@@ -464,15 +464,19 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
         if (plan.roles[j] == Extra) plan.extra_out[j] = extras[n++].data();
       mesh.positions.reserve(e.count * 3);
     } else if (&e == face) {
+      uint64_t min_face_bytes = 8;  // ascii "3 0 1 2\n"
       for (size_t j = 0; j < e.props.size(); ++j)
         if (e.props[j].is_list && !face_list_found &&
             (e.props[j].name == "vertex_indices" || e.props[j].name == "vertex_index")) {
           plan.roles[j] = Indices;
           face_list_found = true;
+          if (!ascii) min_face_bytes = type_size(e.props[j].count_type) + 3 * type_size(e.props[j].type);
         }
       if (!face_list_found)
         throw Error(name + ": the face element has no vertex_indices list");
-      mesh.triangles.reserve(e.count * 3);
+      // As many triangles as the body can hold, not as the header claims: a face needs a
+      // count and 3 indices (a header of 1-byte faces must not reserve 12 bytes for each).
+      mesh.triangles.reserve(std::min<uint64_t>(e.count, body_size / min_face_bytes) * 3);
     }
   }
   if (!face) {
