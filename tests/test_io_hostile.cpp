@@ -258,6 +258,10 @@ TEST_CASE("hostile gzip: a bomb is refused after inflating what its header allow
   // A garbled header is refused from the first inflated MiB, whatever the counts allow.
   expect_error(dir.write("garbage.ply.gz", gzip_with_zeros("ply\nformat ascii 1.0\nelephant\nend_header\n", size_t(16) << 20)),
                "unexpected header line 'elephant'");
+  // ... before the rest is inflated: damage after the first MiB is never reached.
+  std::string damaged = gzip_with_zeros("ply\nformat ascii 1.0\nelephant\nend_header\n", size_t(16) << 20);
+  for (size_t i = damaged.size() / 2; i < damaged.size() - 8; ++i) damaged[i] = static_cast<char>(0xA5 ^ i);
+  expect_error(dir.write("damaged.ply.gz", damaged), "unexpected header line 'elephant'");
   // OFF: the counts' rule too.
   expect_error(dir.write("bomb.off.gz", gzip_with_zeros(kOff, size_t(80) << 20)), "gzip data inflates to more than");
 }
