@@ -26,6 +26,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #define MESHSAL_VERSION 200  // 0.2.0
@@ -64,11 +65,28 @@ void validate_mesh(const Mesh& mesh);
 // Scalar vertex properties found in a PLY besides x,y,z (e.g. "quality"), as floats.
 using VertexProperties = std::map<std::string, std::vector<float>>;
 
+// Bounds on what loading may hold in memory.
+struct LoadOptions {
+  // The most bytes a gzipped file may inflate to, and a pipe (FIFO) may deliver. 0 means
+  // the environment variable MESHSAL_MAX_INPUT when it is set (bytes, with an optional
+  // K, M or G suffix), else the default: for a gzipped PLY or OFF, 64 MiB + 64 times the
+  // bytes its header's counts need; for a gzipped OBJ (no header) and for a pipe, 1 GiB.
+  uint64_t max_input_bytes = 0;
+};
+
 // Loads OBJ, PLY (ascii, binary little/big endian) or OFF, optionally gzipped, chosen by
 // extension (.obj .ply .off, each optionally followed by .gz). Polygons are
-// fan-triangulated. The result is validated. Throws Error naming the file on any problem.
-// If `properties` is given, scalar PLY vertex properties are returned there.
-Mesh load_mesh(const std::string& path, VertexProperties* properties = nullptr);
+// fan-triangulated. The result is validated. Throws Error with a one-line message that
+// names `path` on any problem. If `properties` is given, scalar PLY vertex properties are
+// returned there. Only regular files and FIFOs are read (devices such as /dev/zero are
+// refused).
+Mesh load_mesh(const std::string& path, VertexProperties* properties = nullptr,
+               const LoadOptions& options = {});
+
+// The same from bytes in memory: `name` picks the format by its extension, as a path
+// does, and starts every error message.
+Mesh load_mesh_bytes(std::string_view bytes, const std::string& name,
+                     VertexProperties* properties = nullptr, const LoadOptions& options = {});
 
 struct PlyFloatProperty {
   std::string name;

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
       "meshsal: mesh saliency (Lee, Varshney, Jacobs 2005) on the CPU and on Vulkan GPUs,\n"
       "saliency-guided simplification and best-viewpoint selection.\n"
       "Run `meshsal COMMAND --help` for the options of a command."};
+  app.footer("Environment: MESHSAL_MAX_INPUT=BYTES (K/M/G suffix allowed) caps what a .gz file may inflate to and a pipe may deliver, for every command (default: see README, Input).");
   app.require_subcommand(1);
   app.set_version_flag("--version", "meshsal 0.1");
 

@@ -1,13 +1,16 @@
 // meshsal: load_mesh picks the parser from the file name (case-insensitive, .gz stripped),
-// reads the bytes (gunzipping), parses, and validates.
+// reads the bytes (gunzipping within a limit), parses, and validates.
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 #include "meshsal/meshsal.h"
 #include "io/mesh_io_internal.h"
 #include "io/read_bytes.h"
+#include "io/text_scan.h"
 
 namespace meshsal {
 namespace {
@@ -23,32 +26,97 @@ std::string lower_extension(const std::string& path, bool& gz) {
   return dot == std::string::npos ? std::string() : base.substr(dot);
 }
 
-}  // namespace
-
-Mesh load_mesh(const std::string& path, VertexProperties* properties) {
-  bool gz = false;
-  const std::string ext = lower_extension(path, gz);
+std::string check_extension(const std::string& name, bool& gz) {
+  const std::string ext = lower_extension(name, gz);
   if (ext != ".obj" && ext != ".ply" && ext != ".off")
-    throw Error(path + ": unknown mesh format" + (ext.empty() ? std::string() : " '" + ext + "'") +
+    throw Error(name + ": unknown mesh format" + (ext.empty() ? std::string() : " '" + ext + "'") +
                 " (expected .obj, .ply or .off, optionally gzipped as .gz)");
+  return ext;
+}
+
+// The limit set by the options or MESHSAL_MAX_INPUT; 0 when neither sets one.
+uint64_t explicit_limit(const LoadOptions& options) {
+  if (options.max_input_bytes) return options.max_input_bytes;
+  const char* env = std::getenv("MESHSAL_MAX_INPUT");
+  if (!env || !*env) return 0;
+  std::string_view s(env);
+  uint64_t scale = 1;
+  const char unit = static_cast<char>(std::toupper(static_cast<unsigned char>(s.back())));
+  if (unit == 'K' || unit == 'M' || unit == 'G') {
+    scale = uint64_t(1) << (unit == 'K' ? 10 : unit == 'M' ? 20 : 30);
+    s.remove_suffix(1);
+  }
+  uint64_t n = 0;
+  if (!parse_number(s, n) || n == 0 || n > UINT64_MAX / scale)
+    throw Error("MESHSAL_MAX_INPUT: '" + std::string(env) +
+                "' is not a byte count (a positive whole number, optionally followed by K, M or G)");
+  return n * scale;
+}
+
+Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
+           VertexProperties* properties, uint64_t limit) {
+  Bytes inflated;
+  std::string_view bytes = raw;
+  if (has_gzip_magic(raw)) {
+    inflated = gunzip(raw, name, [&](std::string_view head) -> uint64_t {
+      // The header is checked either way, so garbage fails before the rest is inflated.
+      const uint64_t rule = ext == ".ply"   ? ply_input_limit(head, name)
+                            : ext == ".off" ? off_input_limit(head, name)
+                                            : kNoHeaderLimitBytes;
+      return limit ? limit : rule;
+    });
+    bytes = inflated.view();
+  } else if (gz_name) {
+    throw Error(name + ": not a gzip file (the name ends in .gz but the data is not gzip)");
+  }
+  Mesh mesh;
+  if (ext == ".obj") mesh = load_obj_text(bytes, name);
+  else if (ext == ".off") mesh = load_off_text(bytes, name);
+  else mesh = load_ply_bytes(bytes, name, properties);
+  return mesh;
+}
+
+// Runs `load` and gives every failure a one-line message that names the input.
+template <typename Load>
+Mesh load_named(const std::string& name, VertexProperties* properties, Load&& load) {
   if (properties) properties->clear();
   Mesh mesh;
   try {
-    const Bytes file = read_bytes(path);
-    const std::string_view bytes = file.view();
-    if (ext == ".obj") mesh = load_obj_text(bytes, path);
-    else if (ext == ".off") mesh = load_off_text(bytes, path);
-    else mesh = load_ply_bytes(bytes, path, properties);
-  } catch (const std::bad_alloc&) {
-    throw Error(path + ": out of memory while loading");
-  }
-  try {
+    mesh = load();
     validate_mesh(mesh);
   } catch (const Error& e) {
     if (properties) properties->clear();
-    throw Error(path + ": " + e.what());
+    const std::string what = e.what();
+    if (what.compare(0, name.size() + 2, name + ": ") == 0) throw;
+    throw Error(name + ": " + what);
+  } catch (const std::bad_alloc&) {
+    if (properties) properties->clear();
+    throw Error(name + ": out of memory while loading");
+  } catch (const std::length_error&) {
+    if (properties) properties->clear();
+    throw Error(name + ": out of memory while loading (a count too large to hold)");
   }
   return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path, VertexProperties* properties, const LoadOptions& options) {
+  bool gz = false;
+  const std::string ext = check_extension(path, gz);
+  return load_named(path, properties, [&] {
+    const uint64_t limit = explicit_limit(options);
+    const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes);
+    return parse(file.view(), path, ext, gz, properties, limit);
+  });
+}
+
+Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
+                     const LoadOptions& options) {
+  bool gz = false;
+  const std::string ext = check_extension(name, gz);
+  return load_named(name, properties,
+                    [&] { return parse(bytes, name, ext, gz, properties, explicit_limit(options)); });
 }
 
 }  // namespace meshsal

@@ -12,7 +12,8 @@ namespace meshsal {
 
 Mesh load_obj_text(std::string_view text, const std::string& name) {
   Mesh mesh;
-  TextScan scan(text);
+  TextScan scan(text, name);
+  scan.skip_bom();  // otherwise the first line's key would be "\xEF\xBB\xBFv" and be ignored
   std::string_view line;
   std::vector<uint32_t> poly;
   auto fail = [&](const std::string& problem) -> Error {

@@ -2,6 +2,7 @@
 // (extra vertex columns such as normals or colours are ignored), '#' comments, counts on
 // the header line or the next, and optional colour columns after a face's indices.
 // One vertex or face per line, as every OFF writer does.
+#include <algorithm>
 #include <string>
 #include <string_view>
 
@@ -10,43 +11,66 @@
 
 namespace meshsal {
 
-Mesh load_off_text(std::string_view text, const std::string& name) {
-  TextScan scan(text);
-  std::string_view line;
-  auto fail = [&](const std::string& problem) -> Error {
-    return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
-  };
-  // Next non-empty line after comments are stripped; false at the end.
-  auto content_line = [&](std::string_view& out) {
-    while (scan.next_line(out)) {
-      out = strip_comment(out);
-      if (!out.empty()) return true;
-    }
-    return false;
-  };
+namespace {
 
-  if (!content_line(line)) throw Error(name + ": empty file");
+// Next non-empty line after comments are stripped; false at the end.
+bool content_line(TextScan& scan, std::string_view& out) {
+  while (scan.next_line(out)) {
+    out = strip_comment(out);
+    if (!out.empty()) return true;
+  }
+  return false;
+}
+
+Error line_error(const TextScan& scan, const std::string& problem) {
+  return Error(scan.name + ": line " + std::to_string(scan.line_no) + ": " + problem);
+}
+
+// Reads the keyword and the vertex / face counts; leaves `scan` after the counts line.
+void parse_off_header(TextScan& scan, uint64_t counts[2]) {
+  std::string_view line;
+  scan.skip_bom();
+  if (!content_line(scan, line)) throw Error(scan.name + ": empty file");
   std::string_view keyword = next_token(line);
   if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF")
-    throw fail("not an OFF file (the first word is " + quoted(keyword) + ", expected OFF)");
+    throw line_error(scan, "not an OFF file (the first word is " + quoted(keyword) + ", expected OFF)");
   for (char c : keyword.substr(0, keyword.size() - 3))
     if (c != 'C' && c != 'N' && c != 'S' && c != 'T')
-      throw fail("unsupported OFF variant " + quoted(keyword));
+      throw line_error(scan, "unsupported OFF variant " + quoted(keyword));
   if (line.find_first_not_of(" \t") != std::string_view::npos) {
     std::string_view peek = line;
-    if (next_token(peek) == "BINARY") throw fail("binary OFF is not supported");
-  } else if (!content_line(line)) {
-    throw fail("missing the vertex / face / edge counts");
+    if (next_token(peek) == "BINARY") throw line_error(scan, "binary OFF is not supported");
+  } else if (!content_line(scan, line)) {
+    throw line_error(scan, "missing the vertex / face / edge counts");
   }
-  uint64_t counts[2];
-  for (uint64_t& c : counts) {
+  for (int k = 0; k < 2; ++k) {
     std::string_view tok = next_token(line);
-    if (!parse_number(tok, c)) throw fail("bad count " + quoted(tok) + " in the header");
+    if (!parse_number(tok, counts[k])) throw line_error(scan, "bad count " + quoted(tok) + " in the header");
   }
-  // Every vertex takes at least 6 bytes ("0 0 0\n") and every face 8, so counts beyond
-  // the file size are rejected before anything is allocated.
+}
+
+// Every vertex takes at least 6 bytes ("0 0 0\n") and every face 8 ("3 0 1 2\n").
+constexpr uint64_t kMinVertexBytes = 6, kMinFaceBytes = 8;
+
+}  // namespace
+
+uint64_t off_input_limit(std::string_view head, const std::string& name) {
+  TextScan scan(head, name);
+  uint64_t counts[2];
+  parse_off_header(scan, counts);
+  return counts_limit(scan.pos, static_cast<unsigned __int128>(counts[0]) * kMinVertexBytes +
+                                    static_cast<unsigned __int128>(counts[1]) * kMinFaceBytes);
+}
+
+Mesh load_off_text(std::string_view text, const std::string& name) {
+  TextScan scan(text, name);
+  std::string_view line;
+  auto fail = [&](const std::string& problem) { return line_error(scan, problem); };
+  uint64_t counts[2];
+  parse_off_header(scan, counts);
+  // Counts beyond the file size are rejected before anything is allocated.
   const uint64_t left = text.size() - std::min(text.size(), scan.pos);
-  if (counts[0] > left / 6 || counts[1] > left / 8 || counts[0] > 0xFFFFFFFFull)
+  if (counts[0] > left / kMinVertexBytes || counts[1] > left / kMinFaceBytes || counts[0] > 0xFFFFFFFFull)
     throw fail("header counts (" + std::to_string(counts[0]) + " vertices, " +
                std::to_string(counts[1]) + " faces) are larger than the file can hold");
 
@@ -54,14 +78,14 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
   mesh.positions.reserve(counts[0] * 3);
   mesh.triangles.reserve(counts[1] * 3);
   for (uint64_t v = 0; v < counts[0]; ++v) {
-    if (!content_line(line))
+    if (!content_line(scan, line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[0]) +
                   " vertices but the file ends after " + std::to_string(v));
     const std::string problem = take_xyz(line, mesh.positions);
     if (!problem.empty()) throw fail(problem);
   }
   for (uint64_t f = 0; f < counts[1]; ++f) {
-    if (!content_line(line))
+    if (!content_line(scan, line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[1]) +
                   " faces but the file ends after " + std::to_string(f));
     std::string_view tok = next_token(line);
@@ -88,7 +112,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
     }
     // Whatever follows (a colour) is ignored.
   }
-  if (content_line(line))
+  if (content_line(scan, line))
     throw fail("more data after the " + std::to_string(counts[1]) +
                " faces the header announces");
   return mesh;

@@ -67,11 +67,19 @@ struct Header {
   size_t body_line = 0;  // lines before the body (for ascii error messages)
 };
 
+// Names end up in error messages: printable ASCII only.
+bool printable(std::string_view s) {
+  for (char c : s)
+    if (static_cast<unsigned char>(c) < 33 || static_cast<unsigned char>(c) > 126) return false;
+  return true;
+}
+
 Header parse_header(std::string_view bytes, const std::string& name) {
-  TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)));
+  TextScan scan(std::string_view(bytes.data(), std::min<size_t>(bytes.size(), 1 << 20)), name);
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": header line " + std::to_string(scan.line_no) + ": " + problem);
   };
+  const bool bom = scan.skip_bom();
   std::string_view line;
   if (!scan.next_line(line) || strip_comment(line) != "ply")
     throw Error(name + ": not a PLY file (it does not start with 'ply')");
@@ -84,8 +92,16 @@ Header parse_header(std::string_view bytes, const std::string& name) {
     std::string_view rest = line;
     std::string_view key = next_token(rest);
     if (key.empty() || key == "comment" || key == "obj_info") continue;
-    if (key == "end_header") {
+    if (key.substr(0, 10) == "end_header") {
       if (!have_format) throw fail("end_header before any 'format' line");
+      // The body starts right after this line's line end: anything else on the line (the
+      // body glued on by a missing newline), or no line end at all, would misplace it.
+      if (key.size() > 10 || !next_token(rest).empty())
+        throw fail("more text after end_header on its line (a missing newline?)");
+      if (scan.line_end == 0)
+        throw fail("end_header is not followed by a newline (truncated file or a broken writer)");
+      if (h.format != Format::Ascii && scan.line_end == '\r')
+        throw fail("binary PLY header with CR-only line ends: where the body starts is ambiguous");
       done = true;
     } else if (key == "format") {
       std::string_view f = next_token(rest);
@@ -93,12 +109,16 @@ Header parse_header(std::string_view bytes, const std::string& name) {
       else if (f == "binary_little_endian") h.format = Format::BinaryLE;
       else if (f == "binary_big_endian") h.format = Format::BinaryBE;
       else throw fail("unknown format " + quoted(f));
+      // A text editor that added a byte-order mark has probably rewritten the binary body too.
+      if (bom && h.format != Format::Ascii)
+        throw Error(name + ": a UTF-8 byte-order mark in front of a binary PLY header (saved by a text "
+                           "editor? its binary body is probably damaged too)");
       have_format = true;
     } else if (key == "element") {
       Element e;
       e.name = std::string(next_token(rest));
       std::string_view c = next_token(rest);
-      if (e.name.empty() || !parse_number(c, e.count))
+      if (e.name.empty() || !parse_number(c, e.count) || !printable(e.name))
         throw fail("bad element line " + quoted(line));
       h.elements.push_back(std::move(e));
     } else if (key == "property") {
@@ -117,13 +137,14 @@ Header parse_header(std::string_view bytes, const std::string& name) {
       }
       p.name = std::string(next_token(rest));
       if (p.name.empty()) throw fail("property without a name");
+      if (!printable(p.name)) throw fail("property name " + quoted(p.name) + " has unprintable characters");
       h.elements.back().props.push_back(std::move(p));
     } else {
       throw fail("unexpected header line " + quoted(line));
     }
   }
   if (!done) throw Error(name + ": PLY header has no end_header line (garbled or truncated file)");
-  h.body = scan.pos;
+  h.body = scan.pos;  // <= bytes.size(): next_line never moves past the end
   h.body_line = scan.line_no;
   return h;
 }
@@ -328,6 +349,8 @@ struct Reader {
           fail("truncated: the header says " + std::to_string(e.count) + " " + e.name +
                " elements but the file ends after " + std::to_string(k));
       } while (strip_comment(line).empty());
+      if (std::string_view peek = line; next_token(peek) == "comment")
+        fail_line("a 'comment' line inside the body (PLY allows comments only in the header)");
       for (size_t j = 0; j < e.props.size(); ++j) {
         const Property& p = e.props[j];
         const Role role = plan.roles[j];
@@ -361,26 +384,42 @@ struct Reader {
   }
 };
 
+// Bytes the body needs for the header's counts: fixed-size values, list counts and
+// `list_items` items per list (binary), or 2 bytes per value ("0 ") in ascii.
+unsigned __int128 body_bytes_needed(const Header& h, unsigned list_items) {
+  const bool ascii = h.format == Format::Ascii;
+  unsigned __int128 total = 0;
+  for (const Element& e : h.elements) {
+    uint64_t size = 0;
+    for (const Property& p : e.props)
+      size += ascii ? 2 * (1 + (p.is_list ? list_items : 0))
+                    : type_size(p.is_list ? p.count_type : p.type) + (p.is_list ? list_items * type_size(p.type) : 0);
+    total += static_cast<unsigned __int128>(size) * e.count;
+  }
+  return total;
+}
+
 }  // namespace
+
+uint64_t ply_input_limit(std::string_view head, const std::string& name) {
+  const Header h = parse_header(head, name);
+  return counts_limit(h.body, body_bytes_needed(h, 3));
+}
 
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
   Header h = parse_header(bytes, name);
   const bool ascii = h.format == Format::Ascii;
-  const size_t body_size = bytes.size() - h.body;
+  const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
 
   // Reject counts the body cannot possibly hold before allocating anything: a binary
   // element needs at least the sum of its fixed-size parts, an ascii one 2 bytes per value.
   const Element* vertex = nullptr;
   const Element* face = nullptr;
-  unsigned __int128 min_total = 0;
   for (const Element& e : h.elements) {
-    uint64_t min_size = 0;
-    for (const Property& p : e.props)
-      min_size += ascii ? 2 : type_size(p.is_list ? p.count_type : p.type);
-    min_total += static_cast<unsigned __int128>(min_size) * e.count;
     if (e.name == "vertex" && !vertex) vertex = &e;
     if (e.name == "face" && !face) face = &e;
   }
+  const unsigned __int128 min_total = body_bytes_needed(h, 0);
   if (min_total > body_size)
     throw Error(name + ": header element counts need at least " +
                 std::to_string(static_cast<uint64_t>(std::min<unsigned __int128>(min_total, UINT64_MAX))) +
@@ -425,15 +464,19 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
         if (plan.roles[j] == Extra) plan.extra_out[j] = extras[n++].data();
       mesh.positions.reserve(e.count * 3);
     } else if (&e == face) {
+      uint64_t min_face_bytes = 8;  // ascii "3 0 1 2\n"
       for (size_t j = 0; j < e.props.size(); ++j)
         if (e.props[j].is_list && !face_list_found &&
             (e.props[j].name == "vertex_indices" || e.props[j].name == "vertex_index")) {
           plan.roles[j] = Indices;
           face_list_found = true;
+          if (!ascii) min_face_bytes = type_size(e.props[j].count_type) + 3 * type_size(e.props[j].type);
         }
       if (!face_list_found)
         throw Error(name + ": the face element has no vertex_indices list");
-      mesh.triangles.reserve(e.count * 3);
+      // As many triangles as the body can hold, not as the header claims: a face needs a
+      // count and 3 indices (a header of 1-byte faces must not reserve 12 bytes for each).
+      mesh.triangles.reserve(std::min<uint64_t>(e.count, body_size / min_face_bytes) * 3);
     }
   }
   if (!face) {
@@ -445,7 +488,7 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
 
   size_t end;
   if (ascii) {
-    TextScan scan{bytes};
+    TextScan scan(bytes, name);
     scan.pos = h.body;
     scan.line_no = h.body_line;
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
@@ -471,6 +514,14 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
     }
   }
   // The body must end where the header says (blank space aside).
+  if (ascii) {
+    TextScan rest(bytes, name);
+    rest.pos = std::min(end, bytes.size());
+    std::string_view line;
+    while (rest.next_line(line))
+      if (next_token(line) == "comment")
+        throw Error(name + ": a 'comment' line after the last element (PLY allows comments only in the header)");
+  }
   for (size_t i = std::min(end, bytes.size()); i < bytes.size(); ++i)
     if (!is_space(bytes[i]) && bytes[i] != '\n')
       throw Error(name + ": " + std::to_string(bytes.size() - end) +

@@ -3,6 +3,7 @@
 // They fan-triangulate polygons and reject faces with fewer than 3 vertices; the caller
 // (load_mesh) runs validate_mesh on the result.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -13,5 +14,23 @@ namespace meshsal {
 Mesh load_obj_text(std::string_view text, const std::string& name);
 Mesh load_off_text(std::string_view text, const std::string& name);
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties);
+
+// How many bytes a gzipped file may inflate to (and how much a pipe may deliver) when no
+// limit is set: for PLY and OFF, whose headers give counts, 64 MiB plus 64 times the bytes
+// those counts need (lists counted with 3 items); for OBJ, which has no header, 1 GiB.
+// `head` is the start of the data (the first MiB, or all of it when shorter); the PLY and
+// OFF versions parse it and throw the header's Error, so garbage is refused before the
+// rest is inflated.
+constexpr uint64_t kCountsSlackBytes = uint64_t(64) << 20;
+constexpr uint64_t kCountsFactor = 64;
+constexpr uint64_t kNoHeaderLimitBytes = uint64_t(1) << 30;
+uint64_t ply_input_limit(std::string_view head, const std::string& name);
+uint64_t off_input_limit(std::string_view head, const std::string& name);
+
+// header + slack + factor * need, saturating.
+inline uint64_t counts_limit(uint64_t header_bytes, unsigned __int128 need) {
+  const unsigned __int128 limit = header_bytes + kCountsSlackBytes + need * kCountsFactor;
+  return limit > UINT64_MAX ? UINT64_MAX : static_cast<uint64_t>(limit);
+}
 
 }  // namespace meshsal

@@ -1,4 +1,4 @@
-// meshsal: whole-file reads with transparent gunzip (zlib inflate on the in-memory bytes).
+// meshsal: whole-file reads (regular files and pipes only) and bounded gunzip in memory.
 #include "io/read_bytes.h"
 
 #include <fcntl.h>
@@ -7,7 +7,6 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -31,27 +30,53 @@ void grow(const std::string& path, Bytes& b, size_t& capacity, size_t want) {
   capacity = want;
 }
 
-Bytes read_raw(const std::string& path) {
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) fail(path, std::string("cannot open: ") + std::strerror(errno));
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+std::string mib(uint64_t bytes) {
+  return bytes % (1 << 20) == 0 ? std::to_string(bytes >> 20) + " MiB" : std::to_string(bytes) + " bytes";
+}
+
+}  // namespace
+
+Bytes read_file(const std::string& path, uint64_t max_pipe_bytes) {
+  // A device (/dev/zero, /dev/urandom, a terminal) never ends or may block: look before
+  // opening, then check again on what was opened. stat follows symlinks.
   struct stat st;
+  auto refuse_kind = [&] {
+    if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+      fail(path, std::string("is ") + file_kind(st.st_mode) + ", not a mesh file");
+  };
+  if (::stat(path.c_str(), &st) == 0) refuse_kind();
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);  // a FIFO: waits for a writer
+  if (fd < 0) fail(path, std::string("cannot open: ") + std::strerror(errno));
   if (::fstat(fd, &st) != 0) {
     int e = errno;
     ::close(fd);
     fail(path, std::string("cannot stat: ") + std::strerror(e));
   }
-  if (S_ISDIR(st.st_mode)) {
+  try {
+    refuse_kind();
+  } catch (...) {
     ::close(fd);
-    fail(path, "is a folder, not a mesh file");
+    throw;
   }
+  const bool regular = S_ISREG(st.st_mode);
   // Regular files: one buffer of the right size (+1 so the final read sees EOF without
-  // growing); others (pipes) grow as they come.
+  // growing); they may still grow while being read (or report size 0, as /proc files do),
+  // so what is read beyond the size is capped as a pipe is.
+  const uint64_t cap = regular ? static_cast<uint64_t>(st.st_size) + max_pipe_bytes : max_pipe_bytes;
   Bytes b;
   size_t capacity = 0;
   try {
-    grow(path, b, capacity, S_ISREG(st.st_mode) ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16);
+    grow(path, b, capacity, regular ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16);
     for (;;) {
-      if (b.size == capacity) grow(path, b, capacity, capacity * 2);
+      if (b.size == capacity) grow(path, b, capacity, std::min<uint64_t>(capacity * 2, cap + 1));
       ssize_t n = ::read(fd, b.data.get() + b.size, capacity - b.size);
       if (n < 0) {
         if (errno == EINTR) continue;
@@ -59,6 +84,9 @@ Bytes read_raw(const std::string& path) {
       }
       if (n == 0) break;
       b.size += static_cast<size_t>(n);
+      if (b.size > cap)
+        fail(path, "more than " + mib(cap) + " came from " + (regular ? "a growing file" : "a pipe") +
+                       " (the limit for input of unknown size; MESHSAL_MAX_INPUT raises it)");
     }
   } catch (...) {
     ::close(fd);
@@ -68,19 +96,23 @@ Bytes read_raw(const std::string& path) {
   return b;
 }
 
-bool ends_with_gz(const std::string& path) {
-  if (path.size() < 3) return false;
-  std::string ext = path.substr(path.size() - 3);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".gz";
+namespace {
+
+[[noreturn]] void over_limit(const std::string& path, uint64_t limit) {
+  fail(path, "gzip data inflates to more than " + mib(limit) +
+                 ", the limit for this file (a gzip bomb?); MESHSAL_MAX_INPUT=BYTES raises it");
 }
 
-bool has_gzip_magic(std::string_view data, size_t at = 0) {
+bool gzip_magic_at(std::string_view data, size_t at) {
   return data.size() >= at + 2 && static_cast<unsigned char>(data[at]) == 0x1f &&
          static_cast<unsigned char>(data[at + 1]) == 0x8b;
 }
 
-Bytes gunzip(const std::string& path, std::string_view in) {
+}  // namespace
+
+bool has_gzip_magic(std::string_view data) { return gzip_magic_at(data, 0); }
+
+Bytes gunzip(std::string_view in, const std::string& path, const InflateLimit& limit) {
   Bytes out;
   size_t capacity = 0;
   // The gzip trailer holds the uncompressed size mod 2^32: a good first guess.
@@ -90,7 +122,11 @@ Bytes gunzip(const std::string& path, std::string_view in) {
     size_t hint = t[0] | (t[1] << 8) | (t[2] << 16) | (size_t(t[3]) << 24);
     if (hint < in.size() * size_t(1100)) guess = hint + 1;  // deflate can't beat ~1032:1
   }
-  grow(path, out, capacity, std::max<size_t>(guess, 1 << 16));
+  // Until the head is seen, inflate no more than the head; then as much as `limit` says.
+  // A bomb (a few MB inflating to GB) is refused after inflating what its header allows.
+  uint64_t max_out = kGzipHeadBytes;
+  bool head_checked = false;
+  grow(path, out, capacity, std::min<size_t>(std::max<size_t>(guess, 1 << 16), kGzipHeadBytes + 1));
   z_stream zs;
   std::memset(&zs, 0, sizeof zs);
   if (inflateInit2(&zs, 15 + 16) != Z_OK) fail(path, "cannot start gzip decompression");
@@ -98,42 +134,48 @@ Bytes gunzip(const std::string& path, std::string_view in) {
     z_stream* z;
     ~End() { inflateEnd(z); }
   } end_guard{&zs};
+  auto check_head = [&] {
+    head_checked = true;
+    max_out = limit(out.view());
+    if (out.size > max_out) over_limit(path, max_out);
+    grow(path, out, capacity, std::min<uint64_t>(guess, max_out + 1));
+  };
   size_t used = 0;  // input bytes consumed
   for (;;) {
     // One gzip member per pass; files may hold several concatenated members.
     int rc = Z_OK;
     while (rc != Z_STREAM_END) {
-      if (capacity - out.size < (1 << 16)) grow(path, out, capacity, capacity * 2);
+      if (!head_checked && out.size >= kGzipHeadBytes) check_head();
+      // Room for at most one byte past the limit, which tells "more than the limit".
+      const uint64_t room = max_out + 1 - out.size;
+      if (capacity - out.size < std::min<uint64_t>(room, 1 << 16))
+        grow(path, out, capacity, std::min<uint64_t>(capacity * 2, max_out + 1));
       // zlib counts in 32 bits: feed at most 1 GiB at a time.
       zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data() + used));
       zs.avail_in = static_cast<uInt>(std::min<size_t>(in.size() - used, 1u << 30));
       zs.next_out = reinterpret_cast<Bytef*>(out.data.get() + out.size);
-      zs.avail_out = static_cast<uInt>(std::min<size_t>(capacity - out.size, 1u << 30));
+      zs.avail_out = static_cast<uInt>(std::min<uint64_t>({capacity - out.size, room, 1u << 30}));
       const uInt in_before = zs.avail_in, out_before = zs.avail_out;
       rc = inflate(&zs, Z_NO_FLUSH);
       used += in_before - zs.avail_in;
       out.size += out_before - zs.avail_out;
       if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT || rc == Z_MEM_ERROR || rc == Z_STREAM_ERROR)
         fail(path, std::string("corrupt gzip data (") + (zs.msg ? zs.msg : "bad data") + ")");
+      if (out.size > max_out) {
+        if (!head_checked) check_head();
+        if (out.size > max_out) over_limit(path, max_out);
+      }
       if (rc != Z_STREAM_END && used == in.size() && zs.avail_in == in_before && zs.avail_out == out_before)
         fail(path, "truncated gzip data (the file ends inside the compressed stream)");
     }
-    if (!has_gzip_magic(in, used)) break;
+    if (!gzip_magic_at(in, used)) break;
     inflateReset(&zs);
   }
+  if (!head_checked) check_head();
   // Anything after the last member other than zero padding is garbage.
   for (size_t i = used; i < in.size(); ++i)
     if (in[i] != 0) fail(path, "unexpected data after the gzip stream");
   return out;
-}
-
-}  // namespace
-
-Bytes read_bytes(const std::string& path) {
-  Bytes data = read_raw(path);
-  if (has_gzip_magic(data.view())) return gunzip(path, data.view());
-  if (ends_with_gz(path)) fail(path, "not a gzip file (the name ends in .gz but the data is not gzip)");
-  return data;
 }
 
 }  // namespace meshsal

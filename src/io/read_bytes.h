@@ -1,6 +1,8 @@
 // meshsal: read a whole file into memory, gunzipping it when it is gzip-compressed.
 #pragma once
+#include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -15,10 +17,22 @@ struct Bytes {
   std::string_view view() const { return std::string_view(data.get(), size); }
 };
 
-// Returns the file's bytes. A file whose name ends in .gz (any case) or that starts with
-// the gzip magic bytes is decompressed (concatenated gzip members included).
-// Throws Error "PATH: problem" when the file is missing, unreadable, a folder, or
-// holds truncated / corrupt gzip data.
-Bytes read_bytes(const std::string& path);
+// Reads the file's raw bytes. Regular files are read whole; a FIFO (named pipe) is read
+// up to `max_pipe_bytes`; anything else (a character or block device such as /dev/zero,
+// a socket, a folder; symlinks are followed) is refused before reading.
+// Throws Error "PATH: problem".
+Bytes read_file(const std::string& path, uint64_t max_pipe_bytes);
+
+bool has_gzip_magic(std::string_view data);
+
+// Decides how many bytes the inflated data may hold from its start: called once with the
+// first kGzipHeadBytes inflated bytes (all of them when there are fewer). It may throw
+// Error to refuse the data before the rest is inflated.
+using InflateLimit = std::function<uint64_t(std::string_view head)>;
+constexpr size_t kGzipHeadBytes = size_t(1) << 20;
+
+// Inflates gzip data (concatenated members included). Throws Error "NAME: problem" for
+// truncated or corrupt data, data after the stream, or more than `limit` allows.
+Bytes gunzip(std::string_view in, const std::string& name, const InflateLimit& limit);
 
 }  // namespace meshsal

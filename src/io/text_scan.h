@@ -1,7 +1,9 @@
 // meshsal: tiny line/token scanner shared by the text parsers (OBJ, OFF, ascii PLY).
 // Works on the file bytes in memory; numbers via std::from_chars (no iostreams, no locale).
 #pragma once
+#include <algorithm>
 #include <charconv>
+#include <cstring>
 #include <cstdlib>
 #include <cstdint>
 #include <string>
@@ -14,24 +16,57 @@ namespace meshsal {
 
 struct TextScan {
   std::string_view text;
+  const std::string& name;  // the input's name, for errors found while scanning
   size_t pos = 0;
   size_t line_no = 0;  // 1-based number of the line last returned by next_line
+  char line_end = 0;   // what ended that line: '\n' (or "\r\n"), '\r' (a lone CR), 0 (end of text)
 
-  explicit TextScan(std::string_view t) : text(t) {}
+  TextScan(std::string_view t, const std::string& input_name) : text(t), name(input_name) {}
 
   bool at_end() const { return pos >= text.size(); }
 
-  // The next line without its "\n" / "\r\n"; false at the end of the text.
-  bool next_line(std::string_view& line) {
-    if (pos >= text.size()) return false;
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    line = text.substr(pos, end - pos);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    pos = end + 1;
-    ++line_no;
+  // Skips a UTF-8 byte-order mark at the start (editors on Windows write one); true when
+  // there was one. UTF-16 text is refused: every byte would be read wrong.
+  bool skip_bom() {
+    if (text.substr(pos, 2) == "\xFF\xFE" || text.substr(pos, 2) == "\xFE\xFF")
+      throw Error(name + ": UTF-16 text (it starts with a UTF-16 byte-order mark); save it as UTF-8 or ASCII");
+    if (text.substr(pos, 3) != kBom) return false;
+    pos += 3;
     return true;
   }
+
+  // The next line without its line end; false at the end of the text. "\n", "\r\n" and a
+  // lone "\r" (classic Mac OS) all end a line: a lone CR must not glue two lines together
+  // (an OBJ "v" line would silently swallow the next one as extra columns).
+  bool next_line(std::string_view& line) {
+    if (pos >= text.size()) return false;
+    if (newline_ < pos || newline_ == kUnknown) {
+      const void* nl = std::memchr(text.data() + pos, '\n', text.size() - pos);
+      newline_ = nl ? static_cast<size_t>(static_cast<const char*>(nl) - text.data()) : text.size();
+    }
+    size_t end = newline_, next = newline_ + 1;
+    line_end = newline_ < text.size() ? '\n' : 0;
+    if (const void* cr = std::memchr(text.data() + pos, '\r', newline_ - pos)) {
+      end = static_cast<size_t>(static_cast<const char*>(cr) - text.data());
+      if (end + 1 != newline_ || newline_ == text.size()) {
+        next = end + 1;
+        line_end = '\r';
+      }
+    }
+    line = text.substr(pos, end - pos);
+    pos = std::min(next, text.size());
+    ++line_no;
+    if (line.substr(0, 3) == kBom)
+      throw Error(name + ": line " + std::to_string(line_no) +
+                  ": a UTF-8 byte-order mark inside the file (were two files joined together?)");
+    return true;
+  }
+
+  static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+
+ private:
+  static constexpr size_t kUnknown = ~size_t(0);
+  size_t newline_ = kUnknown;  // position of the next '\n' at or after pos (or text.size())
 };
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -87,12 +122,13 @@ inline bool parse_int_prefix(std::string_view tok, int64_t& out) {
   return r.ec == std::errc() && (r.ptr == tok.data() + tok.size() || *r.ptr == '/');
 }
 
+// A token for an error message: at most 40 characters, anything but printable ASCII as
+// '?' (a message is one printable line, whatever bytes the file holds).
 inline std::string quoted(std::string_view tok) {
-  if (tok.size() > 40) return "'" + std::string(tok.substr(0, 40)) + "...'";
-  std::string s(tok);
+  std::string s(tok.substr(0, 40));
   for (char& c : s)
     if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return "'" + s + "'";
+  return "'" + s + (tok.size() > 40 ? "...'" : "'");
 }
 
 // Reads the next three coordinates of `line` (consumed from it) onto `out`. Returns what

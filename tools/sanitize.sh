@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Builds the library, the command line and the tests with AddressSanitizer and
+# UndefinedBehaviorSanitizer (-DMESHSAL_SANITIZE=ON) into build-sanitize/ and runs the
+# whole suite there, lavapipe and the Khronos validation layer included.
+#   tools/sanitize.sh [CTEST ARGS...]      e.g. tools/sanitize.sh -R '\[io\]'
+# Any sanitizer report aborts the test that triggered it, so a clean run is a passing run.
+# Leaks are checked too, except those reported inside the Vulkan loader, lavapipe, LLVM
+# and the validation layer: uninstrumented driver code that keeps global state for the
+# process's lifetime (tools/lsan.supp). Expect ~3x the normal suite's time.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/setup.sh >/dev/null   # packages (and the normal build)
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHSAL_SANITIZE=ON >/dev/null
+cmake --build build-sanitize -j"$(nproc)"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tools/lsan.supp:print_suppressions=0}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+cd build-sanitize
+ctest --output-on-failure -j"$(nproc)" --timeout 1200 "$@"
