@@ -142,8 +142,16 @@ struct State {
     return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
   }
 
+  // Setup, in this order (init calls them): the input checked and its degenerate
+  // triangles dropped; vertices renumbered along a Morton curve in internal coordinates;
+  // each vertex's triangle run and plane quadrics; the unique edges with the border
+  // quadrics; then the weights and the initial edge costs.
   void init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
             std::vector<Entry>* edges);
+  void take_input(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w);
+  void order_vertices(const Mesh& mesh);
+  void build_triangle_runs();
+  void build_edges(double border_weight, std::vector<uint32_t>* edge_a, std::vector<uint32_t>* edge_b);
   Check check(uint32_t a, uint32_t b, const double np[3]);
   // Would triangle t, with vertex `moved` placed at np, flip, fold or degenerate?
   bool bad_triangle(uint32_t t, uint32_t moved, const double np[3]) const;
@@ -159,6 +167,32 @@ struct State {
 
 void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
                  std::vector<Entry>* edges) {
+  take_input(mesh, options, w);
+  order_vertices(mesh);
+  build_triangle_runs();
+  std::vector<uint32_t> unique_edges_a, unique_edges_b;
+  build_edges(options.border_weight, &unique_edges_a, &unique_edges_b);
+  if (w)
+    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
+  changed.assign(nv, 0);
+  link.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
+
+  if (edges) {
+    edges->resize(unique_edges_a.size());
+    // Independent per edge: on all cores (a tenth of the whole run on one).
+    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
+      double tmp[3];
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
+        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
+      }
+    });
+  }
+}
+
+void State::take_input(const Mesh& mesh, const SimplifyOptions& options,
+                       const std::vector<double>* w) {
   nv = mesh.vertex_count();
   input_positions = mesh.positions.data();
   const size_t nt_in = mesh.triangle_count();
@@ -185,7 +219,9 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   target = resolve_target_faces(options, nt);
   min_cos = options.min_normal_cos;
   record = options.record_collapses;
+}
 
+void State::order_vertices(const Mesh& mesh) {
   // Internal coordinates: centred on the bounding box and scaled to unit diagonal, so that
   // the relative tolerances below mean the same on every mesh.
   alive.assign(nv, 0);
@@ -250,7 +286,10 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   for (size_t i = 0; i < nv; ++i)
     for (int k = 0; k < 3; ++k)
       pos[3 * i + k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
+}
 
+void State::build_triangle_runs() {
+  const size_t nt = tri.size() / 3;
   tri_alive.assign(nt, 1);
   std::vector<uint32_t> deg(nv, 0);
   for (uint32_t v : tri) ++deg[v];
@@ -272,7 +311,10 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
       quad[v[k]] += q;
     }
   }
+}
 
+void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
+                        std::vector<uint32_t>* edge_b) {
   // Edges from the triangle runs: for each vertex a, its higher neighbours b, with the
   // number of triangles on (a, b) counted in per-vertex scratch (stamped with a, so nothing
   // is cleared between vertices). One triangle is a border edge, more than two a
@@ -281,7 +323,9 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   // scratch entries of a's neighbours are close in memory, and which of them was seen
   // before is a coin toss.
   border.assign(nv, 0);
-  std::vector<uint32_t> unique_edges_a, unique_edges_b;
+  std::vector<uint32_t>& unique_edges_a = *edge_a;
+  std::vector<uint32_t>& unique_edges_b = *edge_b;
+  const size_t nt = tri.size() / 3;
   unique_edges_a.reserve(nt * 3 / 2 + 16);
   unique_edges_b.reserve(nt * 3 / 2 + 16);
   std::vector<uint32_t> seen(nv, UINT32_MAX), on_edge(nv, 0), edge_tri(nv), edge_corner(nv);
@@ -320,28 +364,11 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
     for (uint32_t b : border_b) {
       const uint32_t t = edge_tri[b], k = edge_corner[b];
       const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
-      const Quadric q = border_quadric(p(v0), p(v1), p(v2), options.border_weight);
+      const Quadric q = border_quadric(p(v0), p(v1), p(v2), border_weight);
       quad[v0] += q;
       quad[v1] += q;
       border[a] = border[b] = 1;
     }
-  }
-  if (w)
-    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
-  changed.assign(nv, 0);
-  link.assign(nv, 0);
-  for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
-
-  if (edges) {
-    edges->resize(unique_edges_a.size());
-    // Independent per edge: on all cores (a tenth of the whole run on one).
-    parallel_for(unique_edges_a.size(), options.threads, 8192, [&](size_t begin, size_t end) {
-      double tmp[3];
-      for (size_t i = begin; i < end; ++i) {
-        const uint32_t a = unique_edges_a[i], b = unique_edges_b[i];
-        (*edges)[i] = make_entry(cost(a, b, tmp), a, b, 0);
-      }
-    });
   }
 }
 
