@@ -42,11 +42,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name) {
       }
       if (poly.size() < 3)
         throw fail("face with " + std::to_string(poly.size()) + " vertices (needs at least 3)");
-      for (size_t i = 1; i + 1 < poly.size(); ++i) {
-        mesh.triangles.push_back(poly[0]);
-        mesh.triangles.push_back(poly[i]);
-        mesh.triangles.push_back(poly[i + 1]);
-      }
+      append_fan(mesh.triangles, poly.data(), poly.size());
     }
   }
   return mesh;

@@ -84,6 +84,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
     const std::string problem = take_xyz(line, mesh.positions);
     if (!problem.empty()) throw fail(problem);
   }
+  std::vector<uint32_t> poly;
   for (uint64_t f = 0; f < counts[1]; ++f) {
     if (!content_line(scan, line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[1]) +
@@ -92,7 +93,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
     uint64_t n;
     if (!parse_number(tok, n)) throw fail("bad face vertex count " + quoted(tok));
     if (n < 3) throw fail("face with " + std::to_string(n) + " vertices (needs at least 3)");
-    uint32_t first = 0, prev = 0;
+    poly.clear();
     for (uint64_t i = 0; i < n; ++i) {
       tok = next_token(line);
       int64_t idx;
@@ -101,15 +102,9 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
       if (idx < 0 || idx >= static_cast<int64_t>(counts[0]))
         throw fail("face index " + std::to_string(idx) + " is out of range (" +
                    std::to_string(counts[0]) + " vertices)");
-      uint32_t cur = static_cast<uint32_t>(idx);
-      if (i == 0) first = cur;
-      if (i >= 2) {
-        mesh.triangles.push_back(first);
-        mesh.triangles.push_back(prev);
-        mesh.triangles.push_back(cur);
-      }
-      prev = cur;
+      poly.push_back(static_cast<uint32_t>(idx));
     }
+    append_fan(mesh.triangles, poly.data(), poly.size());
     // Whatever follows (a colour) is ignored.
   }
   if (content_line(scan, line))

@@ -208,11 +208,7 @@ struct Reader {
         bad(" uses vertex index " + std::to_string(idx[i]) +
             (vertex_count == UINT64_MAX ? std::string(", out of range")
                                         : ", out of range (" + std::to_string(vertex_count) + " vertices)"));
-    for (uint64_t i = 1; i + 1 < n; ++i) {
-      mesh.triangles.push_back(static_cast<uint32_t>(idx[0]));
-      mesh.triangles.push_back(static_cast<uint32_t>(idx[i]));
-      mesh.triangles.push_back(static_cast<uint32_t>(idx[i + 1]));
-    }
+    append_fan(mesh.triangles, idx, n);
   }
 
   template <bool Swap>

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "meshsal/meshsal.h"
 
@@ -14,6 +15,16 @@ namespace meshsal {
 Mesh load_obj_text(std::string_view text, const std::string& name);
 Mesh load_off_text(std::string_view text, const std::string& name);
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties);
+
+// The fan triangulation of one polygon (n >= 3 indices, already checked): (p0, pi, pi+1).
+template <class Index>
+void append_fan(std::vector<uint32_t>& triangles, const Index* poly, size_t n) {
+  for (size_t i = 1; i + 1 < n; ++i) {
+    triangles.push_back(static_cast<uint32_t>(poly[0]));
+    triangles.push_back(static_cast<uint32_t>(poly[i]));
+    triangles.push_back(static_cast<uint32_t>(poly[i + 1]));
+  }
+}
 
 // How many bytes a gzipped file may inflate to (and how much a pipe may deliver) when no
 // limit is set: for PLY and OFF, whose headers give counts, 64 MiB plus 64 times the bytes
