@@ -402,37 +402,36 @@ uint64_t ply_input_limit(std::string_view head, const std::string& name) {
   return counts_limit(h.body, body_bytes_needed(h, 3));
 }
 
-Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
-  Header h = parse_header(bytes, name);
-  const bool ascii = h.format == Format::Ascii;
-  const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
+namespace {
 
-  // Reject counts the body cannot possibly hold before allocating anything: a binary
-  // element needs at least the sum of its fixed-size parts, an ascii one 2 bytes per value.
-  const Element* vertex = nullptr;
-  const Element* face = nullptr;
-  for (const Element& e : h.elements) {
-    if (e.name == "vertex" && !vertex) vertex = &e;
-    if (e.name == "face" && !face) face = &e;
-  }
+// Refuses counts the body cannot possibly hold, before anything is allocated: a binary
+// element needs at least the sum of its fixed-size parts, an ascii one 2 bytes per value.
+void check_counts_fit(const Header& h, size_t body_size, const std::string& name) {
   const unsigned __int128 min_total = body_bytes_needed(h, 0);
   if (min_total > body_size)
     throw Error(name + ": header element counts need at least " +
                 std::to_string(static_cast<uint64_t>(std::min<unsigned __int128>(min_total, UINT64_MAX))) +
                 " bytes but the body has " + std::to_string(body_size) +
                 " (truncated file or bad header)");
-  if (!vertex) throw Error(name + ": PLY has no 'vertex' element");
-  if (vertex->count > 0xFFFFFFFFull) throw Error(name + ": too many vertices");
+}
 
-  Mesh mesh;
-  Reader reader{bytes, name, mesh};
+// What to do with each property of each element, and where extra vertex properties go.
+struct ElementPlans {
+  std::vector<Plan> plans;                 // per element
   std::vector<std::vector<float>> extras;  // storage while reading, moved out at the end
   std::vector<std::string> extra_names;
+};
+
+ElementPlans plan_elements(const Header& h, const Element* vertex, const Element* face,
+                           size_t body_size, bool want_properties, Mesh& mesh,
+                           const std::string& name) {
+  const bool ascii = h.format == Format::Ascii;
+  ElementPlans out;
   bool face_list_found = false;
-  std::vector<Plan> plans(h.elements.size());
+  out.plans.resize(h.elements.size());
   for (size_t ei = 0; ei < h.elements.size(); ++ei) {
     const Element& e = h.elements[ei];
-    Plan& plan = plans[ei];
+    Plan& plan = out.plans[ei];
     plan.roles.assign(e.props.size(), Skip);
     plan.extra_out.assign(e.props.size(), nullptr);
     if (&e == vertex) {
@@ -444,10 +443,10 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
         if (axis >= 0 && found[axis] < 0) {
           found[axis] = static_cast<int>(j);
           plan.roles[j] = static_cast<Role>(axis);
-        } else if (properties) {
+        } else if (want_properties) {
           plan.roles[j] = Extra;
-          extras.emplace_back(e.count);
-          extra_names.push_back(p.name);
+          out.extras.emplace_back(e.count);
+          out.extra_names.push_back(p.name);
         }
       }
       if (found[0] < 0 || found[1] < 0 || found[2] < 0)
@@ -457,7 +456,7 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
         throw Error(name + ": vertex properties x, y, z are not in x, y, z order");
       size_t n = 0;
       for (size_t j = 0; j < e.props.size(); ++j)
-        if (plan.roles[j] == Extra) plan.extra_out[j] = extras[n++].data();
+        if (plan.roles[j] == Extra) plan.extra_out[j] = out.extras[n++].data();
       mesh.positions.reserve(e.count * 3);
     } else if (&e == face) {
       uint64_t min_face_bytes = 8;  // ascii "3 0 1 2\n"
@@ -475,16 +474,13 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
       mesh.triangles.reserve(std::min<uint64_t>(e.count, body_size / min_face_bytes) * 3);
     }
   }
-  if (!face) {
-    bool strips = false;
-    for (const Element& e : h.elements) strips |= e.name == "tristrips";
-    throw Error(name + (strips ? ": PLY stores triangle strips (tristrips), which are not supported"
-                               : ": PLY has no 'face' element (a point cloud, not a mesh)"));
-  }
+  return out;
+}
 
-  size_t end;
-  if (ascii) {
-    TextScan scan(bytes, name);
+// Reads every element in header order; returns where the body ended.
+size_t read_body(Reader& reader, const Header& h, std::vector<Plan>& plans, const Element* vertex) {
+  if (h.format == Format::Ascii) {
+    TextScan scan(reader.bytes, reader.name);
     scan.pos = h.body;
     scan.line_no = h.body_line;
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
@@ -492,24 +488,27 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
       reader.read_ascii(h.elements[ei], plans[ei], scan);
       if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
     }
-    end = scan.pos;
-  } else {
-    const bool swap = (h.format == Format::BinaryBE) != host_big_endian();
-    end = h.body;
-    for (size_t ei = 0; ei < h.elements.size(); ++ei) {
-      if (h.elements[ei].props.empty()) continue;
-      const Element& e = h.elements[ei];
-      if (reader.read_faces_fast(e, plans[ei], end, swap)) continue;
-      if (&e == vertex && (swap ? reader.read_fixed_fast<true>(e, plans[ei], end)
-                                : reader.read_fixed_fast<false>(e, plans[ei], end))) {
-        reader.vertex_count = vertex->count;
-        continue;
-      }
-      end = swap ? reader.read_binary<true>(e, plans[ei], end) : reader.read_binary<false>(e, plans[ei], end);
-      if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
-    }
+    return scan.pos;
   }
-  // The body must end where the header says (blank space aside).
+  const bool swap = (h.format == Format::BinaryBE) != host_big_endian();
+  size_t end = h.body;
+  for (size_t ei = 0; ei < h.elements.size(); ++ei) {
+    if (h.elements[ei].props.empty()) continue;
+    const Element& e = h.elements[ei];
+    if (reader.read_faces_fast(e, plans[ei], end, swap)) continue;
+    if (&e == vertex && (swap ? reader.read_fixed_fast<true>(e, plans[ei], end)
+                              : reader.read_fixed_fast<false>(e, plans[ei], end))) {
+      reader.vertex_count = vertex->count;
+      continue;
+    }
+    end = swap ? reader.read_binary<true>(e, plans[ei], end) : reader.read_binary<false>(e, plans[ei], end);
+    if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
+  }
+  return end;
+}
+
+// The body must end where the header says (blank space aside).
+void check_nothing_after(std::string_view bytes, size_t end, bool ascii, const std::string& name) {
   if (ascii) {
     TextScan rest(bytes, name);
     rest.pos = std::min(end, bytes.size());
@@ -522,8 +521,37 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
     if (!is_space(bytes[i]) && bytes[i] != '\n')
       throw Error(name + ": " + std::to_string(bytes.size() - end) +
                   " bytes of data after the last element: the header counts disagree with the body");
+}
+
+}  // namespace
+
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
+  const Header h = parse_header(bytes, name);
+  const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
+  check_counts_fit(h, body_size, name);
+  const Element* vertex = nullptr;
+  const Element* face = nullptr;
+  for (const Element& e : h.elements) {
+    if (e.name == "vertex" && !vertex) vertex = &e;
+    if (e.name == "face" && !face) face = &e;
+  }
+  if (!vertex) throw Error(name + ": PLY has no 'vertex' element");
+  if (vertex->count > 0xFFFFFFFFull) throw Error(name + ": too many vertices");
+
+  Mesh mesh;
+  ElementPlans plan = plan_elements(h, vertex, face, body_size, properties != nullptr, mesh, name);
+  if (!face) {
+    bool strips = false;
+    for (const Element& e : h.elements) strips |= e.name == "tristrips";
+    throw Error(name + (strips ? ": PLY stores triangle strips (tristrips), which are not supported"
+                               : ": PLY has no 'face' element (a point cloud, not a mesh)"));
+  }
+  Reader reader{bytes, name, mesh};
+  const size_t end = read_body(reader, h, plan.plans, vertex);
+  check_nothing_after(bytes, end, h.format == Format::Ascii, name);
   if (properties)
-    for (size_t i = 0; i < extras.size(); ++i) (*properties)[extra_names[i]] = std::move(extras[i]);
+    for (size_t i = 0; i < plan.extras.size(); ++i)
+      (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);
   return mesh;
 }
 
