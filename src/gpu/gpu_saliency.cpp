@@ -72,12 +72,13 @@ struct DeviceMesh {
 // Device bytes of one saliency computation: the buffers below, the largest grid
 // plan_grid() allows (cell counts and starts), and the staging area when transfers use it.
 uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t neighbors,
-                             bool staging) {
+                             bool staging, bool mixed) {
   const uint64_t groups = (nv + kLocal - 1) / kLocal;
   uint64_t bytes = nv * (32 + 4 + 4 + 8 * nsc + 8) + np * (32 + 4 + 4) + neighbors * 4 +
                    groups * nsc * (8 + 16) + (uint64_t(1) << 16);
   const uint64_t cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
   bytes += cells * 4 + gpu_grid_scratch_bytes(nv, cells);
+  if (mixed) bytes += np * 16 + nv * nsc * 4;  // float points, error bounds (gpu_sweep.h)
   if (staging) bytes += vk::staging_bytes_for(std::max(nv * 32, nv * nsc * 8));  // largest copy
   return bytes;
 }
@@ -216,6 +217,180 @@ SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& opt
   return compute_saliency_gpu(ctx, mesh, options);
 }
 
+namespace {
+
+// The sweep plan for `scales`: the distinct s_i and 2 s_i (filter_sigma_units), in eps.
+struct SweepPlan {
+  std::vector<double> units;
+  SweepParams params{};
+  bool fast8 = false;  // the default sigmas 2,3,4,5,6,8,10,12: sweep8's built-in plan
+  double radius = 0;   // the largest cutoff, 2 * 12 eps by default
+};
+
+SweepPlan plan_sweep(const std::vector<double>& scales, double eps) {
+  SweepPlan plan;
+  std::vector<double>& units = plan.units;
+  for (double s : scales) {
+    units.push_back(s);
+    units.push_back(2 * s);
+  }
+  std::sort(units.begin(), units.end());
+  units.erase(std::unique(units.begin(), units.end()), units.end());
+  if (units.size() > size_t(kMaxSigmas))
+    throw Error("the GPU path takes at most 16 distinct sigmas (s_i and 2 s_i)");
+  std::vector<int> plan_of_unit;
+  SweepParams& params = plan.params;
+  params = make_params(units, eps, &plan_of_unit);
+  auto plan_index = [&](double u) {
+    for (size_t k = 0; k < units.size(); ++k)
+      if (units[k] == u) return plan_of_unit[k];
+    throw Error("internal: sigma missing from the GPU sweep plan");
+  };
+  for (size_t i = 0; i < scales.size(); ++i) {
+    params.out_a[i] = plan_index(scales[i]);
+    params.out_b[i] = plan_index(2 * scales[i]);
+  }
+  // sweep8.comp hard-codes the plan of the default sigmas 12,10,8 (exp), 6,5,4,3,2.
+  plan.fast8 = units == std::vector<double>{2, 3, 4, 5, 6, 8, 10, 12};
+  if (plan.fast8) {  // the same doubles as sweep_point_default() derives from its plan
+    const double e = std::sqrt(1.0 / (2.0 * params.coef[0])) / 12.0;
+    params.bcoef = 1.0 / (2.0 * e * e * 14400.0);
+  }
+  plan.radius = 2 * units.back() * eps;
+  return plan;
+}
+
+// Mixed precision where its accuracy is worked out (sweep.glsl): the default sigmas.
+// Auto takes it on GPUs; on CPU devices (lavapipe) the double sweep was faster (a float
+// lane costs lavapipe about what a double one does there: loads and masked stores of
+// the sums dominate, and the mixed sweep adds the bound sums and the cutoff check).
+bool use_mixed(const vk::Context& ctx, bool fast8, Precision precision) {
+  return fast8 && (precision == Precision::Mixed ||
+                   (precision == Precision::Auto && ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+}
+
+void check_device(const vk::Context& ctx) {
+  if (!ctx.has_float64)
+    throw Error("Vulkan device '" + ctx.info.name + "' has no 64-bit floats in shaders "
+                "(shaderFloat64), which the GPU path needs to match the CPU path");
+  if (!ctx.subgroup_arithmetic || ctx.subgroup_size == 0 || ctx.subgroup_size > kLocal ||
+      kLocal % ctx.subgroup_size != 0)
+    throw Error("Vulkan device '" + ctx.info.name + "' lacks subgroup arithmetic in compute "
+                "shaders (subgroup size " + std::to_string(ctx.subgroup_size) + "), which the GPU path needs");
+}
+
+// Positions relative to the bbox minimum in double (as the CPU grid has them) with the
+// curvature as w, the mesh-point flags and the 1-ring, after checking that everything
+// the computation will allocate fits the device.
+void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
+                 const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
+                 DeviceMesh* out) {
+  DeviceMesh& m = *out;
+  const size_t nv = mesh.vertex_count();
+  m.nv = static_cast<uint32_t>(nv);
+  std::vector<double> pos4(4 * nv);
+  std::vector<uint32_t> flags(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
+    pos4[4 * v + 3] = res.curvature[v];
+    flags[v] = res.is_point[v];
+    m.np += res.is_point[v];
+  }
+
+  // Memory: refuse up front what cannot fit the device-local heap (or its budget).
+  const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
+                                            ctx.use_staging, mixed);
+  const uint64_t have = vk::device_memory_available(ctx.info);
+  if (have && need > have * 0.9)
+    throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
+                std::to_string(need >> 20) + " MiB of device memory, the device has " +
+                std::to_string(have >> 20) + " MiB; use the CPU path (--backend cpu)");
+
+  m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");
+  m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
+  m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
+  m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
+  m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
+  m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
+  m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
+  m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
+  m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
+  m.pos.upload(pos4.data(), pos4.size() * 8);
+  m.flags.upload(flags.data(), flags.size() * 4);
+  m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
+  m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
+}
+
+// suppress() of every raw map in m.result and the final sum S into `saliency`.
+void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, size_t nsc,
+                        vk::Buffer& saliency) {
+  const uint32_t groups = (m.nv + kLocal - 1) / kLocal;
+  vk::Buffer partial_max(ctx, size_t(groups) * nsc * 8, "the partial maxima");
+  vk::Buffer map_max(ctx, nsc * 8, "the map maxima");
+  vk::Buffer global_index(ctx, nsc * 4, "the global maxima");
+  vk::Buffer partial(ctx, size_t(groups) * nsc * 16, "the local-maximum sums");
+  vk::Buffer factor(ctx, 32 * 8, "the suppression factors");
+  vk::Buffer& raw = m.result;
+  auto& k_mx = KERNEL(ctx, spv_map_max_comp, 3, GroupsPush);
+  auto& k_mf = KERNEL(ctx, spv_map_max_final_comp, 2, GroupsPush);
+  auto& k_gi = KERNEL(ctx, spv_global_index_comp, 4, RangePush);
+  auto& k_lm = KERNEL(ctx, spv_local_max_comp, 7, GroupsPush);
+  auto& k_mb = KERNEL(ctx, spv_mbar_comp, 3, GroupsPush);
+  auto& k_fs = KERNEL(ctx, spv_final_sum_comp, 5, ScalesPush);
+  VkDescriptorSet s_mx = pool.bind(k_mx, {&raw, &m.flags, &partial_max});
+  VkDescriptorSet s_mf = pool.bind(k_mf, {&partial_max, &map_max});
+  VkDescriptorSet s_gi = pool.bind(k_gi, {&raw, &m.flags, &map_max, &global_index});
+  VkDescriptorSet s_lm = pool.bind(
+      k_lm, {&raw, &m.flags, &map_max, &global_index, &m.offsets, &m.neighbors, &partial});
+  VkDescriptorSet s_mb = pool.bind(k_mb, {&partial, &map_max, &factor});
+  VkDescriptorSet s_fs = pool.bind(k_fs, {&raw, &m.flags, &factor, &saliency, &m.pos});
+  const uint32_t n = m.nv, ns = static_cast<uint32_t>(nsc);
+  vk::submit(ctx, "suppression", [&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, global_index.handle(), 0, VK_WHOLE_SIZE, 0xffffffffu);
+    vk::barrier(cmd);
+    GroupsPush mx{0, 0, groups};
+    vk::dispatch(ctx, cmd, k_mx, s_mx, &mx, 0, n, kLocal, ns);
+    vk::barrier(cmd);
+    GroupsPush mf{0, 0, groups};
+    vk::dispatch(ctx, cmd, k_mf, s_mf, &mf, 0, ns * kLocal, kLocal);
+    vk::barrier(cmd);
+    RangePush gi{0, 0};
+    vk::dispatch(ctx, cmd, k_gi, s_gi, &gi, 0, n, kLocal, ns);
+    vk::barrier(cmd);
+    GroupsPush lm{0, 0, groups};
+    vk::dispatch(ctx, cmd, k_lm, s_lm, &lm, 0, n, kLocal, ns);
+    vk::barrier(cmd);
+    GroupsPush mb{0, 0, groups};
+    vk::dispatch(ctx, cmd, k_mb, s_mb, &mb, 0, ns * kLocal, kLocal);
+    vk::barrier(cmd);
+    ScalesPush fs{0, 0, ns};
+    vk::dispatch(ctx, cmd, k_fs, s_fs, &fs, 0, n, kLocal);
+    vk::barrier(cmd);
+  });
+}
+
+// Smoothed saliency G(S, 3 eps) for simplification: one more sweep, of S, over a grid
+// of its own (reuses m.params and m.result).
+void smooth_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
+                      const double extent[3], double eps, const SaliencyOptions& options,
+                      SaliencyResult* res) {
+  const size_t nv = m.nv;
+  std::vector<uint32_t> starts;
+  std::vector<int> plan1;
+  SweepParams sp = make_params({3.0}, eps, &plan1);
+  sp.out_a[0] = 0;
+  sp.out_b[0] = -1;
+  m.params.upload(&sp, sizeof sp);
+  GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
+  sweep(ctx, pool, m, g2, starts, false, false, sp, 1, 1, 6 * eps, options, "smoothing");
+  res->smoothed.resize(nv);
+  m.result.download(res->smoothed.data(), nv * 8);
+  for (size_t v = 0; v < nv; ++v)
+    if (!res->is_point[v]) res->smoothed[v] = 0;
+}
+
+}  // namespace
+
 SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
                                     const SaliencyOptions& options) {
   SaliencyResult res;
@@ -235,90 +410,22 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   res.curvature = mean_curvature(mesh, adj, normals, options.threads);
   res.stages.push_back({"curvature", seconds_since(t0)});
 
-  // --- the sweep plan: the distinct s_i and 2 s_i (filter_sigma_units), in eps ----------
-  std::vector<double> units;
-  for (double s : options.scales) {
-    units.push_back(s);
-    units.push_back(2 * s);
-  }
-  std::sort(units.begin(), units.end());
-  units.erase(std::unique(units.begin(), units.end()), units.end());
-  if (units.size() > size_t(kMaxSigmas))
-    throw Error("the GPU path takes at most 16 distinct sigmas (s_i and 2 s_i)");
   const double eps = res.eps;
-  std::vector<int> plan_of_unit;
-  SweepParams params = make_params(units, eps, &plan_of_unit);
-  auto plan_index = [&](double u) {
-    for (size_t k = 0; k < units.size(); ++k)
-      if (units[k] == u) return plan_of_unit[k];
-    throw Error("internal: sigma missing from the GPU sweep plan");
-  };
-  for (size_t i = 0; i < nsc; ++i) {
-    params.out_a[i] = plan_index(options.scales[i]);
-    params.out_b[i] = plan_index(2 * options.scales[i]);
-  }
-  // sweep8.comp hard-codes the plan of the default sigmas 12,10,8 (exp), 6,5,4,3,2.
-  const bool fast8 = units == std::vector<double>{2, 3, 4, 5, 6, 8, 10, 12};
-  if (fast8) {  // the same doubles as sweep_point_default() derives from its plan
-    const double e = std::sqrt(1.0 / (2.0 * params.coef[0])) / 12.0;
-    params.bcoef = 1.0 / (2.0 * e * e * 14400.0);
-  }
-  const double radius = 2 * units.back() * eps;
+  const SweepPlan plan = plan_sweep(options.scales, eps);
+  const uint32_t nsig = static_cast<uint32_t>(plan.units.size());
 
-  // --- upload: positions relative to the bbox minimum in double, as the CPU grid has them
+  // --- upload ---------------------------------------------------------------------------
   t0 = Clock::now();
-  if (!ctx.has_float64)
-    throw Error("Vulkan device '" + ctx.info.name + "' has no 64-bit floats in shaders "
-                "(shaderFloat64), which the GPU path needs to match the CPU path");
-  if (!ctx.subgroup_arithmetic || ctx.subgroup_size == 0 || ctx.subgroup_size > kLocal ||
-      kLocal % ctx.subgroup_size != 0)
-    throw Error("Vulkan device '" + ctx.info.name + "' lacks subgroup arithmetic in compute "
-                "shaders (subgroup size " + std::to_string(ctx.subgroup_size) + "), which the GPU path needs");
-  BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
+  check_device(ctx);
+  const bool mixed = use_mixed(ctx, plan.fast8, options.precision);
+  res.mixed_precision = mixed;
+  const BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];
   DeviceMesh m;
-  m.nv = static_cast<uint32_t>(nv);
-  std::vector<double> pos4(4 * nv);
-  std::vector<uint32_t> flags(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
-    pos4[4 * v + 3] = res.curvature[v];
-    flags[v] = res.is_point[v];
-    m.np += res.is_point[v];
-  }
-
-  // Memory: refuse up front what cannot fit the device-local heap (or its budget).
-  const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
-                                            ctx.use_staging);
-  const uint64_t have = vk::device_memory_available(ctx.info);
-  if (have && need > have * 0.9)
-    throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
-                std::to_string(need >> 20) + " MiB of device memory, the device has " +
-                std::to_string(have >> 20) + " MiB; use the CPU path (--backend cpu)");
-
-  const uint32_t groups = static_cast<uint32_t>((nv + kLocal - 1) / kLocal);
-  m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");
-  m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
-  m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
-  m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
-  m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
-  m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
-  m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
-  m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
-  m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
-  vk::Buffer partial_max(ctx, size_t(groups) * nsc * 8, "the partial maxima");
-  vk::Buffer map_max(ctx, nsc * 8, "the map maxima");
-  vk::Buffer global_index(ctx, nsc * 4, "the global maxima");
-  vk::Buffer partial(ctx, size_t(groups) * nsc * 16, "the local-maximum sums");
-  vk::Buffer factor(ctx, 32 * 8, "the suppression factors");
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, &m);
+  m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
-
-  m.pos.upload(pos4.data(), pos4.size() * 8);
-  m.flags.upload(flags.data(), flags.size() * 4);
-  m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
-  m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
-  m.params.upload(&params, sizeof params);
   res.stages.push_back({"upload", seconds_since(t0)});
 
   vk::DescriptorPool pool(ctx, 32, 128);
@@ -331,79 +438,32 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // subgroup's points; on lavapipe, igea_134k, 1/4 to 1/8 were within the noise of each
   // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
   // point, where short rows would leave lanes idle.
-  const bool rows = shared_rows(ctx, fast8);
-  GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * radius, &starts);
+  const bool rows = shared_rows(ctx, plan.fast8);
+  GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * plan.radius, &starts);
   res.stages.push_back({"grid", seconds_since(t0)});
 
   t0 = Clock::now();
-  // Mixed precision where its accuracy is worked out (sweep.glsl): the default sigmas.
-  // Auto takes it on GPUs; on CPU devices (lavapipe) the double sweep was faster (a float
-  // lane costs lavapipe about what a double one does there: loads and masked stores of
-  // the sums dominate, and the mixed sweep adds the bound sums and the cutoff check).
-  const bool mixed = fast8 && (options.precision == Precision::Mixed ||
-                               (options.precision == Precision::Auto &&
-                                ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
-  res.mixed_precision = mixed;
   if (mixed) {
     m.sorted_pos32 = vk::Buffer(ctx, size_t(m.np) * 16, "the float points");
     m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
     gpu::make_float_points(ctx, pool, m.sorted_pos, m.sorted_pos32, m.np, bb.min);
   }
-  res.pairs = sweep(ctx, pool, m, g, starts, fast8, mixed, params,
-                    static_cast<uint32_t>(units.size()), static_cast<uint32_t>(nsc), radius,
-                    options, "gaussian sweep");
+  res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, mixed, plan.params, nsig,
+                    static_cast<uint32_t>(nsc), plan.radius, options, "gaussian sweep");
   res.stages.push_back({"gaussian sweep", seconds_since(t0)});
   if (mixed) {
     t0 = Clock::now();
     gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
                            &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
-    SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, static_cast<uint32_t>(units.size()),
-                static_cast<uint32_t>(nsc), 0, g.h, radius * radius};
+    SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig,
+                static_cast<uint32_t>(nsc), 0, g.h, plan.radius * plan.radius};
     res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);
     res.stages.push_back({"near-tie recheck", seconds_since(t0)});
   }
 
   // --- suppress() of every map and the final sum ------------------------------------
   t0 = Clock::now();
-  {
-    vk::Buffer& raw = m.result;
-    auto& k_mx = KERNEL(ctx, spv_map_max_comp, 3, GroupsPush);
-    auto& k_mf = KERNEL(ctx, spv_map_max_final_comp, 2, GroupsPush);
-    auto& k_gi = KERNEL(ctx, spv_global_index_comp, 4, RangePush);
-    auto& k_lm = KERNEL(ctx, spv_local_max_comp, 7, GroupsPush);
-    auto& k_mb = KERNEL(ctx, spv_mbar_comp, 3, GroupsPush);
-    auto& k_fs = KERNEL(ctx, spv_final_sum_comp, 5, ScalesPush);
-    VkDescriptorSet s_mx = pool.bind(k_mx, {&raw, &m.flags, &partial_max});
-    VkDescriptorSet s_mf = pool.bind(k_mf, {&partial_max, &map_max});
-    VkDescriptorSet s_gi = pool.bind(k_gi, {&raw, &m.flags, &map_max, &global_index});
-    VkDescriptorSet s_lm = pool.bind(
-        k_lm, {&raw, &m.flags, &map_max, &global_index, &m.offsets, &m.neighbors, &partial});
-    VkDescriptorSet s_mb = pool.bind(k_mb, {&partial, &map_max, &factor});
-    VkDescriptorSet s_fs = pool.bind(k_fs, {&raw, &m.flags, &factor, &saliency, &m.pos});
-    const uint32_t n = m.nv, ns = static_cast<uint32_t>(nsc);
-    vk::submit(ctx, "suppression", [&](VkCommandBuffer cmd) {
-      vkCmdFillBuffer(cmd, global_index.handle(), 0, VK_WHOLE_SIZE, 0xffffffffu);
-      vk::barrier(cmd);
-      GroupsPush mx{0, 0, groups};
-      vk::dispatch(ctx, cmd, k_mx, s_mx, &mx, 0, n, kLocal, ns);
-      vk::barrier(cmd);
-      GroupsPush mf{0, 0, groups};
-      vk::dispatch(ctx, cmd, k_mf, s_mf, &mf, 0, ns * kLocal, kLocal);
-      vk::barrier(cmd);
-      RangePush gi{0, 0};
-      vk::dispatch(ctx, cmd, k_gi, s_gi, &gi, 0, n, kLocal, ns);
-      vk::barrier(cmd);
-      GroupsPush lm{0, 0, groups};
-      vk::dispatch(ctx, cmd, k_lm, s_lm, &lm, 0, n, kLocal, ns);
-      vk::barrier(cmd);
-      GroupsPush mb{0, 0, groups};
-      vk::dispatch(ctx, cmd, k_mb, s_mb, &mb, 0, ns * kLocal, kLocal);
-      vk::barrier(cmd);
-      ScalesPush fs{0, 0, ns};
-      vk::dispatch(ctx, cmd, k_fs, s_fs, &fs, 0, n, kLocal);
-      vk::barrier(cmd);
-    });
-  }
+  suppress_on_device(ctx, pool, m, nsc, saliency);
   res.stages.push_back({"suppression", seconds_since(t0)});
 
   // --- download the maps and S (before the smoothing sweep reuses the result buffer) --
@@ -416,20 +476,9 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   for (size_t i = 0; i < nsc; ++i) res.raw[i] = to_vector(raw_h, i * nv, nv);
   res.stages.push_back({"download", seconds_since(t0)});
 
-  // --- smoothed saliency G(S, 3 eps) for simplification ---------------------------
   if (options.smoothed) {
     t0 = Clock::now();
-    std::vector<int> plan1;
-    SweepParams sp = make_params({3.0}, eps, &plan1);
-    sp.out_a[0] = 0;
-    sp.out_b[0] = -1;
-    m.params.upload(&sp, sizeof sp);
-    GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
-    sweep(ctx, pool, m, g2, starts, false, false, sp, 1, 1, 6 * eps, options, "smoothing");
-    res.smoothed.resize(nv);
-    m.result.download(res.smoothed.data(), nv * 8);
-    for (size_t v = 0; v < nv; ++v)
-      if (!res.is_point[v]) res.smoothed[v] = 0;
+    smooth_on_device(ctx, pool, m, extent, eps, options, &res);
     res.stages.push_back({"smoothing", seconds_since(t0)});
   }
   return res;
