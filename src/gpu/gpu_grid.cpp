@@ -7,6 +7,7 @@
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "gpu/vk_compute.h"
+#include "saliency/spatial_grid.h"
 
 #include "grid_gather_comp.h"
 #include "grid_key_comp.h"
@@ -40,16 +41,8 @@ uint32_t radix_passes(uint64_t largest_key) {
 }  // namespace
 
 GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uint64_t limit) {
-  const double max_cells = std::min<double>(std::max<double>(1 << 20, 4.0 * double(points)),
-                                            double(limit));
   GridPlan g;
-  double cell = min_cell;
-  for (;;) {
-    double cells = 1;
-    for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / cell) + 1;
-    if (cells <= max_cells) break;
-    cell *= 1.25;
-  }
+  const double cell = grid_cell_size(extent, min_cell, points, double(limit));
   g.h = cell;
   g.nx = uint32_t(std::floor(extent[0] / cell)) + 1;
   g.ny = uint32_t(std::floor(extent[1] / cell)) + 1;

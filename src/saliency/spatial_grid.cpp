@@ -8,6 +8,19 @@
 
 namespace meshsal {
 
+double grid_cell_size(const double extent[3], double min_cell, uint64_t points,
+                      double cell_limit) {
+  // A few cells per point, at least 2^20: memory stays bounded on a tiny cell.
+  const double max_cells = std::min(std::max<double>(1 << 20, 4.0 * double(points)), cell_limit);
+  double cell = min_cell;
+  for (;;) {
+    double cells = 1;
+    for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / cell) + 1;
+    if (cells <= max_cells) return cell;
+    cell *= 1.25;
+  }
+}
+
 SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
                                double min_cell) {
   SpatialGrid g;
@@ -16,15 +29,9 @@ SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_
   for (uint8_t f : is_point) points += f;
   if (points >= UINT32_MAX) throw Error("too many mesh points for the grid (4 billion)");
 
-  // Cell count limit: a few cells per point, at least 2^20; grow the cell when exceeded.
-  const double max_cells = std::max<double>(1 << 20, 4.0 * double(points));
-  double cell = min_cell;
-  for (;;) {
-    double cells = 1;
-    for (int a = 0; a < 3; ++a) cells *= std::floor((box.max[a] - box.min[a]) / cell) + 1;
-    if (cells <= max_cells) break;
-    cell *= 1.25;
-  }
+  double extent[3];
+  for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
+  const double cell = grid_cell_size(extent, min_cell, points);
   g.cell = cell;
   for (int a = 0; a < 3; ++a) {
     g.origin[a] = box.min[a];

@@ -19,6 +19,12 @@ struct SpatialGrid {
   std::vector<double> x, y, z;
 };
 
+// The grid-size rule, one for the CPU and GPU grids: cells of `min_cell`, grown by 1.25
+// while the grid (floor(extent / cell) + 1 per axis) would have more than
+// max(2^20, 4 points) cells, or more than `cell_limit` (what one device buffer holds).
+double grid_cell_size(const double extent[3], double min_cell, uint64_t points,
+                      double cell_limit = 1e300);
+
 // Grid over the vertices flagged in is_point, with cells of at least `min_cell` (grown when
 // needed to keep the cell count near the point count, which keeps memory bounded).
 SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
