@@ -5,7 +5,6 @@
 //   bench_simplify [MESHES...] [--data-dir DIR] [--ratios 0.01,0.05] [--repeat 3]
 //                  [--threads N] [--samples N] [--json]
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,6 +19,7 @@
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
 #include "simplify/surface_distance.h"
+#include "core/timer.h"
 #include "json_string.h"
 
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER
@@ -28,7 +28,6 @@
 
 using namespace meshsal;
 using meshsal_cli::json_string;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -49,10 +48,6 @@ struct Row {
   double seconds = 0;  // best of the repeats
   SurfaceComparison cmp;
 };
-
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::vector<double> parse_list(const std::string& text) {
   std::vector<double> out;
@@ -115,9 +110,9 @@ struct Timed {
 void best_of_interleaved(int repeat, std::vector<Timed>& methods) {
   for (int i = 0; i < repeat; ++i)
     for (Timed& m : methods) {
-      const auto t0 = Clock::now();
+      const meshsal::Timer t0;
       m.out = m.run();
-      m.seconds = std::min(m.seconds, since(t0));
+      m.seconds = std::min(m.seconds, t0.seconds());
     }
 }
 
@@ -213,9 +208,9 @@ int run(const Args& a) {
     so.backend = Backend::Cpu;
     so.threads = a.threads;
     so.smoothed = true;
-    const auto ts = Clock::now();
+    const meshsal::Timer ts;
     const SaliencyResult s = compute_saliency(mesh, so);
-    sal_times.push_back({model, since(ts)});
+    sal_times.push_back({model, ts.seconds()});
     const std::vector<double> w = saliency_weights(s.smoothed, s.is_point, {});
     CompareOptions co;
     co.threads = a.threads;

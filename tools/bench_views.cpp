@@ -3,7 +3,6 @@
 // Default meshes: ../shared/data/meshes/{bunny_36k.obj,igea_134k.ply.gz}. Every vertex has
 // weight 1 (the work does not depend on the values). The GPU is warmed up with one batch
 // first (pipeline compile); the relative GPU-CPU difference of U is reported per mesh/res.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,12 +17,9 @@
 #include "view/viewpoint.h"
 #include "view/visibility.h"
 #include "gpu/vk_context.h"
+#include "core/timer.h"
 
 using namespace meshsal;
-
-static double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 int main(int argc, char** argv) {
   int views = 256, device = -1;
@@ -73,9 +69,9 @@ int main(int argc, char** argv) {
         if (ctx) {
           GpuVisibility gpu(*ctx, mesh, w, frame, o);
           gpu.score(std::vector<ViewAngles>(dirs.begin(), dirs.begin() + std::min<size_t>(dirs.size(), 4)));
-          double t0 = now();
+          const Timer t0;
           gpu_u = gpu.score(dirs);
-          double dt = now() - t0;
+          double dt = t0.seconds();
           char label[64];
           std::snprintf(label, sizeof label, "vulkan (batch %d)", gpu.batch());
           std::printf("%-28s %8zu %8zu %5d %-34s %6d %8.3f %10.1f %10s\n", name.c_str(), mesh.vertex_count(),
@@ -85,9 +81,9 @@ int main(int argc, char** argv) {
         if (backend != "gpu") {
           int n = backend == "both" ? std::min(views, 64) : views;
           std::vector<ViewAngles> sub(dirs.begin(), dirs.begin() + n);
-          double t0 = now();
+          const Timer t0;
           cpu_u = visible_score_cpu(mesh, w, frame, sub, o);
-          double dt = now() - t0;
+          double dt = t0.seconds();
           double worst = 0;
           for (size_t v = 0; v < cpu_u.size() && v < gpu_u.size(); ++v)
             worst = std::max(worst, std::fabs(gpu_u[v] - cpu_u[v]) / std::max(1e-30, cpu_u[v]));

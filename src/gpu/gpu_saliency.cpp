@@ -3,7 +3,6 @@
 #include "gpu/gpu_saliency.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -17,6 +16,7 @@
 #include "core/mesh_points.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
+#include "core/timer.h"
 
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
@@ -35,7 +35,6 @@ namespace meshsal {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 #define KERNEL(ctx, spv, bindings, push) \
   vk::cached_kernel(ctx, spv, sizeof(spv), bindings, sizeof(push), #spv)
@@ -81,10 +80,6 @@ uint64_t gpu_memory_estimate(uint64_t nv, uint64_t np, uint64_t nsc, uint64_t ne
   if (mixed) bytes += np * 16 + nv * nsc * 4;  // float points, error bounds (gpu_sweep.h)
   if (staging) bytes += vk::staging_bytes_for(std::max(nv * 32, nv * nsc * 8));  // largest copy
   return bytes;
-}
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 // Builds the grid of cells >= `cell` over the current pos[] (gpu_grid.h) and returns its
@@ -148,7 +143,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   ctx.sweep_longest_s = 0;
   for (size_t at = 0; at + 1 < work.first.size();) {
     const size_t next = next_cut(work, at, budget);
-    const auto t_slice = Clock::now();
+    const Timer t_slice;
     vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
       if (at == 0) {  // vertices that are not mesh points get 0, not stale memory; every
                       // point's pair count starts at 0 so that a point never swept shows
@@ -166,7 +161,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
         vk::dispatch(ctx, cmd, k, set, &p, begin, end, per_group);
       }
     });
-    const double took = seconds_since(t_slice);  // host time: an upper bound of device time
+    const double took = t_slice.seconds();  // host time: an upper bound of device time
     ctx.sweep_slices++;
     ctx.sweep_longest_s = std::max(ctx.sweep_longest_s, took);
     if (!fixed)
@@ -402,20 +397,20 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (nsc > kMaxScales) throw Error("the GPU path takes at most 16 scales");
 
   // --- curvature (CPU): the same functions as compute_saliency_cpu --------------------
-  auto t0 = Clock::now();
+  Timer t0;
   res.is_point = referenced_vertices(mesh);
   res.eps = scale_unit(mesh, res.is_point, options.eps_frac);
   Adjacency adj = build_adjacency(mesh);
   std::vector<double> normals = vertex_normals(mesh);
   res.curvature = mean_curvature(mesh, adj, normals, options.threads);
-  res.stages.push_back({"curvature", seconds_since(t0)});
+  res.stages.push_back({"curvature", t0.seconds()});
 
   const double eps = res.eps;
   const SweepPlan plan = plan_sweep(options.scales, eps);
   const uint32_t nsig = static_cast<uint32_t>(plan.units.size());
 
   // --- upload ---------------------------------------------------------------------------
-  t0 = Clock::now();
+  t0.restart();
   check_device(ctx);
   const bool mixed = use_mixed(ctx, plan.fast8, options.precision);
   res.mixed_precision = mixed;
@@ -426,12 +421,12 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
-  res.stages.push_back({"upload", seconds_since(t0)});
+  res.stages.push_back({"upload", t0.seconds()});
 
   vk::DescriptorPool pool(ctx, 32, 128);
 
   // --- grid + sweep (gaussian_filter), with the center-surround maps ------------------
-  t0 = Clock::now();
+  t0.restart();
   std::vector<uint32_t> starts;
   // Cells of a fifth of the radius for the shared-rows sweep (rows are clipped to the
   // ball's chord, so smaller cells mean fewer candidates, and a smaller box around the
@@ -440,9 +435,9 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // point, where short rows would leave lanes idle.
   const bool rows = shared_rows(ctx, plan.fast8);
   GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * plan.radius, &starts);
-  res.stages.push_back({"grid", seconds_since(t0)});
+  res.stages.push_back({"grid", t0.seconds()});
 
-  t0 = Clock::now();
+  t0.restart();
   if (mixed) {
     m.sorted_pos32 = vk::Buffer(ctx, size_t(m.np) * 16, "the float points");
     m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
@@ -450,36 +445,36 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   }
   res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, mixed, plan.params, nsig,
                     static_cast<uint32_t>(nsc), plan.radius, options, "gaussian sweep");
-  res.stages.push_back({"gaussian sweep", seconds_since(t0)});
+  res.stages.push_back({"gaussian sweep", t0.seconds()});
   if (mixed) {
-    t0 = Clock::now();
+    t0.restart();
     gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
                            &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
     SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig,
                 static_cast<uint32_t>(nsc), 0, g.h, plan.radius * plan.radius};
     res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);
-    res.stages.push_back({"near-tie recheck", seconds_since(t0)});
+    res.stages.push_back({"near-tie recheck", t0.seconds()});
   }
 
   // --- suppress() of every map and the final sum ------------------------------------
-  t0 = Clock::now();
+  t0.restart();
   suppress_on_device(ctx, pool, m, nsc, saliency);
-  res.stages.push_back({"suppression", seconds_since(t0)});
+  res.stages.push_back({"suppression", t0.seconds()});
 
   // --- download the maps and S (before the smoothing sweep reuses the result buffer) --
-  t0 = Clock::now();
+  t0.restart();
   std::vector<double> raw_h(nv * nsc);
   res.saliency.resize(nv);
   m.result.download(raw_h.data(), raw_h.size() * 8);
   saliency.download(res.saliency.data(), nv * 8);
   res.raw.resize(nsc);
   for (size_t i = 0; i < nsc; ++i) res.raw[i] = to_vector(raw_h, i * nv, nv);
-  res.stages.push_back({"download", seconds_since(t0)});
+  res.stages.push_back({"download", t0.seconds()});
 
   if (options.smoothed) {
-    t0 = Clock::now();
+    t0.restart();
     smooth_on_device(ctx, pool, m, extent, eps, options, &res);
-    res.stages.push_back({"smoothing", seconds_since(t0)});
+    res.stages.push_back({"smoothing", t0.seconds()});
   }
   return res;
 }

@@ -1,5 +1,4 @@
 // The CPU reference path of SPEC section 1, stage by stage.
-#include <chrono>
 #include <cmath>
 #include <set>
 
@@ -11,6 +10,7 @@
 #include "core/parallel.h"
 #include "saliency/saliency.h"
 #include "saliency/suppression.h"
+#include "core/timer.h"
 
 namespace meshsal {
 
@@ -18,18 +18,16 @@ namespace {
 
 class StageClock {
  public:
-  explicit StageClock(SaliencyResult& r) : r_(r), t0_(std::chrono::steady_clock::now()) {}
+  explicit StageClock(SaliencyResult& r) : r_(r) {}
   void lap(const char* name) {
-    auto t1 = std::chrono::steady_clock::now();
-    r_.stages.push_back({name, std::chrono::duration<double>(t1 - t0_).count()});
-    t0_ = t1;
+    r_.stages.push_back({name, timer_.seconds()});
+    timer_.restart();
   }
 
  private:
   SaliencyResult& r_;
-  std::chrono::steady_clock::time_point t0_;
+  Timer timer_;
 };
-
 }  // namespace
 
 // Sigmas of the filter: every scale k and its surround 2k, deduplicated, in eps units.

@@ -5,7 +5,6 @@
 #include "simplify/simplify.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include "core/parallel.h"
 #include "simplify/edge_queue.h"
 #include "simplify/quadric.h"
+#include "core/timer.h"
 
 namespace meshsal {
 
@@ -587,10 +587,6 @@ Mesh State::output(SimplifyReport* report) const {
   return out;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 }  // namespace
 
 // Invariant of the loop below: every current edge that is not refused has a current entry
@@ -600,7 +596,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // of them; then its entry goes back into the heap.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Timer t0;
   State s;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
@@ -702,14 +698,14 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   Mesh out = s.output(report);
   if (report) {
     report->collapses = s.collapses;
-    report->seconds = seconds_since(t0);
+    report->seconds = t0.seconds();
   }
   return out;
 }
 
 Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                          const std::vector<double>* vertex_weights, SimplifyReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Timer t0;
   State s;
   s.init(mesh, options, vertex_weights, nullptr);
   std::vector<Entry> cand;
@@ -748,7 +744,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
   Mesh out = s.output(report);
   if (report) {
     report->collapses = s.collapses;
-    report->seconds = seconds_since(t0);
+    report->seconds = t0.seconds();
   }
   return out;
 }
