@@ -207,11 +207,10 @@ int run(const Args& a) {
     SaliencyOptions so;
     so.backend = Backend::Cpu;
     so.threads = a.threads;
-    so.smoothed = true;
     const meshsal::Timer ts;
     const SaliencyResult s = compute_saliency(mesh, so);
+    const std::vector<double> w = simplification_weights(mesh, {}, so, &s.saliency);
     sal_times.push_back({model, ts.seconds()});
-    const std::vector<double> w = saliency_weights(s.smoothed, s.is_point, {});
     CompareOptions co;
     co.threads = a.threads;
     co.face_samples = a.samples;

@@ -242,6 +242,15 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     double eps_frac = 0.003, unsigned threads = 0);
 
+// The per-vertex weights W of saliency-guided simplification: saliency (computed with
+// `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
+// smoothed to Sm = G(S, 3 eps), then saliency_weights(). `alpha_out` receives alpha.
+std::vector<double> simplification_weights(const Mesh& mesh,
+                                           const SaliencyWeightOptions& weight_options,
+                                           const SaliencyOptions& saliency_options,
+                                           const std::vector<double>* saliency = nullptr,
+                                           double* alpha_out = nullptr);
+
 // Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
 // or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into
 // weights and used by simplify_mesh. `alpha_out` receives alpha.

@@ -1,16 +1,17 @@
-// simplify_with_saliency(): the paper's pipeline in one call (saliency, Sm = G(S, 3 eps),
-// weights, weighted quadric simplification), shared by `meshsal simplify`, the demo and the
-// simplification benchmark.
+// The paper's simplification pipeline (saliency, Sm = G(S, 3 eps), weights, weighted
+// quadric simplification): simplification_weights() for the first three steps, which
+// `meshsal simplify` and the simplification benchmark share, and simplify_with_saliency()
+// for all four in one call.
 #include "core/mesh_points.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 
-Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
-                            const SaliencyWeightOptions& weight_options,
-                            const SaliencyOptions& saliency_options,
-                            const std::vector<double>* saliency, SimplifyReport* report,
-                            double* alpha_out) {
+std::vector<double> simplification_weights(const Mesh& mesh,
+                                           const SaliencyWeightOptions& weight_options,
+                                           const SaliencyOptions& saliency_options,
+                                           const std::vector<double>* saliency,
+                                           double* alpha_out) {
   std::vector<double> smoothed;
   if (saliency) {
     if (saliency->size() != mesh.vertex_count())
@@ -22,8 +23,16 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
     so.smoothed = true;
     smoothed = compute_saliency(mesh, so).smoothed;
   }
+  return saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);
+}
+
+Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
+                            const SaliencyWeightOptions& weight_options,
+                            const SaliencyOptions& saliency_options,
+                            const std::vector<double>* saliency, SimplifyReport* report,
+                            double* alpha_out) {
   const std::vector<double> weights =
-      saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);
+      simplification_weights(mesh, weight_options, saliency_options, saliency, alpha_out);
   return simplify_mesh(mesh, options, &weights, report);
 }
 
