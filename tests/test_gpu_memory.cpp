@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpu/gpu_saliency.h"
+#include "test_gpu_selftest.h"
 #include "gpu/gpu_visibility.h"
 #include "saliency/saliency.h"
 #include "core/synthetic.h"

@@ -7,6 +7,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_saliency.h"
+#include "test_gpu_selftest.h"
 #include "gpu/vk_context.h"
 
 using namespace meshsal;

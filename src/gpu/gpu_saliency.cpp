@@ -24,7 +24,6 @@
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
-#include "selftest_comp.h"
 #include "sweep8_comp.h"
 #include "sweep8_mixed_comp.h"
 #include "sweep8_rows_comp.h"
@@ -479,20 +478,5 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   return res;
 }
 
-std::vector<float> gpu_selftest(vk::Context& ctx, const std::vector<float>& x, float a) {
-  struct Push { uint32_t base, n; float a; };
-  auto& k = KERNEL(ctx, spv_selftest_comp, 2, Push);
-  vk::Buffer bx(ctx, x.size() * 4, "x"), by(ctx, x.size() * 4, "y");
-  bx.upload(x.data(), x.size() * 4);
-  vk::DescriptorPool pool(ctx, 1, 2);
-  VkDescriptorSet set = pool.bind(k, {&bx, &by});
-  Push p{0, 0, a};
-  vk::submit(ctx, "selftest", [&](VkCommandBuffer cmd) {
-    vk::dispatch(ctx, cmd, k, set, &p, 0, static_cast<uint32_t>(x.size()), kLocal);
-  });
-  std::vector<float> y(x.size());
-  by.download(y.data(), y.size() * 4);
-  return y;
-}
 
 }  // namespace meshsal

@@ -26,8 +26,4 @@ SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& opt
 SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
                                     const SaliencyOptions& options);
 
-// y[i] = a * x[i] + i on the device: a check of the Vulkan layer itself (buffers, push
-// constants, dispatches split over maxComputeWorkGroupCount).
-std::vector<float> gpu_selftest(vk::Context& ctx, const std::vector<float>& x, float a);
-
 }  // namespace meshsal
