@@ -64,6 +64,7 @@ SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint8_t>& is_poi
 struct Aggregates {
   SpatialGrid grid;  // over the centroids; grid.x/y/z are the centroids
   std::vector<double> count, sum;
+  std::vector<double> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
 };
 
 Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* values,
@@ -85,6 +86,7 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
     sum[c] = s;
   }
   Aggregates ag;
+  ag.centroid.assign(centroids.positions.begin(), centroids.positions.end());
   // Query cells of a quarter of the cutoff radius, as in the exact sweep.
   ag.grid = build_spatial_grid(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
   ag.count.assign(m + 4, 0.0);
@@ -98,9 +100,33 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
 
 inline double hsum(v4d v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+// exp(-x) for 0 <= x < 2 (a weight inside the 2-sigma cutoff): (exp(-x/4))^4 with a degree-7
+// Taylor polynomial for exp(-x/4), relative error < 1e-7, far below the cells' own error.
+inline v4d exp_neg_cutoff(v4d x) {
+  const v4d y = x * v4d_splat(0.25);
+  v4d p = v4d_splat(-1.0 / 5040.0);
+  p = p * y + v4d_splat(1.0 / 720.0);
+  p = p * y + v4d_splat(-1.0 / 120.0);
+  p = p * y + v4d_splat(1.0 / 24.0);
+  p = p * y + v4d_splat(-1.0 / 6.0);
+  p = p * y + v4d_splat(0.5);
+  p = p * y + v4d_splat(-1.0);
+  p = p * y + v4d_splat(1.0);
+  p = p * p;
+  return p * p;
+}
+
+// The weighted sums at a query point q, and (Grad) their gradients in q, for extrapolating
+// from a cell's centroid to the vertices in that cell.
+struct CellSums {
+  double num = 0, den = 0;
+  double gnum[3] = {0, 0, 0}, gden[3] = {0, 0, 0};  // times sigma^2
+};
+
 // sum count*w and sum sum*w over the aggregates with |centroid - q| < 2 sigma.
-void sweep_cells(const Aggregates& ag, const double q[3], double coef, double cutoff2,
-                 double* num, double* den, uint64_t* pairs) {
+template <bool Grad>
+CellSums sweep_cells(const Aggregates& ag, const double q[3], double coef, double cutoff2,
+                     uint64_t* pairs) {
   const SpatialGrid& g = ag.grid;
   const double xi = q[0] - g.origin[0], yi = q[1] - g.origin[1], zi = q[2] - g.origin[2];
   const double R = std::sqrt(cutoff2), c = g.cell;
@@ -112,6 +138,7 @@ void sweep_cells(const Aggregates& ag, const double q[3], double coef, double cu
   const v4d vx = v4d_splat(xi), vy = v4d_splat(yi), vz = v4d_splat(zi);
   const v4d vcoef = v4d_splat(coef), vcut = v4d_splat(cutoff2);
   v4d n = zero, d = zero, np = zero;
+  v4d gn[3] = {zero, zero, zero}, gd[3] = {zero, zero, zero};
   for (int cz = zlo; cz <= zhi; ++cz) {
     double dz = std::max({0.0, cz * c - zi, zi - (cz + 1) * c});
     for (int cy = ylo; cy <= yhi; ++cy) {
@@ -127,16 +154,26 @@ void sweep_cells(const Aggregates& ag, const double q[3], double coef, double cu
         v4d ex = v4d_load(&g.x[j]) - vx, ey = v4d_load(&g.y[j]) - vy, ez = v4d_load(&g.z[j]) - vz;
         v4d d2 = ex * ex + ey * ey + ez * ez;
         v4i in = (lane < v4d_splat(double(je - j))) & (d2 < vcut);
-        v4d w = in ? exp_neg(d2 * vcoef) : zero;
-        n += w * v4d_load(&ag.sum[j]);
-        d += w * v4d_load(&ag.count[j]);
+        v4d w = in ? exp_neg_cutoff(d2 * vcoef) : zero;
+        v4d wn = w * v4d_load(&ag.sum[j]), wd = w * v4d_load(&ag.count[j]);
+        n += wn;
+        d += wd;
         np += in ? one : zero;
+        if (Grad) {
+          // d/dq w(|x - q|) = w (x - q) / sigma^2; the 1/sigma^2 is applied by the caller.
+          gn[0] += wn * ex, gn[1] += wn * ey, gn[2] += wn * ez;
+          gd[0] += wd * ex, gd[1] += wd * ey, gd[2] += wd * ez;
+        }
       }
     }
   }
-  *num = hsum(n);
-  *den = hsum(d);
+  CellSums r;
+  r.num = hsum(n);
+  r.den = hsum(d);
+  if (Grad)
+    for (int a = 0; a < 3; ++a) r.gnum[a] = hsum(gn[a]), r.gden[a] = hsum(gd[a]);
   *pairs += uint64_t(hsum(np));
+  return r;
 }
 
 void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
@@ -153,7 +190,7 @@ void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
 std::vector<std::vector<double>> gaussian_filter_fast(
     const Mesh& mesh, const std::vector<uint8_t>& is_point, const std::vector<double>& values,
     const std::vector<double>& sigmas, unsigned threads, FilterStats* stats,
-    const std::function<void(double)>& progress) {
+    const std::function<void(double)>& progress, const FastFilterParams& params) {
   check_inputs(mesh, is_point, values, sigmas);
   const BoundingBox box = mesh_points_bbox(mesh, is_point);
   std::vector<std::vector<double>> out(sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
@@ -162,34 +199,63 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   // chunk share the cells they read.
   const double finest = *std::min_element(sigmas.begin(), sigmas.end());
   const std::vector<uint32_t> visit =
-      sort_into_cells(mesh, is_point, box, usable_cell(box, finest / kFastCellsPerSigma)).order;
+      sort_into_cells(mesh, is_point, box, usable_cell(box, finest / params.cells_per_sigma)).order;
   const size_t points = visit.size();
 
   std::atomic<uint64_t> total_pairs{0};
   const std::thread::id caller = std::this_thread::get_id();
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
-    const double cell = usable_cell(box, s / kFastCellsPerSigma);
-    const Aggregates ag =
-        aggregate(mesh, sort_into_cells(mesh, is_point, box, cell), values.data(), 2 * s);
+    const double cell = usable_cell(box, s / params.cells_per_sigma);
+    const SparseCells cells = sort_into_cells(mesh, is_point, box, cell);
+    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s);
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     std::atomic<size_t> done{0};
     std::vector<double>& o = out[k];
+    auto tick = [&](size_t count) {
+      size_t finished = done += count;
+      if (progress && std::this_thread::get_id() == caller)
+        progress((k + double(finished) / points) / sigmas.size());
+    };
+    const size_t m = ag.count.size() - 4;
+    if (double(points) >= params.points_per_query_cell * double(m)) {
+      // Dense cells: the sums and their gradients once at each centroid, extrapolated
+      // linearly to the cell's vertices (cost per cell, not per vertex).
+      parallel_for(m, threads, 64, [&](size_t begin, size_t end) {
+        uint64_t pairs = 0;
+        size_t visited = 0;
+        for (size_t c = begin; c < end; ++c) {
+          const double* q = &ag.centroid[3 * c];
+          const CellSums cs = sweep_cells<true>(ag, q, coef, cutoff2, &pairs);
+          for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
+            const uint32_t v = cells.order[i];
+            double num = cs.num, den = cs.den;
+            for (int a = 0; a < 3; ++a) {
+              const double dv = (double(mesh.positions[3 * v + a]) - q[a]) / (s * s);
+              num += cs.gnum[a] * dv, den += cs.gden[a] * dv;
+            }
+            // den > 0 unless the extrapolation overshoots; then the centroid's average.
+            o[v] = den > 0 ? num / den : cs.num / cs.den;
+          }
+          visited += cells.start[c + 1] - cells.start[c];
+        }
+        total_pairs += pairs;
+        tick(visited);
+      });
+      continue;
+    }
     parallel_for(points, threads, 512, [&](size_t begin, size_t end) {
       uint64_t pairs = 0;
       for (size_t i = begin; i < end; ++i) {
         const uint32_t v = visit[i];
         const double q[3] = {mesh.positions[3 * v], mesh.positions[3 * v + 1],
                              mesh.positions[3 * v + 2]};
-        double num, den;
-        sweep_cells(ag, q, coef, cutoff2, &num, &den, &pairs);
-        // den > 0: the vertex's own cell's centroid is within sqrt(3)/4 sigma of it.
-        o[v] = den > 0 ? num / den : values[v];
+        const CellSums cs = sweep_cells<false>(ag, q, coef, cutoff2, &pairs);
+        // den > 0: the vertex's own cell's centroid is within sqrt(3)/6 sigma of it.
+        o[v] = cs.den > 0 ? cs.num / cs.den : values[v];
       }
       total_pairs += pairs;
-      size_t finished = done += end - begin;
-      if (progress && std::this_thread::get_id() == caller)
-        progress((k + double(finished) / points) / sigmas.size());
+      tick(end - begin);
     });
   }
   if (stats) stats->pairs = total_pairs;

@@ -50,7 +50,12 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
   r.method = opt.method;
   r.backend_name = "cpu (" + std::to_string(resolve_threads(opt.threads)) + " threads)";
   // The averages, exact (SPEC 1) or from cell aggregates (SPEC 5); nothing else differs.
-  const auto filter = opt.method == Method::Fast ? gaussian_filter_fast : gaussian_filter;
+  auto filter = [&](const std::vector<double>& values, const std::vector<double>& sigmas,
+                    FilterStats* stats, const std::function<void(double)>& progress) {
+    return opt.method == Method::Fast
+               ? gaussian_filter_fast(mesh, r.is_point, values, sigmas, opt.threads, stats, progress)
+               : gaussian_filter(mesh, r.is_point, values, sigmas, opt.threads, stats, progress);
+  };
   auto report = [&](const char* stage, double f) {
     if (opt.progress) opt.progress(stage, f);
   };
@@ -68,8 +73,7 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
   std::vector<double> sigmas;
   for (double u : units) sigmas.push_back(u * r.eps);
   FilterStats stats;
-  auto G = filter(mesh, r.is_point, r.curvature, sigmas, opt.threads, &stats,
-                           [&](double f) { report("gaussian sweep", f); });
+  auto G = filter(r.curvature, sigmas, &stats, [&](double f) { report("gaussian sweep", f); });
   r.pairs = stats.pairs;
   clock.lap("gaussian sweep");
 
@@ -97,8 +101,7 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
   clock.lap("suppression");
 
   if (opt.smoothed) {
-    auto Sm = filter(mesh, r.is_point, r.saliency, {3.0 * r.eps}, opt.threads, nullptr,
-                              [&](double f) { report("smoothing", f); });
+    auto Sm = filter(r.saliency, {3.0 * r.eps}, nullptr, [&](double f) { report("smoothing", f); });
     r.smoothed = std::move(Sm[0]);
     clock.lap("smoothing");
   }
