@@ -109,7 +109,7 @@ enum class Precision { Auto, Mixed, Double };
 
 // How the Gaussian-weighted averages are taken (SPEC section 5; docs/method.md).
 // Exact: over every mesh point within 2 sigma (SPEC section 1), cost ~ n x neighbours.
-// Fast: over per-cell aggregates (count, curvature sum, centroid) of cells of sigma/4, a
+// Fast: over per-cell aggregates (count, curvature sum, centroid) of cells of sigma/6, a
 //   fixed number of cells per vertex whatever the density, so the cost is linear in n;
 //   measured against Exact on the scans: final-saliency correlation >= 0.999 and >= 98% of
 //   the exact top-30% vertices in the fast top 30% (docs/method.md has the figures).

@@ -67,7 +67,7 @@ namespace meshsal_cli {
 void add_method_option(CLI::App& app, std::string* name) {
   app.add_option("--method", *name,
                  "Gaussian averages: exact (every neighbour, cost ~ n x neighbours), fast "
-                 "(cell aggregates at sigma/4, linear cost, CPU path; error against exact in "
+                 "(cell aggregates at sigma/6, linear cost, CPU path; error against exact in "
                  "docs/method.md) or auto (fast when the exact sweep would pass ~2e9 pairs)")
       ->check(CLI::IsMember({"exact", "fast", "auto"}))
       ->capture_default_str();

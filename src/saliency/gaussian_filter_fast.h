@@ -1,7 +1,7 @@
 // meshsal: the approximate Gaussian-weighted averages of `--method fast` (SPEC 5): each
 // sigma's average is taken over per-cell aggregates (point count, value sum, centroid) of
-// cells of sigma / kFastCellsPerSigma instead of over the points, so a vertex visits a fixed
-// number of cells (~ (4 c)^2 on a surface) however dense the mesh is. The exact sweep in
+// cells of sigma / c (c = 6) instead of over the points, so a vertex visits a fixed
+// number of cells (~ pi (2 c)^2 on a surface) however dense the mesh is. The exact sweep in
 // gaussian_filter.h is the oracle it is measured against.
 #pragma once
 #include <cstdint>
