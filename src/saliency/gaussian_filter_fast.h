@@ -19,7 +19,7 @@ struct FastFilterParams {
   // Where cells hold at least this many points on average, the sums are taken once per
   // cell (at its centroid, with their gradients) and extrapolated linearly to its vertices;
   // elsewhere once per vertex. 0: always per cell; infinity: always per vertex.
-  double points_per_query_cell = 4;
+  double points_per_query_cell = 2;
 };
 
 // The same contract as gaussian_filter(): out[k][v] approximates G(values, v, sigmas[k]);
