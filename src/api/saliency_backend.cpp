@@ -7,6 +7,8 @@
 
 #include "meshsal/meshsal.h"
 #include "api/gpu_backend.h"
+#include "core/mesh_points.h"
+#include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
 
 namespace meshsal {
@@ -73,8 +75,31 @@ void check_saliency_options(const SaliencyOptions& options) {
                 " of the bounding-box diagonal, must be at most 1 diagonal");
 }
 
-SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options) {
-  check_saliency_options(options);
+// Method::Auto: fast when the exact sweep would take more pairs than kAutoPairBudget.
+Method resolve_method(const Mesh& mesh, const SaliencyOptions& options) {
+  if (options.method != Method::Auto) return options.method;
+  validate_mesh(mesh);
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  const double eps = scale_unit(mesh, is_point, options.eps_frac);
+  const double largest = *std::max_element(options.scales.begin(), options.scales.end());
+  const double pairs = estimate_sweep_pairs(mesh, is_point, 4 * largest * eps);
+  if (pairs <= kAutoPairBudget) return Method::Exact;
+  tell(options, "method auto: the exact sweep would visit ~" + number_text(pairs) +
+                    " neighbour pairs (budget " + number_text(kAutoPairBudget) +
+                    "), using the fast method");
+  return Method::Fast;
+}
+
+SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options_in) {
+  check_saliency_options(options_in);
+  SaliencyOptions options = options_in;
+  options.method = resolve_method(mesh, options_in);
+  // The fast method has no GPU twin yet: it runs on the CPU path.
+  if (options.method == Method::Fast) {
+    if (options.backend == Backend::Gpu)
+      throw Error("--method fast runs on the CPU path only: use --backend cpu or auto");
+    return compute_saliency_cpu(mesh, options);
+  }
   switch (options.backend) {
     case Backend::Cpu:
       return compute_saliency_cpu(mesh, options);
@@ -84,6 +109,13 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
       return gpu_backend().saliency(mesh, options);
   }
   throw Error("unknown backend");
+}
+
+Method parse_method(const std::string& name) {
+  if (name == "exact") return Method::Exact;
+  if (name == "fast") return Method::Fast;
+  if (name == "auto") return Method::Auto;
+  throw Error("--method must be exact, fast or auto, got '" + name + "'");
 }
 
 Precision parse_precision(const std::string& name) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "command.h"
@@ -11,7 +12,12 @@
 #include "cli/data_dir.h"
 #include "meshsal/meshsal.h"
 #include "number_options.h"
+#include "core/mesh_points.h"
+#include "core/subdivide.h"
+#include "saliency/gaussian_filter_fast.h"
+#include "saliency/method_error.h"
 #include "saliency/saliency.h"
+#include "saliency_output.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
@@ -27,7 +33,21 @@ struct Args {
   bool simplify = false;
   unsigned threads = 0;
   int repeat = 3;
+  std::string method = "exact";  // fast: also the error against exact, per mesh
+  int subdivide = 0;             // midpoint subdivisions of each mesh, in memory
 };
+
+// With --method fast the exact reference runs once per mesh unless its estimated pair count
+// passes this (~60 s on 2 cores); then its time is estimated from the pairs instead.
+constexpr double kExactReferencePairLimit = 2e10;
+constexpr double kExactPairsPerSecond = 3.3e8;  // measured: 2 cores, igea_134k (README)
+
+// Peak resident memory of this process so far, in bytes.
+double peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) * 1024.0;
+}
 
 // `--simplify` runs tools/bench_simplify (built beside meshsal): only that program links
 // meshoptimizer, the baseline it compares against.
@@ -57,6 +77,12 @@ struct Row {
   double read = 0;
   meshsal::SaliencyResult best;  // the fastest of the repeats
   double total = 0;
+  std::string method = "exact";
+  // --method fast: the exact reference (time, pairs) and the error against it.
+  bool has_reference = false;
+  double exact_total = 0, exact_pairs = 0;  // pairs estimated when there is no reference
+  meshsal::MethodError error;
+  double peak_rss = 0;  // bytes, after this row
 };
 
 // Each backend the table has a row for: the CPU path and every Vulkan device with compute,
@@ -83,13 +109,11 @@ std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
   return out;
 }
 
-Row bench_one(const std::string& path, const meshsal::SaliencyOptions& opt, int repeat) {
-  using clock = std::chrono::steady_clock;
+Row bench_one(const std::string& model, const meshsal::Mesh& mesh, double read,
+              const meshsal::SaliencyOptions& opt, int repeat) {
   Row row;
-  row.model = std::filesystem::path(path).filename().string();
-  auto t0 = clock::now();
-  meshsal::Mesh mesh = meshsal::load_mesh(path);
-  row.read = std::chrono::duration<double>(clock::now() - t0).count();
+  row.model = model;
+  row.read = read;
   row.vertices = mesh.vertex_count();
   // A Vulkan device is opened once for all repeats, so the driver's first compile of each
   // pipeline is paid once, as in a long-running program.
@@ -109,9 +133,36 @@ Row bench_one(const std::string& path, const meshsal::SaliencyOptions& opt, int 
     if (i == 0 || total < row.total) row.best = std::move(r), row.total = total;
   }
   row.device = row.best.backend_name;
+  row.method = row.best.method == meshsal::Method::Fast ? "fast" : "exact";
+  row.peak_rss = peak_rss_bytes();
   row.precision = opt.backend == meshsal::Backend::Cpu ? "double"
                   : row.best.mixed_precision           ? "mixed"
                                                        : "double";
+  return row;
+}
+
+// --method fast: the fast CPU row, then the exact reference once (or its estimated time when
+// its pair count passes kExactReferencePairLimit) and the error of fast against it.
+Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read, const Args& a) {
+  meshsal::SaliencyOptions opt;
+  opt.backend = meshsal::Backend::Cpu;
+  opt.threads = a.threads;
+  opt.method = meshsal::Method::Fast;
+  Row row = bench_one(model, mesh, read, opt, a.repeat);
+  const std::vector<uint8_t> is_point = meshsal::referenced_vertices(mesh);
+  const double eps = meshsal::scale_unit(mesh, is_point, opt.eps_frac);
+  const double largest = *std::max_element(opt.scales.begin(), opt.scales.end());
+  row.exact_pairs = meshsal::estimate_sweep_pairs(mesh, is_point, 4 * largest * eps);
+  if (row.exact_pairs > kExactReferencePairLimit) {
+    row.exact_total = row.exact_pairs / kExactPairsPerSecond;
+    return row;
+  }
+  opt.method = meshsal::Method::Exact;
+  Row exact = bench_one(model, mesh, read, opt, 1);
+  row.has_reference = true;
+  row.exact_total = exact.total;
+  row.exact_pairs = double(exact.best.pairs);
+  row.error = meshsal::method_error(exact.best, row.best);
   return row;
 }
 
@@ -122,16 +173,41 @@ double stage(const Row& row, const char* name) {
 }
 
 void print_table(const std::vector<Row>& rows) {
-  std::printf("%-24s %9s  %-22s %-6s %9s %9s %9s %9s %9s %9s %10s %10s %8s\n", "model", "vertices",
-              "device", "prec", "curvature", "sweep", "c-s", "suppress", "other", "total", "pairs", "pairs/s", "recheck");
+  std::printf("%-24s %9s  %-22s %-6s %-5s %9s %9s %9s %9s %9s %9s %10s %10s %8s\n", "model", "vertices",
+              "device", "prec", "meth", "curvature", "sweep", "c-s", "suppress", "other", "total", "pairs", "pairs/s", "recheck");
   for (const Row& r : rows) {
     const double listed = stage(r, "curvature") + stage(r, "gaussian sweep") +
                           stage(r, "center-surround") + stage(r, "suppression");
-    std::printf("%-24s %9zu  %-22.22s %-6s %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %10.3g %10.3g %8llu\n",
-                r.model.c_str(), r.vertices, r.device.c_str(), r.precision.c_str(), stage(r, "curvature"),
+    std::printf("%-24s %9zu  %-22.22s %-6s %-5s %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %10.3g %10.3g %8llu\n",
+                r.model.c_str(), r.vertices, r.device.c_str(), r.precision.c_str(), r.method.c_str(), stage(r, "curvature"),
                 stage(r, "gaussian sweep"), stage(r, "center-surround"), stage(r, "suppression"),
                 std::max(0.0, r.total - listed), r.total, double(r.best.pairs),
                 r.total > 0 ? r.best.pairs / r.total : 0.0, (unsigned long long)r.best.rechecked);
+  }
+  bool any_fast = false;
+  for (const Row& r : rows) any_fast |= r.method == "fast";
+  if (any_fast) {
+    std::printf("\n%-24s %9s %10s %10s %8s %10s %9s %9s %9s %9s %8s\n", "model", "vertices", "fast",
+                "exact", "speed-up", "exact pairs", "corr", "top30", "raw mean", "raw max", "peak B/v");
+    for (const Row& r : rows) {
+      if (r.method != "fast") continue;
+      double mean = 0, worst = 0;
+      for (double x : r.error.raw_mean) mean = std::max(mean, x);
+      for (double x : r.error.raw_max) worst = std::max(worst, x);
+      if (r.has_reference)
+        std::printf("%-24s %9zu %9.3fs %9.3fs %8.1f %10.3g %9.6f %9.4f %9.2e %9.2e %8.0f\n", r.model.c_str(),
+                    r.vertices, r.total, r.exact_total, r.exact_total / r.total, r.exact_pairs,
+                    r.error.correlation, r.error.top30_overlap, mean, worst, r.peak_rss / r.vertices);
+      else
+        std::printf("%-24s %9zu %9.3fs %8.0fs* %8.0f %10.3g %9s %9s %9s %9s %8.0f\n", r.model.c_str(),
+                    r.vertices, r.total, r.exact_total, r.exact_total / r.total, r.exact_pairs, "-", "-",
+                    "-", "-", r.peak_rss / r.vertices);
+    }
+    std::printf("(fast against exact on the same mesh, CPU path: corr = Pearson correlation of the final\n"
+                " saliency, top30 = share of the exact top-30%% vertices in the fast top 30%%, raw mean/max =\n"
+                " the worst map's mean and max |fast - exact| / map maximum (per map in --json); * = exact\n"
+                " not run, time estimated from its pair count at %.2g pairs/s; peak B/v = peak resident\n"
+                " memory of the process so far per vertex)\n", kExactPairsPerSecond);
   }
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
               " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
@@ -150,10 +226,30 @@ void print_json(const std::vector<Row>& rows) {
     for (size_t s = 0; s < r.best.stages.size(); ++s)
       std::printf("%s%s: %.6f", s ? ", " : "", json_string(r.best.stages[s].name).c_str(),
                   r.best.stages[s].seconds);
-    std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g, \"rechecked\": %llu}%s\n",
+    std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g, \"rechecked\": %llu, "
+                "\"method\": %s, \"peak_rss_bytes\": %.0f",
                 r.total, (unsigned long long)r.best.pairs, r.total > 0 ? r.best.pairs / r.total : 0.0,
-                (unsigned long long)r.best.rechecked,
-                i + 1 < rows.size() ? "," : "");
+                (unsigned long long)r.best.rechecked, json_string(r.method).c_str(), r.peak_rss);
+    if (r.method == "fast") {
+      std::printf(", \"exact_measured\": %s, \"exact_total_s\": %.6f, \"exact_pairs\": %.6g",
+                  r.has_reference ? "true" : "false", r.exact_total, r.exact_pairs);
+      if (r.has_reference) {
+        auto list = [](const std::vector<double>& xs) {
+          std::string t = "[";
+          char buf[32];
+          for (size_t k = 0; k < xs.size(); ++k) {
+            std::snprintf(buf, sizeof buf, "%s%.6g", k ? ", " : "", xs[k]);
+            t += buf;
+          }
+          return t + "]";
+        };
+        std::printf(", \"correlation\": %.8f, \"top30_overlap\": %.6f, \"raw_mean_rel\": %s, "
+                    "\"raw_max_rel\": %s",
+                    r.error.correlation, r.error.top30_overlap, list(r.error.raw_mean).c_str(),
+                    list(r.error.raw_max).c_str());
+      }
+    }
+    std::printf("}%s\n", i + 1 < rows.size() ? "," : "");
   }
   std::printf("]\n");
 }
@@ -172,17 +268,30 @@ int run(const Args& a) {
     }
     if (paths.empty()) throw meshsal::Error("no benchmark meshes found in '" + dir + "'");
   }
+  const meshsal::Method method = meshsal::parse_method(a.method);
+  if (method == meshsal::Method::Auto) throw meshsal::Error("bench: --method must be exact or fast");
   std::vector<Row> rows;
-  for (const std::string& p : paths)
+  for (const std::string& p : paths) {
+    auto t0 = std::chrono::steady_clock::now();
+    meshsal::Mesh mesh = meshsal::load_mesh(p);
+    std::string model = std::filesystem::path(p).filename().string();
+    for (int k = 0; k < a.subdivide; ++k) mesh = meshsal::subdivide_midpoint(mesh);
+    if (a.subdivide) model += " /" + std::to_string(a.subdivide);
+    const double read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (method == meshsal::Method::Fast) {
+      rows.push_back(bench_fast(model, mesh, read, a));
+      continue;
+    }
     for (const auto& opt : bench_backends(a)) {
       if (!a.json && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", p.c_str());
       try {
-        rows.push_back(bench_one(p, opt, a.repeat));
+        rows.push_back(bench_one(model, mesh, read, opt, a.repeat));
       } catch (const meshsal::Error& e) {
         if (opt.backend == meshsal::Backend::Cpu) throw;
         std::fprintf(stderr, "skipped %s on Vulkan device %d: %s\n", p.c_str(), opt.device, e.what());
       }
     }
+  }
   if (a.json)
     print_json(rows);
   else
@@ -203,6 +312,13 @@ RunFn setup(CLI::App& sub) {
                "Benchmark simplification instead (plain, saliency-weighted, meshoptimizer) at 1% "
                "and 5% of the faces of armadillo_43k, dragon_50k and igea_134k");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
+  sub.add_option("--method", a->method,
+                 "exact, or fast: time the fast method on the CPU path and report its error "
+                 "against exact (correlation, top-30% overlap, raw-map errors) and peak memory")
+      ->check(CLI::IsMember({"exact", "fast"}))->capture_default_str();
+  sub.add_option("--subdivide", a->subdivide,
+                 "Midpoint-subdivide each mesh N times in memory first (4x the triangles each)")
+      ->capture_default_str()->check(whole_in(0, 3));
   sub.add_option("--repeat", a->repeat, "Runs per mesh and device; the fastest is reported")
       ->capture_default_str()->check(whole_in(1, 1000));
   return [a] { return run(*a); };

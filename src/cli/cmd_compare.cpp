@@ -17,6 +17,7 @@ namespace {
 
 struct Args {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string original, simplified, saliency, backend = "auto";
   long long samples = 200000;
   double fraction = 0.30;
@@ -36,6 +37,7 @@ int run(const Args& a) {
     SaliencyOptions so;
     so.backend = parse_backend(a.backend);
     so.precision = meshsal::parse_precision(a.precision);
+    so.method = meshsal::parse_method(a.method);
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     s = compute_saliency(original, so).saliency;
@@ -77,6 +79,7 @@ RunFn setup(CLI::App& sub) {
       ->capture_default_str()->check(finite_in(0, 1, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
   add_precision_option(sub, &a->precision);
+  add_method_option(sub, &a->method);
   add_threads_option(sub, a->threads, "Threads (0 = all cores)");
   return [a] { return run(*a); };
 }

@@ -21,6 +21,7 @@ namespace {
 
 struct Args {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string dir = "demo_out", backend = "auto";
   int subdivisions = 6;
   unsigned threads = 0;
@@ -62,6 +63,7 @@ int run(const Args& a) {
   opt.threads = a.threads;
   opt.backend = parse_backend(a.backend);
   opt.precision = meshsal::parse_precision(a.precision);
+  opt.method = meshsal::parse_method(a.method);
   Progress progress(stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
   opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -111,6 +113,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("-o,--output", a->dir, "Output folder (created if missing)")->capture_default_str();
   sub.add_option("--backend", a->backend, "auto, gpu or cpu")->capture_default_str();
   add_precision_option(sub, &a->precision);
+  add_method_option(sub, &a->method);
   sub.add_option("--subdivisions", a->subdivisions, "Icosphere subdivisions (5..8; 6 = 41k vertices)")
       ->capture_default_str()->check(whole_in(5, 8));
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");

@@ -18,6 +18,7 @@ namespace {
 
 struct Options {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string input, saliency_from, score = "saliency", output, backend = "auto";
   std::vector<std::string> compare;
   double theta_deg = 0, phi_deg = 0;
@@ -50,6 +51,7 @@ int run(const Options& o) {
     sopt.threads = o.threads;
     sopt.backend = parse_backend(o.backend);
     sopt.precision = meshsal::parse_precision(o.precision);
+    sopt.method = meshsal::parse_method(o.method);
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
     colours = score_colours(mesh, vertex_score(mesh, parse_view_score(o.score), o.saliency_from, sopt));
@@ -83,6 +85,7 @@ RunFn setup(CLI::App& app) {
   app.add_flag("--edges", o->edges, "darken triangle edges");
   app.add_option("--backend", o->backend, "saliency backend: auto, gpu or cpu")->capture_default_str();
   add_precision_option(app, &o->precision);
+  add_method_option(app, &o->method);
   add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
   return [o]() { return run(*o); };
 }

@@ -15,6 +15,7 @@ namespace {
 
 struct Args {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string input, output, backend = "auto", scales = "2,3,4,5,6";
   double eps_frac = 0.003;
   bool dump_scales = false, quiet = false;
@@ -32,6 +33,7 @@ int run(const Args& a) {
   opt.threads = a.threads;
   opt.backend = parse_backend(a.backend);
   opt.precision = meshsal::parse_precision(a.precision);
+  opt.method = meshsal::parse_method(a.method);
   opt.device = a.device;
   check_saliency_options(opt);
   Progress progress(!a.quiet && stderr_is_terminal());
@@ -65,6 +67,7 @@ RunFn setup(CLI::App& sub) {
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
                  "included) or cpu")->capture_default_str();
   add_precision_option(sub, &a->precision);
+  add_method_option(sub, &a->method);
   sub.add_option("--device", a->device, "Vulkan device index for the gpu backend (see `meshsal devices`)")->check(whole_in(-1, 255));
   sub.add_option("--scales", a->scales,
                  "Center-surround scales in units of eps: scale k compares the Gaussian averages "

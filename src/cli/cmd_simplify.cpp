@@ -19,6 +19,7 @@ namespace {
 
 struct Args {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string input, output, weights = "saliency", saliency_from, backend = "auto";
   long long target_faces = 0;
   double ratio = 0;
@@ -71,6 +72,7 @@ int run(const Args& a) {
       so.threads = a.threads;
       so.backend = parse_backend(a.backend);
       so.precision = meshsal::parse_precision(a.precision);
+      so.method = meshsal::parse_method(a.method);
       so.smoothed = true;
       so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
       so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -139,6 +141,7 @@ RunFn setup(CLI::App& sub) {
       ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
   add_precision_option(sub, &a->precision);
+  add_method_option(sub, &a->method);
   add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
   sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   return [a] { return run(*a); };

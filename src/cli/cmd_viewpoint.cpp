@@ -21,6 +21,7 @@ namespace {
 
 struct Options {
   std::string precision = "auto";  // --precision
+  std::string method = "exact";    // --method
   std::string input, saliency_from, score = "saliency", backend = "auto", out_png, map_png;
   int restarts = 8, views = 0, resolution = 512, size = 512, map_width = 720, device = -1;
   uint64_t seed = 1;
@@ -58,6 +59,7 @@ int run(const Options& o) {
   sopt.threads = o.threads;
   sopt.backend = backend;
   sopt.precision = parse_precision(o.precision);
+  sopt.method = meshsal::parse_method(o.method);
   sopt.device = o.device;
   sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
   sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
@@ -123,6 +125,7 @@ RunFn setup(CLI::App& app) {
       ->capture_default_str()->check(finite_in(0, 1000));
   app.add_option("--backend", o->backend, "visibility (and saliency) backend: auto, gpu or cpu")->capture_default_str();
   add_precision_option(app, &o->precision);
+  add_method_option(app, &o->method);
   app.add_option("--device", o->device, "Vulkan device index (see `meshsal devices`)")->check(whole_in(-1, 255));
   add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
   app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");

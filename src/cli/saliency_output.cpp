@@ -31,6 +31,8 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   std::printf("faces      %zu triangles\n", mesh.triangle_count());
   std::printf("eps        %.6g\n", r.eps);
   std::printf("backend    %s\n", r.backend_name.c_str());
+  if (r.method == Method::Fast)
+    std::printf("method     fast (cell aggregates; error against exact: docs/method.md)\n");
   if (r.mixed_precision)
     std::printf("precision  mixed (%llu points rechecked in double)\n", (unsigned long long)r.rechecked);
   std::printf("read       %8.3f s\n", load_seconds);
@@ -55,6 +57,19 @@ void add_precision_option(CLI::App& app, std::string* name) {
                  "GPU sweep arithmetic: mixed (float distances and weights, sums and near ties "
                  "in double), double, or auto (mixed on GPUs, double on CPU devices)")
       ->check(CLI::IsMember({"auto", "mixed", "double"}))
+      ->capture_default_str();
+}
+
+}  // namespace meshsal_cli
+
+namespace meshsal_cli {
+
+void add_method_option(CLI::App& app, std::string* name) {
+  app.add_option("--method", *name,
+                 "Gaussian averages: exact (every neighbour, cost ~ n x neighbours), fast "
+                 "(cell aggregates at sigma/6, linear cost, CPU path; error against exact in "
+                 "docs/method.md) or auto (fast when the exact sweep would pass ~2e9 pairs)")
+      ->check(CLI::IsMember({"exact", "fast", "auto"}))
       ->capture_default_str();
 }
 

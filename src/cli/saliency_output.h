@@ -27,4 +27,8 @@ meshsal::Backend parse_backend(const std::string& name);
 // command that has --backend; meshsal::parse_precision() turns it into the option.
 void add_precision_option(CLI::App& app, std::string* name);
 
+// --method exact|fast|auto (SPEC 5) into *name, for every command that computes saliency;
+// meshsal::parse_method() turns it into the option.
+void add_method_option(CLI::App& app, std::string* name);
+
 }  // namespace meshsal_cli

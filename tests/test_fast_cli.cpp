@@ -1,0 +1,103 @@
+// --method on the command line: every saliency-computing command takes it, a bad value is a
+// usage error, and bench --method fast reports the error against exact.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "meshsal/meshsal.h"
+#include "test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+Run run_cli(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " +
+                    err.string() + " < /dev/null";
+  int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+fs::path scratch_dir() {
+  fs::path d = fs::temp_directory_path() / ("meshsal_fast_cli_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("cli: every command that computes saliency takes --method", "[cli][fast]") {
+  fs::path dir = scratch_dir();
+  for (const char* cmd : {"saliency", "simplify", "viewpoint", "render", "demo", "compare", "bench"}) {
+    Run r = run_cli(std::string(cmd) + " --help", dir);
+    INFO(cmd);
+    CHECK(r.exit_code == 0);
+    CHECK(r.out.find("--method") != std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: a bad --method is a usage error", "[cli][fast]") {
+  fs::path dir = scratch_dir();
+  Run r = run_cli("saliency in.obj -o out.ply --method quick", dir);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--method") != std::string::npos);
+  CHECK(!fs::exists(dir / "out.ply"));
+  Run b = run_cli("bench in.obj --method auto", dir);
+  CHECK(b.exit_code == 2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]") {
+  MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
+  fs::path dir = scratch_dir();
+  Run r = run_cli("saliency " + input + " -o " + (dir / "f.ply").string() + " --method fast --backend cpu", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("method     fast") != std::string::npos);
+  meshsal::VertexProperties props;
+  meshsal::Mesh m = meshsal::load_mesh((dir / "f.ply").string(), &props);
+  REQUIRE(props.count("quality") == 1);
+  CHECK(props["quality"].size() == m.vertex_count());
+  Run e = run_cli("saliency " + input + " -o " + (dir / "e.ply").string() + " --backend cpu", dir);
+  REQUIRE(e.exit_code == 0);
+  CHECK(e.out.find("method     fast") == std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: bench --method fast --json reports the error against exact", "[cli][fast]") {
+  MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
+  fs::path dir = scratch_dir();
+  Run r = run_cli("bench " + input + " --repeat 1 --json --method fast", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"method\": \"fast\"") != std::string::npos);
+  CHECK(r.out.find("\"exact_measured\": true") != std::string::npos);
+  const size_t at = r.out.find("\"correlation\": ");
+  REQUIRE(at != std::string::npos);
+  const double corr = std::atof(r.out.c_str() + at + 15);
+  CHECK(corr > 0.99);
+  CHECK(corr <= 1.0);
+  CHECK(r.out.find("\"raw_max_rel\": [") != std::string::npos);
+  CHECK(r.out.find("\"peak_rss_bytes\": ") != std::string::npos);
+  fs::remove_all(dir);
+}

@@ -1,0 +1,231 @@
+// --method fast (SPEC 5): the cell-aggregate Gaussian averages held to the exact method, on
+// synthetic meshes and two shared scans, and method auto's pair budget.
+#include <algorithm>
+#include <cmath>
+
+#include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
+#include "core/synthetic.h"
+#include "saliency/gaussian_filter.h"
+#include "saliency/gaussian_filter_fast.h"
+#include "saliency/method_error.h"
+#include "saliency/saliency.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+SaliencyOptions fast_options() {
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  o.method = Method::Fast;
+  return o;
+}
+
+double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t v = 0; v < values.size(); ++v)
+    if (mask[v]) sum += values[v], count++;
+  REQUIRE(count > 0);
+  return sum / double(count);
+}
+
+// Fast against exact on a shared scan: the targets of SPEC 5.
+void check_scan(const std::string& path, double min_correlation, double min_overlap) {
+  Mesh m = load_mesh(path);
+  SaliencyOptions exact;
+  exact.backend = Backend::Cpu;
+  SaliencyResult e = compute_saliency(m, exact);
+  SaliencyResult f = compute_saliency(m, fast_options());
+  CHECK(e.method == Method::Exact);
+  CHECK(f.method == Method::Fast);
+  MethodError err = method_error(e, f);
+  INFO(path << ": correlation " << err.correlation << ", top-30% overlap " << err.top30_overlap);
+  CHECK(err.correlation >= min_correlation);
+  CHECK(err.top30_overlap >= min_overlap);
+  for (size_t i = 0; i < err.raw_mean.size(); ++i) {
+    INFO("raw map " << i << ": mean " << err.raw_mean[i] << ", max " << err.raw_max[i]);
+    CHECK(err.raw_mean[i] < 0.01);
+    CHECK(err.raw_max[i] < 0.15);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("fast filter: close to the brute-force averages on a bumpy sphere", "[fast]") {
+  Mesh m = make_bumpy_sphere(4);
+  std::vector<uint8_t> is_point = referenced_vertices(m);
+  SaliencyResult s = compute_saliency_cpu(m, {});
+  const double eps = s.eps;
+  const std::vector<double> sigmas{2 * eps, 6 * eps, 12 * eps};
+  auto exact = gaussian_filter_bruteforce(m, is_point, s.curvature, sigmas);
+  FilterStats stats;
+  auto fast = gaussian_filter_fast(m, is_point, s.curvature, sigmas, 0, &stats);
+  double hmax = 0;
+  for (double h : s.curvature) hmax = std::max(hmax, std::fabs(h));
+  for (size_t k = 0; k < sigmas.size(); ++k) {
+    double worst = 0, sum = 0;
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      const double d = std::fabs(fast[k][v] - exact[k][v]) / hmax;
+      worst = std::max(worst, d), sum += d;
+    }
+    INFO("sigma " << sigmas[k] / eps << " eps: mean " << sum / m.vertex_count() << ", max " << worst
+                  << " of max |H|");
+    CHECK(sum / m.vertex_count() < 0.01);
+    CHECK(worst < 0.05);
+  }
+  // Cells, not points: fewer (vertex, cell) pairs than the exact sweep's (vertex, point).
+  FilterStats exact_stats;
+  gaussian_filter(m, is_point, s.curvature, sigmas, 0, &exact_stats);
+  CHECK(stats.pairs > 0);
+  CHECK(stats.pairs < sigmas.size() * exact_stats.pairs);
+}
+
+TEST_CASE("fast: sphere raw maps stay near zero", "[fast]") {
+  const double r = 3.0;
+  SaliencyResult s = compute_saliency(make_sphere(r, 5), fast_options());
+  REQUIRE(s.raw.size() == 5);
+  for (size_t i = 0; i < s.raw.size(); ++i) {
+    double worst = 0;
+    for (double x : s.raw[i]) worst = std::max(worst, x);
+    INFO("scale " << i << ": max raw " << worst);
+    CHECK(worst < 0.01 / r);
+  }
+}
+
+TEST_CASE("fast: the bump plane's saliency maximum is on the bump", "[fast]") {
+  const double size = 4.0, width = 0.12;
+  Mesh m = make_plane_with_bump(size, 160, 0.15, width);
+  SaliencyResult s = compute_saliency(m, fast_options());
+  size_t best = 0;
+  double best_value = -1;
+  for (size_t v = 0; v < m.vertex_count(); ++v) {
+    double x = m.positions[3 * v], y = m.positions[3 * v + 1];
+    if (std::fabs(x) > 0.4 * size || std::fabs(y) > 0.4 * size) continue;
+    if (s.saliency[v] > best_value) best_value = s.saliency[v], best = v;
+  }
+  double x = m.positions[3 * best], y = m.positions[3 * best + 1];
+  INFO("maximum " << best_value << " at (" << x << ", " << y << ")");
+  CHECK(best_value > 0);
+  CHECK(std::hypot(x, y) < 3 * width);
+}
+
+TEST_CASE("fast: the bumpy sphere's unique feature beats the repeated bumps", "[fast]") {
+  std::vector<uint8_t> feature, bumps;
+  Mesh m = make_bumpy_sphere(6, &feature, &bumps);
+  SaliencyResult s = compute_saliency(m, fast_options());
+  const double f = mean_over(s.saliency, feature), b = mean_over(s.saliency, bumps);
+  INFO("saliency: feature " << f << ", bumps " << b);
+  CHECK(f > 1.5 * b);
+}
+
+TEST_CASE("fast against exact: bunny_36k", "[fast]") {
+  MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
+  check_scan(path, 0.999, 0.98);
+}
+
+TEST_CASE("fast against exact: dragon_50k", "[fast]") {
+  MESHSAL_REQUIRE_MESH(path, "dragon_50k.ply");
+  check_scan(path, 0.999, 0.98);
+}
+
+TEST_CASE("method error: identical results score 1, a shuffled one does not", "[fast]") {
+  SaliencyResult a = compute_saliency_cpu(make_bumpy_sphere(3), {});
+  MethodError same = method_error(a, a);
+  CHECK(same.correlation == Approx(1.0));
+  CHECK(same.top30_overlap == 1.0);
+  for (double x : same.raw_max) CHECK(x == 0.0);
+  SaliencyResult b = a;
+  std::reverse(b.saliency.begin(), b.saliency.end());
+  b.raw.back().assign(b.raw.back().size(), 0.0);
+  MethodError off = method_error(a, b);
+  CHECK(off.correlation < 0.5);
+  CHECK(off.top30_overlap < 0.6);
+  CHECK(off.raw_max.back() == Approx(1.0));
+}
+
+TEST_CASE("method auto: exact under the pair budget, fast with a notice above it", "[fast]") {
+  Mesh m = make_bumpy_sphere(5);  // ~10k vertices
+  std::vector<std::string> notices;
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  o.method = Method::Auto;
+  o.notice = [&](const std::string& line) { notices.push_back(line); };
+  SaliencyResult small = compute_saliency(m, o);
+  CHECK(small.method == Method::Exact);
+  CHECK(notices.empty());
+  // A 24-eps ball over the whole mesh: every pair, n^2 > 2e9 for a 50k-vertex sphere.
+  Mesh big = make_sphere(1.0, 7);
+  REQUIRE(double(big.vertex_count()) * big.vertex_count() > kAutoPairBudget);
+  o.eps_frac = 0.1;
+  o.scales = {5};
+  std::vector<uint8_t> is_point = referenced_vertices(big);
+  const double pairs = estimate_sweep_pairs(big, is_point, 4 * 5 * scale_unit(big, is_point, 0.1));
+  CHECK(pairs == Approx(double(big.vertex_count()) * big.vertex_count()).epsilon(1e-9));
+  SaliencyResult large = compute_saliency(big, o);
+  CHECK(large.method == Method::Fast);
+  REQUIRE(notices.size() == 1);
+  CHECK(notices[0].find("using the fast method") != std::string::npos);
+  CHECK(notices[0].find("budget 2e+09") != std::string::npos);
+}
+
+TEST_CASE("pair estimate: within 10% of the exact sweep's count", "[fast]") {
+  Mesh m = make_bumpy_sphere(5);
+  std::vector<uint8_t> is_point = referenced_vertices(m);
+  const double eps = scale_unit(m, is_point, 0.003);
+  FilterStats stats;
+  std::vector<double> values(m.vertex_count(), 1.0);
+  gaussian_filter(m, is_point, values, {12 * eps}, 1, &stats);
+  const double estimate = estimate_sweep_pairs(m, is_point, 24 * eps);
+  INFO("estimate " << estimate << ", exact " << stats.pairs);
+  CHECK(estimate == Approx(double(stats.pairs)).epsilon(0.1));
+}
+
+TEST_CASE("fast: the gpu backend refuses it with one line", "[fast]") {
+  SaliencyOptions o = fast_options();
+  o.backend = Backend::Gpu;
+  CHECK_THROWS_WITH(compute_saliency(make_sphere(1.0, 2), o),
+                    "--method fast runs on the CPU path only: use --backend cpu or auto");
+}
+
+TEST_CASE("parse_method", "[fast]") {
+  CHECK(parse_method("exact") == Method::Exact);
+  CHECK(parse_method("fast") == Method::Fast);
+  CHECK(parse_method("auto") == Method::Auto);
+  CHECK_THROWS_WITH(parse_method("quick"), "--method must be exact, fast or auto, got 'quick'");
+}
+
+TEST_CASE("fast filter: per-cell sums extrapolated to the vertices stay close to exact", "[fast]") {
+  // Forces the per-cell path (used where cells hold >= 4 points, i.e. on dense scans) on a
+  // small mesh, and compares both paths with the exact sweep.
+  // eps_frac 0.01 makes the cells hold ~10 points each.
+  Mesh m = make_bumpy_sphere(5);
+  std::vector<uint8_t> is_point = referenced_vertices(m);
+  SaliencyOptions o;
+  o.eps_frac = 0.01;
+  SaliencyResult s = compute_saliency_cpu(m, o);
+  const std::vector<double> sigmas{2 * s.eps, 6 * s.eps};
+  auto exact = gaussian_filter(m, is_point, s.curvature, sigmas);
+  FastFilterParams per_cell, per_vertex;
+  per_cell.points_per_query_cell = 0;
+  per_vertex.points_per_query_cell = INFINITY;
+  auto a = gaussian_filter_fast(m, is_point, s.curvature, sigmas, 0, nullptr, {}, per_cell);
+  auto b = gaussian_filter_fast(m, is_point, s.curvature, sigmas, 0, nullptr, {}, per_vertex);
+  double hmax = 0;
+  for (double h : s.curvature) hmax = std::max(hmax, std::fabs(h));
+  for (size_t k = 0; k < sigmas.size(); ++k) {
+    double ea = 0, eb = 0, differ = 0;
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      ea += std::fabs(a[k][v] - exact[k][v]) / hmax;
+      eb += std::fabs(b[k][v] - exact[k][v]) / hmax;
+      differ = std::max(differ, std::fabs(a[k][v] - b[k][v]));
+    }
+    ea /= m.vertex_count(), eb /= m.vertex_count();
+    INFO("sigma " << sigmas[k] / s.eps << " eps: mean error per cell " << ea << ", per vertex " << eb);
+    CHECK(differ > 0);  // the two paths really differ
+    CHECK(ea < 0.01);
+    CHECK(eb < 0.01);
+  }
+}
