@@ -9,6 +9,7 @@
 #include "simplify/saliency_weights.h"
 #include "simplify/surface_distance.h"
 #include "json_string.h"
+#include "load_input.h"
 #include "number_options.h"
 #include "saliency_output.h"
 
@@ -25,8 +26,8 @@ struct Args {
 
 int run(const Args& a) {
   using namespace meshsal;
-  const Mesh original = load_mesh(a.original);
-  const Mesh simplified = load_mesh(a.simplified);
+  const Mesh original = load_input(a.original, false);
+  const Mesh simplified = load_input(a.simplified, false);
   std::vector<double> s;
   std::string source;
   if (!a.saliency.empty()) {
@@ -70,7 +71,8 @@ RunFn setup(CLI::App& sub) {
       "computed. Distances are in model units; `diagonal` is the original's bbox diagonal.");
   sub.add_option("original", a->original, "The original mesh")->required();
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
-  sub.add_option("--saliency", a->saliency, "Saliency PLY of the original (`meshsal saliency`)");
+  sub.add_option("--saliency-from,--saliency", a->saliency,
+                 "Reuse S from this saliency PLY of the original (`meshsal saliency`) instead of computing it");
   sub.add_option("--samples", a->samples, "Area samples per surface besides its vertices")
       ->capture_default_str()->check(whole_in(0, 100000000));
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")

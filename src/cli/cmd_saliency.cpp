@@ -7,6 +7,7 @@
 #include "saliency/saliency.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -36,11 +37,13 @@ int run(const Args& a) {
   check_saliency_options(opt);
   Progress progress(!a.quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  opt.notice = [&a](const std::string& line) {
+    if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  };
 
   auto t0 = std::chrono::steady_clock::now();
   progress.update("reading", 0.0);
-  Mesh mesh = load_mesh(a.input);
+  Mesh mesh = load_input(a.input, a.quiet);
   double load = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);

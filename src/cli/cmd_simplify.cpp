@@ -11,6 +11,7 @@
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -37,21 +38,35 @@ int run(const Args& a) {
   check_outputs({{a.output, "-o", {".obj", ".ply"}}}, {a.input, a.saliency_from});
   const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
                                             a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
-  if (a.has_target == a.has_ratio) throw Error("give exactly one of --target-faces N and --ratio R");
+  if (a.has_target == a.has_ratio) throw UsageError("give exactly one of --target-faces N and --ratio R");
   if (a.weights != "saliency" && a.weights != "none")
-    throw Error("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
+    throw UsageError("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
   if (a.weights == "none" && !a.saliency_from.empty())
-    throw Error("--saliency-from needs --weights saliency");
+    throw UsageError("--saliency-from needs --weights saliency");
 
   Progress progress(!a.quiet && stderr_is_terminal());
   const auto t0 = std::chrono::steady_clock::now();
   progress.update("reading", 0.0);
-  const Mesh mesh = load_mesh(a.input);
+  const Mesh mesh = load_input(a.input, a.quiet);
   const double t_load = since(t0);
 
   SimplifyOptions opt;
   if (a.has_target) opt.target_faces = size_t(a.target_faces);
   else opt.ratio = a.ratio;
+  // A target at or above the face count keeps the mesh as it is (as meshoptimizer does),
+  // so that batch scripts over meshes of any size do not stop on the small ones.
+  if (a.has_target ? size_t(a.target_faces) >= mesh.triangle_count() : a.ratio >= 1) {
+    progress.update("writing", 0.0);
+    if (obj) write_obj(a.output, mesh);
+    else write_ply(a.output, mesh, {});
+    progress.finish();
+    if (!a.quiet) {
+      std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
+                   a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
+      std::printf("wrote      %s\n", a.output.c_str());
+    }
+    return 0;
+  }
   // Check the target before spending time on saliency.
   resolve_target_faces(opt, mesh.triangle_count());
 
@@ -73,7 +88,9 @@ int run(const Args& a) {
       so.precision = meshsal::parse_precision(a.precision);
       so.smoothed = true;
       so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-      so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+      so.notice = [&a](const std::string& line) {
+        if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+      };
       smoothed = compute_saliency(mesh, so).smoothed;
     }
     SaliencyWeightOptions wo;
@@ -91,7 +108,7 @@ int run(const Args& a) {
   if (obj) write_obj(a.output, out);
   else write_ply(a.output, out, {});
   progress.finish();
-  if (!rep.reached) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
+  if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
   if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);

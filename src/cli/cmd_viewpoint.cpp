@@ -11,6 +11,7 @@
 #include "api/viewpoint_backend.h"
 #include "api/viewpoint_score.h"
 #include "json_string.h"
+#include "load_input.h"
 #include "number_options.h"
 #include "output_check.h"
 #include "progress.h"
@@ -51,7 +52,7 @@ int run(const Options& o) {
   if (!o.out_png.empty()) check_render_style(style);
   Backend backend = parse_backend(o.backend);
   ViewScore kind = parse_view_score(o.score);
-  Mesh mesh = load_mesh(o.input);
+  Mesh mesh = load_input(o.input, false);
 
   Progress progress(stderr_is_terminal());
   SaliencyOptions sopt;

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "command.h"
 #include "core/colormap.h"
 #include "meshsal/meshsal.h"
 
@@ -47,7 +48,7 @@ Backend parse_backend(const std::string& name) {
   if (name == "auto") return Backend::Auto;
   if (name == "cpu") return Backend::Cpu;
   if (name == "gpu") return Backend::Gpu;
-  throw Error("--backend must be auto, cpu or gpu, got '" + name + "'");
+  throw UsageError("--backend must be auto, cpu or gpu, got '" + name + "'");
 }
 
 void add_precision_option(CLI::App& app, std::string* name) {
