@@ -18,7 +18,7 @@ struct Args {
   std::string precision = "auto";  // --precision
   std::string input, output, backend = "auto", scales = "2,3,4,5,6";
   double eps_frac = 0.003;
-  bool dump_scales = false, quiet = false;
+  bool dump_scales = false, quiet = false, json = false;
   unsigned threads = 0;
   int device = -1;
 };
@@ -49,7 +49,9 @@ int run(const Args& a) {
   progress.update("writing", 0.0);
   write_saliency_ply(a.output, mesh, r, a.dump_scales);
   progress.finish();
-  if (!a.quiet) {
+  if (a.json) {
+    print_saliency_json(a.input, a.output, mesh, r, load);
+  } else if (!a.quiet) {
     print_saliency_summary(mesh, r, load);
     std::printf("wrote      %s\n", a.output.c_str());
   }
@@ -59,10 +61,10 @@ int run(const Args& a) {
 RunFn setup(CLI::App& sub) {
   auto a = std::make_shared<Args>();
   sub.footer(
-      "Compute the mesh saliency of IN (OBJ, PLY or OFF, optionally .gz) and write OUT.ply:\n"
+      "Compute the mesh saliency of IN (OBJ, PLY, OFF or STL, optionally .gz) and write OUT.ply:\n"
       "binary PLY with the input positions and faces, per-vertex `quality` (saliency, read by\n"
       "MeshLab) and red/green/blue (low = blue, high = red).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, optionally .gz)")->required();
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output PLY file")->required();
   sub.add_option("--backend", a->backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
@@ -77,7 +79,10 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
-  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
+  sub.add_flag("--json", a->json,
+               "Print the summary as one JSON object on stdout (mesh, device, seconds, stages, "
+               "saliency min/mean/max/p10/p50/p90/p99)");
   return [a] { return run(*a); };
 }
 

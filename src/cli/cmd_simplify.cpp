@@ -11,6 +11,7 @@
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "json_object.h"
 #include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
@@ -24,7 +25,7 @@ struct Args {
   long long target_faces = 0;
   double ratio = 0;
   double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
-  bool has_target = false, has_ratio = false, quiet = false;
+  bool has_target = false, has_ratio = false, quiet = false, json = false;
   unsigned threads = 0;
 };
 
@@ -60,10 +61,16 @@ int run(const Args& a) {
     if (obj) write_obj(a.output, mesh);
     else write_ply(a.output, mesh, {});
     progress.finish();
+    if (a.json)
+      JsonObject()
+          .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
+          .count("input_faces", mesh.triangle_count()).count("output_vertices", mesh.vertex_count())
+          .count("output_faces", mesh.triangle_count()).count("target_faces", mesh.triangle_count())
+          .flag("unchanged", true).count("collapses", 0).number("seconds", since(t0)).print();
     if (!a.quiet) {
       std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
                    a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
-      std::printf("wrote      %s\n", a.output.c_str());
+      if (!a.json) std::printf("wrote      %s\n", a.output.c_str());
     }
     return 0;
   }
@@ -109,7 +116,18 @@ int run(const Args& a) {
   else write_ply(a.output, out, {});
   progress.finish();
   if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
-  if (!a.quiet) {
+  if (a.json) {
+    JsonObject j;
+    j.text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
+        .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
+        .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
+        .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
+        .text("weights", weights.empty() ? "none" : "saliency");
+    if (!weights.empty())
+      j.number("lambda", a.lambda).number("alpha", alpha).number("alpha_percentile", a.alpha_percentile)
+          .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
+    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", since(t0)).print();
+  } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);
     if (!weights.empty())
@@ -133,7 +151,7 @@ RunFn setup(CLI::App& sub) {
       "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4).\n"
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
       "closed mesh only has even face counts, so an odd target ends one face above it (noted).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, optionally .gz)")->required();
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub.add_option_function<long long>(
       "--target-faces", [a](long long n) { a->target_faces = n; a->has_target = true; },
@@ -157,7 +175,8 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
   add_precision_option(sub, &a->precision);
   add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
-  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
+  sub.add_flag("--json", a->json, "Print the summary as one JSON object on stdout");
   return [a] { return run(*a); };
 }
 
