@@ -134,3 +134,33 @@ TEST_CASE("cli compare: --saliency-from like the other commands", "[cli]") {
   CHECK(r.rc == 0);
   CHECK(r.out.find("\"saliency\": \"file\"") != std::string::npos);
 }
+
+// On a terminal (util-linux `script` gives the command one), viewpoint and compare show
+// their stages on stderr like the other long commands; through a pipe they stay silent.
+TEST_CASE("cli: viewpoint and compare show progress on a terminal", "[cli]") {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) {
+    WARN("skipped: util-linux `script` is not installed");
+    return;
+  }
+  meshsal_test::TempDir dir;
+  meshsal::write_ply(dir.file("sphere.ply"), meshsal::make_bumpy_sphere(3), {});
+  const std::string base = std::string("'") + MESHSAL_CLI + "' ";
+  auto on_terminal = [&](const std::string& args) {
+    const std::string log = dir.file("tty.txt");
+    const std::string cmd = "script -qec \"" + base + args + " > /dev/null\" /dev/null > '" + log + "' 2>&1";
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    return meshsal_test::read_file(log);
+  };
+  const std::string mesh = q(dir.file("sphere.ply"));
+  std::string tty = on_terminal("viewpoint " + mesh + " --backend cpu --restarts 2 --resolution 64 --views 300");
+  CHECK(tty.find("best view") != std::string::npos);
+  CHECK(tty.find("view map") != std::string::npos);
+  CHECK(tty.find("100%") != std::string::npos);
+  tty = on_terminal("compare " + mesh + " " + mesh + " --backend cpu --samples 100");
+  CHECK(tty.find("gaussian sweep") != std::string::npos);
+  CHECK(tty.find("comparing surfaces") != std::string::npos);
+  // Not a terminal: nothing but the JSON.
+  const Run r = run_cli("compare " + mesh + " " + mesh + " --backend cpu --samples 100", dir);
+  CHECK(r.rc == 0);
+  CHECK(r.err.empty());
+}

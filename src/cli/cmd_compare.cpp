@@ -13,6 +13,7 @@
 #include "json_object.h"
 #include "load_input.h"
 #include "number_options.h"
+#include "progress.h"
 #include "saliency_output.h"
 
 namespace meshsal_cli {
@@ -29,6 +30,8 @@ struct Args {
 int run(const Args& a) {
   using namespace meshsal;
   const auto t0 = std::chrono::steady_clock::now();
+  Progress progress(stderr_is_terminal());  // on stderr: stdout holds only the JSON
+  progress.update("reading", 0.0);
   const Mesh original = load_input(a.original, false);
   const Mesh simplified = load_input(a.simplified, false);
   std::vector<double> s;
@@ -42,6 +45,7 @@ int run(const Args& a) {
     so.precision = meshsal::parse_precision(a.precision);
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     s = compute_saliency(original, so).saliency;
     source = "computed";
   }
@@ -49,7 +53,9 @@ int run(const Args& a) {
   co.face_samples = size_t(a.samples);
   co.salient_fraction = a.fraction;
   co.threads = a.threads;
+  progress.update("comparing surfaces", 0.0);
   const SurfaceComparison r = compare_surfaces(original, simplified, &s, co);
+  progress.finish();
   // Every distance in model units and in % of the original's bounding-box diagonal.
   JsonObject j;
   j.text("mesh", a.original).text("original", a.original).text("simplified", a.simplified)
