@@ -70,23 +70,37 @@ struct LoadOptions {
   // The most bytes a gzipped file may inflate to, and a pipe (FIFO) may deliver. 0 means
   // the environment variable MESHSAL_MAX_INPUT when it is set (bytes, with an optional
   // K, M or G suffix), else the default: for a gzipped PLY or OFF, 64 MiB + 64 times the
-  // bytes its header's counts need; for a gzipped OBJ (no header) and for a pipe, 1 GiB.
+  // bytes its header's counts need (a binary STL: its triangle count); for a gzipped OBJ or
+  // ASCII STL (no counts) and for a pipe, 1 GiB.
   uint64_t max_input_bytes = 0;
 };
 
-// Loads OBJ, PLY (ascii, binary little/big endian) or OFF, optionally gzipped, chosen by
-// extension (.obj .ply .off, each optionally followed by .gz). Polygons are
-// fan-triangulated. The result is validated. Throws Error with a one-line message that
-// names `path` on any problem. If `properties` is given, scalar PLY vertex properties are
-// returned there. Only regular files and FIFOs are read (devices such as /dev/zero are
-// refused).
+// What loading did to the file's data besides parsing it.
+struct LoadReport {
+  // STL only (0 for the other formats): the triangle corners that were merged into an
+  // earlier vertex at exactly the same position (float equality, -0 equal to +0), i.e.
+  // 3 * triangles - vertices of the result. STL stores every corner by value; welding
+  // gives the shared vertices that curvature needs.
+  uint64_t welded_corners = 0;
+};
+
+// Loads OBJ, PLY (ascii, binary little/big endian), OFF or STL (ascii or binary), optionally
+// gzipped, chosen by extension (.obj .ply .off .stl, each optionally followed by .gz).
+// Polygons are fan-triangulated. STL corners at identical positions are welded into shared
+// vertices, numbered in order of first appearance (the count goes to `report`); a binary
+// STL is recognised by its size (84 + 50 n bytes), whatever its header says, and an STL
+// with a non-finite coordinate is refused. The result is validated. Throws Error with a
+// one-line message that names `path` on any problem. If `properties` is given, scalar PLY
+// vertex properties are returned there. Only regular files and FIFOs are read (devices
+// such as /dev/zero are refused).
 Mesh load_mesh(const std::string& path, VertexProperties* properties = nullptr,
-               const LoadOptions& options = {});
+               const LoadOptions& options = {}, LoadReport* report = nullptr);
 
 // The same from bytes in memory: `name` picks the format by its extension, as a path
 // does, and starts every error message.
 Mesh load_mesh_bytes(std::string_view bytes, const std::string& name,
-                     VertexProperties* properties = nullptr, const LoadOptions& options = {});
+                     VertexProperties* properties = nullptr, const LoadOptions& options = {},
+                     LoadReport* report = nullptr);
 
 struct PlyFloatProperty {
   std::string name;

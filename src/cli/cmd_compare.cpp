@@ -1,5 +1,7 @@
 // meshsal compare ORIGINAL SIMPLIFIED: surface distances between a mesh and its simplification.
+#include <chrono>
 #include <cstdio>
+#include <utility>
 #include <memory>
 #include <string>
 
@@ -8,8 +10,10 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/surface_distance.h"
-#include "json_string.h"
+#include "json_object.h"
+#include "load_input.h"
 #include "number_options.h"
+#include "progress.h"
 #include "saliency_output.h"
 
 namespace meshsal_cli {
@@ -26,8 +30,11 @@ struct Args {
 
 int run(const Args& a) {
   using namespace meshsal;
-  const Mesh original = load_mesh(a.original);
-  const Mesh simplified = load_mesh(a.simplified);
+  const auto t0 = std::chrono::steady_clock::now();
+  Progress progress(stderr_is_terminal());  // on stderr: stdout holds only the JSON
+  progress.update("reading", 0.0);
+  const Mesh original = load_input(a.original, false);
+  const Mesh simplified = load_input(a.simplified, false);
   std::vector<double> s;
   std::string source;
   if (!a.saliency.empty()) {
@@ -40,6 +47,7 @@ int run(const Args& a) {
     so.method = meshsal::parse_method(a.method);
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     s = compute_saliency(original, so).saliency;
     source = "computed";
   }
@@ -47,17 +55,26 @@ int run(const Args& a) {
   co.face_samples = size_t(a.samples);
   co.salient_fraction = a.fraction;
   co.threads = a.threads;
+  progress.update("comparing surfaces", 0.0);
   const SurfaceComparison r = compare_surfaces(original, simplified, &s, co);
-  std::printf(
-      "{\"original\": %s, \"simplified\": %s, \"original_faces\": %zu, \"simplified_faces\": %zu, "
-      "\"diagonal\": %.9g, \"hausdorff\": %.9g, \"rms\": %.9g, "
-      "\"forward_max\": %.9g, \"forward_rms\": %.9g, \"backward_max\": %.9g, \"backward_rms\": %.9g, "
-      "\"salient_error\": %.9g, \"salient_vertices\": %zu, \"salient_fraction\": %g, "
-      "\"saliency\": \"%s\", \"forward_samples\": %zu, \"backward_samples\": %zu}\n",
-      json_string(a.original).c_str(), json_string(a.simplified).c_str(), original.triangle_count(),
-      simplified.triangle_count(), r.diagonal, r.hausdorff, r.rms, r.forward_max, r.forward_rms,
-      r.backward_max, r.backward_rms, r.salient_error, r.salient_vertices, a.fraction,
-      source.c_str(), r.forward_samples, r.backward_samples);
+  progress.finish();
+  // Every distance in model units and in % of the original's bounding-box diagonal.
+  JsonObject j;
+  j.text("mesh", a.original).text("original", a.original).text("simplified", a.simplified)
+      .count("original_faces", original.triangle_count()).count("simplified_faces", simplified.triangle_count())
+      .number("diagonal", r.diagonal);
+  const std::pair<const char*, double> distances[] = {
+      {"hausdorff", r.hausdorff},       {"rms", r.rms},
+      {"forward_max", r.forward_max},   {"forward_rms", r.forward_rms},
+      {"backward_max", r.backward_max}, {"backward_rms", r.backward_rms},
+      {"salient_error", r.salient_error}};
+  for (const auto& [name, d] : distances) j.number(name, d);
+  for (const auto& [name, d] : distances)
+    j.number(std::string(name) + "_percent", r.diagonal > 0 ? 100.0 * d / r.diagonal : 0.0);
+  j.count("salient_vertices", r.salient_vertices).number("salient_fraction", a.fraction).text("saliency", source)
+      .count("forward_samples", r.forward_samples).count("backward_samples", r.backward_samples)
+      .number("seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  j.print();
   return 0;
 }
 
@@ -69,10 +86,13 @@ RunFn setup(CLI::App& sub) {
       "--samples area-spread points; symmetric = the larger of the two directions) and the\n"
       "salient-region error: the mean distance from the original's top 30% most salient\n"
       "vertices to the simplified surface. Saliency comes from --saliency FILE.ply or is\n"
-      "computed. Distances are in model units; `diagonal` is the original's bbox diagonal.");
+      "computed. Distances are in model units, and as NAME_percent in % of `diagonal`, the\n"
+      "original's bounding-box diagonal. forward = from ORIGINAL's surface to SIMPLIFIED's,\n"
+      "backward = from SIMPLIFIED's to ORIGINAL's.");
   sub.add_option("original", a->original, "The original mesh")->required();
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
-  sub.add_option("--saliency", a->saliency, "Saliency PLY of the original (`meshsal saliency`)");
+  sub.add_option("--saliency-from,--saliency", a->saliency,
+                 "Reuse S from this saliency PLY of the original (`meshsal saliency`) instead of computing it");
   sub.add_option("--samples", a->samples, "Area samples per surface besides its vertices")
       ->capture_default_str()->check(whole_in(0, 100000000));
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")

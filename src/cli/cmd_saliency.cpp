@@ -7,6 +7,7 @@
 #include "saliency/saliency.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -18,7 +19,7 @@ struct Args {
   std::string method = "exact";    // --method
   std::string input, output, backend = "auto", scales = "2,3,4,5,6";
   double eps_frac = 0.003;
-  bool dump_scales = false, quiet = false;
+  bool dump_scales = false, quiet = false, json = false;
   unsigned threads = 0;
   int device = -1;
 };
@@ -38,17 +39,21 @@ int run(const Args& a) {
   check_saliency_options(opt);
   Progress progress(!a.quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  opt.notice = [&a](const std::string& line) {
+    if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  };
 
   auto t0 = std::chrono::steady_clock::now();
   progress.update("reading", 0.0);
-  Mesh mesh = load_mesh(a.input);
+  Mesh mesh = load_input(a.input, a.quiet);
   double load = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);
   write_saliency_ply(a.output, mesh, r, a.dump_scales);
   progress.finish();
-  if (!a.quiet) {
+  if (a.json) {
+    print_saliency_json(a.input, a.output, mesh, r, load);
+  } else if (!a.quiet) {
     print_saliency_summary(mesh, r, load);
     std::printf("wrote      %s\n", a.output.c_str());
   }
@@ -58,10 +63,10 @@ int run(const Args& a) {
 RunFn setup(CLI::App& sub) {
   auto a = std::make_shared<Args>();
   sub.footer(
-      "Compute the mesh saliency of IN (OBJ, PLY or OFF, optionally .gz) and write OUT.ply:\n"
+      "Compute the mesh saliency of IN (OBJ, PLY, OFF or STL, optionally .gz) and write OUT.ply:\n"
       "binary PLY with the input positions and faces, per-vertex `quality` (saliency, read by\n"
       "MeshLab) and red/green/blue (low = blue, high = red).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, optionally .gz)")->required();
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output PLY file")->required();
   sub.add_option("--backend", a->backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
@@ -77,7 +82,10 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
-  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
+  sub.add_flag("--json", a->json,
+               "Print the summary as one JSON object on stdout (mesh, device, seconds, stages, "
+               "saliency min/mean/max/p10/p50/p90/p99)");
   return [a] { return run(*a); };
 }
 

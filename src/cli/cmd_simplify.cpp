@@ -11,6 +11,8 @@
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "json_object.h"
+#include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -24,7 +26,7 @@ struct Args {
   long long target_faces = 0;
   double ratio = 0;
   double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
-  bool has_target = false, has_ratio = false, quiet = false;
+  bool has_target = false, has_ratio = false, quiet = false, json = false;
   unsigned threads = 0;
 };
 
@@ -38,21 +40,41 @@ int run(const Args& a) {
   check_outputs({{a.output, "-o", {".obj", ".ply"}}}, {a.input, a.saliency_from});
   const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
                                             a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
-  if (a.has_target == a.has_ratio) throw Error("give exactly one of --target-faces N and --ratio R");
+  if (a.has_target == a.has_ratio) throw UsageError("give exactly one of --target-faces N and --ratio R");
   if (a.weights != "saliency" && a.weights != "none")
-    throw Error("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
+    throw UsageError("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
   if (a.weights == "none" && !a.saliency_from.empty())
-    throw Error("--saliency-from needs --weights saliency");
+    throw UsageError("--saliency-from needs --weights saliency");
 
   Progress progress(!a.quiet && stderr_is_terminal());
   const auto t0 = std::chrono::steady_clock::now();
   progress.update("reading", 0.0);
-  const Mesh mesh = load_mesh(a.input);
+  const Mesh mesh = load_input(a.input, a.quiet);
   const double t_load = since(t0);
 
   SimplifyOptions opt;
   if (a.has_target) opt.target_faces = size_t(a.target_faces);
   else opt.ratio = a.ratio;
+  // A target at or above the face count keeps the mesh as it is (as meshoptimizer does),
+  // so that batch scripts over meshes of any size do not stop on the small ones.
+  if (a.has_target ? size_t(a.target_faces) >= mesh.triangle_count() : a.ratio >= 1) {
+    progress.update("writing", 0.0);
+    if (obj) write_obj(a.output, mesh);
+    else write_ply(a.output, mesh, {});
+    progress.finish();
+    if (a.json)
+      JsonObject()
+          .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
+          .count("input_faces", mesh.triangle_count()).count("output_vertices", mesh.vertex_count())
+          .count("output_faces", mesh.triangle_count()).count("target_faces", mesh.triangle_count())
+          .flag("unchanged", true).count("collapses", 0).number("seconds", since(t0)).print();
+    if (!a.quiet) {
+      std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
+                   a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
+      if (!a.json) std::printf("wrote      %s\n", a.output.c_str());
+    }
+    return 0;
+  }
   // Check the target before spending time on saliency.
   resolve_target_faces(opt, mesh.triangle_count());
 
@@ -75,7 +97,9 @@ int run(const Args& a) {
       so.method = meshsal::parse_method(a.method);
       so.smoothed = true;
       so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-      so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+      so.notice = [&a](const std::string& line) {
+        if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+      };
       smoothed = compute_saliency(mesh, so).smoothed;
     }
     SaliencyWeightOptions wo;
@@ -93,8 +117,19 @@ int run(const Args& a) {
   if (obj) write_obj(a.output, out);
   else write_ply(a.output, out, {});
   progress.finish();
-  if (!rep.reached) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
-  if (!a.quiet) {
+  if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
+  if (a.json) {
+    JsonObject j;
+    j.text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
+        .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
+        .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
+        .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
+        .text("weights", weights.empty() ? "none" : "saliency");
+    if (!weights.empty())
+      j.number("lambda", a.lambda).number("alpha", alpha).number("alpha_percentile", a.alpha_percentile)
+          .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
+    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", since(t0)).print();
+  } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);
     if (!weights.empty())
@@ -118,7 +153,7 @@ RunFn setup(CLI::App& sub) {
       "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4).\n"
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
       "closed mesh only has even face counts, so an odd target ends one face above it (noted).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, optionally .gz)")->required();
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub.add_option_function<long long>(
       "--target-faces", [a](long long n) { a->target_faces = n; a->has_target = true; },
@@ -143,7 +178,8 @@ RunFn setup(CLI::App& sub) {
   add_precision_option(sub, &a->precision);
   add_method_option(sub, &a->method);
   add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
-  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
+  sub.add_flag("--json", a->json, "Print the summary as one JSON object on stdout");
   return [a] { return run(*a); };
 }
 

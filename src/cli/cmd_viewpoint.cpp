@@ -1,5 +1,6 @@
 // `meshsal viewpoint`: the view direction that sees the most saliency (SPEC 3), as JSON.
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -11,6 +12,7 @@
 #include "api/viewpoint_backend.h"
 #include "api/viewpoint_score.h"
 #include "json_string.h"
+#include "load_input.h"
 #include "number_options.h"
 #include "output_check.h"
 #include "progress.h"
@@ -52,7 +54,7 @@ int run(const Options& o) {
   if (!o.out_png.empty()) check_render_style(style);
   Backend backend = parse_backend(o.backend);
   ViewScore kind = parse_view_score(o.score);
-  Mesh mesh = load_mesh(o.input);
+  Mesh mesh = load_input(o.input, false);
 
   Progress progress(stderr_is_terminal());
   SaliencyOptions sopt;
@@ -76,11 +78,29 @@ int run(const Options& o) {
   OptimiserOptions oopt;
   oopt.restarts = o.restarts;
   oopt.seed = o.seed;
-  OptimiserResult best = optimise_viewpoint(setup.scorer, oopt);
+  // Progress counts the views scored against how many there can be: for the optimiser an
+  // upper bound (a start, then at most 4 probes and a step per iteration and restart), so
+  // its percentage runs ahead of the work only when the restarts end early.
+  const char* stage = "best view";
+  double views_done = 0, views_bound = double(oopt.restarts) * (1 + 5.0 * oopt.max_iterations);
+  const ViewScorer scorer = [&](const std::vector<ViewAngles>& views) {
+    std::vector<double> u = setup.scorer(views);
+    views_done += double(views.size());
+    progress.update(stage, std::min(1.0, views_done / views_bound));
+    return u;
+  };
+  progress.update(stage, 0.0);
+  OptimiserResult best = optimise_viewpoint(scorer, oopt);
 
   int map_views = o.views > 0 ? o.views : (o.map_png.empty() ? 0 : 2000);
   ViewMap map;
-  if (map_views > 0) map = exhaustive_map(setup.scorer, map_views, setup.batch);
+  if (map_views > 0) {
+    stage = "view map";
+    views_done = 0;
+    views_bound = map_views;
+    map = exhaustive_map(scorer, map_views, setup.batch);
+  }
+  progress.finish();
 
   double total = 0;
   for (float w : visibility_weights(mesh, score)) total += w;

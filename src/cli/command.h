@@ -2,6 +2,7 @@
 // so adding a command never touches main.cpp.
 #pragma once
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -17,6 +18,12 @@ struct Command {
   int order;           // position in `meshsal --help`
   // Adds the command's options to `sub` (bound to state the returned RunFn captures).
   std::function<RunFn(CLI::App& sub)> setup;
+};
+
+// A wrong combination of options, found after parsing: like a bad number, a usage error
+// (main prints "error: MESSAGE (see --help)" and exits with status 2, not 1).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // Called from a static initialiser in each cmd_*.cpp: `static bool reg = register_command({...});`

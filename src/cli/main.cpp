@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "command.h"
@@ -18,6 +19,34 @@ static std::vector<Command>& registry() {
 bool register_command(Command command) {
   registry().push_back(std::move(command));
   return true;
+}
+
+// Edit distance (insertions, deletions, substitutions) between two short words.
+static size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// ", did you mean 'NAME'?" for the nearest command name (a prefix of one counts as near),
+// or "" when none is within a third of the word's length (at least 2 edits).
+static std::string suggestion(const std::string& given, const std::vector<std::string>& names) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, given.size() / 3) + 1;
+  for (const std::string& n : names) {
+    const size_t d = n.compare(0, given.size(), given) == 0 ? 0 : edit_distance(given, n);
+    if (d < best_d) best_d = d, best = n;
+  }
+  return best.empty() ? "" : ", did you mean '" + best + "'?";
 }
 
 }  // namespace meshsal_cli
@@ -41,6 +70,17 @@ int main(int argc, char** argv) {
     runs[sub] = c.setup(*sub);
   }
 
+  // An unknown command would otherwise read "The following arguments were not expected".
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string given = argv[1];
+    std::vector<std::string> names;
+    for (const Command& c : commands) names.push_back(c.name);
+    if (std::find(names.begin(), names.end(), given) == names.end()) {
+      std::fprintf(stderr, "error: unknown command '%s'%s (see meshsal --help)\n", given.c_str(),
+                   suggestion(given, names).c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -57,6 +97,9 @@ int main(int argc, char** argv) {
   try {
     for (auto& [sub, run] : runs)
       if (sub->parsed()) return run();
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
+    return 2;
   } catch (const meshsal::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

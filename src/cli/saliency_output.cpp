@@ -1,9 +1,13 @@
 #include "saliency_output.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
 
+#include "command.h"
+#include "json_object.h"
 #include "core/colormap.h"
 #include "meshsal/meshsal.h"
 
@@ -24,6 +28,56 @@ void write_saliency_ply(const std::string& path, const Mesh& mesh, const Salienc
   write_ply(path, mesh, props, &rgb);
 }
 
+SaliencyStats saliency_stats(const SaliencyResult& r) {
+  std::vector<double> s;
+  for (size_t v = 0; v < r.saliency.size(); ++v)
+    if (v < r.is_point.size() && r.is_point[v]) s.push_back(r.saliency[v]);
+  SaliencyStats st;
+  if (s.empty()) return st;
+  std::sort(s.begin(), s.end());
+  double sum = 0;
+  for (double x : s) sum += x;
+  // Nearest rank: the smallest value with at least p% of the points at or below it.
+  auto rank = [&](double p) {
+    const size_t k = static_cast<size_t>(std::ceil(p / 100.0 * double(s.size())));
+    return s[std::min(s.size() - 1, k == 0 ? 0 : k - 1)];
+  };
+  st.min = s.front();
+  st.max = s.back();
+  st.mean = sum / double(s.size());
+  st.p10 = rank(10);
+  st.p50 = rank(50);
+  st.p90 = rank(90);
+  st.p99 = rank(99);
+  return st;
+}
+
+void print_saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
+                         const SaliencyResult& r, double load_seconds) {
+  size_t points = 0;
+  for (uint8_t f : r.is_point) points += f;
+  JsonObject stages;
+  double total = 0;
+  for (const StageTime& s : r.stages) {
+    std::string key = s.name;  // "gaussian sweep" -> "gaussian_sweep": keys are snake_case
+    for (char& c : key)
+      if (c == ' ' || c == '-') c = '_';
+    stages.number(key, s.seconds);
+    total += s.seconds;
+  }
+  const SaliencyStats st = saliency_stats(r);
+  JsonObject stats;
+  stats.number("min", st.min).number("mean", st.mean).number("max", st.max).number("p10", st.p10)
+      .number("p50", st.p50).number("p90", st.p90).number("p99", st.p99);
+  JsonObject j;
+  j.text("mesh", input).text("output", output).count("vertices", mesh.vertex_count()).count("points", points)
+      .count("faces", mesh.triangle_count()).number("eps", r.eps).text("device", r.backend_name)
+      .text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
+      .number("read_seconds", load_seconds).number("seconds", total).object("stages", stages)
+      .count("pairs", r.pairs).object("saliency", stats);
+  j.print();
+}
+
 void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double load_seconds) {
   size_t points = 0;
   for (uint8_t f : r.is_point) points += f;
@@ -38,18 +92,21 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   std::printf("read       %8.3f s\n", load_seconds);
   double total = 0;
   for (const StageTime& s : r.stages) {
-    std::printf("%-10.10s %8.3f s\n", s.name.c_str(), s.seconds);
+    std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);  // never cut a stage name
     total += s.seconds;
   }
   std::printf("saliency   %8.3f s total, %.3g neighbour pairs, %.3g pairs/s\n", total,
               double(r.pairs), total > 0 ? double(r.pairs) / total : 0.0);
+  const SaliencyStats st = saliency_stats(r);
+  std::printf("S          min %g, mean %g, max %g; percentiles 10: %g, 50: %g, 90: %g, 99: %g\n", st.min,
+              st.mean, st.max, st.p10, st.p50, st.p90, st.p99);
 }
 
 Backend parse_backend(const std::string& name) {
   if (name == "auto") return Backend::Auto;
   if (name == "cpu") return Backend::Cpu;
   if (name == "gpu") return Backend::Gpu;
-  throw Error("--backend must be auto, cpu or gpu, got '" + name + "'");
+  throw UsageError("--backend must be auto, cpu or gpu, got '" + name + "'");
 }
 
 void add_precision_option(CLI::App& app, std::string* name) {

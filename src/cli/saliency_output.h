@@ -16,9 +16,20 @@ namespace meshsal_cli {
 void write_saliency_ply(const std::string& path, const meshsal::Mesh& mesh,
                         const meshsal::SaliencyResult& result, bool dump_scales);
 
-// Prints vertices, faces, eps, backend, time per stage and pairs/s to stdout.
+// Saliency S over the mesh points: min, mean, max and percentiles (nearest rank).
+struct SaliencyStats {
+  double min = 0, mean = 0, max = 0, p10 = 0, p50 = 0, p90 = 0, p99 = 0;
+};
+SaliencyStats saliency_stats(const meshsal::SaliencyResult& result);
+
+// Prints vertices, faces, eps, backend, time per stage, pairs/s and the statistics of S
+// to stdout.
 void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyResult& result,
                             double load_seconds);
+
+// The same as one JSON object (json_object.h) on stdout; `output` is the PLY written.
+void print_saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
+                         const meshsal::SaliencyResult& result, double load_seconds);
 
 // Parses "auto" / "cpu" / "gpu".
 meshsal::Backend parse_backend(const std::string& name);

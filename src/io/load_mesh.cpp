@@ -28,9 +28,9 @@ std::string lower_extension(const std::string& path, bool& gz) {
 
 std::string check_extension(const std::string& name, bool& gz) {
   const std::string ext = lower_extension(name, gz);
-  if (ext != ".obj" && ext != ".ply" && ext != ".off")
+  if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
     throw Error(name + ": unknown mesh format" + (ext.empty() ? std::string() : " '" + ext + "'") +
-                " (expected .obj, .ply or .off, optionally gzipped as .gz)");
+                " (expected .obj, .ply, .off or .stl, optionally gzipped as .gz)");
   return ext;
 }
 
@@ -54,7 +54,7 @@ uint64_t explicit_limit(const LoadOptions& options) {
 }
 
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
-           VertexProperties* properties, uint64_t limit) {
+           VertexProperties* properties, uint64_t limit, LoadReport* report) {
   Bytes inflated;
   std::string_view bytes = raw;
   if (has_gzip_magic(raw)) {
@@ -62,6 +62,7 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
       // The header is checked either way, so garbage fails before the rest is inflated.
       const uint64_t rule = ext == ".ply"   ? ply_input_limit(head, name)
                             : ext == ".off" ? off_input_limit(head, name)
+                            : ext == ".stl" ? stl_input_limit(head, name)
                                             : kNoHeaderLimitBytes;
       return limit ? limit : rule;
     });
@@ -72,6 +73,7 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
   Mesh mesh;
   if (ext == ".obj") mesh = load_obj_text(bytes, name);
   else if (ext == ".off") mesh = load_off_text(bytes, name);
+  else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
   else mesh = load_ply_bytes(bytes, name, properties);
   return mesh;
 }
@@ -101,22 +103,25 @@ Mesh load_named(const std::string& name, VertexProperties* properties, Load&& lo
 
 }  // namespace
 
-Mesh load_mesh(const std::string& path, VertexProperties* properties, const LoadOptions& options) {
+Mesh load_mesh(const std::string& path, VertexProperties* properties, const LoadOptions& options,
+               LoadReport* report) {
+  if (report) *report = LoadReport();
   bool gz = false;
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
     const uint64_t limit = explicit_limit(options);
     const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes);
-    return parse(file.view(), path, ext, gz, properties, limit);
+    return parse(file.view(), path, ext, gz, properties, limit, report);
   });
 }
 
 Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                     const LoadOptions& options) {
+                     const LoadOptions& options, LoadReport* report) {
+  if (report) *report = LoadReport();
   bool gz = false;
   const std::string ext = check_extension(name, gz);
   return load_named(name, properties,
-                    [&] { return parse(bytes, name, ext, gz, properties, explicit_limit(options)); });
+                    [&] { return parse(bytes, name, ext, gz, properties, explicit_limit(options), report); });
 }
 
 }  // namespace meshsal

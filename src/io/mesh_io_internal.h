@@ -15,6 +15,9 @@ namespace meshsal {
 Mesh load_obj_text(std::string_view text, const std::string& name);
 Mesh load_off_text(std::string_view text, const std::string& name);
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties);
+// STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
+// earlier vertex at the same position.
+Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
 
 // The fan triangulation of one polygon (n >= 3 indices, already checked): (p0, pi, pi+1).
 template <class Index>
@@ -37,6 +40,8 @@ constexpr uint64_t kCountsFactor = 64;
 constexpr uint64_t kNoHeaderLimitBytes = uint64_t(1) << 30;
 uint64_t ply_input_limit(std::string_view head, const std::string& name);
 uint64_t off_input_limit(std::string_view head, const std::string& name);
+// STL: a binary header's triangle count as PLY's counts; ASCII (no counts) as OBJ.
+uint64_t stl_input_limit(std::string_view head, const std::string& name);
 
 // header + slack + factor * need, saturating.
 inline uint64_t counts_limit(uint64_t header_bytes, unsigned __int128 need) {

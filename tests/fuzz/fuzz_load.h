@@ -33,12 +33,13 @@ inline std::string load(const uint8_t* data, size_t size, const std::string& nam
   }
 }
 
-// The targets: obj, off, ply (the bytes are the file), gz (the first byte picks the format
+// The targets: obj, off, ply, stl (the bytes are the file), gz (the first byte picks the format
 // inside, the rest is the .gz file) and saliency (the first byte picks the format; small
 // meshes that load go through the CPU saliency pipeline). Returns load's result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
-  if (target == "obj" || target == "off" || target == "ply") return load(data, size, "fuzz." + target, mesh);
+  if (target == "obj" || target == "off" || target == "ply" || target == "stl")
+    return load(data, size, "fuzz." + target, mesh);
   if (size < 1) return "empty input";
   static const char* const formats[] = {"obj", "off", "ply"};
   const std::string name = std::string("fuzz.") + formats[data[0] % 3] + (target == "gz" ? ".gz" : "");

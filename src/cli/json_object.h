@@ -1,0 +1,26 @@
+// meshsal CLI: one JSON object on one line, the form every command's --json output takes.
+// Keys are snake_case; numbers print with 9 significant digits (%.9g), non-finite ones as null.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace meshsal_cli {
+
+class JsonObject {
+ public:
+  JsonObject& number(const std::string& key, double value);
+  JsonObject& count(const std::string& key, uint64_t value);
+  JsonObject& text(const std::string& key, const std::string& value);
+  JsonObject& flag(const std::string& key, bool value);
+  JsonObject& object(const std::string& key, const JsonObject& value);
+  // Already-formatted JSON (an array, null).
+  JsonObject& raw(const std::string& key, const std::string& json);
+  std::string str() const { return "{" + body_ + "}"; }
+  // Prints str() and a newline on stdout, and flushes.
+  void print() const;
+
+ private:
+  std::string body_;
+};
+
+}  // namespace meshsal_cli
