@@ -89,7 +89,7 @@ double json_number(const std::string& text, const std::string& key) {
 }
 }  // namespace
 
-TEST_CASE("render: a sphere covers the disc the camera frames, centred", "[view]") {
+TEST_CASE("render: a sphere fills the picture (framed by its projected extent), centred", "[view]") {
   Mesh s = make_sphere(1.0, 4);
   ViewFrame frame = frame_mesh(s);
   RenderStyle style;
@@ -106,7 +106,7 @@ TEST_CASE("render: a sphere covers the disc the camera frames, centred", "[view]
         cx += x + 0.5;
         cy += y + 0.5;
       }
-  double r_px = 100.0 / (frame.radius * style.margin);  // sphere radius 1 in pixels
+  double r_px = 100.0 / style.margin;  // the sphere's outline spans the picture, less the margin
   CHECK(covered / (kPi * r_px * r_px) == Approx(1.0).margin(0.03));
   CHECK(cx / covered == Approx(100).margin(1.0));
   CHECK(cy / covered == Approx(100).margin(1.0));
@@ -129,7 +129,7 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
     for (int x = 0; x < 160; ++x) {
       const uint8_t* p = img.at(x, y);
       if (is_background(p)) continue;
-      int b = std::min(3, std::max(0, (x - 34) * 4 / 92));  // the disc spans about x 34..126
+      int b = std::min(3, std::max(0, (x - 4) * 4 / 152));  // the disc spans about x 4..156
       band[b] += decode_t(p);
       count[b] += 1;
     }
@@ -143,7 +143,7 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
   CHECK(band[0] < band[1]);
   CHECK(band[1] < band[2]);
   CHECK(band[2] < band[3]);
-  // The 99th-percentile scaling: the top 1% are the same full red, not rarer.
+  // The default scale is minimum to maximum, unclipped: one extreme vertex is the only red one.
   std::vector<double> one_hot(s.vertex_count(), 0.0);
   one_hot[0] = 1000.0;
   std::vector<uint8_t> c2 = score_colours(s, one_hot);
