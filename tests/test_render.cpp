@@ -16,6 +16,7 @@
 #include "meshsal/meshsal.h"
 #include "io/png_image.h"
 #include "view/render.h"
+#include "view/legend.h"
 #include "cli/render_demo.h"
 #include "core/synthetic.h"
 #include "test_util.h"
@@ -244,11 +245,12 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(read_png(dir + "/best.png").width == 128);
   CHECK(read_png(dir + "/map.png").height == 360);
 
-  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 96 -o " +
+  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
                   dir + "/r.png", &out) == 0);
   Image r = read_png(dir + "/r.png");
-  CHECK(r.width == 96);
-  const uint8_t* centre = r.at(48, 48);  // looking from +x at the most salient side: red
+  CHECK(r.width == 320);
+  const int top = title_height(text_size_for(320), 2);
+  const uint8_t* centre = r.at(160, top + 160);  // looking from +x at the most salient side: red
   CHECK(decode_t(centre) > 0.8);
   REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
                   dir + "/c.png", &out) == 0);

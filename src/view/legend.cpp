@@ -61,13 +61,17 @@ void draw_colour_bar(Image& img, int x, int y, int w, const ColorLimits& l, cons
     }
 }
 
+int title_height(double px, int lines) {
+  return lines == 0 ? 0 : int(std::lround(px * 0.4)) + int(std::lround(px * 1.25)) * lines;
+}
+
 Image add_title_and_bar(const Image& body, const std::vector<std::string>& title, const ColorLimits* bar,
                         const std::string& bar_label) {
   const double px = text_size_for(body.width);
   const int pad = int(std::lround(px * 0.4)), line = int(std::lround(px * 1.25));
   int width = body.width;
   for (const std::string& t : title) width = std::max(width, text_width(t, px) + 2 * pad);
-  const int title_h = title.empty() ? 0 : pad + line * int(title.size());
+  const int title_h = title_height(px, int(title.size()));
   const int bar_h = bar ? colour_bar_height(px) + 2 * pad : 0;
   Image out(width, title_h + body.height + bar_h);
   for (size_t i = 0; i < title.size(); ++i) draw_text(out, pad, pad + line * int(i), title[i], px, kInk);

@@ -24,6 +24,9 @@ void draw_colour_bar(Image& img, int x, int y, int w, const ColorLimits& limits,
 // Pixel column of value v on a bar drawn at x with width w.
 int colour_bar_x(int x, int w, const ColorLimits& limits, double v);
 
+// Height of the band of `lines` title lines at text size px (add_title_and_bar's top band).
+int title_height(double px, int lines);
+
 // `body` with `title` lines above it and, when bar is given, a colour bar (labelled) below;
 // background white. Width: body's (at least the title's).
 Image add_title_and_bar(const Image& body, const std::vector<std::string>& title,
