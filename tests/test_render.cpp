@@ -242,8 +242,8 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(json_number(out, "views_evaluated") > 150);
   CHECK(json_number(out, "U") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "U"));
   CHECK(json_number(out, "U_fraction") > 0.5);
-  CHECK(read_png(dir + "/best.png").width == 128);
-  CHECK(read_png(dir + "/map.png").height == 360);
+  CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
+  CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
 
   REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
                   dir + "/r.png", &out) == 0);

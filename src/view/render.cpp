@@ -315,19 +315,26 @@ Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, con
     uint8_t* px = img.at(x, y);
     px[0] = px[1] = px[2] = v;
   };
+  // Markers in black and white together, so they show on any colour of the map.
   int r = std::max(4, width / 100);
   if (ring) {
     int cx, cy;
     view_map_pixel(*ring, width, &cx, &cy);
-    for (int dy = -r - 1; dy <= r + 1; ++dy)
-      for (int dx = -r - 1; dx <= r + 1; ++dx) {
+    for (int dy = -r - 2; dy <= r + 2; ++dy)
+      for (int dx = -r - 2; dx <= r + 2; ++dx) {
         double dd = std::sqrt(double(dx * dx + dy * dy));
         if (std::fabs(dd - r) < 1.0) put((cx + dx + width) % width, cy + dy, 255);
+        else if (dd - r >= 1.0 && dd - r < 2.0) put((cx + dx + width) % width, cy + dy, 0);  // outside
       }
   }
   if (cross) {
     int cx, cy;
     view_map_pixel(*cross, width, &cx, &cy);
+    for (int k = -r - 1; k <= r + 1; ++k)
+      for (int w = -2; w <= 1; ++w) {
+        put((cx + k + width) % width, cy + w, 255);
+        put((cx + w + width) % width, cy + k, 255);
+      }
     for (int k = -r; k <= r; ++k)
       for (int w = -1; w <= 0; ++w) {
         put((cx + k + width) % width, cy + w, 0);
