@@ -81,7 +81,9 @@ Image compare_picture(const Mesh& original, const std::vector<double>* saliency,
     const int x0 = i * (size + gap);
     for (size_t k = 0; k < lines[i].size(); ++k)
       draw_text(out, x0 + pad, pad + line * int(k + 1), lines[i][k], px, kInk);
-    blit(out, render_mesh(*meshes[i], i == 0 && !saliency ? nullptr : &colours[i], frame, view, style, &fit), x0,
+    RenderStyle panel = style;
+    if (i == 0) panel.edges = false;  // the dense original would show only scattered edges
+    blit(out, render_mesh(*meshes[i], i == 0 && !saliency ? nullptr : &colours[i], frame, view, panel, &fit), x0,
          title_h);
   }
   const int bar_y = title_h + size + pad;
