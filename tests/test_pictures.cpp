@@ -157,6 +157,10 @@ TEST_CASE("pictures: the colour scale runs from a clear blue to dark red; --colo
   CHECK(l.hi == Approx(0.9));
   l = colour_limits(v, {}, parse_color_range("10%,0.5"));
   CHECK(l.hi == 0.5);
+  // The square-root position: a quarter of the way up the values is half way up the colours.
+  CHECK(colour_position(0.25, ColorLimits{0, 1}) == Approx(0.5));
+  CHECK(colour_position(-1, ColorLimits{0, 1}) == 0);
+  CHECK(colour_position(2, ColorLimits{0, 1}) == 1);
   // Beyond the ends: clamped to the end colours.
   std::vector<uint8_t> rgb = colormap_values(v, {}, ColorLimits{0.2, 0.4});
   uint8_t lo[3], hi[3];

@@ -333,12 +333,14 @@ struct Image {
 enum class UpAxis { Y, MinusY, Z, MinusZ, X, MinusX };
 
 // The one colour scale of every picture and of the saliency PLY's vertex colours: a value v
-// is placed at t = (v - lo) / (hi - lo), clamped to [0, 1], and t runs through Turbo from
-// blue (t = 0, RGB 73 88 221) through cyan, green and yellow to dark red (t = 1, 155 15 0).
-// lo and hi are values, or percentiles (0..100) of the values over the mesh points. The
-// default, 0th to 100th percentile (minimum to maximum), is linear and unclipped, so the
-// colour of a region tells its value: a few very salient vertices are the hottest, never
-// shown alike with the many moderately salient ones.
+// is placed at t = sqrt((v - lo) / (hi - lo)), clamped to [0, 1], and t runs through Turbo
+// from blue (t = 0, RGB 73 88 221) through cyan, green and yellow to dark red (t = 1,
+// 155 15 0); colour bars place their value ticks the same way. lo and hi are values, or
+// percentiles (0..100) of the values over the mesh points. The default, 0th to 100th
+// percentile (minimum to maximum), is unclipped, so the hottest colour means the highest
+// values only (a percentile clip painted the demo's ~900 bumps as red as its unique
+// feature); the square root spreads the moderate values (a face's eyes, nose and mouth)
+// over more colours than a linear scale would.
 struct ColorRange {
   double lo = 0, hi = 100;
   bool lo_percentile = true, hi_percentile = true;

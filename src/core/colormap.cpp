@@ -38,14 +38,16 @@ ColorLimits colour_limits(const std::vector<double>& values, const std::vector<u
   return l;
 }
 
+double colour_position(double v, const ColorLimits& limits) {
+  const double t = (v - limits.lo) / (limits.hi - limits.lo);
+  return std::isfinite(t) ? std::sqrt(std::clamp(t, 0.0, 1.0)) : 0.0;
+}
+
 std::vector<uint8_t> colormap_values(const std::vector<double>& values, const std::vector<uint8_t>& mask,
                                      const ColorLimits& limits) {
   std::vector<uint8_t> rgb(3 * values.size());
-  const double span = limits.hi - limits.lo;
-  for (size_t v = 0; v < values.size(); ++v) {
-    double t = (mask.empty() || mask[v]) ? (values[v] - limits.lo) / span : 0.0;
-    colormap_rgb(t, &rgb[3 * v]);
-  }
+  for (size_t v = 0; v < values.size(); ++v)
+    colormap_rgb((mask.empty() || mask[v]) ? colour_position(values[v], limits) : 0.0, &rgb[3 * v]);
   return rgb;
 }
 

@@ -23,6 +23,12 @@ struct ColorLimits {
 ColorLimits colour_limits(const std::vector<double>& values, const std::vector<uint8_t>& mask,
                           const ColorRange& range = {});
 
+// Where v lies on the scale: sqrt of its linear position (v - lo) / (hi - lo), clamped to
+// [0, 1]. The square root spreads the many low-to-moderate values (a face's eyes and mouth)
+// over more colours while keeping the order and the top: the largest values stay the only
+// dark red ones. The colour bar places its ticks with the same function.
+double colour_position(double v, const ColorLimits& limits);
+
 // RGB per value (3 bytes each) on the scale `limits`; values outside `mask` get the colour of lo.
 std::vector<uint8_t> colormap_values(const std::vector<double>& values, const std::vector<uint8_t>& mask,
                                      const ColorLimits& limits);

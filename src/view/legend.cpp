@@ -22,8 +22,7 @@ std::string value_text(double v) {
 }
 
 int colour_bar_x(int x, int w, const ColorLimits& l, double v) {
-  double t = (v - l.lo) / (l.hi - l.lo);
-  return x + int(std::lround(std::clamp(t, 0.0, 1.0) * (w - 1)));
+  return x + int(std::lround(colour_position(v, l) * (w - 1)));
 }
 
 void draw_colour_bar(Image& img, int x, int y, int w, const ColorLimits& l, const std::string& label, double px) {
