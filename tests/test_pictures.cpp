@@ -224,7 +224,7 @@ TEST_CASE("pictures: the demo's unique feature is hotter than its repeated bumps
   CHECK(tx1 - tx0 > 150);
 }
 
-TEST_CASE("pictures: --up z turns a z-up mesh upright; --best renders the best view", "[view]") {
+TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best view", "[view]") {
   PicDir dir;
   Mesh pyr = z_up_pyramid();
   write_obj(dir.path + "/pyr.obj", pyr);

@@ -301,9 +301,10 @@ Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, con
         ws = 1;
       }
       double u = us / ws;
-      double t = hi > lo ? (u - lo) / (hi - lo) : 0.5;
+      // The one colour scale (square-root position), as the map's colour bar shows it.
+      double t = hi > lo ? colour_position(u, ColorLimits{lo, hi}) : 0.5;
       uint8_t* px = img.at(x, y);
-      colormap_rgb(std::clamp(t, 0.0, 1.0), px);
+      colormap_rgb(t, px);
       // Grid lines every 30 degrees of longitude and latitude.
       bool grid = (x * 12) % width < 12 || (y * 6) % h < 6;
       if (grid)

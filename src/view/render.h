@@ -39,9 +39,10 @@ std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& 
                                    const ColorRange& range = {}, ColorLimits* limits = nullptr);
 
 // Equirectangular plot (width x width/2) of U over directions: theta -180..180 degrees left to
-// right, phi 90..-90 top to bottom, U smoothed over the nearby map directions and coloured from
-// its minimum (blue) to its maximum (red); grid lines every 30 degrees. A white ring marks
-// `ring` (e.g. the exhaustive maximum) and a black cross `cross` (e.g. the optimiser's result).
+// right, phi 90..-90 top to bottom, U smoothed over the nearby map directions and coloured on the
+// colour scale (colormap.h) from its minimum (blue) to its maximum (red); grid lines every 30 degrees. A white ring with a
+// black rim marks `ring` (e.g. the exhaustive maximum), a black cross with a white rim `cross`
+// (e.g. the optimiser's result): both show on any colour.
 Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring = nullptr,
                       const ViewAngles* cross = nullptr);
 
