@@ -16,6 +16,7 @@
 #include "meshsal/meshsal.h"
 #include "io/png_image.h"
 #include "view/render.h"
+#include "view/legend.h"
 #include "cli/render_demo.h"
 #include "core/synthetic.h"
 #include "test_util.h"
@@ -89,7 +90,7 @@ double json_number(const std::string& text, const std::string& key) {
 }
 }  // namespace
 
-TEST_CASE("render: a sphere covers the disc the camera frames, centred", "[view]") {
+TEST_CASE("render: a sphere fills the picture (framed by its projected extent), centred", "[view]") {
   Mesh s = make_sphere(1.0, 4);
   ViewFrame frame = frame_mesh(s);
   RenderStyle style;
@@ -106,7 +107,7 @@ TEST_CASE("render: a sphere covers the disc the camera frames, centred", "[view]
         cx += x + 0.5;
         cy += y + 0.5;
       }
-  double r_px = 100.0 / (frame.radius * style.margin);  // sphere radius 1 in pixels
+  double r_px = 100.0 / style.margin;  // the sphere's outline spans the picture, less the margin
   CHECK(covered / (kPi * r_px * r_px) == Approx(1.0).margin(0.03));
   CHECK(cx / covered == Approx(100).margin(1.0));
   CHECK(cy / covered == Approx(100).margin(1.0));
@@ -129,7 +130,7 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
     for (int x = 0; x < 160; ++x) {
       const uint8_t* p = img.at(x, y);
       if (is_background(p)) continue;
-      int b = std::min(3, std::max(0, (x - 34) * 4 / 92));  // the disc spans about x 34..126
+      int b = std::min(3, std::max(0, (x - 4) * 4 / 152));  // the disc spans about x 4..156
       band[b] += decode_t(p);
       count[b] += 1;
     }
@@ -138,12 +139,12 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
     band[b] /= count[b];
   }
   INFO("bands " << band[0] << " " << band[1] << " " << band[2] << " " << band[3]);
-  CHECK(band[0] < 0.2);  // blue on the low side
+  CHECK(band[0] < 0.45);  // blue to cyan on the low side (x -1..-0.5: positions sqrt(0..0.25))
   CHECK(band[3] > 0.8);  // red on the high side
   CHECK(band[0] < band[1]);
   CHECK(band[1] < band[2]);
   CHECK(band[2] < band[3]);
-  // The 99th-percentile scaling: the top 1% are the same full red, not rarer.
+  // The default scale is minimum to maximum, unclipped: one extreme vertex is the only red one.
   std::vector<double> one_hot(s.vertex_count(), 0.0);
   one_hot[0] = 1000.0;
   std::vector<uint8_t> c2 = score_colours(s, one_hot);
@@ -213,8 +214,9 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   opt.map_views = 400;
   std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh, opt);
   REQUIRE(files.size() == 3);
-  CHECK(read_png(files[0]).width == 256);
-  CHECK(read_png(files[1]).width == 720);
+  CHECK(read_png(files[0]).width >= 256);  // the picture, or its title if wider
+  CHECK(read_png(files[0]).height > 256);  // title and colour bar
+  CHECK(read_png(files[1]).width > 720);   // the plot and its axes
   CHECK(read_png(files[2]).width == 3 * 256 + 8);
 }
 
@@ -241,14 +243,15 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(json_number(out, "views_evaluated") > 150);
   CHECK(json_number(out, "U") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "U"));
   CHECK(json_number(out, "U_fraction") > 0.5);
-  CHECK(read_png(dir + "/best.png").width == 128);
-  CHECK(read_png(dir + "/map.png").height == 360);
+  CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
+  CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
 
-  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 96 -o " +
+  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
                   dir + "/r.png", &out) == 0);
   Image r = read_png(dir + "/r.png");
-  CHECK(r.width == 96);
-  const uint8_t* centre = r.at(48, 48);  // looking from +x at the most salient side: red
+  CHECK(r.width == 320);
+  const int top = title_height(text_size_for(320), 2);
+  const uint8_t* centre = r.at(160, top + 160);  // looking from +x at the most salient side: red
   CHECK(decode_t(centre) > 0.8);
   REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
                   dir + "/c.png", &out) == 0);

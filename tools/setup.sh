@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
-  libglm-dev catch2 zlib1g-dev libcli11-dev libstb-dev
+  libglm-dev catch2 zlib1g-dev libcli11-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev
 )
 missing=()

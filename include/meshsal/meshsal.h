@@ -388,17 +388,45 @@ struct Image {
   const uint8_t* at(int x, int y) const { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
 };
 
+// Which axis of the mesh is up in pictures and in view angles. The angles of ViewAngles are
+// taken in a frame where this axis plays the part of +y: for Z, theta 0 looks from -y (the
+// front of a z-up scan), theta 90 degrees from +x, phi 90 degrees from +z (above).
+enum class UpAxis { Y, MinusY, Z, MinusZ, X, MinusX };
+
+// The one colour scale of every picture and of the saliency PLY's vertex colours: a value v
+// is placed at t = sqrt((v - lo) / (hi - lo)), clamped to [0, 1], and t runs through Turbo
+// from blue (t = 0, RGB 73 88 221) through cyan, green and yellow to dark red (t = 1,
+// 155 15 0); colour bars place their value ticks the same way. lo and hi are values, or
+// percentiles (0..100) of the values over the mesh points. The default, 0th to 100th
+// percentile (minimum to maximum), is unclipped, so the hottest colour means the highest
+// values only (a percentile clip painted the demo's ~900 bumps as red as its unique
+// feature); the square root spreads the moderate values (a face's eyes, nose and mouth)
+// over more colours than a linear scale would.
+struct ColorRange {
+  double lo = 0, hi = 100;
+  bool lo_percentile = true, hi_percentile = true;
+};
+
+// "LO,HI", each a number (a value) or a number followed by % (a percentile, 0..100), e.g.
+// "0,0.5" or "5%,99%". Throws Error naming the problem (both values: lo < hi needed).
+ColorRange parse_color_range(const std::string& text);
+
 struct RenderStyle {
   int size = 512;            // square image side in pixels, 16..8192
-  double margin = 1.05;      // the image frames the bounding sphere times this, >= 1
+  double margin = 1.05;      // the image frames the mesh's projected extent times this, >= 1
   bool smooth = true;        // interpolated vertex normals; false: flat faces
   bool edges = false;        // darken the edges of triangles at least 4 px tall
+  int supersample = 2;       // anti-aliasing: rendered at this many times the size, averaged; 1..4
+  UpAxis up = UpAxis::Y;     // the mesh axis that points up in the picture (see UpAxis)
+  ColorRange range;          // the colour scale's ends (see ColorRange)
   uint8_t background[3] = {255, 255, 255};
   uint8_t base[3] = {190, 190, 190};  // surface colour when there are no vertex colours
 };
 
-// The mesh seen from `view` (orthographic, framed by its bounding sphere), Lambert-shaded,
-// coloured by `score` (one value per vertex, may be null: plain grey) on the colour map.
+// The mesh seen from `view` (orthographic, square image framed by the mesh's projected
+// extent in that view, centred), Lambert-shaded, coloured by `score` (one value per vertex,
+// may be null: plain grey) on the colour scale of style.range. Only the mesh: the CLI's
+// pictures add a title line and a colour bar. Throws Error for a style out of range.
 Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
                   const RenderStyle& style = {});
 

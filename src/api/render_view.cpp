@@ -7,8 +7,8 @@ namespace meshsal {
 Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
                   const RenderStyle& style) {
   std::vector<uint8_t> colours;
-  if (score) colours = score_colours(mesh, *score);
-  return render_mesh(mesh, score ? &colours : nullptr, frame_mesh(mesh), view, style);
+  if (score) colours = score_colours(mesh, *score, style.range);
+  return render_mesh(mesh, score ? &colours : nullptr, frame_mesh(mesh, style.up), view, style);
 }
 
 }  // namespace meshsal

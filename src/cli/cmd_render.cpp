@@ -1,15 +1,20 @@
-// `meshsal render`: a picture of the mesh coloured by saliency from any view, or side by side
-// with simplified versions of it.
+// `meshsal render`: a picture of the mesh coloured by saliency from any view (or the best
+// one), titled and with its colour bar, or side by side with simplified versions of it.
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "load_input.h"
 #include "meshsal/meshsal.h"
+#include "view/compare_picture.h"
+#include "view/picture.h"
 #include "view/render.h"
 #include "api/viewpoint_score.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "own_saliency.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -19,11 +24,11 @@ namespace {
 struct Options {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
-  std::string input, saliency_from, score = "saliency", output, backend = "auto";
+  std::string input, saliency_from, score = "saliency", output, backend = "auto", up = "y", color_range;
   std::vector<std::string> compare;
   double theta_deg = 0, phi_deg = 0;
   int size = 512;
-  bool grey = false, flat = false, edges = false;
+  bool grey = false, flat = false, edges = false, best = false;
   unsigned threads = 0;
 };
 
@@ -37,15 +42,19 @@ int run(const Options& o) {
   style.size = o.size;
   style.smooth = !o.flat && o.compare.empty();
   style.edges = o.edges;
+  style.up = parse_up_axis(o.up);
+  if (!o.color_range.empty()) style.range = parse_color_range(o.color_range);
   check_render_style(style);
   if (!o.compare.empty() && o.compare.size() != 2)
     throw Error("--compare takes two meshes: PLAIN SALIENT");
   const double rad = 3.14159265358979323846 / 180.0;
   ViewAngles view{o.theta_deg * rad, o.phi_deg * rad};
 
-  Mesh mesh = load_mesh(o.input);
-  std::vector<uint8_t> colours;
-  if (!o.grey) {
+  VertexProperties props;
+  Mesh mesh = load_input(o.input, false, &props);
+  const ViewScore kind = parse_view_score(o.score);
+  std::vector<double> score;
+  if (!o.grey || o.best) {
     Progress progress(stderr_is_terminal());
     SaliencyOptions sopt;
     sopt.threads = o.threads;
@@ -54,31 +63,53 @@ int run(const Options& o) {
     sopt.method = meshsal::parse_method(o.method);
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
-    colours = score_colours(mesh, vertex_score(mesh, parse_view_score(o.score), o.saliency_from, sopt));
+    const std::string from = saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency);
+    score = vertex_score(mesh, kind, from, sopt);
+    progress.finish();
   }
-  ViewFrame frame = frame_mesh(mesh);
+  if (o.best) {
+    // The view of most visible score (best_viewpoint's defaults), found in the up axis's frame.
+    VisibilityOptions vopt;
+    vopt.threads = o.threads;
+    BestView b = best_viewpoint(mesh, score, {}, 0, vopt, parse_backend(o.backend));
+    double d[3];
+    view_direction(b.optimised.best, d);  // y-up angles of the search
+    view = direction_angles(frame_mesh(mesh, style.up), d);
+    std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
+  }
+  const std::vector<double>* shown = o.grey ? nullptr : &score;
+  const std::string name = std::filesystem::path(o.input).filename().string();
+  const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
   if (o.compare.empty()) {
-    write_png(o.output, render_mesh(mesh, o.grey ? nullptr : &colours, frame, view, style));
+    write_png(o.output, titled_view(mesh, shown, view, style, name, score_name));
     return 0;
   }
-  Mesh plain = load_mesh(o.compare[0]);
-  Mesh salient = load_mesh(o.compare[1]);
-  write_png(o.output, render_side_by_side({&mesh, &plain, &salient},
-                                          {o.grey ? nullptr : &colours, nullptr, nullptr}, frame, view, style));
+  Mesh plain = load_input(o.compare[0], false);
+  Mesh salient = load_input(o.compare[1], false);
+  write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name));
   return 0;
 }
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz)")->required();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("-o,--output", o->output, "PNG to write")->required();
-  app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from +z, 90 from +x)")
+  auto* theta = app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from the front, 90 from the right)")
       ->capture_default_str()->check(finite_in(-360, 360));
-  app.add_option("--phi", o->phi_deg, "view latitude in degrees (90 looks from +y, above)")
+  auto* phi = app.add_option("--phi", o->phi_deg, "view latitude in degrees (90 looks from above)")
       ->capture_default_str()->check(finite_in(-90, 90));
+  app.add_flag("--best", o->best, "render the view of most visible saliency (as `meshsal viewpoint` finds it)")
+      ->excludes(theta)->excludes(phi);
+  app.add_option("--up", o->up, "mesh axis that points up: x, y, z, -x, -y or -z (scans are often z up)")
+      ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
+  app.add_option("--color-range", o->color_range,
+                 "LO,HI ends of the colour scale, values or percentiles (e.g. 0,0.5 or 5%,99%); default minimum,maximum")
+      ->check(color_range_check());
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' instead of computing saliency");
   app.add_option("--score", o->score, "colour by saliency or curvature (|H|)")->capture_default_str();
-  app.add_option("--compare", o->compare, "PLAIN SALIENT: two simplified meshes drawn right of IN, same camera")->expected(2);
+  app.add_option("--compare", o->compare,
+                 "PLAIN SALIENT: two simplified meshes drawn right of IN, same camera, coloured by distance to IN")
+      ->expected(2);
   app.add_option("--size", o->size, "image side in pixels (per panel)")->capture_default_str()->check(whole_in(16, 8192));
   app.add_flag("--grey", o->grey, "no saliency colours");
   app.add_flag("--flat", o->flat, "flat shading (always on with --compare, shows the triangles)");

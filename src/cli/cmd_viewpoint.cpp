@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "command.h"
 #include "meshsal/meshsal.h"
+#include "view/legend.h"
+#include "view/map_picture.h"
+#include "view/picture.h"
 #include "view/render.h"
 #include "view/viewpoint.h"
 #include "api/viewpoint_backend.h"
@@ -15,6 +19,7 @@
 #include "load_input.h"
 #include "number_options.h"
 #include "output_check.h"
+#include "own_saliency.h"
 #include "progress.h"
 #include "saliency_output.h"
 
@@ -24,7 +29,7 @@ namespace {
 struct Options {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
-  std::string input, saliency_from, score = "saliency", backend = "auto", out_png, map_png;
+  std::string input, saliency_from, score = "saliency", backend = "auto", out_png, map_png, up = "y", color_range;
   int restarts = 8, views = 0, resolution = 512, size = 512, map_width = 720, device = -1;
   uint64_t seed = 1;
   double depth_tol = 2.0;
@@ -33,9 +38,10 @@ struct Options {
 
 const double kDeg = 180.0 / 3.14159265358979323846;
 
-std::string json_view(const meshsal::ViewAngles& a, double U) {
+// a: angles in `frame`'s up axis; the direction is in the mesh's coordinates.
+std::string json_view(const meshsal::ViewFrame& frame, const meshsal::ViewAngles& a, double U) {
   double d[3];
-  meshsal::view_direction(a, d);
+  meshsal::view_direction(frame, a, d);
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "\"theta\": %.6f, \"phi\": %.6f, \"theta_deg\": %.3f, \"phi_deg\": %.3f, "
@@ -51,10 +57,13 @@ int run(const Options& o) {
   check_outputs({{o.out_png, "-o", {".png"}}, {o.map_png, "--map", {".png"}}}, {o.input, o.saliency_from});
   RenderStyle style;
   style.size = o.size;
+  style.up = parse_up_axis(o.up);
+  if (!o.color_range.empty()) style.range = parse_color_range(o.color_range);
   if (!o.out_png.empty()) check_render_style(style);
   Backend backend = parse_backend(o.backend);
   ViewScore kind = parse_view_score(o.score);
-  Mesh mesh = load_input(o.input, false);
+  VertexProperties props;
+  Mesh mesh = load_input(o.input, false, &props);
 
   Progress progress(stderr_is_terminal());
   SaliencyOptions sopt;
@@ -66,7 +75,8 @@ int run(const Options& o) {
   sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
   sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
   std::string source;
-  std::vector<double> score = vertex_score(mesh, kind, o.saliency_from, sopt, &source);
+  std::vector<double> score = vertex_score(
+      mesh, kind, saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency), sopt, &source);
   progress.finish();
 
   VisibilityOptions vopt;
@@ -105,15 +115,25 @@ int run(const Options& o) {
   double total = 0;
   for (float w : visibility_weights(mesh, score)) total += w;
 
+  // The search runs in y-up angles; everything shown is in the angles of --up (same directions).
+  const ViewFrame up_frame = frame_mesh(mesh, style.up);
+  auto in_up = [&](const ViewAngles& a) {
+    double d[3];
+    view_direction(a, d);
+    return direction_angles(up_frame, d);
+  };
+  const ViewAngles best_view = in_up(best.best);
+  for (ViewAngles& a : map.views) a = in_up(a);
+
   std::printf("{\"mesh\": %s, \"vertices\": %zu, \"score\": \"%s\", \"score_source\": %s, "
               "\"backend\": %s, \"resolution\": %d, \"depth_tol_px\": %g, ",
               json_string(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_string(source).c_str(),
               json_string(setup.backend_name).c_str(), o.resolution, o.depth_tol);
-  std::printf("%s, \"U_fraction\": %.6f, ", json_view(best.best, best.U).c_str(), total > 0 ? best.U / total : 0.0);
+  std::printf("%s, \"U_fraction\": %.6f, ", json_view(up_frame, best_view, best.U).c_str(), total > 0 ? best.U / total : 0.0);
   std::printf("\"restarts\": %d, \"seed\": %llu, ", o.restarts, (unsigned long long)o.seed);
   if (map_views > 0)
     std::printf("\"exhaustive\": {\"views\": %d, %s}, ", map_views,
-                json_view(map.views[map.best], map.U[map.best]).c_str());
+                json_view(up_frame, map.views[map.best], map.U[map.best]).c_str());
   else
     std::printf("\"exhaustive\": null, ");
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -121,18 +141,24 @@ int run(const Options& o) {
               (unsigned long long)(best.views_evaluated + uint64_t(map_views)), secs);
   std::fflush(stdout);
 
-  if (!o.out_png.empty()) {
-    std::vector<uint8_t> colours = score_colours(mesh, score);
-    write_png(o.out_png, render_mesh(mesh, &colours, frame_mesh(mesh), best.best, style));
+  const std::string name = std::filesystem::path(o.input).filename().string();
+  const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
+  if (!o.out_png.empty())
+    write_png(o.out_png, titled_view(mesh, &score, best_view, style, name, score_name));
+  if (!o.map_png.empty()) {
+    char ring[96], cross[96];
+    std::snprintf(ring, sizeof ring, "exhaustive maximum (%d views), U = %s", map_views,
+                  value_text(map.U[map.best]).c_str());
+    std::snprintf(cross, sizeof cross, "optimiser's result, U = %s", value_text(best.U).c_str());
+    write_png(o.map_png, view_map_picture(map, o.map_width, map.views[map.best], ring, best_view, cross,
+                                          name + ": visible " + score_name + " by view direction (--up " + o.up + ")"));
   }
-  if (!o.map_png.empty())
-    write_png(o.map_png, render_view_map(map, o.map_width, &map.views[map.best], &best.best));
   return 0;
 }
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz)")->required();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
   app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
   app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")
@@ -151,6 +177,11 @@ RunFn setup(CLI::App& app) {
   app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");
   app.add_option("--map", o->map_png, "PNG of U over all directions (equirectangular)");
   app.add_option("--size", o->size, "side of the -o picture in pixels")->capture_default_str()->check(whole_in(16, 8192));
+  app.add_option("--up", o->up, "mesh axis that points up (pictures and the angles printed): x, y, z, -x, -y or -z")
+      ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
+  app.add_option("--color-range", o->color_range,
+                 "LO,HI ends of the -o picture's colour scale, values or percentiles (e.g. 5%,99%); default minimum,maximum")
+      ->check(color_range_check());
   app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")
       ->capture_default_str()->check(whole_in(32, 8192));
   return [o]() { return run(*o); };

@@ -8,6 +8,7 @@ namespace meshsal_cli {
 
 // load_mesh, then, unless `quiet`, one note on stderr when STL corners were welded:
 // "note: PATH: welded N STL corners into V shared vertices".
-meshsal::Mesh load_input(const std::string& path, bool quiet);
+meshsal::Mesh load_input(const std::string& path, bool quiet,
+                         meshsal::VertexProperties* properties = nullptr);
 
 }  // namespace meshsal_cli

@@ -34,6 +34,19 @@ CLI::Validator finite_in(double lo, double hi, bool lo_open) {
       "in " + range);
 }
 
+CLI::Validator color_range_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          meshsal::parse_color_range(text);
+        } catch (const meshsal::Error& e) {
+          return e.what();
+        }
+        return "";
+      },
+      "LO,HI");
+}
+
 CLI::Validator whole_in(long long lo, long long hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   return CLI::Validator(

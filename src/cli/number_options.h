@@ -20,6 +20,9 @@ CLI::Validator whole_in(long long lo, long long hi);
 // --scales: a comma-separated list of numbers in (0, 100] (meshsal::parse_scales).
 CLI::Validator scales_list();
 
+// --color-range: LO,HI as meshsal::parse_color_range reads it.
+CLI::Validator color_range_check();
+
 // Adds `--threads N` bound to `threads`, 0..kMaxThreadsOption (0 = all cores).
 CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
 

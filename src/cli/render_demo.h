@@ -17,11 +17,12 @@ struct DemoPictureOptions {
 
 // Writes into `dir` (which must exist):
 //   demo_best_view.png  the mesh coloured by saliency from its best view (gradient ascent,
-//                       8 restarts, seed 1)
-//   demo_view_map.png   U over options.map_views Fibonacci directions (equirectangular;
-//                       ring: exhaustive maximum, cross: optimiser result)
+//                       8 restarts, seed 1), titled, with its colour bar (titled_view)
+//   demo_view_map.png   U over options.map_views Fibonacci directions (view_map_picture:
+//                       axes, colour bar; ring: exhaustive maximum, cross: optimiser result)
 //   demo_compare.png    original | plain | saliency-simplified from the best view, flat
-//                       shaded with triangle edges (only when both simplified meshes are given)
+//                       shaded with triangle edges, labelled, the simplified ones coloured by
+//                       distance (compare_picture; only when both simplified meshes are given)
 // Returns the paths written. Throws Error.
 std::vector<std::string> write_demo_pictures(const Mesh& mesh, const std::vector<double>& saliency,
                                              const std::string& dir, const Mesh* plain = nullptr,

@@ -24,6 +24,7 @@ void write_saliency_ply(const std::string& path, const Mesh& mesh, const Salienc
     for (size_t i = 0; i < r.raw.size(); ++i) names.push_back("saliency_raw_" + std::to_string(i));
     for (size_t i = 0; i < r.raw.size(); ++i) props.push_back({names[i], &r.raw[i]});
   }
+  // The pictures' colour scale (ColorRange's default: minimum..maximum, square-root position).
   std::vector<uint8_t> rgb = colormap_values(r.saliency, r.is_point);
   write_ply(path, mesh, props, &rgb);
 }

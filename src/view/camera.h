@@ -14,24 +14,44 @@
 //   px = (x + 1) res / 2,  py = (1 - y) res / 2,  depth = max(0, (1 - z) / 2)
 // depth is 0 at the viewer side of the bounding sphere and 1 at its far side.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 
-// Centre and radius that every view of one mesh shares.
+// Centre, radius and up axis that every view of one mesh shares. The formulas above are in
+// the frame's own coordinates (y up); axes[k] is where its unit vector k lies in the mesh's
+// coordinates (identity for y up). --up z turns the camera, never the mesh, so every path
+// that projects through view_rows (the GPU visibility shaders too) sees the same turn.
 struct ViewFrame {
   double centre[3] = {0, 0, 0};
   double radius = 1;
+  double axes[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 };
 
-// Bounding-box centre and half diagonal of the mesh points. Throws Error on an empty mesh.
-ViewFrame frame_mesh(const Mesh& mesh);
+// Bounding-box centre and half diagonal of the mesh points, with `up` as the frame's up axis.
+// Throws Error on an empty mesh.
+ViewFrame frame_mesh(const Mesh& mesh, UpAxis up = UpAxis::Y);
 
+// Sets frame.axes for `up`: a rotation (right-handed) taking +y to `up`. For z up, theta 0
+// looks from -y (the front of z-up scans), for -z from +y, x from +z... (see camera.cpp).
+void set_up_axis(ViewFrame& frame, UpAxis up);
+
+// "x", "y", "z", "-x", "-y", "-z"; throws Error otherwise.
+UpAxis parse_up_axis(const std::string& text);
+
+// Direction and basis in the frame's own coordinates (y up).
 void view_direction(const ViewAngles& a, double d[3]);
 ViewAngles direction_angles(const double d[3]);  // d need not be unit length
 void view_basis(const ViewAngles& a, double right[3], double up[3], double d[3]);
+
+// The same in the mesh's coordinates (frame.axes applied).
+void view_direction(const ViewFrame& frame, const ViewAngles& a, double d[3]);
+void view_basis(const ViewFrame& frame, const ViewAngles& a, double right[3], double up[3], double d[3]);
+// Angles in `frame` of a direction given in the mesh's coordinates.
+ViewAngles direction_angles(const ViewFrame& frame, const double d[3]);
 
 // The affine map p -> (x, y, z) above as three float rows (x = row.xyz . p + row.w), the
 // form the GPU shaders get, so that the CPU twin projects with the very same numbers.

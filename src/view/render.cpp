@@ -19,18 +19,60 @@ void check_render_style(const RenderStyle& s) {
   if (s.size < 16 || s.size > 8192)
     throw Error("image size must be between 16 and 8192, got " + std::to_string(s.size));
   if (!(s.margin >= 1.0) || !std::isfinite(s.margin)) throw Error("image margin must be >= 1");
+  if (s.supersample < 1 || s.supersample > 4)
+    throw Error("supersample must be between 1 and 4, got " + std::to_string(s.supersample));
 }
 
-Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, const ViewFrame& frame_in,
-                  const ViewAngles& view, const RenderStyle& style) {
+PictureFit fit_picture(const Mesh& mesh, const ViewFrame& frame, const ViewAngles& view) {
+  double right[3], up[3], d[3];
+  view_basis(frame, view, right, up, d);
+  std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  const float* p = mesh.positions.data();
+  for (size_t i = 0; i < mesh.vertex_count(); ++i) {
+    if (!is_point[i]) continue;
+    double q[3] = {p[3 * i] - frame.centre[0], p[3 * i + 1] - frame.centre[1], p[3 * i + 2] - frame.centre[2]};
+    double x = q[0] * right[0] + q[1] * right[1] + q[2] * right[2];
+    double y = q[0] * up[0] + q[1] * up[1] + q[2] * up[2];
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  PictureFit fit;
+  if (!(x1 >= x0)) return fit;  // no points: the bounding sphere
+  fit.cx = 0.5 * (x0 + x1);
+  fit.cy = 0.5 * (y0 + y1);
+  fit.half = 0.5 * std::max(x1 - x0, y1 - y0);
+  if (!(fit.half > 1e-12 * frame.radius)) fit.half = frame.radius;  // a point or a segment seen end-on
+  return fit;
+}
+
+// Box average of ss x ss blocks: the anti-aliased picture.
+static Image downsample(const Image& big, int ss) {
+  if (ss == 1) return big;
+  Image out(big.width / ss, big.height / ss);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int k = 0; k < 3; ++k) {
+        int sum = 0;
+        for (int dy = 0; dy < ss; ++dy)
+          for (int dx = 0; dx < ss; ++dx) sum += big.at(x * ss + dx, y * ss + dy)[k];
+        out.at(x, y)[k] = uint8_t((sum + ss * ss / 2) / (ss * ss));
+      }
+  return out;
+}
+
+Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, const ViewFrame& frame,
+                  const ViewAngles& view, const RenderStyle& style, const PictureFit* fit_in) {
   check_render_style(style);
   if (vertex_rgb && vertex_rgb->size() != 3 * mesh.vertex_count())
     throw Error("internal: vertex colours do not match the mesh");
-  const int res = style.size;
-  ViewFrame frame = frame_in;
-  frame.radius *= style.margin;
+  const int ss = style.supersample;
+  const int res = style.size * ss;
+  const PictureFit fit = fit_in ? *fit_in : fit_picture(mesh, frame, view);
   double right[3], up[3], d[3];
-  view_basis(view, right, up, d);
+  view_basis(frame, view, right, up, d);
   // Light slightly above and left of the viewer, two-sided (open scans have no outside).
   double light[3], ll = 0;
   for (int k = 0; k < 3; ++k) {
@@ -39,15 +81,16 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
   }
   for (double& c : light) c /= std::sqrt(ll);
 
-  // Project in double (pictures need no bit-match with the GPU).
+  // Project in double (pictures need no bit-match with the GPU). x and y are framed by the
+  // projected extent, depth by the bounding sphere.
   size_t n = mesh.vertex_count();
   std::vector<double> sx(n), sy(n), sz(n);
   const float* p = mesh.positions.data();
-  double half = 0.5 * res, inv_r = 1.0 / frame.radius;
+  double half = 0.5 * res, inv_h = 1.0 / (fit.half * style.margin), inv_r = 1.0 / frame.radius;
   for (size_t i = 0; i < n; ++i) {
     double q[3] = {p[3 * i] - frame.centre[0], p[3 * i + 1] - frame.centre[1], p[3 * i + 2] - frame.centre[2]};
-    double x = (q[0] * right[0] + q[1] * right[1] + q[2] * right[2]) * inv_r;
-    double y = (q[0] * up[0] + q[1] * up[1] + q[2] * up[2]) * inv_r;
+    double x = (q[0] * right[0] + q[1] * right[1] + q[2] * right[2] - fit.cx) * inv_h;
+    double y = (q[0] * up[0] + q[1] * up[1] + q[2] * up[2] - fit.cy) * inv_h;
     double z = (q[0] * d[0] + q[1] * d[1] + q[2] * d[2]) * inv_r;
     sx[i] = (x + 1) * half;
     sy[i] = (1 - y) * half;
@@ -105,7 +148,7 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
                      std::hypot(sx[b] - sx[a], sy[b] - sy[a])};
     // Edges only on triangles at least 4 px tall: dense regions stay readable, and the
     // contrast between wireframe and smooth areas shows where triangles were kept.
-    bool draw_edges = style.edges && std::fabs(area) / std::max({len[0], len[1], len[2]}) >= 4.0;
+    bool draw_edges = style.edges && std::fabs(area) / std::max({len[0], len[1], len[2]}) >= 4.0 * ss;
     double fn[3] = {0, 0, 0};
     if (!style.smooth) {
       double e1[3], e2[3];
@@ -163,7 +206,7 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
           double shade = 0.18 + 0.82 * std::fabs(nn[0] * light[0] + nn[1] * light[1] + nn[2] * light[2]);
           if (draw_edges) {
             double dist = std::min({w0 / len[0], w1 / len[1], w2 / len[2]});
-            if (dist < 0.55) shade *= 0.45;
+            if (dist < 0.55 * ss) shade *= 0.45;
           }
           uint8_t* out = img.at(x, y);
           for (int k = 0; k < 3; ++k) {
@@ -187,32 +230,18 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
         draw(std::max(x0, 8 * tx), std::min(x1, 8 * tx + 7), std::max(y0, 8 * ty), std::min(y1, 8 * ty + 7));
       }
   }
-  return img;
+  return downsample(img, ss);
 }
 
-std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score) {
+std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score,
+                                   const ColorRange& range, ColorLimits* limits) {
   if (score.size() != mesh.vertex_count())
     throw Error("score has " + std::to_string(score.size()) + " values for " +
                 std::to_string(mesh.vertex_count()) + " vertices");
   std::vector<uint8_t> is_point = referenced_vertices(mesh);
-  std::vector<double> vals;
-  for (size_t i = 0; i < score.size(); ++i)
-    if (is_point[i] && std::isfinite(score[i])) vals.push_back(score[i]);
-  double lo = 0, hi = 1;
-  if (!vals.empty()) {
-    lo = *std::min_element(vals.begin(), vals.end());
-    size_t k = size_t(0.99 * double(vals.size() - 1));
-    std::nth_element(vals.begin(), vals.begin() + long(k), vals.end());
-    hi = vals[k];
-    if (!(hi > lo)) hi = *std::max_element(vals.begin(), vals.end());
-  }
-  std::vector<uint8_t> rgb(3 * score.size());
-  for (size_t i = 0; i < score.size(); ++i) {
-    double v = is_point[i] && std::isfinite(score[i]) ? score[i] : 0.0;
-    double t = hi > lo ? (v - lo) / (hi - lo) : 0.0;
-    colormap_rgb(std::clamp(t, 0.0, 1.0), &rgb[3 * i]);
-  }
-  return rgb;
+  ColorLimits l = colour_limits(score, is_point, range);
+  if (limits) *limits = l;
+  return colormap_values(score, is_point, l);
 }
 
 void view_map_pixel(const ViewAngles& a, int width, int* x, int* y) {
@@ -272,9 +301,10 @@ Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, con
         ws = 1;
       }
       double u = us / ws;
-      double t = hi > lo ? (u - lo) / (hi - lo) : 0.5;
+      // The one colour scale (square-root position), as the map's colour bar shows it.
+      double t = hi > lo ? colour_position(u, ColorLimits{lo, hi}) : 0.5;
       uint8_t* px = img.at(x, y);
-      colormap_rgb(std::clamp(t, 0.0, 1.0), px);
+      colormap_rgb(t, px);
       // Grid lines every 30 degrees of longitude and latitude.
       bool grid = (x * 12) % width < 12 || (y * 6) % h < 6;
       if (grid)
@@ -286,19 +316,26 @@ Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, con
     uint8_t* px = img.at(x, y);
     px[0] = px[1] = px[2] = v;
   };
+  // Markers in black and white together, so they show on any colour of the map.
   int r = std::max(4, width / 100);
   if (ring) {
     int cx, cy;
     view_map_pixel(*ring, width, &cx, &cy);
-    for (int dy = -r - 1; dy <= r + 1; ++dy)
-      for (int dx = -r - 1; dx <= r + 1; ++dx) {
+    for (int dy = -r - 2; dy <= r + 2; ++dy)
+      for (int dx = -r - 2; dx <= r + 2; ++dx) {
         double dd = std::sqrt(double(dx * dx + dy * dy));
         if (std::fabs(dd - r) < 1.0) put((cx + dx + width) % width, cy + dy, 255);
+        else if (dd - r >= 1.0 && dd - r < 2.0) put((cx + dx + width) % width, cy + dy, 0);  // outside
       }
   }
   if (cross) {
     int cx, cy;
     view_map_pixel(*cross, width, &cx, &cy);
+    for (int k = -r - 1; k <= r + 1; ++k)
+      for (int w = -2; w <= 1; ++w) {
+        put((cx + k + width) % width, cy + w, 255);
+        put((cx + w + width) % width, cy + k, 255);
+      }
     for (int k = -r; k <= r; ++k)
       for (int w = -1; w <= 0; ++w) {
         put((cx + k + width) % width, cy + w, 0);
@@ -314,8 +351,9 @@ Image render_side_by_side(const std::vector<const Mesh*>& meshes,
   if (meshes.empty() || colours.size() != meshes.size()) throw Error("internal: nothing to compare");
   const int gap = 4, n = int(meshes.size());
   Image out(n * style.size + (n - 1) * gap, style.size, 128, 128, 128);
+  const PictureFit fit = fit_picture(*meshes[0], frame, view);  // one camera for every panel
   for (int i = 0; i < n; ++i)
-    blit(out, render_mesh(*meshes[size_t(i)], colours[size_t(i)], frame, view, style), i * (style.size + gap), 0);
+    blit(out, render_mesh(*meshes[size_t(i)], colours[size_t(i)], frame, view, style, &fit), i * (style.size + gap), 0);
   return out;
 }
 

@@ -6,29 +6,43 @@
 #include <vector>
 
 #include "view/camera.h"
+#include "core/colormap.h"
 #include "meshsal/meshsal.h"
 #include "io/png_image.h"
 #include "view/viewpoint.h"
 
 namespace meshsal {
 
-// Checks size (16..8192) and margin (>= 1); throws Error otherwise.
+// Checks size (16..8192), margin (>= 1) and supersample (1..4); throws Error otherwise.
 void check_render_style(const RenderStyle& style);
 
-// Renders the mesh seen from `view`, framed by `frame`. vertex_rgb: 3 bytes per vertex
-// (nullptr = style.base). Colours are interpolated across triangles, then shaded.
-Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb,
-                  const ViewFrame& frame, const ViewAngles& view, const RenderStyle& style);
+// The square of the view plane a picture shows: centre (cx, cy) along the view's right and up
+// axes (mesh units, from frame.centre) and half side `half` (before style.margin).
+struct PictureFit {
+  double cx = 0, cy = 0, half = 1;
+};
 
-// Colours of a per-vertex score for pictures: the colour map (low blue, high red) of the
-// value scaled from its minimum to its 99th percentile over the mesh points (clamped above),
-// so that a few extreme vertices do not wash the rest out. Non-points get the colour of 0.
-std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score);
+// The mesh points' projected extent in `view`, centred: the mesh fills the picture.
+PictureFit fit_picture(const Mesh& mesh, const ViewFrame& frame, const ViewAngles& view);
+
+// Renders the mesh seen from `view` (frame: centre, depth range and up axis; fit: the square
+// shown, nullptr = fit_picture of this mesh) at style.supersample times the size, averaged
+// down. vertex_rgb: 3 bytes per vertex (nullptr = style.base). Colours are interpolated
+// across triangles, then shaded. style.up is not read: it is in frame (frame_mesh).
+Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb,
+                  const ViewFrame& frame, const ViewAngles& view, const RenderStyle& style,
+                  const PictureFit* fit = nullptr);
+
+// Colours of a per-vertex score for pictures, on the one colour scale (colormap.h) over the
+// mesh points; `limits` (optional) receives the resolved ends for the colour bar.
+std::vector<uint8_t> score_colours(const Mesh& mesh, const std::vector<double>& score,
+                                   const ColorRange& range = {}, ColorLimits* limits = nullptr);
 
 // Equirectangular plot (width x width/2) of U over directions: theta -180..180 degrees left to
-// right, phi 90..-90 top to bottom, U smoothed over the nearby map directions and coloured from
-// its minimum (blue) to its maximum (red); grid lines every 30 degrees. A white ring marks
-// `ring` (e.g. the exhaustive maximum) and a black cross `cross` (e.g. the optimiser's result).
+// right, phi 90..-90 top to bottom, U smoothed over the nearby map directions and coloured on the
+// colour scale (colormap.h) from its minimum (blue) to its maximum (red); grid lines every 30 degrees. A white ring with a
+// black rim marks `ring` (e.g. the exhaustive maximum), a black cross with a white rim `cross`
+// (e.g. the optimiser's result): both show on any colour.
 Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring = nullptr,
                       const ViewAngles* cross = nullptr);
 

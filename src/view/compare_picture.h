@@ -1,0 +1,26 @@
+// meshsal: the comparison picture of `render --compare` and the demo: original | plain |
+// saliency-weighted simplification, from one camera, each panel labelled, the simplified
+// ones coloured by their distance to the original on one shared colour bar.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+// Distance of every vertex of `mesh` to the surface of `original` (0 for non-points).
+std::vector<double> distance_to(const Mesh& mesh, const Mesh& original);
+
+// Three panels side by side (style.size each, 4 px apart) from `view` (style.up up), framed
+// by the original's projected extent. Panel titles: "original: F faces", "plain: F faces" and
+// "saliency-weighted: F faces", with "salient-region error E%" (mean distance from the
+// original's 30% most salient vertices, in % of its bounding-box diagonal) under the
+// simplified ones when `saliency` is given. The original is coloured by saliency (grey when
+// null) with its colour bar under it; the simplified panels by their vertices' distance to
+// the original surface, 0 .. the larger maximum of the two, with that bar under both.
+Image compare_picture(const Mesh& original, const std::vector<double>* saliency, const Mesh& plain,
+                      const Mesh& salient, const ViewAngles& view, const RenderStyle& style,
+                      const std::string& title);
+
+}  // namespace meshsal
