@@ -1,6 +1,5 @@
 // meshsal bench: time each saliency stage on real meshes, in the style of the paper's Table 1.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -8,6 +7,7 @@
 #include <unistd.h>
 
 #include "command.h"
+#include "core/timer.h"
 #include "json_string.h"
 #include "cli/data_dir.h"
 #include "meshsal/meshsal.h"
@@ -272,12 +272,12 @@ int run(const Args& a) {
   if (method == meshsal::Method::Auto) throw meshsal::Error("bench: --method must be exact or fast");
   std::vector<Row> rows;
   for (const std::string& p : paths) {
-    auto t0 = std::chrono::steady_clock::now();
+    const meshsal::Timer t0;
     meshsal::Mesh mesh = meshsal::load_mesh(p);
     std::string model = std::filesystem::path(p).filename().string();
     for (int k = 0; k < a.subdivide; ++k) mesh = meshsal::subdivide_midpoint(mesh);
     if (a.subdivide) model += " /" + std::to_string(a.subdivide);
-    const double read = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double read = t0.seconds();
     if (method == meshsal::Method::Fast) {
       rows.push_back(bench_fast(model, mesh, read, a));
       continue;

@@ -1,11 +1,11 @@
 // meshsal compare ORIGINAL SIMPLIFIED: surface distances between a mesh and its simplification.
-#include <chrono>
 #include <cstdio>
 #include <utility>
 #include <memory>
 #include <string>
 
 #include "command.h"
+#include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
@@ -30,7 +30,7 @@ struct Args {
 
 int run(const Args& a) {
   using namespace meshsal;
-  const auto t0 = std::chrono::steady_clock::now();
+  const meshsal::Timer t0;
   Progress progress(stderr_is_terminal());  // on stderr: stdout holds only the JSON
   progress.update("reading", 0.0);
   const Mesh original = load_input(a.original, false);
@@ -73,7 +73,7 @@ int run(const Args& a) {
     j.number(std::string(name) + "_percent", r.diagonal > 0 ? 100.0 * d / r.diagonal : 0.0);
   j.count("salient_vertices", r.salient_vertices).number("salient_fraction", a.fraction).text("saliency", source)
       .count("forward_samples", r.forward_samples).count("backward_samples", r.backward_samples)
-      .number("seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      .number("seconds", t0.seconds());
   j.print();
   return 0;
 }

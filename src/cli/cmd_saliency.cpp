@@ -1,8 +1,8 @@
 // meshsal saliency IN -o OUT.ply: the saliency map of one mesh file.
-#include <chrono>
 #include <memory>
 
 #include "command.h"
+#include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "number_options.h"
@@ -43,10 +43,10 @@ int run(const Args& a) {
     if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
 
-  auto t0 = std::chrono::steady_clock::now();
+  const meshsal::Timer t0;
   progress.update("reading", 0.0);
   Mesh mesh = load_input(a.input, a.quiet);
-  double load = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double load = t0.seconds();
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);
   write_saliency_ply(a.output, mesh, r, a.dump_scales);

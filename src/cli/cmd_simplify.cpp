@@ -1,13 +1,11 @@
 // meshsal simplify IN -o OUT: Garland-Heckbert simplification, saliency-weighted by default.
-#include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "command.h"
+#include "core/timer.h"
 #include "meshsal/meshsal.h"
-#include "core/mesh_points.h"
 #include "saliency/saliency.h"
-#include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
@@ -30,10 +28,6 @@ struct Args {
   unsigned threads = 0;
 };
 
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 int run(const Args& a) {
   using namespace meshsal;
   // Before any work: the output is a writable .obj/.ply that is none of the inputs.
@@ -47,10 +41,10 @@ int run(const Args& a) {
     throw UsageError("--saliency-from needs --weights saliency");
 
   Progress progress(!a.quiet && stderr_is_terminal());
-  const auto t0 = std::chrono::steady_clock::now();
+  const meshsal::Timer t0;
   progress.update("reading", 0.0);
   const Mesh mesh = load_input(a.input, a.quiet);
-  const double t_load = since(t0);
+  const double t_load = t0.seconds();
 
   SimplifyOptions opt;
   if (a.has_target) opt.target_faces = size_t(a.target_faces);
@@ -67,7 +61,7 @@ int run(const Args& a) {
           .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
           .count("input_faces", mesh.triangle_count()).count("output_vertices", mesh.vertex_count())
           .count("output_faces", mesh.triangle_count()).count("target_faces", mesh.triangle_count())
-          .flag("unchanged", true).count("collapses", 0).number("seconds", since(t0)).print();
+          .flag("unchanged", true).count("collapses", 0).number("seconds", t0.seconds()).print();
     if (!a.quiet) {
       std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
                    a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
@@ -81,33 +75,29 @@ int run(const Args& a) {
   std::vector<double> weights;
   double t_saliency = 0, alpha = 0;
   if (a.weights == "saliency") {
-    const auto ts = std::chrono::steady_clock::now();
-    std::vector<double> smoothed;
-    const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+    const meshsal::Timer ts;
+    SaliencyOptions so;
+    so.eps_frac = a.eps_frac;
+    so.threads = a.threads;
+    so.backend = parse_backend(a.backend);
+    so.precision = meshsal::parse_precision(a.precision);
+    so.method = meshsal::parse_method(a.method);
+    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+    so.notice = [&a](const std::string& line) {
+      if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+    };
+    std::vector<double> from_file;
     if (!a.saliency_from.empty()) {
-      const std::vector<double> s = load_saliency_ply(a.saliency_from, mesh);
+      from_file = load_saliency_ply(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
-      smoothed = smooth_saliency(mesh, s, a.eps_frac, a.threads);
-    } else {
-      SaliencyOptions so;
-      so.eps_frac = a.eps_frac;
-      so.threads = a.threads;
-      so.backend = parse_backend(a.backend);
-      so.precision = meshsal::parse_precision(a.precision);
-      so.method = meshsal::parse_method(a.method);
-      so.smoothed = true;
-      so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-      so.notice = [&a](const std::string& line) {
-        if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
-      };
-      smoothed = compute_saliency(mesh, so).smoothed;
     }
     SaliencyWeightOptions wo;
     wo.lambda = a.lambda;
     wo.alpha_percentile = a.alpha_percentile;
     wo.floor = a.weight_floor;
-    weights = saliency_weights(smoothed, is_point, wo, &alpha);
-    t_saliency = since(ts);
+    weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
+                                     &alpha);
+    t_saliency = ts.seconds();
   }
 
   progress.update("simplifying", 0.0);
@@ -128,7 +118,7 @@ int run(const Args& a) {
     if (!weights.empty())
       j.number("lambda", a.lambda).number("alpha", alpha).number("alpha_percentile", a.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
-    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", since(t0)).print();
+    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", t0.seconds()).print();
   } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);

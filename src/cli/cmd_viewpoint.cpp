@@ -1,5 +1,4 @@
 // `meshsal viewpoint`: the view direction that sees the most saliency (SPEC 3), as JSON.
-#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +6,7 @@
 #include <string>
 
 #include "command.h"
+#include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "view/legend.h"
 #include "view/map_picture.h"
@@ -52,7 +52,7 @@ std::string json_view(const meshsal::ViewFrame& frame, const meshsal::ViewAngles
 
 int run(const Options& o) {
   using namespace meshsal;
-  auto t0 = std::chrono::steady_clock::now();
+  const meshsal::Timer t0;
   // Before any work: the pictures are writable .png files, distinct, none of them an input.
   check_outputs({{o.out_png, "-o", {".png"}}, {o.map_png, "--map", {".png"}}}, {o.input, o.saliency_from});
   RenderStyle style;
@@ -136,7 +136,7 @@ int run(const Options& o) {
                 json_view(up_frame, map.views[map.best], map.U[map.best]).c_str());
   else
     std::printf("\"exhaustive\": null, ");
-  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double secs = t0.seconds();
   std::printf("\"views_evaluated\": %llu, \"seconds\": %.3f}\n",
               (unsigned long long)(best.views_evaluated + uint64_t(map_views)), secs);
   std::fflush(stdout);
