@@ -4,7 +4,8 @@
 // cutoffs, and an error bound per map with which gpu_sweep.cpp rechecks near ties of the
 // local-maximum test in double). GPUs give each mesh point a subgroup, in cell order: like
 // the CPU's 4-wide loop, the lanes split the candidates of a row between them; on CPU
-// devices (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Rows of
+// devices (lavapipe) sweep8_rows gives each point a lane (UNIFORM_ROWS below). Each
+// layout's main() is in its own file (sweep_layout_subgroup/rows/list.glsl). Rows of
 // cells are culled against the ball as on the CPU; the cells of a row are one contiguous
 // range of the sorted points. Every candidate adds its weight to all sigma sums at once,
 // masked by each sigma's strict cutoff d < 2 s (no branches: lavapipe runs 8 lanes of
@@ -456,60 +457,5 @@ void sweep_point(uint i, dvec4 p, dvec3 lo, dvec3 hi, uint first, uint step, boo
 #endif
 #ifndef POINT_LIST
   pairs[i] = count;  // >= 1 (the point itself): the host checks that no point was left out
-#endif
-}
-
-void main() {
-#ifdef POINT_LIST
-  // One lane per listed vertex, its own box.
-  const uint gid = gl_GlobalInvocationID.x;
-  if (pc.base + gid >= pc.n) return;
-  const uint v = point_list[pc.base + gid];
-  dvec4 p = vertex_pos[v];
-  sweep_point(0u, p, p.xyz, p.xyz, 0u, 1u, true, v);
-#elif defined(UNIFORM_ROWS)
-  // One lane per point (lavapipe, where a lane is an AVX2 slot). The lanes of a subgroup
-  // take consecutive sorted points and walk the rows of cells around the box of those of
-  // the group's points that lie in their own row of cells, so they load the same
-  // candidates at once and their loop bounds agree (except where a group straddles two
-  // rows). Any box that holds the lane's own point gives the right sums; the group only
-  // decides how much is shared, so a work group holds 64 points whatever the subgroup
-  // size. The box must stay small: with the box of all the
-  // subgroup's points (by subgroupMin/Max or by these loads alike), a group straddling
-  // rows walked a box across the whole mesh, and lavapipe gave fewer pairs than the CPU
-  // and wrong sums for ~100 of igea_loop1's 537k points. Why lavapipe loses them there
-  // was not found; with boxes of one row of cells igea_loop1 matches the CPU exactly.
-  const uint gid = gl_GlobalInvocationID.x;
-  const uint i = min(pc.base + gid, pc.n - 1u);
-  const bool live = pc.base + gid < pc.n;
-  const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
-  dvec4 p = sorted_pos[i];
-  dvec3 lo = p.xyz, hi = p.xyz;
-  const ivec2 my_row = ivec2(p.yz / pc.h);
-  for (uint e = 0u; e < gl_SubgroupSize; ++e) {
-    dvec3 o = sorted_pos[min(g0 + e, pc.n - 1u)].xyz;
-    if (ivec2(o.yz / pc.h) == my_row) {
-      lo = min(lo, o);
-      hi = max(hi, o);
-    }
-  }
-  // A row whose points lie far apart (two crossings of the surface): each lane alone.
-  if (hi.x - lo.x > 2.0LF * pc.h) {
-    lo = p.xyz;
-    hi = p.xyz;
-  }
-  sweep_point(i, p, lo, hi, 0u, 1u, live, sorted_vertex[i]);
-#else
-  // One subgroup per point: the lanes take consecutive candidates of each row (contiguous
-  // loads, and every lane loops the same rows), then the sums are reduced across lanes.
-  // The points are strided over the subgroups the driver actually made, so every point is
-  // swept whatever subgroup size it picked (the host sizes the dispatch by the size the
-  // device reports; a larger one only gives some subgroups two points).
-  const uint stride = gl_NumWorkGroups.x * gl_NumSubgroups;
-  const uint end = min(pc.n, pc.base + gl_NumWorkGroups.x * pc.per_group);  // this dispatch's
-  for (uint i = pc.base + gl_WorkGroupID.x * gl_NumSubgroups + gl_SubgroupID; i < end; i += stride) {
-    dvec4 p = sorted_pos[i];
-    sweep_point(i, p, p.xyz, p.xyz, gl_SubgroupInvocationID, gl_SubgroupSize, true, sorted_vertex[i]);
-  }
 #endif
 }

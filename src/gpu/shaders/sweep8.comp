@@ -3,3 +3,4 @@
 // meshsal: the sweep for the eight default sigmas {2,3,4,5,6,8,10,12} eps (see sweep.glsl).
 #define FAST8
 #include "sweep.glsl"
+#include "sweep_layout_subgroup.glsl"

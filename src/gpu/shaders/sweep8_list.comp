@@ -5,3 +5,4 @@
 #define FAST8
 #define POINT_LIST
 #include "sweep.glsl"
+#include "sweep_layout_list.glsl"

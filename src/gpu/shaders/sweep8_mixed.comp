@@ -5,3 +5,4 @@
 #define FAST8
 #define MIXED
 #include "sweep.glsl"
+#include "sweep_layout_subgroup.glsl"

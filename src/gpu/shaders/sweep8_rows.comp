@@ -5,3 +5,4 @@
 #define FAST8
 #define UNIFORM_ROWS
 #include "sweep.glsl"
+#include "sweep_layout_rows.glsl"

@@ -6,3 +6,4 @@
 #define MIXED
 #define UNIFORM_ROWS
 #include "sweep.glsl"
+#include "sweep_layout_rows.glsl"
