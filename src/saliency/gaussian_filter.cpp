@@ -59,26 +59,9 @@ KernelPlan make_plan(const std::vector<double>& sigmas) {
 // ball are culled and the x extent of each row is clipped to the ball's chord.
 template <class Block>
 inline void for_each_candidate_block(const SpatialGrid& g, size_t i, double radius2, Block&& block) {
-  const double xi = g.x[i], yi = g.y[i], zi = g.z[i];
-  const double R = std::sqrt(radius2), c = g.cell;
-  const int zlo = std::max(0, int(std::floor((zi - R) / c)));
-  const int zhi = std::min(g.dims[2] - 1, int(std::floor((zi + R) / c)));
-  const int ylo = std::max(0, int(std::floor((yi - R) / c)));
-  const int yhi = std::min(g.dims[1] - 1, int(std::floor((yi + R) / c)));
-  for (int cz = zlo; cz <= zhi; ++cz) {
-    double dz = std::max({0.0, cz * c - zi, zi - (cz + 1) * c});
-    for (int cy = ylo; cy <= yhi; ++cy) {
-      double dy = std::max({0.0, cy * c - yi, yi - (cy + 1) * c});
-      double rest = radius2 - dz * dz - dy * dy;
-      if (rest <= 0) continue;
-      double hx = std::sqrt(rest);
-      int xlo = std::max(0, int(std::floor((xi - hx) / c)));
-      int xhi = std::min(g.dims[0] - 1, int(std::floor((xi + hx) / c)));
-      size_t row = (size_t(cz) * g.dims[1] + cy) * g.dims[0];
-      size_t jb = g.cell_start[row + xlo], je = g.cell_start[row + xhi + 1];
-      for (size_t j = jb; j < je; j += 4) block(j, double(je - j));
-    }
-  }
+  for_each_row_in_ball(g, g.x[i], g.y[i], g.z[i], radius2, [&](size_t jb, size_t je) {
+    for (size_t j = jb; j < je; j += 4) block(j, double(je - j));
+  });
 }
 
 // Squared distances from slot i to slots j..j+3; lanes at or past the range end are +inf.

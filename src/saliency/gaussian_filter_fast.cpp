@@ -129,44 +129,28 @@ CellSums sweep_cells(const Aggregates& ag, const double q[3], double coef, doubl
                      uint64_t* pairs) {
   const SpatialGrid& g = ag.grid;
   const double xi = q[0] - g.origin[0], yi = q[1] - g.origin[1], zi = q[2] - g.origin[2];
-  const double R = std::sqrt(cutoff2), c = g.cell;
-  const int zlo = std::max(0, int(std::floor((zi - R) / c)));
-  const int zhi = std::min(g.dims[2] - 1, int(std::floor((zi + R) / c)));
-  const int ylo = std::max(0, int(std::floor((yi - R) / c)));
-  const int yhi = std::min(g.dims[1] - 1, int(std::floor((yi + R) / c)));
   const v4d lane = {0, 1, 2, 3}, zero = v4d_splat(0.0), one = v4d_splat(1.0);
   const v4d vx = v4d_splat(xi), vy = v4d_splat(yi), vz = v4d_splat(zi);
   const v4d vcoef = v4d_splat(coef), vcut = v4d_splat(cutoff2);
   v4d n = zero, d = zero, np = zero;
   v4d gn[3] = {zero, zero, zero}, gd[3] = {zero, zero, zero};
-  for (int cz = zlo; cz <= zhi; ++cz) {
-    double dz = std::max({0.0, cz * c - zi, zi - (cz + 1) * c});
-    for (int cy = ylo; cy <= yhi; ++cy) {
-      double dy = std::max({0.0, cy * c - yi, yi - (cy + 1) * c});
-      double rest = cutoff2 - dz * dz - dy * dy;
-      if (rest <= 0) continue;
-      double hx = std::sqrt(rest);
-      int xlo = std::max(0, int(std::floor((xi - hx) / c)));
-      int xhi = std::min(g.dims[0] - 1, int(std::floor((xi + hx) / c)));
-      size_t row = (size_t(cz) * g.dims[1] + cy) * g.dims[0];
-      size_t jb = g.cell_start[row + xlo], je = g.cell_start[row + xhi + 1];
-      for (size_t j = jb; j < je; j += 4) {
-        v4d ex = v4d_load(&g.x[j]) - vx, ey = v4d_load(&g.y[j]) - vy, ez = v4d_load(&g.z[j]) - vz;
-        v4d d2 = ex * ex + ey * ey + ez * ez;
-        v4i in = (lane < v4d_splat(double(je - j))) & (d2 < vcut);
-        v4d w = in ? exp_neg_cutoff(d2 * vcoef) : zero;
-        v4d wn = w * v4d_load(&ag.sum[j]), wd = w * v4d_load(&ag.count[j]);
-        n += wn;
-        d += wd;
-        np += in ? one : zero;
-        if (Grad) {
-          // d/dq w(|x - q|) = w (x - q) / sigma^2; the 1/sigma^2 is applied by the caller.
-          gn[0] += wn * ex, gn[1] += wn * ey, gn[2] += wn * ez;
-          gd[0] += wd * ex, gd[1] += wd * ey, gd[2] += wd * ez;
-        }
+  for_each_row_in_ball(g, xi, yi, zi, cutoff2, [&](size_t jb, size_t je) {
+    for (size_t j = jb; j < je; j += 4) {
+      v4d ex = v4d_load(&g.x[j]) - vx, ey = v4d_load(&g.y[j]) - vy, ez = v4d_load(&g.z[j]) - vz;
+      v4d d2 = ex * ex + ey * ey + ez * ez;
+      v4i in = (lane < v4d_splat(double(je - j))) & (d2 < vcut);
+      v4d w = in ? exp_neg_cutoff(d2 * vcoef) : zero;
+      v4d wn = w * v4d_load(&ag.sum[j]), wd = w * v4d_load(&ag.count[j]);
+      n += wn;
+      d += wd;
+      np += in ? one : zero;
+      if (Grad) {
+        // d/dq w(|x - q|) = w (x - q) / sigma^2; the 1/sigma^2 is applied by the caller.
+        gn[0] += wn * ex, gn[1] += wn * ey, gn[2] += wn * ez;
+        gd[0] += wd * ex, gd[1] += wd * ey, gd[2] += wd * ez;
       }
     }
-  }
+  });
   CellSums r;
   r.num = hsum(n);
   r.den = hsum(d);
