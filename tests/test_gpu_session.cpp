@@ -94,3 +94,35 @@ TEST_CASE("gpu session: a device that cannot open is not cached", "[gpu]") {
   CHECK(gpu::session_counters().cached == before.cached);
   CHECK(gpu::session_counters().contexts_opened == before.contexts_opened);
 }
+
+#include "test_batch_util.h"
+
+TEST_CASE("gpu session: meshsal batch opens the device and builds its pipelines once", "[gpu][batch]") {
+  using namespace meshsal_test;
+  const fs::path dir = batch_scratch("gpu");
+  const fs::path in = make_batch_inputs(dir), out = dir / "out";
+  fs::remove(in / "broken.obj");
+  const BatchRun r = run_meshsal("batch " + in.string() + " -o " + out.string() +
+                                     " --backend gpu --device 0 --view --size 64 --resolution 32 --restarts 1",
+                                 dir);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("vulkan validation") == std::string::npos);
+  const std::vector<std::string> lines = log_lines(out / "batch.jsonl");
+  REQUIRE(lines.size() == 3);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    INFO(lines[i]);
+    CHECK(json_text(lines[i], "status") == "done");
+    CHECK(json_text(lines[i], "backend").rfind("vulkan: ", 0) == 0);  // the view scorer
+    const bool first = i == 0;
+    CHECK((lines[i].find("\"device_opened\": true") != std::string::npos) == first);
+    CHECK((lines[i].find("\"device_setup\": ") != std::string::npos) == first);
+    const size_t at = lines[i].find("\"pipelines_built\": ");
+    REQUIRE(at != std::string::npos);
+    const long built = std::strtol(lines[i].c_str() + at + 19, nullptr, 10);
+    if (first)
+      CHECK(built >= 8);  // grid, sweep, suppression and visibility kernels
+    else
+      CHECK(built == 0);
+  }
+}
