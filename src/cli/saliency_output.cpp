@@ -53,7 +53,7 @@ SaliencyStats saliency_stats(const SaliencyResult& r) {
   return st;
 }
 
-void print_saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
+JsonObject saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
                          const SaliencyResult& r, double load_seconds) {
   size_t points = 0;
   for (uint8_t f : r.is_point) points += f;
@@ -76,7 +76,12 @@ void print_saliency_json(const std::string& input, const std::string& output, co
       .text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
       .number("read_seconds", load_seconds).number("seconds", total).object("stages", stages)
       .count("pairs", r.pairs).object("saliency", stats);
-  j.print();
+  return j;
+}
+
+void print_saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
+                         const SaliencyResult& r, double load_seconds) {
+  saliency_json(input, output, mesh, r, load_seconds).print();
 }
 
 void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double load_seconds) {

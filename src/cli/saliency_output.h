@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 
+#include "json_object.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 
@@ -27,7 +28,12 @@ SaliencyStats saliency_stats(const meshsal::SaliencyResult& result);
 void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyResult& result,
                             double load_seconds);
 
-// The same as one JSON object (json_object.h) on stdout; `output` is the PLY written.
+// The same as one JSON object (json_object.h); `output` is the PLY written. `meshsal
+// batch` adds its own keys to it for its log.
+JsonObject saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
+                         const meshsal::SaliencyResult& result, double load_seconds);
+
+// saliency_json() printed on stdout.
 void print_saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
                          const meshsal::SaliencyResult& result, double load_seconds);
 

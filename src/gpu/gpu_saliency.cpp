@@ -10,6 +10,7 @@
 #include "saliency/curvature.h"
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_grid.h"
+#include "gpu/gpu_session.h"
 #include "gpu/gpu_slices.h"
 #include "gpu/gpu_sweep.h"
 #include "gpu/vk_staging.h"
@@ -205,10 +206,20 @@ std::vector<double> to_vector(const std::vector<double>& v, size_t begin, size_t
 
 std::vector<vk::DeviceInfo> gpu_devices() { return vk::list_devices(); }
 
+// On the process's cached device (gpu_session.h): only the first call on a device pays its
+// start-up (stage "device setup") and pipeline compilation.
 SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& options,
                                     bool validation) {
-  vk::Context ctx(options.device, validation);
-  return compute_saliency_gpu(ctx, mesh, options);
+  gpu::DeviceLease lease = gpu::lease_device(options.device, validation);
+  SaliencyResult res;
+  try {
+    res = compute_saliency_gpu(lease.context(), mesh, options);
+  } catch (const std::exception& e) {
+    lease.discard_if_broken(e.what());
+    throw;
+  }
+  if (lease.opened()) res.stages.insert(res.stages.begin(), {"device setup", lease.open_seconds()});
+  return res;
 }
 
 namespace {

@@ -3,6 +3,7 @@
 // always takes this file out of the static library and its initialiser runs.
 #include "api/gpu_backend.h"
 #include "gpu/gpu_saliency.h"
+#include "gpu/gpu_session.h"
 #include "gpu/gpu_visibility.h"
 #include "gpu/vk_context.h"
 
@@ -34,19 +35,29 @@ SaliencyResult saliency(const Mesh& mesh, const SaliencyOptions& options) {
 
 ViewScorerSetup view_scorer(const Mesh& mesh, const std::vector<double>& score,
                             const VisibilityOptions& options, int device) {
+  // The scorer holds the process's cached device (gpu_session.h) for as long as it lives:
+  // the device and its pipelines are opened and compiled once per process, not per mesh.
   struct Gpu {
-    std::unique_ptr<vk::Context> ctx;
-    std::unique_ptr<GpuVisibility> vis;
+    gpu::DeviceLease lease;
+    std::unique_ptr<GpuVisibility> vis;  // destroyed before the lease ends
   };
   auto g = std::make_shared<Gpu>();
-  g->ctx = std::make_unique<vk::Context>(device, vk::validation_requested_by_env());
-  g->vis = std::make_unique<GpuVisibility>(*g->ctx, mesh, visibility_weights(mesh, score),
+  g->lease = gpu::lease_device(device, vk::validation_requested_by_env());
+  vk::Context& ctx = g->lease.context();
+  g->vis = std::make_unique<GpuVisibility>(ctx, mesh, visibility_weights(mesh, score),
                                            frame_mesh(mesh), options);
   ViewScorerSetup s;
-  GpuVisibility* vis = g->vis.get();
-  s.scorer = [vis](const std::vector<ViewAngles>& views) { return vis->score(views); };
-  s.backend_name = "vulkan: " + g->ctx->info.name;
-  s.batch = vis->batch();
+  Gpu* raw = g.get();  // kept alive by s.keep_alive
+  s.scorer = [raw](const std::vector<ViewAngles>& views) {
+    try {
+      return raw->vis->score(views);
+    } catch (const std::exception& e) {
+      raw->lease.discard_if_broken(e.what());
+      throw;
+    }
+  };
+  s.backend_name = "vulkan: " + ctx.info.name;
+  s.batch = raw->vis->batch();
   s.keep_alive = g;
   return s;
 }

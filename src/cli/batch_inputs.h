@@ -1,0 +1,24 @@
+// meshsal batch: the list of models a run works on, from files, folders, globs and list
+// files, in a stable order.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace meshsal_cli {
+
+// True for the names the loaders read: .obj .ply .off .stl, each optionally + .gz (any case).
+bool is_mesh_file_name(const std::string& path);
+
+// Expands each item in order: a folder gives the mesh files directly inside it (by
+// is_mesh_file_name, sorted by name); an item with * ? or [ is a glob (sorted matches);
+// "@FILE" reads FILE (one item per line; blank lines and lines starting with # skipped;
+// relative items are taken from FILE's folder), whose items expand the same way (a list
+// inside a list is refused); anything else is a file, kept even when missing or unreadable
+// (loading it fails and the run logs that). `list_file` ("" = none) is read like "@FILE"
+// after `items`. The same file (same path after resolving . and ..) is kept once, first
+// place. Throws meshsal::Error "ITEM: problem" for a glob matching nothing, an unreadable
+// folder or list, and when nothing at all is found.
+std::vector<std::string> expand_batch_inputs(const std::vector<std::string>& items,
+                                             const std::string& list_file);
+
+}  // namespace meshsal_cli

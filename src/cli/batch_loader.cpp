@@ -1,0 +1,60 @@
+// meshsal batch: ModelLoader (see batch_loader.h).
+#include "batch_loader.h"
+
+#include <new>
+
+#include "core/timer.h"
+
+namespace meshsal_cli {
+
+ModelLoader::ModelLoader(std::vector<std::string> paths) : paths_(std::move(paths)) {
+  thread_ = std::thread([this] { run(); });
+}
+
+ModelLoader::~ModelLoader() {
+  {
+    std::lock_guard<std::mutex> g(mutex_);
+    stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void ModelLoader::run() {
+  for (const std::string& path : paths_) {
+    {  // the slot is free before reading starts: never more than one model ahead
+      std::unique_lock<std::mutex> l(mutex_);
+      changed_.wait(l, [this] { return stop_ || !ready_; });
+      if (stop_) return;
+    }
+    LoadedModel m;
+    m.path = path;
+    const meshsal::Timer t;
+    try {
+      meshsal::LoadReport report;
+      m.mesh = meshsal::load_mesh(path, nullptr, {}, &report);
+      m.welded_corners = report.welded_corners;
+    } catch (const std::bad_alloc&) {
+      m.mesh = {};
+      m.error = path + ": out of memory while reading";
+    } catch (const std::exception& e) {
+      m.error = e.what();
+    }
+    m.seconds = t.seconds();
+    std::unique_lock<std::mutex> l(mutex_);
+    if (stop_) return;
+    ready_ = std::move(m);
+    changed_.notify_all();
+  }
+}
+
+LoadedModel ModelLoader::next() {
+  std::unique_lock<std::mutex> l(mutex_);
+  changed_.wait(l, [this] { return ready_.has_value(); });
+  LoadedModel m = std::move(*ready_);
+  ready_.reset();
+  changed_.notify_all();
+  return m;
+}
+
+}  // namespace meshsal_cli
