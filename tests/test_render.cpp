@@ -241,8 +241,8 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   }
   CHECK(d0 > 0.9);
   CHECK(json_number(out, "views_evaluated") > 150);
-  CHECK(json_number(out, "U") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "U"));
-  CHECK(json_number(out, "U_fraction") > 0.5);
+  CHECK(json_number(out, "visible_score") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "visible_score"));
+  CHECK(json_number(out, "visible_fraction") > 0.5);
   CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
   CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
 
@@ -260,8 +260,8 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
   REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
   CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
-  CHECK(json_number(out, "U_fraction") > 0.4);
-  CHECK(json_number(out, "U_fraction") < 0.6);
+  CHECK(json_number(out, "visible_fraction") > 0.4);
+  CHECK(json_number(out, "visible_fraction") < 0.6);
   CHECK(out.find("\"exhaustive\": null") != std::string::npos);
 
   // Errors are one line, exit code 1.
