@@ -276,3 +276,13 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 2);
   CHECK(out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
 }
+
+TEST_CASE("cli: render and viewpoint --help name every input format, STL included", "[view][cli]") {
+  for (const char* cmd : {"render", "viewpoint"}) {
+    std::string out;
+    REQUIRE(run_cli(std::string(cmd) + " --help", &out) == 0);
+    INFO(out);
+    CHECK(out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
+    CHECK(out.find("--json") != std::string::npos);
+  }
+}

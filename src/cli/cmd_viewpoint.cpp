@@ -138,6 +138,12 @@ int run(const Options& o) {
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
+  app.footer(
+      "Print one JSON object: the direction that sees the most score (theta, phi in radians and\n"
+      "degrees in the frame of --up, and `direction`, a unit vector towards the viewer),\n"
+      "visible_score = U, the sum of the score over the mesh points visible from it, and\n"
+      "visible_fraction = U over the sum over all points; `exhaustive`: the best of --views\n"
+      "directions (null without --views or --map).");
   app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
   app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
