@@ -178,7 +178,7 @@ TEST_CASE("cli: bench --json escapes model names", "[cli]") {
   RunResult r = run_cli("bench --json --repeat 1 --threads 1 '" + (dir / name).string() + "'", dir);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(r.out.find("\"model\": \"odd \\\"name\\\" \\\\ 1.obj\"") != std::string::npos);
+  CHECK(r.out.find("\"name\": \"odd \\\"name\\\" \\\\ 1.obj\"") != std::string::npos);
   CHECK(r.out.find("\"device\": \"cpu") != std::string::npos);
   fs::remove_all(dir);
 }

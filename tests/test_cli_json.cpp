@@ -3,9 +3,11 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "core/synthetic.h"
 #include "json_check.h"
@@ -42,6 +44,33 @@ void check_one_object(const std::string& out) {
   CHECK(json_valid(out));
   CHECK(out.front() == '{');
   CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+}
+
+// Every key of a JSON text (object keys at any depth), in order.
+std::vector<std::string> json_keys(const std::string& text) {
+  std::vector<std::string> keys;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '"') continue;
+    size_t j = i + 1;
+    while (j < text.size() && text[j] != '"') j += text[j] == '\\' ? 2 : 1;
+    size_t k = j + 1;
+    while (k < text.size() && text[k] == ' ') ++k;
+    if (k < text.size() && text[k] == ':') keys.push_back(text.substr(i + 1, j - i - 1));
+    i = j;
+  }
+  return keys;
+}
+
+bool snake_case(const std::string& key) {
+  if (key.empty() || !std::islower(static_cast<unsigned char>(key[0]))) return false;
+  for (char c : key)
+    if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'))
+      return false;
+  return true;
+}
+
+bool has_key(const std::vector<std::string>& keys, const std::string& key) {
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 
 }  // namespace
@@ -120,4 +149,101 @@ TEST_CASE("cli --json: saliency, simplify, compare and viewpoint print one JSON 
   REQUIRE(r.rc == 0);
   check_one_object(r.out);
   CHECK(json_number(r.out, "vertices") == double(bumpy.vertex_count()));
+}
+
+TEST_CASE("cli --json: every command that prints a summary follows one convention", "[cli][json]") {
+  meshsal_test::TempDir dir;
+  const meshsal::Mesh bumpy = meshsal::make_bumpy_sphere(2);
+  const std::string mesh = dir.file("bumpy.ply"), sal = dir.file("sal.ply"), small = dir.file("small.obj");
+  meshsal::write_ply(mesh, bumpy, {});
+  const std::string m = q(mesh);
+  // Run in this order: simplify needs saliency's file, compare simplify's.
+  const std::pair<const char*, std::string> commands[] = {
+      {"saliency", "saliency " + m + " -o " + q(sal) + " --backend cpu --json"},
+      {"simplify", "simplify " + m + " -o " + q(small) + " --ratio 0.25 --backend cpu --json"},
+      {"compare", "compare " + m + " " + q(small) + " --saliency-from " + q(sal) + " --samples 2000 --json"},
+      {"viewpoint", "viewpoint " + m + " --saliency-from " + q(sal) + " --backend cpu --restarts 1 --resolution 64 --json"},
+      {"render", "render " + m + " --saliency-from " + q(sal) + " --theta 30 --phi 10 --size 64 -o " +
+                     q(dir.file("r.png")) + " --json"},
+      {"bench", "bench " + m + " --repeat 1 --threads 1 --json"},
+  };
+  for (const auto& [name, args] : commands) {
+    INFO(name);
+    const Run r = run_cli(args, dir);
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    check_one_object(r.out);
+    const std::vector<std::string> keys = json_keys(r.out);
+    INFO(r.out);
+    for (const std::string& k : keys) {
+      INFO("key " << k);
+      CHECK(snake_case(k));
+    }
+    // mesh (the input as given), seconds and device; bench has them in each of its rows.
+    CHECK(r.out.find("\"mesh\": \"" + mesh + "\"") != std::string::npos);
+    CHECK(json_number(r.out, "seconds") >= 0);
+    CHECK(r.out.find("\"device\": \"cpu") != std::string::npos);
+    // Every distance also in % of the bounding-box diagonal, and the other way round.
+    for (const std::string& k : keys) {
+      const size_t p = k.rfind("_percent");
+      if (p == std::string::npos || p + 8 != k.size()) continue;
+      const std::string base = k.substr(0, p);
+      INFO("distance " << base);
+      REQUIRE(has_key(keys, base));
+      CHECK(json_number(r.out, k) == Approx(100 * json_number(r.out, base) / json_number(r.out, "diagonal")));
+    }
+  }
+  // compare: each distance both ways; its device is the CPU (saliency read from the file).
+  const Run c = run_cli("compare " + m + " " + q(small) + " --saliency-from " + q(sal) + " --samples 2000", dir);
+  REQUIRE(c.rc == 0);
+  for (const char* d : {"hausdorff", "rms", "forward_max", "forward_rms", "backward_max", "backward_rms", "salient_error"})
+    CHECK(has_key(json_keys(c.out), std::string(d) + "_percent"));
+  CHECK(c.out.find("\"saliency_source\": \"" + sal + "\"") != std::string::npos);
+}
+
+TEST_CASE("cli --json: render --json gives the view, U and the picture; bench one object with rows", "[cli][json]") {
+  meshsal_test::TempDir dir;
+  // A sphere whose saliency is max(0, x): seen from +x (theta 90, y up) U is most of the total.
+  const meshsal::Mesh s = meshsal::make_sphere(1.0, 3);
+  std::vector<double> qv(s.vertex_count());
+  for (size_t i = 0; i < qv.size(); ++i) qv[i] = std::max(0.0, double(s.positions[3 * i]));
+  const std::string mesh = dir.file("s.ply"), png = dir.file("r.png");
+  meshsal::write_ply(mesh, s, {{"quality", &qv}});
+  Run r = run_cli("render " + q(mesh) + " --theta 90 --phi 0 --size 64 -o " + q(png) + " --json", dir);
+  REQUIRE(r.rc == 0);
+  check_one_object(r.out);
+  INFO(r.out);
+  CHECK(r.out.find("\"output\": \"" + png + "\"") != std::string::npos);
+  CHECK(json_number(r.out, "theta_deg") == Approx(90));
+  CHECK(json_number(r.out, "phi_deg") == Approx(0).margin(1e-9));
+  CHECK(json_number(r.out, "theta") == Approx(3.14159265358979 / 2));
+  CHECK(r.out.find("\"direction\": [1, ") != std::string::npos);
+  CHECK(r.out.find("\"best\": false") != std::string::npos);
+  double total = 0;
+  for (double x : qv) total += x;
+  CHECK(json_number(r.out, "visible_score") > 0.9 * total);  // the whole +x half is in view
+  CHECK(json_number(r.out, "visible_fraction") == Approx(json_number(r.out, "visible_score") / total).epsilon(1e-3));
+  CHECK(meshsal_test::read_file(png).size() > 100);
+  CHECK(r.err.empty() == false);  // the note that the PLY brings its own saliency, on stderr
+
+  // --best: the view found, in the JSON too (looking from +x).
+  r = run_cli("render " + q(mesh) + " --best --backend cpu --size 64 -o " + q(png) + " --json", dir);
+  REQUIRE(r.rc == 0);
+  check_one_object(r.out);
+  CHECK(r.out.find("\"best\": true") != std::string::npos);
+  CHECK(std::fabs(json_number(r.out, "theta_deg") - 90) < 15);
+  CHECK(std::fabs(json_number(r.out, "phi_deg")) < 15);
+  // --grey: no score, so no U.
+  r = run_cli("render " + q(mesh) + " --grey --size 64 -o " + q(png) + " --json", dir);
+  REQUIRE(r.rc == 0);
+  check_one_object(r.out);
+  CHECK(r.out.find("\"visible_score\": null") != std::string::npos);
+
+  // bench: one object; a row per device, the stages' keys snake_case.
+  r = run_cli("bench " + q(mesh) + " --repeat 1 --threads 1 --json", dir);
+  REQUIRE(r.rc == 0);
+  check_one_object(r.out);
+  CHECK(r.out.find("\"rows\": [{\"mesh\": \"" + mesh + "\", \"name\": \"s.ply\"") != std::string::npos);
+  CHECK(r.out.find("\"gaussian_sweep\": ") != std::string::npos);
+  CHECK(json_number(r.out, "vertices") == double(s.vertex_count()));
 }

@@ -132,7 +132,7 @@ TEST_CASE("cli compare: --saliency-from like the other commands", "[cli]") {
                       " --samples 1000", dir);
   INFO(r.err);
   CHECK(r.rc == 0);
-  CHECK(r.out.find("\"saliency\": \"file\"") != std::string::npos);
+  CHECK(r.out.find("\"saliency_source\": \"" + sal + "\"") != std::string::npos);
 }
 
 // On a terminal (util-linux `script` gives the command one), viewpoint and compare show

@@ -101,6 +101,6 @@ TEST_CASE("cli: bench has a row per sweep precision for each Vulkan device", "[c
   // The CPU row is double; each Vulkan device (lavapipe here) adds a mixed and a double row.
   CHECK(count("\"precision\": \"mixed\"") >= 1);
   CHECK(count("\"precision\": \"double\"") == count("\"precision\": \"mixed\"") + 1);
-  CHECK(count("\"rechecked\": ") == count("\"model\": "));
+  CHECK(count("\"rechecked\": ") == count("\"mesh\": "));
   fs::remove_all(dir);
 }

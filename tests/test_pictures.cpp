@@ -18,7 +18,11 @@
 #include "saliency/saliency.h"
 #include "view/camera.h"
 #include "view/legend.h"
+#include "view/map_picture.h"
 #include "view/picture.h"
+#include "view/render.h"
+#include "view/text.h"
+#include "view/viewpoint.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -303,4 +307,233 @@ TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and s
                     Catch::Contains("/nonexistent/font.ttf: no usable TrueType font") &&
                         Catch::Contains("fonts-dejavu-core"));
   unsetenv("MESHSAL_FONT");
+}
+
+namespace {
+const uint8_t kInk[3] = {20, 20, 20};  // the pictures' text and tick colour
+
+// True when `text`, drawn alone on white at (x, y) as the pictures draw it, is exactly what
+// the picture holds in the text's line box (so the label is there, and only it).
+bool text_at(const Image& img, int x, int y, const std::string& text, double px) {
+  Image alone(img.width, img.height);
+  draw_text(alone, x, y, text, px, kInk);
+  const int line = int(std::lround(px * 1.25)), w = text_width(text, px);
+  int inked = 0, differ = 0;
+  for (int yy = y; yy < std::min(img.height, y + line); ++yy)
+    for (int xx = std::max(0, x - 1); xx < std::min(img.width, x + w + 2); ++xx) {
+      inked += alone.at(xx, yy)[0] < 128;
+      differ += !same_rgb(alone.at(xx, yy), img.at(xx, yy));
+    }
+  INFO("'" << text << "' at " << x << "," << y << ": " << inked << " ink pixels, " << differ << " differ");
+  return inked > 10 && differ == 0;
+}
+
+// Dark pixels (text, ticks) in the box [x0, x1) x [y0, y1).
+int dark_pixels(const Image& img, int x0, int y0, int x1, int y1) {
+  int n = 0;
+  for (int y = std::max(0, y0); y < std::min(img.height, y1); ++y)
+    for (int x = std::max(0, x0); x < std::min(img.width, x1); ++x)
+      n += img.at(x, y)[0] < 100 && img.at(x, y)[1] < 100 && img.at(x, y)[2] < 100;
+  return n;
+}
+
+// The columns [x0, x1) of an image.
+Image columns(const Image& img, int x0, int x1) {
+  Image out(x1 - x0, img.height);
+  for (int y = 0; y < img.height; ++y) std::copy(img.at(x0, y), img.at(x1, y), out.at(0, y));
+  return out;
+}
+
+bool is_white(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
+}  // namespace
+
+TEST_CASE("pictures: render --compare labels each panel, colours the simplified ones by distance, with colour bars", "[view]") {
+  PicDir dir;
+  // The original: a sphere with saliency max(0, x). "plain": its +x cap pushed out by 15%
+  // (far from the original there, on it elsewhere); "saliency-weighted": the sphere itself.
+  Mesh original = make_sphere(1.0, 3);
+  std::vector<double> q(original.vertex_count());
+  Mesh plain = original;
+  for (size_t i = 0; i < q.size(); ++i) {
+    q[i] = std::max(0.0, double(original.positions[3 * i]));
+    if (original.positions[3 * i] > 0.3f)
+      for (int k = 0; k < 3; ++k) plain.positions[3 * i + k] *= 1.15f;
+  }
+  write_ply(dir.path + "/o.ply", original, {{"quality", &q}});
+  write_obj(dir.path + "/plain.obj", plain);
+  write_obj(dir.path + "/salient.obj", original);
+  std::string out;
+  REQUIRE(cli("render " + dir.path + "/o.ply --compare " + dir.path + "/plain.obj " + dir.path +
+                  "/salient.obj --size 240 --theta 0 --phi 0 -o " + dir.path + "/c.png", &out) == 0);
+  INFO(out);
+  const Image img = load_png(dir.path + "/c.png");
+  const int size = 240, gap = 4;
+  REQUIRE(img.width == 3 * size + 2 * gap);
+  const double px = text_size_for(size);
+  const int pad = int(std::lround(px * 0.4)), line = int(std::lround(px * 1.25)), top = pad + 3 * line;
+  const size_t faces = original.triangle_count();
+
+  // The title line, and each panel's label: its name and face count, then what colours it.
+  CHECK(text_at(img, pad, pad, "o.ply   theta 0.0°  phi 0.0°  (y up)", px));
+  CHECK(text_at(img, pad, pad + line, "original: " + std::to_string(faces) + " faces", px));
+  CHECK(text_at(img, pad, pad + 2 * line, "coloured by saliency", px));
+  CHECK(text_at(img, size + gap + pad, pad + line, "plain: " + std::to_string(faces) + " faces", px));
+  CHECK(text_at(img, 2 * (size + gap) + pad, pad + line, "saliency-weighted: " + std::to_string(faces) + " faces", px));
+  // The salient-region error under the simplified panels: the weighted one is the original
+  // itself (0.000%), the plain one is off by a few % on its salient (+x) side.
+  CHECK(text_at(img, 2 * (size + gap) + pad, pad + 2 * line, "salient-region error 0.000%", px));
+  CHECK(dark_pixels(img, size + gap, pad + 2 * line, 2 * size + gap, pad + 3 * line) > 100);
+  CHECK(!text_at(img, size + gap + pad, pad + 2 * line, "salient-region error 0.000%", px));
+
+  // Panel bodies, looking from +z: +x on the right. Colour positions t (0 blue .. 1 red).
+  const int cy = top + size / 2;
+  const double R = size / 2 / 1.05;  // the sphere's radius in pixels (framed with 5% margin)
+  auto t_at = [&](int panel, double fx, double fy) {
+    const uint8_t* p = img.at(panel * (size + gap) + size / 2 + int(fx * R), cy - int(fy * R));
+    REQUIRE(!is_white(p));
+    return scale_t(p);
+  };
+  CHECK(t_at(0, 0.7, 0) > 0.75);   // original by saliency: max(0, x) hot on the right
+  CHECK(t_at(0, -0.7, 0) < 0.1);   // and cold on the left
+  CHECK(t_at(1, 0.7, 0) > 0.8);    // plain by distance: its pushed-out cap is the farthest
+  CHECK(t_at(1, 0.7, 0.3) > 0.8);
+  CHECK(t_at(1, -0.7, 0) < 0.05);  // on the original elsewhere: distance 0, blue
+  CHECK(t_at(1, 0, -0.5) < 0.05);
+  for (double fx : {-0.6, -0.3, 0.0, 0.3, 0.6})
+    for (double fy : {-0.5, 0.0, 0.5}) CHECK(t_at(2, fx, fy) < 0.05);  // the original itself: 0 everywhere
+
+  // Colour bars under the panels: saliency under the original, distance under both others.
+  int x0 = 0, x1 = 0;
+  const int bar = find_colour_bar(columns(img, size, img.width), 2 * size - 40, &x0, &x1);
+  REQUIRE(bar > top + size);
+  x0 += size, x1 += size;
+  CHECK(x0 >= size + gap);
+  CHECK(x0 < size + gap + 20);
+  CHECK(x1 > 3 * size - 10);
+  CHECK(text_at(img, size + gap + 2 * pad, top + size + pad,
+                "distance to the original (% of the bounding-box diagonal)", px));
+  CHECK(dark_pixels(img, x0, bar + 1, x1 + 1, bar + 4 + line) > 60);  // ticks and their values
+  int s0 = 0, s1 = 0;
+  const int sal_bar = find_colour_bar(columns(img, 0, size), size / 2, &s0, &s1);
+  CHECK(sal_bar == bar);
+  CHECK(s1 - s0 > size - 6 * pad);
+  CHECK(text_at(img, 2 * pad, top + size + pad, "saliency", px));
+}
+
+TEST_CASE("pictures: the view map has its axes' ticks, a colour bar, its markers and their legend", "[view]") {
+  ViewMap map;
+  map.views = fibonacci_directions(600);
+  for (const ViewAngles& a : map.views) {
+    double d[3];
+    view_direction(a, d);
+    map.U.push_back(1 + d[0]);  // hottest from +x (theta 90), coldest from -x (theta -90)
+  }
+  map.best = size_t(std::max_element(map.U.begin(), map.U.end()) - map.U.begin());
+  // The ring on the hottest colour, the cross on the coldest: each must show on either.
+  const ViewAngles ring{kPi / 2, 0}, cross{-kPi / 2, 0.2};
+  const int width = 720;
+  PicDir dir;
+  write_png(dir.path + "/map.png", view_map_picture(map, width, ring, "exhaustive maximum", cross,
+                                                    "optimiser's result", "a title"));
+  const Image img = load_png(dir.path + "/map.png");
+
+  // Find the plot (with both markers, as render_view_map draws them) in the picture.
+  const Image plot = render_view_map(map, width, &ring, &cross);
+  int left = -1, top = -1;
+  for (int y = 0; y + plot.height <= img.height && left < 0; ++y)
+    for (int x = 0; x + plot.width <= img.width; ++x)
+      if (std::equal(plot.at(0, 0), plot.at(0, 0) + 3 * plot.width, img.at(x, y)) &&
+          std::equal(plot.at(0, plot.height - 1), plot.at(0, plot.height - 1) + 3 * plot.width,
+                     img.at(x, y + plot.height - 1))) {
+        left = x, top = y;
+        break;
+      }
+  REQUIRE(left > 0);
+  for (int y = 0; y < plot.height; ++y) REQUIRE(std::equal(plot.at(0, y), plot.at(0, y) + 3 * plot.width, img.at(left, top + y)));
+
+  // Markers: a white ring with a black rim on the red maximum, a black cross edged in white on
+  // the blue minimum.
+  const Image bare = render_view_map(map, width, nullptr, nullptr);
+  const int r = std::max(4, width / 100);
+  int cx, cy;
+  view_map_pixel(ring, width, &cx, &cy);
+  CHECK(scale_t(bare.at(cx + 2, cy + 2)) > 0.9);  // beside the grid lines through (90, 0)
+  int white = 0, black = 0, on_ring = 0, rim = 0;
+  for (int dy = -r - 2; dy <= r + 2; ++dy)
+    for (int dx = -r - 2; dx <= r + 2; ++dx) {
+      const double dd = std::hypot(dx, dy) - r;
+      const uint8_t* p = img.at(left + cx + dx, top + cy + dy);
+      if (std::fabs(dd) < 1.0) on_ring++, white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+      if (dd >= 1.0 && dd < 2.0) rim++, black += p[0] == 0 && p[1] == 0 && p[2] == 0;
+    }
+  CHECK(white == on_ring);
+  CHECK(black == rim);
+  CHECK(scale_t(img.at(left + cx + 2, top + cy + 2)) > 0.9);  // the maximum stays visible inside
+  view_map_pixel(cross, width, &cx, &cy);
+  CHECK(scale_t(bare.at(cx + 3, cy + 3)) < 0.1);
+  for (int k = -r; k <= r; ++k) {
+    CHECK(img.at(left + cx + k, top + cy)[0] == 0);
+    CHECK(img.at(left + cx, top + cy + k)[1] == 0);
+    if (k == -1 || k == 0) continue;  // the vertical arm's black crosses the edges there
+    CHECK(img.at(left + cx + k, top + cy - 2)[2] == 255);
+    CHECK(img.at(left + cx + k, top + cy + 1)[2] == 255);
+  }
+
+  // Ticks: phi every 30 degrees left of the plot, theta every 60 below it, each with its value.
+  const double px = text_size_for(width);
+  int ticks = 0;
+  for (int phi = 90; phi >= -90; phi -= 30) {
+    int x, y;
+    view_map_pixel({0, phi * kPi / 180}, width, &x, &y);
+    y = phi == 90 ? 0 : phi == -90 ? plot.height - 1 : y;
+    bool tick = true;
+    for (int k = 1; k <= 6; ++k) tick &= same_rgb(img.at(left - k, top + y), kInk);
+    ticks += tick;
+    CHECK(dark_pixels(img, 0, top + y - int(px), left - 6, top + y + int(px)) > 15);  // "30°"
+  }
+  CHECK(ticks == 7);
+  CHECK(!same_rgb(img.at(left - 3, top + plot.height / 4), kInk));  // none between (phi 45)
+  ticks = 0;
+  for (int theta = -180; theta <= 180; theta += 60) {
+    const int x = theta == 180 ? plot.width - 1 : int(std::lround((theta + 180) / 360.0 * plot.width));
+    bool tick = true;
+    for (int k = 0; k < 6; ++k) tick &= same_rgb(img.at(left + x, top + plot.height + k), kInk);
+    ticks += tick;
+    CHECK(dark_pixels(img, left + x - int(px), top + plot.height + 6, left + x + int(px),
+                      top + plot.height + 6 + int(px * 1.25)) > 15);  // "-120°"
+  }
+  CHECK(ticks == 7);
+  CHECK(dark_pixels(img, 0, top + plot.height / 2 - int(px), left - 8 - text_width("-90°", px), top + plot.height / 2 + int(px)) > 20);  // "phi"
+
+  // The colour bar of U below, with its values, spanning the plot.
+  int x0 = 0, x1 = 0;
+  const int bar = find_colour_bar(img, plot.width - 10, &x0, &x1);
+  REQUIRE(bar > top + plot.height);
+  CHECK(x0 == left);
+  CHECK(dark_pixels(img, x0, bar + 1, x1 + 1, bar + 30) > 60);
+
+  // The legend between the axes and the bar: each marker drawn on mid grey, then its label.
+  int samples = 0;
+  for (int y = top + plot.height + 6; y < bar; ++y)
+    for (int x = left; x < left + 4; ++x) {
+      const uint8_t* p = img.at(x, y);
+      if (!(p[0] == 120 && p[1] == 120 && p[2] == 120)) continue;
+      const uint8_t* above = img.at(x, y - 1);
+      if (above[0] == 120 && above[1] == 120) continue;  // the top edge of a sample only
+      // A sample: a square whose left column and top row are all mid grey (not a text pixel).
+      const int side = 2 * int(px * 0.4) + 8;
+      bool square = true;
+      for (int k = 0; k < side; ++k) square &= img.at(x, y + k)[0] == 120 && img.at(x + k, y)[0] == 120;
+      if (!square) continue;
+      ++samples;
+      // Inside the sample: white and black marker pixels; right of it: the label's text.
+      int w = 0, b = 0;
+      for (int yy = y; yy < y + side; ++yy)
+        for (int xx = x; xx < x + side; ++xx) w += is_white(img.at(xx, yy)), b += img.at(xx, yy)[0] == 0;
+      CHECK(w > 10);
+      CHECK(b > 10);
+      CHECK(dark_pixels(img, x + side, y, x + side + 200, y + side) > 100);
+      break;
+    }
+  CHECK(samples == 2);
 }

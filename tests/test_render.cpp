@@ -241,8 +241,8 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   }
   CHECK(d0 > 0.9);
   CHECK(json_number(out, "views_evaluated") > 150);
-  CHECK(json_number(out, "U") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "U"));
-  CHECK(json_number(out, "U_fraction") > 0.5);
+  CHECK(json_number(out, "visible_score") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "visible_score"));
+  CHECK(json_number(out, "visible_fraction") > 0.5);
   CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
   CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
 
@@ -260,8 +260,8 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
   REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
   CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
-  CHECK(json_number(out, "U_fraction") > 0.4);
-  CHECK(json_number(out, "U_fraction") < 0.6);
+  CHECK(json_number(out, "visible_fraction") > 0.4);
+  CHECK(json_number(out, "visible_fraction") < 0.6);
   CHECK(out.find("\"exhaustive\": null") != std::string::npos);
 
   // Errors are one line, exit code 1.
@@ -275,4 +275,14 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
   CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 2);
   CHECK(out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
+}
+
+TEST_CASE("cli: render and viewpoint --help name every input format, STL included", "[view][cli]") {
+  for (const char* cmd : {"render", "viewpoint"}) {
+    std::string out;
+    REQUIRE(run_cli(std::string(cmd) + " --help", &out) == 0);
+    INFO(out);
+    CHECK(out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
+    CHECK(out.find("--json") != std::string::npos);
+  }
 }

@@ -346,6 +346,12 @@ struct OptimiserOptions {
   double initial_step = 0.25;    // first step length along the gradient (radians)
   double min_step = 0.01;        // a restart stops when its step shrinks below this
   int max_iterations = 60;       // per restart
+  // Called after each batch of views scored, from the calling thread, with a stage name and
+  // the fraction done of that stage (0..1, never falling, 1 when it ends): "best view" for
+  // the gradient ascent (an estimate: each restart's share of its iterations or of its
+  // step's way down to min_step, whichever is further), then, in best_viewpoint with
+  // views > 0, "view map" (views scored / views). May be empty.
+  std::function<void(const char* stage, double fraction)> progress;
 };
 
 struct OptimiserResult {

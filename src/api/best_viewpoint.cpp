@@ -14,7 +14,7 @@ BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
   BestView out;
   out.backend_name = setup.backend_name;
   out.optimised = optimise_viewpoint(setup.scorer, options);
-  if (views > 0) out.map = exhaustive_map(setup.scorer, views, setup.batch);
+  if (views > 0) out.map = exhaustive_map(setup.scorer, views, setup.batch, options.progress);
   return out;
 }
 

@@ -8,7 +8,7 @@
 
 #include "command.h"
 #include "core/timer.h"
-#include "json_string.h"
+#include "json_object.h"
 #include "cli/data_dir.h"
 #include "meshsal/meshsal.h"
 #include "number_options.h"
@@ -71,6 +71,7 @@ int exec_simplify_benchmark(const Args& a, const std::string& data_dir) {
 }
 
 struct Row {
+  std::string path;  // the mesh file as given (JSON "mesh")
   std::string model, device;
   std::string precision;  // of the sweep: "mixed" or "double"
   size_t vertices = 0;
@@ -215,43 +216,30 @@ void print_table(const std::vector<Row>& rows) {
               " recheck: points swept again in double)\n");
 }
 
-void print_json(const std::vector<Row>& rows) {
-  std::printf("[\n");
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const Row& r = rows[i];
-    std::printf("  {\"model\": %s, \"vertices\": %zu, \"device\": %s, \"precision\": %s, "
-                "\"read_s\": %.6f, \"stages\": {",
-                json_string(r.model).c_str(), r.vertices, json_string(r.device).c_str(),
-                json_string(r.precision).c_str(), r.read);
-    for (size_t s = 0; s < r.best.stages.size(); ++s)
-      std::printf("%s%s: %.6f", s ? ", " : "", json_string(r.best.stages[s].name).c_str(),
-                  r.best.stages[s].seconds);
-    std::printf("}, \"total_s\": %.6f, \"pairs\": %llu, \"pairs_per_s\": %.6g, \"rechecked\": %llu, "
-                "\"method\": %s, \"peak_rss_bytes\": %.0f",
-                r.total, (unsigned long long)r.best.pairs, r.total > 0 ? r.best.pairs / r.total : 0.0,
-                (unsigned long long)r.best.rechecked, json_string(r.method).c_str(), r.peak_rss);
+// One JSON object, as every command's --json: a row per mesh and device under "rows", each
+// with its "mesh" (the file as given), "device" and "seconds" (the saliency total).
+void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
+  std::vector<JsonObject> items;
+  for (const Row& r : rows) {
+    JsonObject stages;
+    for (const auto& st : r.best.stages) stages.number(json_key(st.name), st.seconds);
+    JsonObject j;
+    j.text("mesh", r.path).text("name", r.model).count("subdivisions", uint64_t(a.subdivide))
+        .count("vertices", r.vertices).text("device", r.device).text("precision", r.precision)
+        .text("method", r.method).number("read_seconds", r.read).number("seconds", r.total).object("stages", stages)
+        .count("pairs", r.best.pairs).number("pairs_per_second", r.total > 0 ? r.best.pairs / r.total : 0.0)
+        .count("rechecked", r.best.rechecked).count("peak_rss_bytes", uint64_t(r.peak_rss));
     if (r.method == "fast") {
-      std::printf(", \"exact_measured\": %s, \"exact_total_s\": %.6f, \"exact_pairs\": %.6g",
-                  r.has_reference ? "true" : "false", r.exact_total, r.exact_pairs);
-      if (r.has_reference) {
-        auto list = [](const std::vector<double>& xs) {
-          std::string t = "[";
-          char buf[32];
-          for (size_t k = 0; k < xs.size(); ++k) {
-            std::snprintf(buf, sizeof buf, "%s%.6g", k ? ", " : "", xs[k]);
-            t += buf;
-          }
-          return t + "]";
-        };
-        std::printf(", \"correlation\": %.8f, \"top30_overlap\": %.6f, \"raw_mean_rel\": %s, "
-                    "\"raw_max_rel\": %s",
-                    r.error.correlation, r.error.top30_overlap, list(r.error.raw_mean).c_str(),
-                    list(r.error.raw_max).c_str());
-      }
+      j.flag("exact_measured", r.has_reference).number("exact_seconds", r.exact_total).number("exact_pairs", r.exact_pairs);
+      if (r.has_reference)
+        j.number("correlation", r.error.correlation).number("top30_overlap", r.error.top30_overlap)
+            .numbers("raw_mean_rel", r.error.raw_mean).numbers("raw_max_rel", r.error.raw_max);
     }
-    std::printf("}%s\n", i + 1 < rows.size() ? "," : "");
+    items.push_back(j);
   }
-  std::printf("]\n");
+  JsonObject out;
+  out.text("method", a.method).count("repeat", uint64_t(a.repeat)).count("threads", a.threads)
+      .objects("rows", items).number("seconds", seconds).print();
 }
 
 int run(const Args& a) {
@@ -271,6 +259,7 @@ int run(const Args& a) {
   const meshsal::Method method = meshsal::parse_method(a.method);
   if (method == meshsal::Method::Auto) throw meshsal::Error("bench: --method must be exact or fast");
   std::vector<Row> rows;
+  const meshsal::Timer wall;
   for (const std::string& p : paths) {
     const meshsal::Timer t0;
     meshsal::Mesh mesh = meshsal::load_mesh(p);
@@ -280,12 +269,14 @@ int run(const Args& a) {
     const double read = t0.seconds();
     if (method == meshsal::Method::Fast) {
       rows.push_back(bench_fast(model, mesh, read, a));
+      rows.back().path = p;
       continue;
     }
     for (const auto& opt : bench_backends(a)) {
       if (!a.json && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", p.c_str());
       try {
         rows.push_back(bench_one(model, mesh, read, opt, a.repeat));
+        rows.back().path = p;
       } catch (const meshsal::Error& e) {
         if (opt.backend == meshsal::Backend::Cpu) throw;
         std::fprintf(stderr, "skipped %s on Vulkan device %d: %s\n", p.c_str(), opt.device, e.what());
@@ -293,7 +284,7 @@ int run(const Args& a) {
     }
   }
   if (a.json)
-    print_json(rows);
+    print_json(rows, a, wall.seconds());
   else
     print_table(rows);
   return 0;
@@ -307,7 +298,7 @@ RunFn setup(CLI::App& sub) {
       "dragon_50k and igea_134k from ../shared/data/meshes (or $MESHSAL_DATA).");
   sub.add_option("meshes", a->meshes, "Mesh files to time");
   sub.add_option("--data-dir", a->data_dir, "Folder of the default benchmark meshes");
-  sub.add_flag("--json", a->json, "Print JSON instead of the table");
+  sub.add_flag("--json", a->json, "Print one JSON object (a row per mesh and device under \"rows\") instead of the table");
   sub.add_flag("--simplify", a->simplify,
                "Benchmark simplification instead (plain, saliency-weighted, meshoptimizer) at 1% "
                "and 5% of the faces of armadillo_43k, dragon_50k and igea_134k");

@@ -26,6 +26,7 @@ struct Args {
   long long samples = 200000;
   double fraction = 0.30;
   unsigned threads = 0;
+  bool json = false;  // accepted like every command's --json; the output is always JSON
 };
 
 int run(const Args& a) {
@@ -36,10 +37,10 @@ int run(const Args& a) {
   const Mesh original = load_input(a.original, false);
   const Mesh simplified = load_input(a.simplified, false);
   std::vector<double> s;
-  std::string source;
+  std::string source, device = "cpu";  // distances are measured on the CPU
   if (!a.saliency.empty()) {
     s = load_saliency_ply(a.saliency, original);
-    source = "file";
+    source = a.saliency;
   } else {
     SaliencyOptions so;
     so.backend = parse_backend(a.backend);
@@ -48,8 +49,10 @@ int run(const Args& a) {
     so.threads = a.threads;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-    s = compute_saliency(original, so).saliency;
-    source = "computed";
+    SaliencyResult r = compute_saliency(original, so);
+    s = std::move(r.saliency);
+    source = "computed (" + r.backend_name + ")";
+    device = r.backend_name;
   }
   CompareOptions co;
   co.face_samples = size_t(a.samples);
@@ -71,7 +74,8 @@ int run(const Args& a) {
   for (const auto& [name, d] : distances) j.number(name, d);
   for (const auto& [name, d] : distances)
     j.number(std::string(name) + "_percent", r.diagonal > 0 ? 100.0 * d / r.diagonal : 0.0);
-  j.count("salient_vertices", r.salient_vertices).number("salient_fraction", a.fraction).text("saliency", source)
+  j.count("salient_vertices", r.salient_vertices).number("salient_fraction", a.fraction).text("saliency_source", source)
+      .text("device", device)
       .count("forward_samples", r.forward_samples).count("backward_samples", r.backward_samples)
       .number("seconds", t0.seconds());
   j.print();
@@ -88,7 +92,8 @@ RunFn setup(CLI::App& sub) {
       "vertices to the simplified surface. Saliency comes from --saliency FILE.ply or is\n"
       "computed. Distances are in model units, and as NAME_percent in % of `diagonal`, the\n"
       "original's bounding-box diagonal. forward = from ORIGINAL's surface to SIMPLIFIED's,\n"
-      "backward = from SIMPLIFIED's to ORIGINAL's.");
+      "backward = from SIMPLIFIED's to ORIGINAL's. saliency_source: the file or `computed\n"
+      "(DEVICE)`; device: where saliency was computed (cpu when read: distances run on the CPU).");
   sub.add_option("original", a->original, "The original mesh")->required();
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
   sub.add_option("--saliency-from,--saliency", a->saliency,
@@ -101,6 +106,8 @@ RunFn setup(CLI::App& sub) {
   add_precision_option(sub, &a->precision);
   add_method_option(sub, &a->method);
   add_threads_option(sub, a->threads, "Threads (0 = all cores)");
+  sub.add_flag("--json", a->json,
+               "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json)");
   return [a] { return run(*a); };
 }
 

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "command.h"
+#include "core/timer.h"
+#include "json_object.h"
 #include "load_input.h"
 #include "meshsal/meshsal.h"
 #include "view/compare_picture.h"
@@ -17,6 +19,7 @@
 #include "own_saliency.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "view_json.h"
 
 namespace meshsal_cli {
 namespace {
@@ -28,12 +31,13 @@ struct Options {
   std::vector<std::string> compare;
   double theta_deg = 0, phi_deg = 0;
   int size = 512;
-  bool grey = false, flat = false, edges = false, best = false;
+  bool grey = false, flat = false, edges = false, best = false, json = false;
   unsigned threads = 0;
 };
 
 int run(const Options& o) {
   using namespace meshsal;
+  const meshsal::Timer t0;
   // Before any work: the picture is a writable .png that is none of the inputs.
   std::vector<std::string> inputs{o.input, o.saliency_from};
   inputs.insert(inputs.end(), o.compare.begin(), o.compare.end());
@@ -54,6 +58,7 @@ int run(const Options& o) {
   Mesh mesh = load_input(o.input, false, &props);
   const ViewScore kind = parse_view_score(o.score);
   std::vector<double> score;
+  std::string source, device = "cpu";  // where the view was scored: the CPU unless --best ran on a GPU
   if (!o.grey || o.best) {
     Progress progress(stderr_is_terminal());
     SaliencyOptions sopt;
@@ -64,7 +69,7 @@ int run(const Options& o) {
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
     const std::string from = saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency);
-    score = vertex_score(mesh, kind, from, sopt);
+    score = vertex_score(mesh, kind, from, sopt, &source);
     progress.finish();
   }
   if (o.best) {
@@ -75,24 +80,41 @@ int run(const Options& o) {
     double d[3];
     view_direction(b.optimised.best, d);  // y-up angles of the search
     view = direction_angles(frame_mesh(mesh, style.up), d);
+    device = b.backend_name;
     std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
   }
   const std::vector<double>* shown = o.grey ? nullptr : &score;
   const std::string name = std::filesystem::path(o.input).filename().string();
   const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
+  VisibleScore visible;
   if (o.compare.empty()) {
-    write_png(o.output, titled_view(mesh, shown, view, style, name, score_name));
-    return 0;
+    write_png(o.output, titled_view(mesh, shown, view, style, name, score_name, &visible));
+  } else {
+    Mesh plain = load_input(o.compare[0], false);
+    Mesh salient = load_input(o.compare[1], false);
+    write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name));
+    if (shown && o.json) visible = picture_visible_score(mesh, score, view, style.up);
   }
-  Mesh plain = load_input(o.compare[0], false);
-  Mesh salient = load_input(o.compare[1], false);
-  write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name));
+  if (!o.json) return 0;
+  // The view in the angles of --up; visible_score = U of the original as the title gives it
+  // (CPU visibility at 512 px), null without a score (--grey).
+  JsonObject j;
+  j.text("mesh", o.input).text("output", o.output).count("vertices", mesh.vertex_count())
+      .count("faces", mesh.triangle_count()).text("device", device).text("up", o.up).flag("best", o.best);
+  add_view(j, frame_mesh(mesh, style.up), view);
+  if (shown)
+    j.text("score", o.score).text("score_source", source).number("visible_score", visible.U)
+        .number("visible_fraction", visible.total > 0 ? visible.U / visible.total : 0.0);
+  else
+    j.null("score").null("score_source").null("visible_score").null("visible_fraction");
+  if (!o.compare.empty()) j.text("plain", o.compare[0]).text("salient", o.compare[1]);
+  j.number("seconds", t0.seconds()).print();
   return 0;
 }
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz); a saliency PLY brings its own saliency")->required();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("-o,--output", o->output, "PNG to write")->required();
   auto* theta = app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from the front, 90 from the right)")
       ->capture_default_str()->check(finite_in(-360, 360));
@@ -118,6 +140,9 @@ RunFn setup(CLI::App& app) {
   add_precision_option(app, &o->precision);
   add_method_option(app, &o->method);
   add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
+  app.add_flag("--json", o->json,
+               "Print one JSON object on stdout: mesh, output, device, the view's angles (theta, phi, "
+               "theta_deg, phi_deg, direction), visible_score U and visible_fraction, seconds");
   return [o]() { return run(*o); };
 }
 

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "command.h"
+#include "core/mesh_points.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -61,7 +62,7 @@ int run(const Args& a) {
           .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
           .count("input_faces", mesh.triangle_count()).count("output_vertices", mesh.vertex_count())
           .count("output_faces", mesh.triangle_count()).count("target_faces", mesh.triangle_count())
-          .flag("unchanged", true).count("collapses", 0).number("seconds", t0.seconds()).print();
+          .flag("unchanged", true).count("collapses", 0).text("device", "cpu").number("seconds", t0.seconds()).print();
     if (!a.quiet) {
       std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
                    a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
@@ -74,6 +75,7 @@ int run(const Args& a) {
 
   std::vector<double> weights;
   double t_saliency = 0, alpha = 0;
+  std::string device = "cpu";  // simplification runs on the CPU; computed saliency names its own
   if (a.weights == "saliency") {
     const meshsal::Timer ts;
     SaliencyOptions so;
@@ -95,8 +97,15 @@ int run(const Args& a) {
     wo.lambda = a.lambda;
     wo.alpha_percentile = a.alpha_percentile;
     wo.floor = a.weight_floor;
-    weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
-                                     &alpha);
+    if (a.saliency_from.empty()) {
+      // simplification_weights() computed here, to learn the saliency's device for the JSON.
+      so.smoothed = true;
+      const SaliencyResult s = compute_saliency(mesh, so);
+      device = s.backend_name;
+      weights = saliency_weights(s.smoothed, referenced_vertices(mesh), wo, &alpha);
+    } else {
+      weights = simplification_weights(mesh, wo, so, &from_file, &alpha);
+    }
     t_saliency = ts.seconds();
   }
 
@@ -114,7 +123,7 @@ int run(const Args& a) {
         .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
         .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
         .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
-        .text("weights", weights.empty() ? "none" : "saliency");
+        .text("weights", weights.empty() ? "none" : "saliency").text("device", device);
     if (!weights.empty())
       j.number("lambda", a.lambda).number("alpha", alpha).number("alpha_percentile", a.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);

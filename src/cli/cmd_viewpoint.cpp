@@ -15,13 +15,14 @@
 #include "view/viewpoint.h"
 #include "api/viewpoint_backend.h"
 #include "api/viewpoint_score.h"
-#include "json_string.h"
+#include "json_object.h"
 #include "load_input.h"
 #include "number_options.h"
 #include "output_check.h"
 #include "own_saliency.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "view_json.h"
 
 namespace meshsal_cli {
 namespace {
@@ -34,21 +35,8 @@ struct Options {
   uint64_t seed = 1;
   double depth_tol = 2.0;
   unsigned threads = 0;
+  bool json = false;  // accepted like every command's --json; the summary is always JSON
 };
-
-const double kDeg = 180.0 / 3.14159265358979323846;
-
-// a: angles in `frame`'s up axis; the direction is in the mesh's coordinates.
-std::string json_view(const meshsal::ViewFrame& frame, const meshsal::ViewAngles& a, double U) {
-  double d[3];
-  meshsal::view_direction(frame, a, d);
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "\"theta\": %.6f, \"phi\": %.6f, \"theta_deg\": %.3f, \"phi_deg\": %.3f, "
-                "\"direction\": [%.6f, %.6f, %.6f], \"U\": %.9g",
-                a.theta, a.phi, a.theta * kDeg, a.phi * kDeg, d[0], d[1], d[2], U);
-  return buf;
-}
 
 int run(const Options& o) {
   using namespace meshsal;
@@ -88,28 +76,13 @@ int run(const Options& o) {
   OptimiserOptions oopt;
   oopt.restarts = o.restarts;
   oopt.seed = o.seed;
-  // Progress counts the views scored against how many there can be: for the optimiser an
-  // upper bound (a start, then at most 4 probes and a step per iteration and restart), so
-  // its percentage runs ahead of the work only when the restarts end early.
-  const char* stage = "best view";
-  double views_done = 0, views_bound = double(oopt.restarts) * (1 + 5.0 * oopt.max_iterations);
-  const ViewScorer scorer = [&](const std::vector<ViewAngles>& views) {
-    std::vector<double> u = setup.scorer(views);
-    views_done += double(views.size());
-    progress.update(stage, std::min(1.0, views_done / views_bound));
-    return u;
-  };
-  progress.update(stage, 0.0);
-  OptimiserResult best = optimise_viewpoint(scorer, oopt);
+  // The optimiser reports after every batch of views ("best view"), then the map ("view map").
+  oopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+  OptimiserResult best = optimise_viewpoint(setup.scorer, oopt);
 
   int map_views = o.views > 0 ? o.views : (o.map_png.empty() ? 0 : 2000);
   ViewMap map;
-  if (map_views > 0) {
-    stage = "view map";
-    views_done = 0;
-    views_bound = map_views;
-    map = exhaustive_map(scorer, map_views, setup.batch);
-  }
+  if (map_views > 0) map = exhaustive_map(setup.scorer, map_views, setup.batch, oopt.progress);
   progress.finish();
 
   double total = 0;
@@ -125,22 +98,6 @@ int run(const Options& o) {
   const ViewAngles best_view = in_up(best.best);
   for (ViewAngles& a : map.views) a = in_up(a);
 
-  std::printf("{\"mesh\": %s, \"vertices\": %zu, \"score\": \"%s\", \"score_source\": %s, "
-              "\"backend\": %s, \"resolution\": %d, \"depth_tol_px\": %g, ",
-              json_string(o.input).c_str(), mesh.vertex_count(), o.score.c_str(), json_string(source).c_str(),
-              json_string(setup.backend_name).c_str(), o.resolution, o.depth_tol);
-  std::printf("%s, \"U_fraction\": %.6f, ", json_view(up_frame, best_view, best.U).c_str(), total > 0 ? best.U / total : 0.0);
-  std::printf("\"restarts\": %d, \"seed\": %llu, ", o.restarts, (unsigned long long)o.seed);
-  if (map_views > 0)
-    std::printf("\"exhaustive\": {\"views\": %d, %s}, ", map_views,
-                json_view(up_frame, map.views[map.best], map.U[map.best]).c_str());
-  else
-    std::printf("\"exhaustive\": null, ");
-  double secs = t0.seconds();
-  std::printf("\"views_evaluated\": %llu, \"seconds\": %.3f}\n",
-              (unsigned long long)(best.views_evaluated + uint64_t(map_views)), secs);
-  std::fflush(stdout);
-
   const std::string name = std::filesystem::path(o.input).filename().string();
   const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
   if (!o.out_png.empty())
@@ -153,12 +110,41 @@ int run(const Options& o) {
     write_png(o.map_png, view_map_picture(map, o.map_width, map.views[map.best], ring, best_view, cross,
                                           name + ": visible " + score_name + " by view direction (--up " + o.up + ")"));
   }
+
+  // One JSON object, as every command's --json: the best view's angles in the frame of --up,
+  // visible_score = U (sum of the score over the visible mesh points), visible_fraction = U
+  // over the sum over all points.
+  JsonObject j;
+  j.text("mesh", o.input).count("vertices", mesh.vertex_count()).count("faces", mesh.triangle_count())
+      .text("score", o.score).text("score_source", source).text("device", setup.backend_name)
+      .count("resolution", uint64_t(o.resolution)).number("depth_tol_px", o.depth_tol).text("up", o.up);
+  add_view(j, up_frame, best_view).number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0);
+  j.count("restarts", uint64_t(o.restarts)).count("seed", o.seed);
+  if (map_views > 0) {
+    JsonObject ex;
+    ex.count("views", uint64_t(map_views));
+    add_view(ex, up_frame, map.views[map.best]).number("visible_score", map.U[map.best])
+        .number("visible_fraction", total > 0 ? map.U[map.best] / total : 0.0);
+    j.object("exhaustive", ex);
+  } else {
+    j.null("exhaustive");
+  }
+  j.count("views_evaluated", best.views_evaluated + uint64_t(map_views));
+  if (!o.out_png.empty()) j.text("output", o.out_png);
+  if (!o.map_png.empty()) j.text("map", o.map_png);
+  j.number("seconds", t0.seconds()).print();
   return 0;
 }
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, optionally .gz); a saliency PLY brings its own saliency")->required();
+  app.footer(
+      "Print one JSON object: the direction that sees the most score (theta, phi in radians and\n"
+      "degrees in the frame of --up, and `direction`, a unit vector towards the viewer),\n"
+      "visible_score = U, the sum of the score over the mesh points visible from it, and\n"
+      "visible_fraction = U over the sum over all points; `exhaustive`: the best of --views\n"
+      "directions (null without --views or --map).");
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
   app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
   app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")
@@ -184,6 +170,8 @@ RunFn setup(CLI::App& app) {
       ->check(color_range_check());
   app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")
       ->capture_default_str()->check(whole_in(32, 8192));
+  app.add_flag("--json", o->json,
+               "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json)");
   return [o]() { return run(*o); };
 }
 

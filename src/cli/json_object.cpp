@@ -14,12 +14,15 @@ JsonObject& JsonObject::raw(const std::string& key, const std::string& json) {
   return *this;
 }
 
-JsonObject& JsonObject::number(const std::string& key, double value) {
-  if (!std::isfinite(value)) return raw(key, "null");
+// %.9g, or null for NaN and infinities (JSON has no such numbers).
+static std::string number_text(double value) {
+  if (!std::isfinite(value)) return "null";
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.9g", value);
-  return raw(key, buf);
+  return buf;
 }
+
+JsonObject& JsonObject::number(const std::string& key, double value) { return raw(key, number_text(value)); }
 
 JsonObject& JsonObject::count(const std::string& key, uint64_t value) {
   return raw(key, std::to_string(value));
@@ -33,6 +36,24 @@ JsonObject& JsonObject::flag(const std::string& key, bool value) { return raw(ke
 
 JsonObject& JsonObject::object(const std::string& key, const JsonObject& value) {
   return raw(key, value.str());
+}
+
+JsonObject& JsonObject::numbers(const std::string& key, const std::vector<double>& values) {
+  std::string list;
+  for (double v : values) list += (list.empty() ? "" : ", ") + number_text(v);
+  return raw(key, "[" + list + "]");
+}
+
+JsonObject& JsonObject::objects(const std::string& key, const std::vector<JsonObject>& values) {
+  std::string list;
+  for (const JsonObject& v : values) list += (list.empty() ? "" : ", ") + v.str();
+  return raw(key, "[" + list + "]");
+}
+
+std::string json_key(std::string name) {
+  for (char& c : name)
+    if (c == ' ' || c == '-') c = '_';
+  return name;
 }
 
 void JsonObject::print() const {

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace meshsal_cli {
 
@@ -13,6 +14,10 @@ class JsonObject {
   JsonObject& text(const std::string& key, const std::string& value);
   JsonObject& flag(const std::string& key, bool value);
   JsonObject& object(const std::string& key, const JsonObject& value);
+  JsonObject& null(const std::string& key) { return raw(key, "null"); }
+  // Arrays: of numbers (as number()) and of objects.
+  JsonObject& numbers(const std::string& key, const std::vector<double>& values);
+  JsonObject& objects(const std::string& key, const std::vector<JsonObject>& values);
   // Already-formatted JSON (an array, null).
   JsonObject& raw(const std::string& key, const std::string& json);
   std::string str() const { return "{" + body_ + "}"; }
@@ -22,5 +27,8 @@ class JsonObject {
  private:
   std::string body_;
 };
+
+// A name as a snake_case key: "gaussian sweep" -> "gaussian_sweep" (spaces and dashes to _).
+std::string json_key(std::string name);
 
 }  // namespace meshsal_cli

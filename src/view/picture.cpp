@@ -28,22 +28,31 @@ std::string view_text(const ViewAngles& view, UpAxis up) {
   return buf;
 }
 
+VisibleScore picture_visible_score(const Mesh& mesh, const std::vector<double>& score, const ViewAngles& view,
+                                   UpAxis up) {
+  const std::vector<float> weights = visibility_weights(mesh, score);
+  VisibilityOptions vopt;
+  vopt.resolution = 512;
+  VisibleScore v;
+  v.U = visible_score_cpu(mesh, weights, frame_mesh(mesh, up), {view}, vopt)[0];
+  for (float w : weights) v.total += w;
+  return v;
+}
+
 Image titled_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
-                  const RenderStyle& style, const std::string& name, const std::string& score_name) {
+                  const RenderStyle& style, const std::string& name, const std::string& score_name,
+                  VisibleScore* shown) {
   const ViewFrame frame = frame_mesh(mesh, style.up);
   std::vector<std::string> title{name + "   " + view_text(view, style.up)};
+  if (shown) *shown = {};
   if (!score) return add_title_and_bar(render_mesh(mesh, nullptr, frame, view, style), title, nullptr, "");
   ColorLimits limits;
   std::vector<uint8_t> colours = score_colours(mesh, *score, style.range, &limits);
-  std::vector<float> weights = visibility_weights(mesh, *score);
-  VisibilityOptions vopt;
-  vopt.resolution = 512;
-  const double U = visible_score_cpu(mesh, weights, frame, {view}, vopt)[0];
-  double total = 0;
-  for (float w : weights) total += w;
+  const VisibleScore v = picture_visible_score(mesh, *score, view, style.up);
+  if (shown) *shown = v;
   char buf[160];
   std::snprintf(buf, sizeof buf, "visible %s U = %s (%.0f%% of the total)", score_name.c_str(),
-                value_text(U).c_str(), total > 0 ? 100.0 * U / total : 0.0);
+                value_text(v.U).c_str(), v.total > 0 ? 100.0 * v.U / v.total : 0.0);
   title.push_back(buf);
   return add_title_and_bar(render_mesh(mesh, &colours, frame, view, style), title, &limits, score_name);
 }

@@ -24,7 +24,7 @@ std::vector<ViewAngles> fibonacci_directions(int n) {
   return v;
 }
 
-ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch) {
+ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch, const ProgressFn& progress) {
   ViewMap m;
   m.views = fibonacci_directions(n);
   m.U.reserve(m.views.size());
@@ -35,6 +35,7 @@ ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch) {
     std::vector<double> u = scorer(part);
     if (u.size() != part.size()) throw Error("internal: view scorer returned a wrong count");
     m.U.insert(m.U.end(), u.begin(), u.end());
+    if (progress) progress("view map", double(e) / double(m.views.size()));
   }
   m.best = size_t(std::max_element(m.U.begin(), m.U.end()) - m.U.begin());
   return m;
@@ -48,6 +49,13 @@ ViewAngles rotate_towards(const ViewAngles& a, const double t[3], double angle) 
   return direction_angles(r);
 }
 
+double restart_progress(int iterations, double step, const OptimiserOptions& o) {
+  const double by_iterations = double(iterations) / double(std::max(1, o.max_iterations));
+  const double way_down = std::log(o.initial_step / o.min_step);
+  const double by_step = way_down > 0 ? std::log(o.initial_step / step) / way_down : 0.0;
+  return std::clamp(std::max(by_iterations, by_step), 0.0, 1.0);
+}
+
 namespace {
 struct Restart {
   ViewAngles at;
@@ -55,6 +63,7 @@ struct Restart {
   double step = 0;
   int iterations = 0;
   bool active = true;
+  double progress = 0;  // the largest restart_progress seen, 1 once it ends
 };
 }  // namespace
 
@@ -75,12 +84,27 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
     res.starts.push_back(r.at);
     batch.push_back(r.at);
   }
+  // The mean of the restarts' progress, reported after each batch: the restarts end at
+  // different rounds, so this rises round by round instead of jumping at the last one.
+  double reported = 0;
+  auto report = [&](bool done) {
+    if (!o.progress) return;
+    double sum = 0;
+    for (Restart& r : rs) {
+      r.progress = r.active ? std::max(r.progress, restart_progress(r.iterations, r.step, o)) : 1.0;
+      sum += r.progress;
+    }
+    reported = done ? 1.0 : std::max(reported, std::min(0.99, sum / double(rs.size())));
+    o.progress("best view", reported);
+  };
   auto evaluate = [&](const std::vector<ViewAngles>& views) {
     std::vector<double> u = scorer(views);
     if (u.size() != views.size()) throw Error("internal: view scorer returned a wrong count");
     res.views_evaluated += views.size();
+    report(false);
     return u;
   };
+  report(false);
   std::vector<double> u0 = evaluate(batch);
   for (size_t i = 0; i < rs.size(); ++i) rs[i].U = u0[i];
 
@@ -149,6 +173,7 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
       if (++r.iterations >= o.max_iterations || r.step < o.min_step) r.active = false;
     }
   }
+  report(true);
   size_t best = 0;
   for (size_t i = 0; i < rs.size(); ++i) {
     res.finals.push_back(rs[i].at);

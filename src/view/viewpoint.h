@@ -17,8 +17,12 @@ using ViewScorer = std::function<std::vector<double>(const std::vector<ViewAngle
 // y_i = 1 - (2 i + 1) / n, theta_i = i * pi (3 - sqrt 5).
 std::vector<ViewAngles> fibonacci_directions(int n);
 
-// U over n Fibonacci directions, evaluated in batches of `batch` views.
-ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch = 256);
+// Progress callback: stage name, fraction done of that stage (as SaliencyOptions::progress).
+using ProgressFn = std::function<void(const char* stage, double fraction)>;
+
+// U over n Fibonacci directions, evaluated in batches of `batch` views; `progress` (may be
+// empty) hears "view map" and the share of views scored after each batch.
+ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch = 256, const ProgressFn& progress = {});
 
 // Gradient ascent on the sphere of directions. Each iteration of each restart probes the
 // four neighbours of the current direction d at angle h along the camera's right and up
@@ -26,8 +30,14 @@ ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch = 256);
 // the gradient in (theta, phi) with the sphere's metric), then moves d by `step` along the
 // gradient. A move that raises U is taken and the step grows 1.5x (up to 4x the initial),
 // otherwise the step halves; the probe angle follows the step down (h = min(probe, step)).
-// All restarts advance in lockstep so each round is one scorer batch.
+// All restarts advance in lockstep so each round is one scorer batch. options.progress
+// hears "best view" after every batch (optimiser_progress of the restarts).
 OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& options);
+
+// How far one restart is, 0..1: the larger of its share of max_iterations and of the way
+// its step has shrunk from initial_step towards min_step (in log scale, where it ends).
+// Its step may grow again, so callers keep the largest value seen (the estimate never falls).
+double restart_progress(int iterations, double step, const OptimiserOptions& options);
 
 // Rotates d by `angle` towards the unit tangent t (both unit, t orthogonal to d).
 ViewAngles rotate_towards(const ViewAngles& a, const double t[3], double angle);
