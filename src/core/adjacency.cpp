@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "core/parallel.h"
 
 namespace meshsal {
 
@@ -17,52 +20,144 @@ static double triangle_area(const float* p, uint32_t a, uint32_t b, uint32_t c) 
   return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
 }
 
-Adjacency build_adjacency(const Mesh& mesh) {
+namespace {
+
+using HalfEdge = std::pair<uint32_t, double>;  // (neighbour, area of the triangle)
+
+// Sorts one vertex's half-edges by neighbour and merges duplicates, summing the areas of an
+// edge's triangles in list order. Calls out(neighbour, area) per distinct neighbour.
+template <class Out>
+void merge_half_edges(std::vector<HalfEdge>& half, Out&& out) {
+  // Stable, so that an edge's areas are summed in triangle order: insertion sort for the
+  // usual handful (std::stable_sort allocates), stable_sort for a rare large fan.
+  auto less = [](const HalfEdge& x, const HalfEdge& y) { return x.first < y.first; };
+  if (half.size() > 32) {
+    std::stable_sort(half.begin(), half.end(), less);
+  } else {
+    for (size_t i = 1; i < half.size(); ++i)
+      for (size_t j = i; j > 0 && less(half[j], half[j - 1]); --j) std::swap(half[j], half[j - 1]);
+  }
+  for (size_t i = 0; i < half.size();) {
+    double area = half[i].second;
+    size_t j = i + 1;
+    for (; j < half.size() && half[j].first == half[i].first; ++j) area += half[j].second;
+    out(half[i].first, area);
+    i = j;
+  }
+}
+
+}  // namespace
+
+// Each vertex gathers its half-edges from the triangles around it, so the vertices are
+// independent and run in parallel, and nothing of the size of all half-edges with their
+// areas is held (that list was the largest buffer of a saliency run).
+Adjacency build_adjacency(const Mesh& mesh, unsigned threads) {
   const size_t n = mesh.vertex_count();
   const size_t nt = mesh.triangle_count();
   const uint32_t* t = mesh.triangles.data();
 
-  // Counting sort of the directed half-edges (both directions of every triangle edge) by source.
-  std::vector<uint32_t> count(n + 1, 0);
-  for (size_t f = 0; f < nt; ++f)
-    for (int e = 0; e < 3; ++e) {
-      uint32_t a = t[3 * f + e], b = t[3 * f + (e + 1) % 3];
-      if (a == b) continue;
-      count[a + 1]++;
-      count[b + 1]++;
-    }
-  for (size_t v = 0; v < n; ++v) count[v + 1] += count[v];
-  std::vector<uint32_t> fill(count.begin(), count.end() - 1);
-  std::vector<std::pair<uint32_t, double>> half(count[n]);
+  // The triangles around each vertex (CSR), each once per vertex, in triangle order.
+  std::vector<uint32_t> around_start(n + 1, 0);
   for (size_t f = 0; f < nt; ++f) {
-    uint32_t tri[3] = {t[3 * f], t[3 * f + 1], t[3 * f + 2]};
-    double area = triangle_area(mesh.positions.data(), tri[0], tri[1], tri[2]);
-    for (int e = 0; e < 3; ++e) {
-      uint32_t a = tri[e], b = tri[(e + 1) % 3];
-      if (a == b) continue;
-      half[fill[a]++] = {b, area};
-      half[fill[b]++] = {a, area};
-    }
+    const uint32_t* c = &t[3 * f];
+    around_start[c[0] + 1]++;
+    if (c[1] != c[0]) around_start[c[1] + 1]++;
+    if (c[2] != c[0] && c[2] != c[1]) around_start[c[2] + 1]++;
   }
+  for (size_t v = 0; v < n; ++v) around_start[v + 1] += around_start[v];
+  std::vector<uint32_t> around(around_start[n]);
+  for (size_t f = 0; f < nt; ++f) {
+    const uint32_t* c = &t[3 * f];
+    around[around_start[c[0]]++] = uint32_t(f);
+    if (c[1] != c[0]) around[around_start[c[1]]++] = uint32_t(f);
+    if (c[2] != c[0] && c[2] != c[1]) around[around_start[c[2]]++] = uint32_t(f);
+  }
+  for (size_t v = n; v > 0; --v) around_start[v] = around_start[v - 1];  // back to starts
+  around_start[0] = 0;
 
-  // Sort each vertex's list and merge duplicates, summing the areas of an edge's triangles.
-  Adjacency adj;
-  adj.offsets.assign(n + 1, 0);
-  adj.neighbors.reserve(half.size() / 2);
-  adj.edge_area.reserve(half.size() / 2);
-  for (size_t v = 0; v < n; ++v) {
-    auto begin = half.begin() + count[v], end = half.begin() + count[v + 1];
-    std::sort(begin, end, [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (auto it = begin; it != end; ++it) {
-      if (adj.neighbors.size() > adj.offsets[v] && adj.neighbors.back() == it->first)
-        adj.edge_area.back() += it->second;
-      else {
-        adj.neighbors.push_back(it->first);
-        adj.edge_area.push_back(it->second);
+  std::vector<double> area(nt);
+  parallel_for(nt, threads, 1 << 14, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f)
+      area[f] = triangle_area(mesh.positions.data(), t[3 * f], t[3 * f + 1], t[3 * f + 2]);
+  });
+
+  // Vertex v's half-edges in the order the triangles list them: edge (a, b) of a triangle
+  // gives a the neighbour b and b the neighbour a.
+  auto gather = [&](size_t v, std::vector<HalfEdge>& half) {
+    half.clear();
+    for (uint32_t i = around_start[v]; i < around_start[v + 1]; ++i) {
+      const uint32_t f = around[i];
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t a = t[3 * f + e], b = t[3 * f + (e + 1) % 3];
+        if (a == b) continue;
+        if (a == v) half.push_back({b, area[f]});
+        if (b == v) half.push_back({a, area[f]});
       }
     }
-    adj.offsets[v + 1] = uint32_t(adj.neighbors.size());
+  };
+
+  // Two passes: the neighbour counts (hence the offsets), then the lists in place.
+  Adjacency adj;
+  adj.offsets.assign(n + 1, 0);
+  parallel_for(n, threads, 4096, [&](size_t begin, size_t end) {
+    std::vector<HalfEdge> half;
+    for (size_t v = begin; v < end; ++v) {
+      gather(v, half);
+      uint32_t count = 0;
+      merge_half_edges(half, [&](uint32_t, double) { count++; });
+      adj.offsets[v + 1] = count;
+    }
+  });
+  for (size_t v = 0; v < n; ++v) adj.offsets[v + 1] += adj.offsets[v];
+  adj.neighbors.resize(adj.offsets[n]);
+  adj.edge_area.resize(adj.offsets[n]);
+  parallel_for(n, threads, 4096, [&](size_t begin, size_t end) {
+    std::vector<HalfEdge> half;
+    for (size_t v = begin; v < end; ++v) {
+      gather(v, half);
+      uint32_t slot = adj.offsets[v];
+      merge_half_edges(half, [&](uint32_t b, double a) {
+        adj.neighbors[slot] = b;
+        adj.edge_area[slot++] = a;
+      });
+    }
+  });
+  return adj;
+}
+
+Adjacency build_adjacency_reference(const Mesh& mesh) {
+  const size_t n = mesh.vertex_count();
+  const uint32_t* t = mesh.triangles.data();
+  struct Half {
+    uint32_t from, to;
+    size_t triangle;
+    double area;
+  };
+  std::vector<Half> half;
+  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    const double a = triangle_area(mesh.positions.data(), t[3 * f], t[3 * f + 1], t[3 * f + 2]);
+    for (int e = 0; e < 3; ++e) {
+      uint32_t x = t[3 * f + e], y = t[3 * f + (e + 1) % 3];
+      if (x == y) continue;
+      half.push_back({x, y, f, a});
+      half.push_back({y, x, f, a});
+    }
   }
+  std::stable_sort(half.begin(), half.end(), [](const Half& x, const Half& y) {
+    return std::make_pair(x.from, x.to) < std::make_pair(y.from, y.to);
+  });
+  Adjacency adj;
+  adj.offsets.assign(n + 1, 0);
+  for (size_t i = 0; i < half.size(); ++i) {
+    if (i > 0 && half[i].from == half[i - 1].from && half[i].to == half[i - 1].to) {
+      adj.edge_area.back() += half[i].area;
+      continue;
+    }
+    adj.neighbors.push_back(half[i].to);
+    adj.edge_area.push_back(half[i].area);
+    adj.offsets[half[i].from + 1]++;
+  }
+  for (size_t v = 0; v < n; ++v) adj.offsets[v + 1] += adj.offsets[v];
   return adj;
 }
 

@@ -13,8 +13,14 @@ struct Adjacency {
   std::vector<double> edge_area;    // total area of the triangles containing edge (v, neighbour)
 };
 
-// Builds the 1-ring of every vertex from the triangles. Neighbour lists are sorted
-// and free of duplicates and of the vertex itself (degenerate triangles add no self edge).
-Adjacency build_adjacency(const Mesh& mesh);
+// Builds the 1-ring of every vertex from the triangles, on `threads` threads (0 = all
+// cores). Neighbour lists are sorted and free of duplicates and of the vertex itself
+// (degenerate triangles add no self edge). An edge's area sums its triangles' areas in
+// triangle order, so the result does not depend on the thread count.
+Adjacency build_adjacency(const Mesh& mesh, unsigned threads = 0);
+
+// The same from one sorted list of all half-edges, serially: the oracle the tests hold
+// build_adjacency to.
+Adjacency build_adjacency_reference(const Mesh& mesh);
 
 }  // namespace meshsal

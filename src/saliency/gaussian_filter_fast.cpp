@@ -9,86 +9,45 @@
 #include "core/mesh_points.h"
 #include "core/parallel.h"
 #include "core/simd_exp.h"
+#include "saliency/sparse_cells.h"
 #include "saliency/spatial_grid.h"
 
 namespace meshsal {
 
 namespace {
 
-// Mesh points sorted by the cell of edge `cell` they fall in (cells kept sparse: only
-// occupied ones exist, so a fine cell on a long mesh costs nothing).
-struct SparseCells {
-  std::vector<uint32_t> order;  // sorted slot -> vertex
-  std::vector<uint32_t> start;  // occupied cell c holds slots start[c] .. start[c+1]-1
-  std::vector<uint64_t> key;    // occupied cell c's key (x | y << 21 | z << 42)
-};
-
-constexpr int kAxisBits = 21;
-
-// Cell edge of at least `cell`, grown until every axis has fewer than 2^21 cells.
-double usable_cell(const BoundingBox& box, double cell) {
-  for (int a = 0; a < 3; ++a)
-    while ((box.max[a] - box.min[a]) / cell >= double((1 << kAxisBits) - 2)) cell *= 2;
-  return cell;
-}
-
-uint64_t cell_key(const BoundingBox& box, double cell, const float* p) {
-  uint64_t k = 0;
-  for (int a = 0; a < 3; ++a)
-    k |= uint64_t((double(p[a]) - box.min[a]) / cell) << (kAxisBits * a);
-  return k;
-}
-
-SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                            const BoundingBox& box, double cell) {
-  std::vector<std::pair<uint64_t, uint32_t>> kv;
-  kv.reserve(mesh.vertex_count());
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (is_point[v]) kv.push_back({cell_key(box, cell, &mesh.positions[3 * v]), uint32_t(v)});
-  std::sort(kv.begin(), kv.end());
-  SparseCells s;
-  s.order.resize(kv.size());
-  for (size_t i = 0; i < kv.size(); ++i) {
-    s.order[i] = kv[i].second;
-    if (i == 0 || kv[i].first != kv[i - 1].first) {
-      s.start.push_back(uint32_t(i));
-      s.key.push_back(kv[i].first);
-    }
-  }
-  s.start.push_back(uint32_t(kv.size()));
-  return s;
-}
-
 // One sigma's aggregates, in the query grid's slot order: centroid (relative to the grid
 // origin), point count and value sum, padded by 4 empty far-away cells for 4-wide loads.
 struct Aggregates {
   SpatialGrid grid;  // over the centroids; grid.x/y/z are the centroids
   std::vector<double> count, sum;
-  std::vector<double> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
+  std::vector<float> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
 };
 
 Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* values,
-                     double query_radius) {
+                     double query_radius, unsigned threads) {
   const size_t m = cells.key.size();
   Mesh centroids;
   centroids.positions.resize(3 * m);
   std::vector<double> count(m), sum(m);
-  for (size_t c = 0; c < m; ++c) {
-    double p[3] = {0, 0, 0}, s = 0;
-    for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
-      uint32_t v = cells.order[i];
-      for (int a = 0; a < 3; ++a) p[a] += mesh.positions[3 * v + a];
-      s += values[v];
+  parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      double p[3] = {0, 0, 0}, s = 0;
+      for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
+        uint32_t v = cells.order[i];
+        for (int a = 0; a < 3; ++a) p[a] += mesh.positions[3 * v + a];
+        s += values[v];
+      }
+      const double n = cells.start[c + 1] - cells.start[c];
+      for (int a = 0; a < 3; ++a) centroids.positions[3 * c + a] = float(p[a] / n);
+      count[c] = n;
+      sum[c] = s;
     }
-    const double n = cells.start[c + 1] - cells.start[c];
-    for (int a = 0; a < 3; ++a) centroids.positions[3 * c + a] = float(p[a] / n);
-    count[c] = n;
-    sum[c] = s;
-  }
+  });
   Aggregates ag;
-  ag.centroid.assign(centroids.positions.begin(), centroids.positions.end());
   // Query cells of a quarter of the cutoff radius, as in the exact sweep.
   ag.grid = build_spatial_grid(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
+  ag.centroid = std::move(centroids.positions);
   ag.count.assign(m + 4, 0.0);
   ag.sum.assign(m + 4, 0.0);
   for (size_t s = 0; s < m; ++s) {
@@ -179,20 +138,20 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   const BoundingBox box = mesh_points_bbox(mesh, is_point);
   std::vector<std::vector<double>> out(sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
 
-  // Vertices are visited in the order of the finest cells, so that neighbours in a thread's
-  // chunk share the cells they read.
+  const std::vector<uint32_t> point_list = mesh_point_list(is_point);
+  const size_t points = point_list.size();
+  // The per-vertex path visits vertices in the order of the finest cells, so that
+  // neighbours in a thread's chunk share the cells they read (sorted when first needed).
   const double finest = *std::min_element(sigmas.begin(), sigmas.end());
-  const std::vector<uint32_t> visit =
-      sort_into_cells(mesh, is_point, box, usable_cell(box, finest / params.cells_per_sigma)).order;
-  const size_t points = visit.size();
+  std::vector<uint32_t> visit;
 
   std::atomic<uint64_t> total_pairs{0};
   const std::thread::id caller = std::this_thread::get_id();
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
     const double cell = usable_cell(box, s / params.cells_per_sigma);
-    const SparseCells cells = sort_into_cells(mesh, is_point, box, cell);
-    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s);
+    const SparseCells cells = sort_into_cells(mesh, point_list, box, cell, threads);
+    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, threads);
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     std::atomic<size_t> done{0};
     std::vector<double>& o = out[k];
@@ -209,7 +168,7 @@ std::vector<std::vector<double>> gaussian_filter_fast(
         uint64_t pairs = 0;
         size_t visited = 0;
         for (size_t c = begin; c < end; ++c) {
-          const double* q = &ag.centroid[3 * c];
+          const double q[3] = {ag.centroid[3 * c], ag.centroid[3 * c + 1], ag.centroid[3 * c + 2]};
           const CellSums cs = sweep_cells<true>(ag, q, coef, cutoff2, &pairs);
           for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
             const uint32_t v = cells.order[i];
@@ -228,6 +187,9 @@ std::vector<std::vector<double>> gaussian_filter_fast(
       });
       continue;
     }
+    if (visit.empty())
+      visit = sort_into_cells(mesh, point_list, box,
+                              usable_cell(box, finest / params.cells_per_sigma), threads).order;
     parallel_for(points, threads, 512, [&](size_t begin, size_t end) {
       uint64_t pairs = 0;
       for (size_t i = begin; i < end; ++i) {
@@ -250,7 +212,7 @@ double estimate_sweep_pairs(const Mesh& mesh, const std::vector<uint8_t>& is_poi
                             double radius) {
   const BoundingBox box = mesh_points_bbox(mesh, is_point);
   const double cell = usable_cell(box, radius);
-  const SparseCells cells = sort_into_cells(mesh, is_point, box, cell);
+  const SparseCells cells = sort_into_cells(mesh, mesh_point_list(is_point), box, cell, 0);
   const size_t points = cells.order.size();
   const size_t samples = std::min<size_t>(256, points);
   const double r2 = radius * radius;
@@ -261,20 +223,20 @@ double estimate_sweep_pairs(const Mesh& mesh, const std::vector<uint8_t>& is_poi
     return std::pair<uint32_t, uint32_t>{cells.start[c], cells.start[c + 1]};
   };
   double counted = 0;
-  const uint64_t mask = (uint64_t(1) << kAxisBits) - 1;
   for (size_t t = 0; t < samples; ++t) {
     const uint32_t v = cells.order[(t * points) / samples];
     const float* p = &mesh.positions[3 * v];
-    const uint64_t key = cell_key(box, cell, p);
-    int64_t c[3];
-    for (int a = 0; a < 3; ++a) c[a] = int64_t((key >> (kAxisBits * a)) & mask);
+    const uint64_t key = cell_key(box, cell, cells.dims, p);
+    const int64_t c[3] = {int64_t(key % cells.dims[0]), int64_t(key / cells.dims[0] % cells.dims[1]),
+                          int64_t(key / cells.dims[0] / cells.dims[1])};
+    const int64_t d[3] = {int64_t(cells.dims[0]), int64_t(cells.dims[1]), int64_t(cells.dims[2])};
     // Every point within the radius lies in one of the 27 cells around v's.
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           int64_t x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-          if (x < 0 || y < 0 || z < 0) continue;
-          auto [b, e] = range_of(uint64_t(x) | uint64_t(y) << kAxisBits | uint64_t(z) << (2 * kAxisBits));
+          if (x < 0 || y < 0 || z < 0 || x >= d[0] || y >= d[1] || z >= d[2]) continue;
+          auto [b, e] = range_of(uint64_t((z * d[1] + y) * d[0] + x));
           for (uint32_t i = b; i < e; ++i) {
             const float* q = &mesh.positions[3 * cells.order[i]];
             double ex = double(q[0]) - p[0], ey = double(q[1]) - p[1], ez = double(q[2]) - p[2];

@@ -61,9 +61,13 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
 
   r.is_point = referenced_vertices(mesh);
   r.eps = scale_unit(mesh, r.is_point, opt.eps_frac);
-  Adjacency adj = build_adjacency(mesh);
+  Adjacency adj = build_adjacency(mesh, opt.threads);
   std::vector<double> normals = vertex_normals(mesh);
   r.curvature = mean_curvature(mesh, adj, normals, opt.threads);
+  // Only suppression's 1-ring is needed from here on: free the rest before the averages,
+  // the run's largest stage (issue 14: about 300 bytes per vertex in all).
+  std::vector<double>().swap(normals);
+  std::vector<double>().swap(adj.edge_area);
   clock.lap("curvature");
 
   // All Gaussian averages of H in one sweep.
@@ -90,6 +94,7 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
       if (r.is_point[v]) raw[v] = std::fabs(fine[v] - coarse[v]);
     r.raw.push_back(std::move(raw));
   }
+  std::vector<std::vector<double>>().swap(G);
   clock.lap("center-surround");
 
   for (const auto& raw : r.raw) {

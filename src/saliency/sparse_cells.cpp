@@ -1,0 +1,111 @@
+#include "saliency/sparse_cells.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/parallel.h"
+
+namespace meshsal {
+
+namespace {
+
+constexpr int kAxisBits = 21;
+
+// Stable LSD radix sort of `val` by `key` (8 bits a pass, as many passes as the largest
+// key needs): ties keep their order. Linear, where std::sort of (key, vertex) pairs took
+// a third of a second per sigma on igea_loop2.
+void radix_sort(std::vector<uint64_t>& key, std::vector<uint32_t>& val, uint64_t max_key) {
+  constexpr int kDigit = 8;
+  const size_t n = key.size();
+  std::vector<uint64_t> key2(n);
+  std::vector<uint32_t> val2(n);
+  std::vector<size_t> count(size_t(1) << kDigit);
+  for (int shift = 0; shift < 64 && (max_key >> shift) > 0; shift += kDigit) {
+    std::fill(count.begin(), count.end(), 0);
+    const uint64_t mask = (uint64_t(1) << kDigit) - 1;
+    for (size_t i = 0; i < n; ++i) count[(key[i] >> shift) & mask]++;
+    size_t sum = 0;
+    for (size_t& c : count) {
+      const size_t here = c;
+      c = sum;
+      sum += here;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const size_t to = count[(key[i] >> shift) & mask]++;
+      key2[to] = key[i];
+      val2[to] = val[i];
+    }
+    key.swap(key2);
+    val.swap(val2);
+  }
+}
+
+// Slots and keys of the occupied cells from the sorted keys.
+void mark_cells(const std::vector<uint64_t>& keys, SparseCells& s) {
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (i == 0 || keys[i] != keys[i - 1]) {
+      s.start.push_back(uint32_t(i));
+      s.key.push_back(keys[i]);
+    }
+  }
+  s.start.push_back(uint32_t(keys.size()));
+}
+
+}  // namespace
+
+double usable_cell(const BoundingBox& box, double cell) {
+  for (int a = 0; a < 3; ++a)
+    while ((box.max[a] - box.min[a]) / cell >= double((1 << kAxisBits) - 2)) cell *= 2;
+  return cell;
+}
+
+void cell_dims(const BoundingBox& box, double cell, uint64_t dims[3]) {
+  for (int a = 0; a < 3; ++a) dims[a] = uint64_t((box.max[a] - box.min[a]) / cell) + 1;
+}
+
+uint64_t cell_key(const BoundingBox& box, double cell, const uint64_t dims[3], const float* p) {
+  uint64_t c[3];
+  for (int a = 0; a < 3; ++a) c[a] = uint64_t((double(p[a]) - box.min[a]) / cell);
+  return (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+}
+
+SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& points,
+                            const BoundingBox& box, double cell, unsigned threads) {
+  SparseCells s;
+  cell_dims(box, cell, s.dims);
+  std::vector<uint64_t> keys(points.size());
+  parallel_for(points.size(), threads, 1 << 15, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      keys[i] = cell_key(box, cell, s.dims, &mesh.positions[3 * size_t(points[i])]);
+  });
+  s.order = points;
+  radix_sort(keys, s.order, s.dims[0] * s.dims[1] * s.dims[2] - 1);
+  mark_cells(keys, s);
+  return s;
+}
+
+std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point) {
+  std::vector<uint32_t> points;
+  for (size_t v = 0; v < is_point.size(); ++v)
+    if (is_point[v]) points.push_back(uint32_t(v));
+  return points;
+}
+
+SparseCells sort_into_cells_reference(const Mesh& mesh, const std::vector<uint32_t>& points,
+                                      const BoundingBox& box, double cell) {
+  SparseCells s;
+  cell_dims(box, cell, s.dims);
+  std::vector<std::pair<uint64_t, uint32_t>> kv;
+  for (uint32_t v : points) kv.push_back({cell_key(box, cell, s.dims, &mesh.positions[3 * size_t(v)]), v});
+  std::stable_sort(kv.begin(), kv.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<uint64_t> keys;
+  for (const auto& [k, v] : kv) {
+    keys.push_back(k);
+    s.order.push_back(v);
+  }
+  mark_cells(keys, s);
+  return s;
+}
+
+}  // namespace meshsal
