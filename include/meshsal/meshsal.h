@@ -146,7 +146,8 @@ enum class Precision { Auto, Mixed, Double };
 //   measured against Exact on the scans: final-saliency correlation >= 0.999 and >= 98% of
 //   the exact top-30% vertices in the fast top 30% (docs/method.md has the figures).
 //   Everything after the averages is unchanged; with `smoothed`, Sm uses the same method.
-//   Runs on the CPU path (Backend::Auto takes the CPU; Backend::Gpu throws Error).
+//   Runs on either backend, picked as for Exact; the Vulkan path is held to the CPU's fast
+//   path per vertex to 1e-4 of each raw map's maximum (in double on the device).
 // Auto: Fast when the exact sweep's estimated pair count (mesh points x mean neighbours
 //   within 4 x the largest scale x eps, from 256 sampled points) exceeds kAutoPairBudget,
 //   with a one-line notice; else Exact.

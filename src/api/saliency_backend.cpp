@@ -94,12 +94,7 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
   check_saliency_options(options_in);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);
-  // The fast method has no GPU twin yet: it runs on the CPU path.
-  if (options.method == Method::Fast) {
-    if (options.backend == Backend::Gpu)
-      throw Error("--method fast runs on the CPU path only: use --backend cpu or auto");
-    return compute_saliency_cpu(mesh, options);
-  }
+  // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
   switch (options.backend) {
     case Backend::Cpu:
       return compute_saliency_cpu(mesh, options);

@@ -9,6 +9,7 @@
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
 #include "meshsal/meshsal.h"
+#include "gpu/gpu_fast.h"
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_session.h"
 #include "gpu/gpu_slices.h"
@@ -289,7 +290,7 @@ void check_device(const vk::Context& ctx) {
 // the computation will allocate fits the device.
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
-                 DeviceMesh* out) {
+                 uint64_t fast_bytes, DeviceMesh* out) {
   DeviceMesh& m = *out;
   const size_t nv = mesh.vertex_count();
   m.nv = static_cast<uint32_t>(nv);
@@ -304,7 +305,7 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
 
   // Memory: refuse up front what cannot fit the device-local heap (or its budget).
   const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
-                                            ctx.use_staging, mixed);
+                                            ctx.use_staging, mixed) + fast_bytes;
   const uint64_t have = vk::device_memory_available(ctx.info);
   if (have && need > have * 0.9)
     throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
@@ -378,8 +379,15 @@ void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& 
 // of its own (reuses m.params and m.result).
 void smooth_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
                       const double extent[3], double eps, const SaliencyOptions& options,
-                      SaliencyResult* res) {
+                      const Mesh& mesh, const BoundingBox& bb, SaliencyResult* res) {
   const size_t nv = m.nv;
+  if (options.method == Method::Fast) {  // the same method as the averages (meshsal.h)
+    gpu::fast_filter(ctx, mesh, m.pos, m.flags, m.np, bb, {{3.0 * eps}, {0}, {-1}}, m.result,
+                     options, "smoothing");
+    res->smoothed.resize(nv);
+    m.result.download(res->smoothed.data(), nv * 8);
+    return;
+  }
   std::vector<uint32_t> starts;
   std::vector<int> plan1;
   SweepParams sp = make_params({3.0}, eps, &plan1);
@@ -422,48 +430,69 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // --- upload ---------------------------------------------------------------------------
   t0.restart();
   check_device(ctx);
-  const bool mixed = use_mixed(ctx, plan.fast8, options.precision);
+  const bool fast = options.method == Method::Fast;
+  if (options.method == Method::Auto) throw Error("internal: method auto not resolved");
+  res.method = options.method;
+  const bool mixed = !fast && use_mixed(ctx, plan.fast8, options.precision);
   res.mixed_precision = mixed;
   const BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];
   DeviceMesh m;
-  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, &m);
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb,
+              fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) : 0, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
   res.stages.push_back({"upload", t0.seconds()});
 
   vk::DescriptorPool pool(ctx, 32, 128);
 
-  // --- grid + sweep (gaussian_filter), with the center-surround maps ------------------
-  t0.restart();
-  std::vector<uint32_t> starts;
-  // Cells of a fifth of the radius for the shared-rows sweep (rows are clipped to the
-  // ball's chord, so smaller cells mean fewer candidates, and a smaller box around the
-  // subgroup's points; on lavapipe, igea_134k, 1/4 to 1/8 were within the noise of each
-  // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
-  // point, where short rows would leave lanes idle.
-  const bool rows = shared_rows(ctx, plan.fast8);
-  GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * plan.radius, &starts);
-  res.stages.push_back({"grid", t0.seconds()});
-
-  t0.restart();
-  if (mixed) {
-    m.sorted_pos32 = vk::Buffer(ctx, size_t(m.np) * 16, "the float points");
-    m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
-    gpu::make_float_points(ctx, pool, m.sorted_pos, m.sorted_pos32, m.np, bb.min);
-  }
-  res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, mixed, plan.params, nsig,
-                    static_cast<uint32_t>(nsc), plan.radius, options, "gaussian sweep");
-  res.stages.push_back({"gaussian sweep", t0.seconds()});
-  if (mixed) {
+  if (fast) {
+    // --- the fast method's averages (gaussian_filter_fast), with the center-surround maps
     t0.restart();
-    gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
-                           &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
-    SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig,
-                static_cast<uint32_t>(nsc), 0, g.h, plan.radius * plan.radius};
-    res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);
-    res.stages.push_back({"near-tie recheck", t0.seconds()});
+    gpu::FastFilterPlan fp;
+    for (double u : plan.units) fp.sigmas.push_back(u * eps);  // as compute_saliency_cpu()
+    auto index_of = [&](double u) {
+      return int(std::find(plan.units.begin(), plan.units.end(), u) - plan.units.begin());
+    };
+    for (double k : options.scales) {
+      fp.out_a.push_back(index_of(k));
+      fp.out_b.push_back(index_of(2 * k));
+    }
+    res.pairs = gpu::fast_filter(ctx, mesh, m.pos, m.flags, m.np, bb, fp, m.result, options,
+                                 "gaussian sweep");
+    res.stages.push_back({"gaussian sweep", t0.seconds()});
+  } else {
+    // --- grid + sweep (gaussian_filter), with the center-surround maps ------------------
+    t0.restart();
+    std::vector<uint32_t> starts;
+    // Cells of a fifth of the radius for the shared-rows sweep (rows are clipped to the
+    // ball's chord, so smaller cells mean fewer candidates, and a smaller box around the
+    // subgroup's points; on lavapipe, igea_134k, 1/4 to 1/8 were within the noise of each
+    // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
+    // point, where short rows would leave lanes idle.
+    const bool rows = shared_rows(ctx, plan.fast8);
+    GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * plan.radius, &starts);
+    res.stages.push_back({"grid", t0.seconds()});
+
+    t0.restart();
+    if (mixed) {
+      m.sorted_pos32 = vk::Buffer(ctx, size_t(m.np) * 16, "the float points");
+      m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
+      gpu::make_float_points(ctx, pool, m.sorted_pos, m.sorted_pos32, m.np, bb.min);
+    }
+    res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, mixed, plan.params, nsig,
+                      static_cast<uint32_t>(nsc), plan.radius, options, "gaussian sweep");
+    res.stages.push_back({"gaussian sweep", t0.seconds()});
+    if (mixed) {
+      t0.restart();
+      gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
+                             &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
+      SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig,
+                  static_cast<uint32_t>(nsc), 0, g.h, plan.radius * plan.radius};
+      res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);
+      res.stages.push_back({"near-tie recheck", t0.seconds()});
+    }
   }
 
   // --- suppress() of every map and the final sum ------------------------------------
@@ -483,7 +512,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
 
   if (options.smoothed) {
     t0.restart();
-    smooth_on_device(ctx, pool, m, extent, eps, options, &res);
+    smooth_on_device(ctx, pool, m, extent, eps, options, mesh, bb, &res);
     res.stages.push_back({"smoothing", t0.seconds()});
   }
   return res;

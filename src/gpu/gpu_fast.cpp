@@ -1,0 +1,223 @@
+// meshsal: --method fast on a Vulkan device (see gpu_fast.h).
+#include "gpu/gpu_fast.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/timer.h"
+#include "gpu/gpu_fast_cells.h"
+#include "gpu/gpu_grid.h"
+#include "gpu/gpu_slices.h"
+#include "gpu/gpu_sweep.h"
+#include "gpu/vk_compute.h"
+#include "saliency/gaussian_filter_fast.h"
+
+#include "fast_center_surround_comp.h"
+#include "fast_finish_comp.h"
+#include "fast_query_comp.h"
+
+namespace meshsal::gpu {
+
+uint32_t fast_window_candidates = 32768;
+
+namespace {
+
+constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
+struct QueryPush {
+  uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
+  double h, cut2, radius, coef;
+};
+struct FinishPush { uint32_t base, n, dense, offset; double s2; };
+struct CenterSurroundPush { uint32_t base, n, nout, pad; uint32_t ab[16]; };
+
+// Cell edge of at least `cell`, grown until every axis has fewer than 2^21 cells: a copy of
+// usable_cell() in gaussian_filter_fast.cpp (file-local there), so that both paths take
+// the same cells.
+double usable_cell(const BoundingBox& box, double cell) {
+  constexpr int kAxisBits = 21;
+  for (int a = 0; a < 3; ++a)
+    while ((box.max[a] - box.min[a]) / cell >= double((1 << kAxisBits) - 2)) cell *= 2;
+  return cell;
+}
+
+// The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
+// cell of the query grid, r = ceil(radius / h) + 1 (fast_query.comp walks the rows of the
+// ball's cells, a subset). Sliding sums along x, y and z over the cell counts.
+uint64_t most_candidates(const GridPlan& g, const std::vector<uint32_t>& starts, double radius) {
+  const int64_t r = int64_t(std::ceil(radius / g.h)) + 1;
+  const int64_t nx = g.nx, ny = g.ny, nz = g.nz;
+  std::vector<uint32_t> a(size_t(nx * ny * nz)), b(a.size());
+  auto at = [&](int64_t x, int64_t y, int64_t z) { return size_t(x + nx * (y + ny * z)); };
+  for (int64_t z = 0; z < nz; ++z)
+    for (int64_t y = 0; y < ny; ++y) {
+      const size_t row = at(0, y, z);
+      for (int64_t x = 0; x < nx; ++x)
+        a[row + x] = starts[row + std::min(x + r, nx - 1) + 1] - starts[row + std::max<int64_t>(x - r, 0)];
+    }
+  for (int64_t z = 0; z < nz; ++z)  // along y: a window of 2r+1 rows
+    for (int64_t x = 0; x < nx; ++x) {
+      uint64_t run = 0;
+      for (int64_t y = 0; y < std::min(r, ny); ++y) run += a[at(x, y, z)];
+      for (int64_t y = 0; y < ny; ++y) {
+        if (y + r < ny) run += a[at(x, y + r, z)];
+        b[at(x, y, z)] = uint32_t(run);
+        if (y - r >= 0) run -= a[at(x, y - r, z)];
+      }
+    }
+  uint64_t most = 0;
+  for (int64_t y = 0; y < ny; ++y)  // along z
+    for (int64_t x = 0; x < nx; ++x) {
+      uint64_t run = 0;
+      for (int64_t z = 0; z < std::min(r, nz); ++z) run += b[at(x, y, z)];
+      for (int64_t z = 0; z < nz; ++z) {
+        if (z + r < nz) run += b[at(x, y, z + r)];
+        most = std::max(most, run);
+        if (z - r >= 0) run -= b[at(x, y, z - r)];
+      }
+    }
+  return most;
+}
+
+// The float input coordinates per vertex (vec4), which the centroids are summed from.
+vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
+  const size_t nv = mesh.vertex_count();
+  std::vector<float> p4(4 * nv, 0.0f);
+  for (size_t v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
+  vk::Buffer b(ctx, p4.size() * 4, "the float positions");
+  b.upload(p4.data(), p4.size() * 4);
+  return b;
+}
+
+// Everything one sigma needs besides the aggregates.
+struct SigmaJob {
+  double sigma;
+  uint32_t k, nsig, nv, np;
+  const double* extent;
+};
+
+// G[k][v] for one sigma into g; returns its pairs.
+uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInputs& in,
+                          const BoundingBox& box, const SigmaJob& job, vk::Buffer& g,
+                          const SaliencyOptions& options, const char* stage) {
+  const double s = job.sigma;
+  const FastFilterParams params;
+  const FastGrid grid = plan_fast_grid(job.extent, usable_cell(box, s / params.cells_per_sigma));
+  FastCells fc = aggregate_cells(ctx, in, job.nv, job.np, grid, box.min);
+  const uint32_t m = fc.cells;
+  const bool dense = double(job.np) >= params.points_per_query_cell * double(m);
+  const uint32_t queries = dense ? m : job.np;
+
+  // The aggregates on a grid of cells of a quarter of the cutoff radius (as on the CPU).
+  vk::Buffer ones(ctx, size_t(m) * 4, "the fast method's cell flags");
+  {
+    std::vector<uint32_t> one(m, 1u);
+    ones.upload(one.data(), one.size() * 4);
+  }
+  vk::Buffer qstarts, qsorted(ctx, size_t(m) * 32, "the sorted cell aggregates"),
+      qcell(ctx, size_t(m) * 4, "the sorted cell indices");
+  std::vector<uint32_t> starts;
+  const GridPlan qg = build_gpu_grid(ctx, {&fc.cell_pos, &ones, &qstarts, &qsorted, &qcell}, m, m,
+                                     job.extent, 0.5 * s, &starts);
+  const double radius = 2 * s;
+  const uint64_t most = m <= fast_window_candidates ? m : most_candidates(qg, starts, radius);
+  const uint32_t windows = uint32_t(std::max<uint64_t>(1, (most + fast_window_candidates - 1) / fast_window_candidates));
+
+  vk::Buffer sums(ctx, size_t(queries) * (dense ? 8 : 2) * 8, "the fast method's sums");
+  vk::Buffer pairs(ctx, size_t(queries) * 4, "the pair counts");
+  auto& k_query = vk::cached_kernel(ctx, spv_fast_query_comp, sizeof spv_fast_query_comp, 8,
+                                    sizeof(QueryPush), "fast_query");
+  auto& k_finish = vk::cached_kernel(ctx, spv_fast_finish_comp, sizeof spv_fast_finish_comp, 7,
+                                     sizeof(FinishPush), "fast_finish");
+  vk::DescriptorPool pool(ctx, 4, 16);
+  VkDescriptorSet s_query =
+      pool.bind(k_query, {&qsorted, &qcell, &qstarts, &fc.cell_count, dense ? &fc.cell_pos : &pos,
+                          &fc.order, &sums, &pairs});
+  VkDescriptorSet s_finish = pool.bind(
+      k_finish, {&sums, &fc.cell_pos, &fc.piece_start, &fc.piece_cell, &fc.order, &pos, &g});
+
+  // Submissions of a range of queries each: the first small and timed, the next ones
+  // sized from the measured rate to about ctx.submission_target_s (gpu_slices.h).
+  QueryPush qp{0, 0, qg.nx, qg.ny, qg.nz, dense ? 1u : 0u, 0, 0, qg.h, 4 * s * s, radius,
+               1.0 / (2 * s * s)};
+  double budget = std::max(64.0, std::min(4096.0, double(queries) / 16));
+  const double total = double(queries) * windows;
+  double done = 0;
+  for (uint32_t w = 0; w < windows; ++w) {
+    qp.ord_lo = w * fast_window_candidates;
+    qp.ord_hi = qp.ord_lo + fast_window_candidates;
+    for (uint32_t at = 0; at < queries;) {
+      const uint32_t next = uint32_t(std::min<double>(queries, at + std::max(1.0, std::floor(budget))));
+      const Timer t;
+      vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
+        if (w == 0 && at == 0) {
+          vkCmdFillBuffer(cmd, sums.handle(), 0, VK_WHOLE_SIZE, 0);
+          vkCmdFillBuffer(cmd, pairs.handle(), 0, VK_WHOLE_SIZE, 0);
+          vk::barrier(cmd);
+        }
+        vk::dispatch(ctx, cmd, k_query, s_query, &qp, at, next, kLocal);
+      });
+      budget = next_budget(budget, next - at, t.seconds(), ctx.submission_target_s);
+      done += next - at;
+      at = next;
+      if (options.progress) options.progress(stage, (job.k + done / total) / job.nsig);
+    }
+  }
+  vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
+    FinishPush fp{0, 0, dense ? 1u : 0u, job.k * job.nv, s * s};
+    vk::dispatch(ctx, cmd, k_finish, s_finish, &fp, 0, dense ? fc.pieces : job.np, kLocal);
+  });
+  std::vector<uint32_t> per_query(queries);
+  pairs.download(per_query.data(), per_query.size() * 4);
+  // Every query counts at least its own cell (a centroid at distance 0, or the vertex's
+  // own cell's centroid within sqrt(3)/6 sigma): 0 means it was never swept.
+  return total_swept_pairs(per_query);
+}
+
+}  // namespace
+
+uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig) {
+  const uint64_t grid_cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
+  return nv * 16 + nsig * nv * 8 + fast_cells_bytes(nv, np) + np * (4 + 36 + 64 + 4) +
+         grid_cells * 4 + gpu_grid_scratch_bytes(np, grid_cells);
+}
+
+uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
+                     const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
+                     const FastFilterPlan& plan, vk::Buffer& result,
+                     const SaliencyOptions& options, const char* stage) {
+  const uint32_t nv = uint32_t(mesh.vertex_count());
+  const uint32_t nsig = uint32_t(plan.sigmas.size());
+  const uint32_t nout = uint32_t(plan.out_a.size());
+  if (nsig == 0 || nsig > 0xffff || nout == 0 || nout > 16 || plan.out_b.size() != nout)
+    throw Error("internal: a GPU fast filter plan of " + std::to_string(nsig) + " sigmas and " +
+                std::to_string(nout) + " outputs");
+  double extent[3];
+  for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
+  vk::Buffer pos32 = upload_float_positions(ctx, mesh);
+  vk::Buffer g(ctx, size_t(nsig) * nv * 8, "the fast method's averages");
+  const FastInputs in{&pos, &flags, &pos32};
+  vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {  // vertices that are not mesh points
+    vkCmdFillBuffer(cmd, g.handle(), 0, VK_WHOLE_SIZE, 0);
+  });
+  uint64_t pairs = 0;
+  for (uint32_t k = 0; k < nsig; ++k)
+    pairs += filter_one_sigma(ctx, pos, in, box, {plan.sigmas[k], k, nsig, nv, np, extent}, g,
+                              options, stage);
+
+  auto& k_cs = vk::cached_kernel(ctx, spv_fast_center_surround_comp,
+                                 sizeof spv_fast_center_surround_comp, 3,
+                                 sizeof(CenterSurroundPush), "fast_center_surround");
+  vk::DescriptorPool pool(ctx, 1, 4);
+  VkDescriptorSet set = pool.bind(k_cs, {&g, &flags, &result});
+  CenterSurroundPush cp{0, 0, nout, 0, {}};
+  for (uint32_t o = 0; o < nout; ++o)
+    cp.ab[o] = uint32_t(plan.out_a[o]) | uint32_t(plan.out_b[o] + 1) << 16;
+  vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
+    vk::dispatch(ctx, cmd, k_cs, set, &cp, 0, nv, kLocal);
+  });
+  return pairs;
+}
+
+}  // namespace meshsal::gpu

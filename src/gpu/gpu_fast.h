@@ -1,0 +1,42 @@
+// meshsal: --method fast on a Vulkan device, the GPU twin of gaussian_filter_fast()
+// (saliency/gaussian_filter_fast.h), held to it per vertex to 1e-4 of each map's maximum.
+// Per sigma: the points sorted into cells of sigma/6 and aggregated (gpu_fast_cells.h), the
+// aggregates on a uniform grid (gpu_grid.h), the weighted sums at each dense cell's
+// centroid (with gradients, extrapolated to its vertices) or at each point where cells
+// are sparse (fast_query.comp), all in double; then the center-surround maps.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh_points.h"
+#include "meshsal/meshsal.h"
+#include "gpu/vk_buffer.h"
+#include "gpu/vk_context.h"
+
+namespace meshsal::gpu {
+
+// What to compute: the averages at `sigmas` (model units), then output o =
+// |G[out_a[o]] - G[out_b[o]]|, or G[out_a[o]] when out_b[o] < 0 (at most 16 outputs).
+struct FastFilterPlan {
+  std::vector<double> sigmas;
+  std::vector<int> out_a, out_b;
+};
+
+// The filter of the values in pos[].w (pos: dvec4 per vertex, position - box.min in
+// double; flags: uint per vertex, mesh point or not) into result ([output][vertex]
+// doubles, 0 on vertices that are not mesh points). np = the mesh points. Returns the
+// (query, cell) pairs inside the cutoffs, as FilterStats::pairs counts them on the CPU.
+// Throws Error (naming the CPU path) when a scale needs more cells than 32-bit keys hold.
+uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
+                     const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
+                     const FastFilterPlan& plan, vk::Buffer& result,
+                     const SaliencyOptions& options, const char* stage);
+
+// Device bytes fast_filter() needs at its peak besides pos, flags and result.
+uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig);
+
+// Candidates a query visits per dispatch (lavapipe ends an invocation's loops after
+// 65,535 steps); tests lower it to split every query into many windows.
+extern uint32_t fast_window_candidates;
+
+}  // namespace meshsal::gpu

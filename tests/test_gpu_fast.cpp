@@ -1,0 +1,250 @@
+// --method fast on the Vulkan path against its CPU twin (gaussian_filter_fast), on
+// lavapipe in CI with the Khronos validation layer on: every raw map, the final saliency
+// and the smoothed saliency must agree per vertex to 1e-4 of the map's maximum, the
+// (query, cell) pair counts must agree, and the layer must report nothing.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/synthetic.h"
+#include "gpu/gpu_fast.h"
+#include "gpu/gpu_saliency.h"
+#include "gpu/vk_context.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+// One validated context for the whole file (the pipelines compile once).
+vk::Context& context() {
+  static std::unique_ptr<vk::Context> ctx = std::make_unique<vk::Context>(-1, true);
+  return *ctx;
+}
+
+// max_v |a - b| / max_v |a|  (0 when both are zero)
+double rel_error(const std::vector<double>& cpu, const std::vector<double>& gpu) {
+  REQUIRE(cpu.size() == gpu.size());
+  double mx = 0, err = 0;
+  for (size_t v = 0; v < cpu.size(); ++v) {
+    mx = std::max(mx, std::fabs(cpu[v]));
+    err = std::max(err, std::fabs(cpu[v] - gpu[v]));
+  }
+  return mx > 0 ? err / mx : err;
+}
+
+SaliencyOptions fast_options() {
+  SaliencyOptions opt;
+  opt.method = Method::Fast;
+  opt.threads = 2;
+  opt.smoothed = true;
+  return opt;
+}
+
+// The GPU fast path against the CPU fast path on `ctx`; returns the GPU result.
+SaliencyResult compare(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions& opt,
+                       const std::string& what) {
+  INFO(what);
+  const uint64_t before = vk::validation_message_count();
+  SaliencyResult cpu = compute_saliency_cpu(mesh, opt);
+  SaliencyResult gpu = compute_saliency_gpu(ctx, mesh, opt);
+  CHECK(vk::validation_message_count() == before);
+  CHECK(gpu.backend_name == ctx.info.name);
+  CHECK(gpu.method == Method::Fast);
+  CHECK(!gpu.mixed_precision);
+  CHECK(gpu.eps == cpu.eps);
+  REQUIRE(gpu.raw.size() == cpu.raw.size());
+  for (size_t i = 0; i < cpu.raw.size(); ++i) {
+    INFO("raw map " << i << " (scale " << opt.scales[i] << ")");
+    CHECK(rel_error(cpu.raw[i], gpu.raw[i]) <= 1e-4);
+  }
+  CHECK(*std::max_element(cpu.saliency.begin(), cpu.saliency.end()) > 0);
+  CHECK(rel_error(cpu.saliency, gpu.saliency) <= 1e-4);
+  CHECK(rel_error(cpu.smoothed, gpu.smoothed) <= 1e-4);
+  // (query, cell) pairs: the same cells within the same strict cutoffs.
+  CHECK(cpu.pairs > mesh.vertex_count());
+  CHECK(gpu.pairs == cpu.pairs);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (!cpu.is_point[v]) {
+      CHECK(gpu.saliency[v] == 0);
+      CHECK(gpu.smoothed[v] == 0);
+    }
+  return gpu;
+}
+
+// Symmetric meshes have exact ties between neighbours, where the strict local-maximum
+// test depends on the last bits of any sum; a tiny deterministic jitter breaks them.
+Mesh jitter(Mesh mesh) {
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    mesh.positions[i] += 1e-4f * float(std::sin(12.9898 * double(i)));
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("gpu fast matches the cpu fast path on synthetic meshes", "[gpu][fast]") {
+  const SaliencyOptions opt = fast_options();
+  compare(context(), make_bumpy_sphere(4), opt, "bumpy sphere");
+  compare(context(), jitter(make_plane_with_bump(2.0, 60, 0.3, 0.2)), opt, "jittered plane with bump");
+  compare(context(), jitter(make_cube(16)), opt, "jittered cube");
+  Mesh loose = make_bumpy_sphere(3);
+  loose.positions.insert(loose.positions.end(), {0.1f, 0.2f, 0.3f, 5.0f, 5.0f, 5.0f});
+  compare(context(), loose, opt, "bumpy sphere plus two loose vertices");
+}
+
+TEST_CASE("gpu fast: sphere raw maps stay near zero, as on the cpu", "[gpu][fast]") {
+  SaliencyOptions opt = fast_options();
+  const Mesh sphere = make_sphere(1.0, 4);
+  SaliencyResult cpu = compute_saliency_cpu(sphere, opt);
+  SaliencyResult gpu = compute_saliency_gpu(context(), sphere, opt);
+  for (size_t i = 0; i < gpu.raw.size(); ++i) {
+    INFO("raw map " << i);
+    // |H| = 1 on the unit sphere: the raw maps are differences of averages of ~1.
+    CHECK(*std::max_element(gpu.raw[i].begin(), gpu.raw[i].end()) < 0.02);
+    CHECK(rel_error(cpu.raw[i], gpu.raw[i]) <= 1e-4);
+  }
+}
+
+TEST_CASE("gpu fast matches the cpu with other scales and eps", "[gpu][fast]") {
+  SaliencyOptions opt = fast_options();
+  opt.scales = {1.5, 3, 7};
+  opt.eps_frac = 0.005;
+  compare(context(), make_bumpy_sphere(3), opt, "bumpy sphere, scales 1.5,3,7");
+  opt.scales = {2};
+  opt.eps_frac = 0.01;
+  compare(context(), make_plane_with_bump(2.0, 40, 0.3, 0.2), opt, "plane, one scale");
+}
+
+TEST_CASE("gpu fast: candidates split into many windows give the same sums", "[gpu][fast]") {
+  // Lavapipe ends an invocation's loops after 65,535 steps, so a query's candidates are
+  // walked in windows of at most fast_window_candidates, one dispatch each; a tiny window
+  // splits every query of a small mesh into many (rows cut mid-way).
+  const SaliencyOptions opt = fast_options();
+  const Mesh mesh = make_bumpy_sphere(4);
+  SaliencyResult one = compute_saliency_gpu(context(), mesh, opt);
+  const uint32_t saved = gpu::fast_window_candidates;
+  gpu::fast_window_candidates = 7;
+  SaliencyResult many = compare(context(), mesh, opt, "windows of 7 candidates");
+  gpu::fast_window_candidates = saved;
+  CHECK(many.pairs == one.pairs);
+  for (size_t i = 0; i < one.raw.size(); ++i) CHECK(rel_error(one.raw[i], many.raw[i]) <= 1e-12);
+}
+
+TEST_CASE("gpu fast under forced staging matches the cpu and the unified path", "[gpu][fast]") {
+  const SaliencyOptions opt = fast_options();
+  const Mesh mesh = make_bumpy_sphere(4);
+  vk::Context staged(-1, true);
+  staged.use_staging = true;
+  SaliencyResult b = compare(staged, mesh, opt, "forced staging");
+  CHECK(staged.staged_copies >= 8);  // the sorted keys of every sigma come back through it
+  SaliencyResult a = compute_saliency_gpu(context(), mesh, opt);
+  CHECK(a.saliency == b.saliency);
+  CHECK(a.raw == b.raw);
+  CHECK(a.smoothed == b.smoothed);
+}
+
+TEST_CASE("gpu fast matches the cpu fast path on real meshes", "[gpu][fast]") {
+  const SaliencyOptions opt = fast_options();
+  for (const char* name : {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj"}) {
+    MESHSAL_REQUIRE_MESH(path, name);
+    compare(context(), load_mesh(path), opt, name);
+  }
+}
+
+TEST_CASE("backend gpu takes --method fast; auto picks the device as for exact", "[gpu][fast]") {
+  const uint64_t before = vk::validation_message_count();
+  const Mesh m = make_bumpy_sphere(3);
+  SaliencyOptions opt = fast_options();
+  opt.backend = Backend::Gpu;
+  opt.device = 0;
+  auto devices = vk::list_devices();
+  REQUIRE(!devices.empty());
+  SaliencyResult r = compute_saliency(m, opt);
+  CHECK(r.backend_name == devices[0].name);
+  CHECK(r.method == Method::Fast);
+  SaliencyResult cpu = compute_saliency_cpu(m, opt);
+  CHECK(rel_error(cpu.saliency, r.saliency) <= 1e-4);
+  // Auto: the device rule of the exact method (a hardware GPU, else the CPU path).
+  opt.backend = Backend::Auto;
+  opt.device = -1;
+  int notices = 0;
+  opt.notice = [&](const std::string&) { ++notices; };
+  SaliencyResult a = compute_saliency(m, opt);
+  const int hw = vk::pick_hardware_gpu(devices);
+  if (hw < 0)
+    CHECK(a.backend_name.rfind("cpu", 0) == 0);
+  else
+    CHECK(a.backend_name == devices[hw].name);
+  CHECK(a.method == Method::Fast);
+  CHECK(notices == 0);
+  CHECK(vk::validation_message_count() == before);
+}
+
+TEST_CASE("gpu fast: the memory estimate counts the fast method's arrays", "[gpu][fast]") {
+  // The averages of every sigma (8 doubles per vertex by default) and the aggregates.
+  CHECK(gpu::fast_filter_bytes(1000000, 1000000, 8) >= 1000000ull * (16 + 64 + 100));
+  vk::Context ctx(-1, true);
+  ctx.info.device_local_bytes = 12 << 20;  // a device with 12 MiB
+  const Mesh m = make_bumpy_sphere(5);     // 10k vertices: exact needs ~9 MiB, fast ~20 MiB
+  SaliencyOptions opt = fast_options();
+  CHECK_NOTHROW(compute_saliency_gpu(ctx, m, SaliencyOptions{}));
+  CHECK_THROWS_WITH(compute_saliency_gpu(ctx, m, opt),
+                    Catch::Contains("mesh too large") && Catch::Contains("--backend cpu"));
+}
+
+namespace {
+
+struct CliRun {
+  int exit_code;
+  std::string out, err;
+};
+
+// The meshsal command with `args`, in a scratch folder of this process.
+CliRun run_cli(const std::string& args) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("meshsal_gpu_fast_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " +
+                          err.string() + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+  };
+  CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  fs::remove_all(dir);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vulkan device",
+          "[gpu][fast][cli]") {
+  MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
+  CliRun r = run_cli("bench " + input + " --repeat 1 --json --method fast --backend gpu");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"method\": \"fast\"") != std::string::npos);
+  CHECK(r.out.find("\"device\": \"" + context().info.name) != std::string::npos);
+  CHECK(r.out.find("\"exact_measured\": true") != std::string::npos);
+  // Exact already times every backend: --backend there is a usage error.
+  CliRun e = run_cli("bench " + input + " --repeat 1 --backend gpu");
+  CHECK(e.exit_code == 2);
+  CHECK(e.err == "error: bench: --backend applies to --method fast (exact times every backend) (see --help)\n");
+}
