@@ -24,6 +24,13 @@ py::array as_array(const py::handle& obj, const char* name) {
 
 std::string dtype_name(const py::array& a) { return std::string(py::str(a.dtype())); }
 
+// The same values in the machine's byte order: a big-endian array ('>f8', from a file) is
+// converted, the common native one passed through untouched.
+py::array native_order(const py::array& a) {
+  if (a.dtype().attr("isnative").cast<bool>()) return a;
+  return a.attr("astype")(a.dtype().attr("newbyteorder")("="));
+}
+
 void check_rows_of_3(const py::array& a, const char* name) {
   if (a.ndim() != 2 || a.shape(1) != 3) {
     std::string shape = "(";
@@ -83,6 +90,8 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
     throw py::type_error("faces must be an integer array (int32, int64, uint32, ...), got " + dtype_name(faces));
   check_rows_of_3(vertices, "vertices");
   check_rows_of_3(faces, "faces");
+  vertices = native_order(vertices);
+  faces = native_order(faces);
   if (vertices.shape(0) > py::ssize_t(std::numeric_limits<uint32_t>::max()))
     throw py::value_error("vertices: more than 2^32 - 1 vertices");
 

@@ -10,6 +10,12 @@ import meshsal
 from conftest import bumpy_sphere
 
 
+def read_only(a):
+    a = a.copy()
+    a.flags.writeable = False
+    return a
+
+
 def test_layouts_give_identical_results(sphere):
     V64, F64 = sphere
     ref = meshsal.saliency(V64.astype(np.float32), F64.astype(np.uint32), backend="cpu")
@@ -22,6 +28,8 @@ def test_layouts_give_identical_results(sphere):
         (wide[:, 1:7:2], F64[:, :]),                       # non-contiguous view
         (V64[::-1][::-1], F64.astype(np.uint64)),          # negative strides twice
         (V64.tolist(), F64.tolist()),                      # plain lists
+        (V64.astype(">f8"), F64.astype(">i4")),            # big-endian, as read from a file
+        (read_only(V64), read_only(F64)),                  # read-only buffers
     ]
     assert not layouts[3][0].flags.c_contiguous
     for V, F in layouts:
