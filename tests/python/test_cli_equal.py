@@ -111,3 +111,21 @@ def test_error_message_equals_cli(cli, tmp_path):
         meshsal.load(str(bad))
     assert "error: " + str(e.value) == r.stderr.strip()
     assert isinstance(e.value, ValueError) and isinstance(e.value, RuntimeError)
+
+
+def test_gpu_saliency_equals_cli(mesh_path, cli, tmp_path):
+    # The Vulkan backend from inside the module (lavapipe here): the CLI's --backend gpu result.
+    if not meshsal.built_with_vulkan():
+        pytest.skip("built without Vulkan")
+    try:
+        meshsal.devices()
+    except meshsal.Error as e:
+        pytest.skip(str(e))
+    path = mesh_path("bunny_3k.off")
+    out = tmp_path / "sal.ply"
+    j = cli.json("saliency", path, "-o", out, "--backend", "gpu", "--json")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="gpu")
+    _, _, props = meshsal.load(str(out), properties=True)
+    assert r.backend == j["device"] and r.precision == j["precision"]
+    np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
