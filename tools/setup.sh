@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package meshsal needs and builds it in Release into build/.
+# Installs every Debian package meshsal needs and builds it in Release into build/ (the
+# Python module too: build/python/meshsal, see README, Python).
 # Run as root on Debian 12 (or with sudo available). Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,6 +10,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
   libglm-dev catch2 zlib1g-dev libcli11-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-venv
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -21,5 +23,5 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get install -y -qq "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMESHSAL_BUILD_PYTHON=ON >/dev/null
 cmake --build build -j"$(nproc)"

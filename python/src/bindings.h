@@ -1,0 +1,14 @@
+// meshsal Python module: each bind_*.cpp adds one group of functions to the module.
+#pragma once
+#include <pybind11/pybind11.h>
+
+namespace meshsal_py {
+
+namespace py = pybind11;
+
+void bind_io(py::module_& m);        // load, devices
+void bind_saliency(py::module_& m);  // saliency
+void bind_simplify(py::module_& m);  // simplify
+void bind_view(py::module_& m);      // best_view, render
+
+}  // namespace meshsal_py

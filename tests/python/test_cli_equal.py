@@ -1,0 +1,131 @@
+# The module's results equal the CLI's on real scans: the same library calls, so the same
+# numbers. The CLI writes saliency as float32 PLY properties and its JSON with 9
+# significant digits: the module's doubles must give exactly those.
+import numpy as np
+import pytest
+
+import meshsal
+
+
+def stats(s):
+    """The CLI's statistics of S (saliency_output.cpp: nearest rank percentiles)."""
+    s = np.sort(s)
+    rank = lambda p: s[min(len(s) - 1, max(int(np.ceil(p / 100.0 * len(s))) - 1, 0))]  # noqa: E731
+    return {"min": s[0], "mean": np.sum(s) / len(s), "max": s[-1],
+            "p10": rank(10), "p50": rank(50), "p90": rank(90), "p99": rank(99)}
+
+
+def g9(x):
+    return float("%.9g" % x)
+
+
+@pytest.mark.parametrize("name", ["bunny_3k.off", "bunny_36k.obj"])
+def test_saliency_equals_cli(name, mesh_path, cli, tmp_path):
+    path = mesh_path(name)
+    out = tmp_path / "sal.ply"
+    j = cli.json("saliency", path, "-o", out, "--backend", "cpu", "--dump-scales", "--json")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="cpu", raw_maps=True)
+    _, _, props = meshsal.load(str(out), properties=True)
+    assert r.backend == j["device"]
+    assert g9(r.eps) == j["eps"]
+    assert r.pairs == j["pairs"]
+    assert int(r.is_point.sum()) == j["points"]
+    # Every per-vertex value, as the CLI stores it (float32), bit for bit.
+    np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
+    np.testing.assert_array_equal(r.curvature.astype(np.float32), props["curvature"])
+    assert r.raw.shape == (5, len(V))
+    for i in range(5):
+        np.testing.assert_array_equal(r.raw[i].astype(np.float32), props[f"saliency_raw_{i}"])
+    # Statistics of the doubles: the CLI's 9 digits exactly.
+    for key, value in stats(r.saliency[r.is_point]).items():
+        assert g9(value) == j["saliency"][key], key
+
+
+def test_saliency_options_equal_cli(mesh_path, cli, tmp_path):
+    path = mesh_path("bunny_3k.off")
+    out = tmp_path / "sal.ply"
+    cli("saliency", path, "-o", out, "--backend", "cpu", "--scales", "1.5,3", "--eps-frac", "0.004",
+        "--method", "fast", "-q")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="cpu", scales=[1.5, 3], eps_frac=0.004, method="fast")
+    _, _, props = meshsal.load(str(out), properties=True)
+    assert r.method == "fast"
+    np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
+    # The string form of scales is the CLI's.
+    r2 = meshsal.saliency(V, F, backend="cpu", scales="1.5,3", eps_frac=0.004, method="fast")
+    np.testing.assert_array_equal(r.saliency, r2.saliency)
+
+
+@pytest.mark.parametrize("weights", ["saliency", "none"])
+def test_simplify_equals_cli(weights, mesh_path, cli, tmp_path):
+    path = mesh_path("spot_3k.obj")
+    out = tmp_path / "simp.ply"
+    j = cli.json("simplify", path, "-o", out, "--ratio", "0.1", "--weights", weights, "--backend", "cpu", "--json")
+    V, F = meshsal.load(str(path))
+    r = meshsal.simplify(V, F, ratio=0.1, weights=weights, backend="cpu")
+    V2, F2 = meshsal.load(str(out))
+    np.testing.assert_array_equal(r.vertices, V2)
+    np.testing.assert_array_equal(r.faces, F2)
+    assert (r.output_faces, r.target_faces, r.collapses, r.reached) == \
+        (j["output_faces"], j["target_faces"], j["collapses"], j["reached"])
+    if weights == "saliency":
+        assert g9(r.alpha) == j["alpha"]
+
+
+def test_simplify_saliency_from_equals_cli(mesh_path, cli, tmp_path):
+    path = mesh_path("bunny_3k.off")
+    sal, out = tmp_path / "sal.ply", tmp_path / "simp.ply"
+    cli("saliency", path, "-o", sal, "--backend", "cpu", "-q")
+    cli("simplify", path, "-o", out, "--target-faces", "1000", "--saliency-from", sal, "--lambda", "50", "-q")
+    V, F = meshsal.load(str(path))
+    S = meshsal.load(str(sal), properties=True)[2]["quality"]
+    r = meshsal.simplify(V, F, 1000, saliency=S, lambda_=50)
+    V2, F2 = meshsal.load(str(out))
+    np.testing.assert_array_equal(r.vertices, V2)
+    np.testing.assert_array_equal(r.faces, F2)
+
+
+@pytest.mark.parametrize("up", ["y", "z"])
+def test_best_view_equals_cli(up, mesh_path, cli):
+    path = mesh_path("max_planck_5k.obj")
+    j = cli.json("viewpoint", path, "--views", "200", "--backend", "cpu", "--up", up, "--resolution", "256")
+    V, F = meshsal.load(str(path))
+    b = meshsal.best_view(V, F, views=200, backend="cpu", up=up, resolution=256)
+    assert b["backend"] == j["backend"]
+    assert b["views_evaluated"] == j["views_evaluated"]
+    assert float("%.9g" % b["U"]) == j["U"]
+    assert float("%.6f" % b["U_fraction"]) == j["U_fraction"]
+    for key, fmt in [("theta", "%.6f"), ("phi", "%.6f"), ("theta_deg", "%.3f"), ("phi_deg", "%.3f")]:
+        assert float(fmt % b[key]) == j[key], key
+        assert float(fmt % b["exhaustive"][key]) == j["exhaustive"][key], key
+    assert [float("%.6f" % x) for x in b["direction"]] == j["direction"]
+
+
+def test_error_message_equals_cli(cli, tmp_path):
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+    r = cli("saliency", bad, "-o", tmp_path / "out.ply", check=False)
+    assert r.returncode == 1
+    with pytest.raises(meshsal.Error) as e:
+        meshsal.load(str(bad))
+    assert "error: " + str(e.value) == r.stderr.strip()
+    assert isinstance(e.value, ValueError) and isinstance(e.value, RuntimeError)
+
+
+def test_gpu_saliency_equals_cli(mesh_path, cli, tmp_path):
+    # The Vulkan backend from inside the module (lavapipe here): the CLI's --backend gpu result.
+    if not meshsal.built_with_vulkan():
+        pytest.skip("built without Vulkan")
+    try:
+        meshsal.devices()
+    except meshsal.Error as e:
+        pytest.skip(str(e))
+    path = mesh_path("bunny_3k.off")
+    out = tmp_path / "sal.ply"
+    j = cli.json("saliency", path, "-o", out, "--backend", "gpu", "--json")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="gpu")
+    _, _, props = meshsal.load(str(out), properties=True)
+    assert r.backend == j["device"] and r.precision == j["precision"]
+    np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
