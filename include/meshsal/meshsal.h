@@ -259,15 +259,40 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights = nullptr,
                    SimplifyReport* report = nullptr);
 
+// How the smoothed saliency Sm becomes the weights W (docs/method.md, "Weightings").
+enum class WeightCurve {
+  Threshold,   // the paper: W = lambda Sm if Sm >= alpha, else Sm
+  Continuous,  // W = 1 + lambda min(cap, (Sm / alpha)^gamma)   (cap 0: no cap)
+  Rank,        // W = 1 + lambda ((r - a) / (1 - a))^gamma where r >= a, else 1; r = the rank
+               // of Sm among the mesh points in [0, 1], a = alpha_percentile / 100
+               // (gamma 0: a step, 1 + lambda on the top 100 - alpha_percentile %)
+};
+
 struct SaliencyWeightOptions {
   double lambda = 100;            // amplification of salient vertices, >= 0
   double alpha_percentile = 30;   // alpha = this percentile of Sm over mesh points, [0, 100]
   // Not in the paper (0 = off): W is raised to at least floor * mean(W) over mesh points.
   double floor = 0;
+  WeightCurve curve = WeightCurve::Threshold;
+  double gamma = 1;               // exponent of the Continuous and Rank curves, [0, 16]
+  double cap = 0;                 // Continuous: largest (Sm / alpha)^gamma, 0 = no cap
 };
 
-// W(v) = lambda * Sm(v) if Sm(v) >= alpha else Sm(v), alpha the alpha_percentile of Sm
-// over the mesh points (is_point != 0); 0 for other vertices. `alpha_out` receives alpha.
+// The named weightings of `meshsal simplify --weights`: None (plain quadrics, no weights),
+// Saliency (the paper's recipe: SaliencyWeightOptions{} as declared, the default) and
+// Balanced (a step of the saliency rank, chosen by measurement so that the salient-region
+// error drops without the rest of the surface paying much for it; docs/method.md has the
+// table).
+enum class Weighting { None, Saliency, Balanced };
+
+// "none", "saliency" or "balanced"; throws Error on anything else.
+Weighting parse_weighting(const std::string& name);
+
+// The SaliencyWeightOptions of a named weighting (None: the options are not used).
+SaliencyWeightOptions weight_preset(Weighting weighting);
+
+// W(v) for every mesh point (is_point != 0) by options.curve (above); 0 for other vertices.
+// alpha is the alpha_percentile of Sm over the mesh points; `alpha_out` receives it.
 std::vector<double> saliency_weights(const std::vector<double>& smoothed,
                                      const std::vector<uint8_t>& is_point,
                                      const SaliencyWeightOptions& options,

@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "cmd_bench_simplify.h"
 #include "command.h"
 #include "core/timer.h"
 #include "json_object.h"
@@ -31,6 +32,7 @@ struct Args {
   std::string data_dir;
   bool json = false;
   bool simplify = false;
+  std::string plot, sweep = "short";  // --simplify only (cmd_bench_simplify.h)
   unsigned threads = 0;
   int repeat = 3;
   std::string method = "exact";  // fast: also the error against exact, per mesh
@@ -48,27 +50,6 @@ double peak_rss_bytes() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return double(u.ru_maxrss) * 1024.0;
-}
-
-// `--simplify` runs tools/bench_simplify (built beside meshsal): only that program links
-// meshoptimizer, the baseline it compares against.
-int exec_simplify_benchmark(const Args& a, const std::string& data_dir) {
-  std::error_code ec;
-  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::string tool = (exe.parent_path() / "bench_simplify").string();
-  if (ec || !std::filesystem::exists(tool))
-    throw meshsal::Error("bench_simplify not found beside meshsal (build the tools target)");
-  std::vector<std::string> args{tool};
-  args.insert(args.end(), a.meshes.begin(), a.meshes.end());
-  args.insert(args.end(), {"--data-dir", data_dir, "--repeat", std::to_string(a.repeat),
-                           "--threads", std::to_string(a.threads)});
-  if (a.json) args.push_back("--json");
-  std::vector<char*> argv;
-  for (std::string& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  std::fflush(stdout);
-  execv(tool.c_str(), argv.data());
-  throw meshsal::Error("cannot run " + tool);
 }
 
 struct Row {
@@ -247,7 +228,7 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
 int run(const Args& a) {
   std::vector<std::string> paths = a.meshes;
   const std::string dir = a.data_dir.empty() ? meshsal::benchmark_data_dir() : a.data_dir;
-  if (a.simplify) return exec_simplify_benchmark(a, dir);
+  if (a.simplify) return run_simplify_benchmark({a.meshes, dir, a.json, a.repeat, a.threads, a.plot, a.sweep});
   if (paths.empty()) {
     for (const char* name : {"bunny_36k.obj", "armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz"}) {
       std::string p = dir + "/" + name;
@@ -304,8 +285,11 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--data-dir", a->data_dir, "Folder of the default benchmark meshes");
   sub.add_flag("--json", a->json, "Print one JSON object (a row per mesh and device under \"rows\") instead of the table");
   sub.add_flag("--simplify", a->simplify,
-               "Benchmark simplification instead (plain, saliency-weighted, meshoptimizer) at 1% "
-               "and 5% of the faces of armadillo_43k, dragon_50k and igea_134k");
+               "Benchmark simplification instead (plain, saliency, balanced, meshoptimizer, and a sweep "
+               "of the weighting) at 1% and 5% of the faces of armadillo_43k, dragon_50k, igea_134k, lucy_50k");
+  sub.add_option("--plot", a->plot, "With --simplify: PNG of salient against RMS error, per model and ratio");
+  sub.add_option("--sweep", a->sweep, "With --simplify: weighting parameters to sweep: short, wide or none")
+      ->check(CLI::IsMember({"short", "wide", "none"}))->capture_default_str();
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
   sub.add_option("--method", a->method,
                  "exact, or fast: time the fast method (on --backend) and report its error "

@@ -26,6 +26,7 @@ struct Args {
   double ratio = 0;
   double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
   bool has_target = false, has_ratio = false, quiet = false, json = false;
+  bool lambda_given = false, alpha_given = false;  // override the --weights preset's
   unsigned threads = 0;
 };
 
@@ -36,10 +37,15 @@ int run(const Args& a) {
   const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
                                             a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
   if (a.has_target == a.has_ratio) throw UsageError("give exactly one of --target-faces N and --ratio R");
-  if (a.weights != "saliency" && a.weights != "none")
-    throw UsageError("--weights must be 'saliency' or 'none', got '" + a.weights + "'");
+  if (a.weights != "saliency" && a.weights != "balanced" && a.weights != "none")
+    throw UsageError("--weights must be 'saliency', 'balanced' or 'none', got '" + a.weights + "'");
   if (a.weights == "none" && !a.saliency_from.empty())
-    throw UsageError("--saliency-from needs --weights saliency");
+    throw UsageError("--saliency-from needs --weights saliency or balanced");
+  // The named weighting's parameters, with --lambda / --alpha-percentile when given.
+  SaliencyWeightOptions wo = weight_preset(parse_weighting(a.weights));
+  if (a.lambda_given) wo.lambda = a.lambda;
+  if (a.alpha_given) wo.alpha_percentile = a.alpha_percentile;
+  wo.floor = a.weight_floor;
 
   Progress progress(!a.quiet && stderr_is_terminal());
   const meshsal::Timer t0;
@@ -76,7 +82,7 @@ int run(const Args& a) {
   std::vector<double> weights;
   double t_saliency = 0, alpha = 0;
   std::string device = "cpu";  // simplification runs on the CPU; computed saliency names its own
-  if (a.weights == "saliency") {
+  if (a.weights != "none") {
     const meshsal::Timer ts;
     SaliencyOptions so;
     so.eps_frac = a.eps_frac;
@@ -93,10 +99,6 @@ int run(const Args& a) {
       from_file = load_saliency_ply(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
     }
-    SaliencyWeightOptions wo;
-    wo.lambda = a.lambda;
-    wo.alpha_percentile = a.alpha_percentile;
-    wo.floor = a.weight_floor;
     if (a.saliency_from.empty()) {
       // simplification_weights() computed here, to learn the saliency's device for the JSON.
       so.smoothed = true;
@@ -123,18 +125,18 @@ int run(const Args& a) {
         .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
         .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
         .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
-        .text("weights", weights.empty() ? "none" : "saliency").text("device", device);
+        .text("weights", a.weights).text("device", device);
     if (!weights.empty())
-      j.number("lambda", a.lambda).number("alpha", alpha).number("alpha_percentile", a.alpha_percentile)
+      j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
     j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", t0.seconds()).print();
   } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);
     if (!weights.empty())
-      std::printf("weights    saliency%s, lambda %g, alpha %.6g (%g-th percentile), %.3f s\n",
-                  a.saliency_from.empty() ? "" : (" from " + a.saliency_from).c_str(), a.lambda,
-                  alpha, a.alpha_percentile, t_saliency);
+      std::printf("weights    %s%s, lambda %g, alpha %.6g (%g-th percentile), %.3f s\n", a.weights.c_str(),
+                  a.saliency_from.empty() ? "" : (" from " + a.saliency_from).c_str(), wo.lambda,
+                  alpha, wo.alpha_percentile, t_saliency);
     else
       std::printf("weights    none (plain quadric error)\n");
     std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses in %.3f s\n",
@@ -160,12 +162,16 @@ RunFn setup(CLI::App& sub) {
   sub.add_option_function<double>(
       "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
       "Fraction of the faces to keep, in (0, 1]")->check(finite_in(0, 1, true));
-  sub.add_option("--weights", a->weights, "saliency or none (plain quadric error)")->capture_default_str();
-  sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices")
-      ->capture_default_str()->check(finite_in(0, 1e6));
-  sub.add_option("--alpha-percentile", a->alpha_percentile,
-                 "Percentile of Sm above which vertices are amplified")
-      ->capture_default_str()->check(finite_in(0, 100));
+  sub.add_option("--weights", a->weights,
+                 "saliency (the paper's recipe), balanced (salient detail at little cost elsewhere: "
+                 "W = 1 + lambda on the top 30% of Sm, lambda 2) or none (plain quadric error)")
+      ->capture_default_str();
+  CLI::Option* lambda = sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices "
+                                       "(default: the --weights preset's, 100 for saliency)")
+      ->check(finite_in(0, 1e6));
+  CLI::Option* alpha = sub.add_option("--alpha-percentile", a->alpha_percentile,
+                 "Percentile of Sm above which vertices are amplified (default: the --weights preset's, 30 "
+                 "for saliency)")->check(finite_in(0, 100));
   sub.add_option("--saliency-from", a->saliency_from,
                  "Reuse S from this saliency PLY (`quality` property) instead of computing it");
   sub.add_option("--weight-floor", a->weight_floor,
@@ -179,7 +185,11 @@ RunFn setup(CLI::App& sub) {
   add_threads_option(sub, a->threads, "CPU threads for saliency (0 = all cores)");
   sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
   sub.add_flag("--json", a->json, "Print the summary as one JSON object on stdout");
-  return [a] { return run(*a); };
+  return [a, lambda, alpha] {
+    a->lambda_given = lambda->count() > 0;
+    a->alpha_given = alpha->count() > 0;
+    return run(*a);
+  };
 }
 
 const bool registered = register_command(

@@ -1,4 +1,5 @@
-// meshsal: saliency weights for simplification (percentile threshold alpha, amplification).
+// meshsal: saliency weights for simplification: the paper's threshold curve, the continuous
+// and rank curves, and the named presets of --weights.
 #include "simplify/saliency_weights.h"
 
 #include <algorithm>
@@ -80,6 +81,46 @@ std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh)
   return std::vector<double>(it->second.begin(), it->second.end());
 }
 
+Weighting parse_weighting(const std::string& name) {
+  if (name == "none") return Weighting::None;
+  if (name == "saliency") return Weighting::Saliency;
+  if (name == "balanced") return Weighting::Balanced;
+  throw Error("weights must be 'saliency', 'balanced' or 'none', got '" + name + "'");
+}
+
+SaliencyWeightOptions weight_preset(Weighting weighting) {
+  SaliencyWeightOptions o;  // Saliency and None: the paper's recipe
+  if (weighting == Weighting::Balanced) {
+    // Measured (tools/sweep_weights.sh, docs/method.md): a step on the rank of Sm. Weights
+    // of 1 and 1 + lambda, not Sm itself: the paper's W = Sm below alpha also spreads the
+    // unsalient weights over orders of magnitude, which is what costs it RMS.
+    o.curve = WeightCurve::Rank;
+    o.alpha_percentile = 70;
+    o.gamma = 0;
+    o.lambda = 2;
+  }
+  return o;
+}
+
+namespace {
+
+// Rank of each mesh point's value in [0, 1] (0 the lowest, 1 the highest; ties broken by
+// index so that the result does not depend on the sort), 0 for other vertices.
+std::vector<double> ranks(const std::vector<double>& values, const std::vector<uint8_t>& is_point) {
+  std::vector<uint32_t> idx;
+  for (size_t i = 0; i < values.size(); ++i)
+    if (is_point[i]) idx.push_back(uint32_t(i));
+  std::sort(idx.begin(), idx.end(), [&](uint32_t x, uint32_t y) {
+    return values[x] != values[y] ? values[x] < values[y] : x < y;
+  });
+  std::vector<double> r(values.size(), 0.0);
+  const double last = idx.size() > 1 ? double(idx.size() - 1) : 1.0;
+  for (size_t k = 0; k < idx.size(); ++k) r[idx[k]] = double(k) / last;
+  return r;
+}
+
+}  // namespace
+
 std::vector<double> saliency_weights(const std::vector<double>& smoothed,
                                      const std::vector<uint8_t>& is_point,
                                      const SaliencyWeightOptions& options, double* alpha_out) {
@@ -91,20 +132,49 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
     throw Error("lambda must be a finite number in [0, 1e+06]");
   if (!(options.floor >= 0 && options.floor <= 100))
     throw Error("weight floor must be a finite number in [0, 100]");
+  if (!(options.gamma >= 0 && options.gamma <= 16))
+    throw Error("gamma must be a finite number in [0, 16]");
+  if (!(options.cap >= 0 && options.cap <= 1e6))
+    throw Error("cap must be a finite number in [0, 1e+06]");
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
       throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");
   const double alpha = percentile(smoothed, is_point, options.alpha_percentile);
   if (alpha_out) *alpha_out = alpha;
   std::vector<double> w(smoothed.size(), 0.0);
+  const double lambda = options.lambda, gamma = options.gamma;
+  switch (options.curve) {
+    case WeightCurve::Threshold:
+      for (size_t i = 0; i < smoothed.size(); ++i)
+        if (is_point[i]) w[i] = smoothed[i] >= alpha ? lambda * smoothed[i] : smoothed[i];
+      break;
+    case WeightCurve::Continuous:
+      for (size_t i = 0; i < smoothed.size(); ++i) {
+        if (!is_point[i]) continue;
+        // alpha 0 (all saliency 0 up to that percentile): every point above it counts as
+        // far above, the cap (if any) bounds it.
+        double x = alpha > 0 ? std::pow(smoothed[i] / alpha, gamma) : (smoothed[i] > 0 ? HUGE_VAL : 0.0);
+        // Bounded like lambda, so that W times a quadric stays far from overflow.
+        x = std::min(x, options.cap > 0 ? options.cap : 1e6);
+        w[i] = 1 + lambda * x;
+      }
+      break;
+    case WeightCurve::Rank: {
+      const std::vector<double> r = ranks(smoothed, is_point);
+      const double a = options.alpha_percentile / 100;
+      for (size_t i = 0; i < smoothed.size(); ++i) {
+        if (!is_point[i]) continue;
+        if (r[i] < a) { w[i] = 1; continue; }
+        const double t = a < 1 ? (r[i] - a) / (1 - a) : 1.0;
+        w[i] = 1 + lambda * (gamma == 0 ? 1.0 : std::pow(t, gamma));
+      }
+      break;
+    }
+  }
   double sum = 0;
   size_t n = 0;
-  for (size_t i = 0; i < smoothed.size(); ++i) {
-    if (!is_point[i]) continue;
-    w[i] = smoothed[i] >= alpha ? options.lambda * smoothed[i] : smoothed[i];
-    sum += w[i];
-    ++n;
-  }
+  for (size_t i = 0; i < smoothed.size(); ++i)
+    if (is_point[i]) sum += w[i], ++n;
   if (options.floor > 0 && n > 0) {
     const double lo = options.floor * sum / double(n);
     for (size_t i = 0; i < w.size(); ++i)
