@@ -73,7 +73,7 @@ TEST_CASE("cli: option combinations are usage errors (exit 2), bad files exit 1"
   const std::string mesh = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   Run r = run_cli("simplify " + q(mesh) + " -o " + q(dir.file("o.obj")) + " --weights none", dir);
   CHECK(r.rc == 2);
-  CHECK(r.err == "error: give exactly one of --target-faces N and --ratio R (see --help)\n");
+  CHECK(r.err == "error: give --target-faces N, --ratio R or --target-error E (see --help)\n");
   r = run_cli("saliency " + q(mesh) + " -o " + q(dir.file("o.ply")) + " --backend fast", dir);
   CHECK(r.rc == 2);
   CHECK(r.err == "error: --backend must be auto, cpu or gpu, got 'fast' (see --help)\n");

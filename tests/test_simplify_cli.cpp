@@ -78,8 +78,11 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
       {"--target-faces -5", "--target-faces: must be a whole number in [1, 4000000000]", 2},
       {"--ratio 0", "--ratio: must be a finite number in (0, 1]", 2},
       {"--ratio 1.5", "--ratio: must be a finite number in (0, 1]", 2},
-      {"", "give exactly one of --target-faces N and --ratio R (see --help)", 2},
-      {"--target-faces 10 --ratio 0.5", "give exactly one of", 2},
+      {"", "give --target-faces N, --ratio R or --target-error E (see --help)", 2},
+      {"--target-faces 10 --ratio 0.5", "give only one of --target-faces N and --ratio R", 2},
+      {"--target-error 0", "--target-error: must be a finite number in (0, 100]", 2},
+      {"--target-error 101", "--target-error: must be a finite number in (0, 100]", 2},
+      {"--target-error nan", "--target-error: must be a finite number in (0, 100]", 2},
   };
   for (const Case& c : cases) {
     const Run r = run_cli(base + c.args);

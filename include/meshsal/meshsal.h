@@ -42,9 +42,32 @@ struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// One per-vertex attribute channel besides the position (a texture coordinate, a normal
+// component, a colour, a quality): one float per vertex, under its name.
+struct VertexAttribute {
+  std::string name;
+  std::vector<float> values;  // one per vertex
+};
+
 struct Mesh {
   std::vector<float> positions;     // x,y,z per vertex, in input order
   std::vector<uint32_t> triangles;  // 3 vertex indices per triangle
+
+  // Optional (empty unless LoadOptions::attributes asked for them; saliency ignores them).
+  // From OBJ: "u", "v" (vt) and "nx", "ny", "nz" (vn). From PLY: every scalar vertex
+  // property besides x, y, z under its own name (nx, texture_u, red, quality, ...). A
+  // channel named red, green, blue or alpha is written back as uchar, the rest as float;
+  // write_obj writes u v (or s t, texture_u texture_v) as vt and nx ny nz as vn.
+  // simplify_mesh interpolates them at each new vertex and renormalises nx ny nz.
+  std::vector<VertexAttribute> attributes;
+  // Optional: set when vertices were split where their attributes differ at one position
+  // (an OBJ v used with different vt/vn: a UV seam). position_vertex[i] is the lowest
+  // vertex at the same position (i itself for that one; the loaders append the split
+  // twins after the file's own vertices). Empty = no vertex is split. Saliency and
+  // curvature are computed on the position-welded mesh (each corner replaced by its
+  // position_vertex) and copied to the twins, so a seam does not cut the surface; the
+  // simplifier never moves or removes a split vertex, so seams stay closed.
+  std::vector<uint32_t> position_vertex;
 
   size_t vertex_count() const { return positions.size() / 3; }
   size_t triangle_count() const { return triangles.size() / 3; }
@@ -73,6 +96,11 @@ struct LoadOptions {
   // bytes its header's counts need (a binary STL: its triangle count); for a gzipped OBJ or
   // ASCII STL (no counts) and for a pipe, 1 GiB.
   uint64_t max_input_bytes = 0;
+  // Fill Mesh::attributes (and Mesh::position_vertex): OBJ vt/vn, whose faces' v/vt/vn
+  // corners become one vertex per distinct (v, vt, vn) (a v's first combination keeps its
+  // index, the others are appended), and PLY's other scalar vertex properties. Off by
+  // default: then an OBJ's vt/vn are ignored and vertices are the file's v lines.
+  bool attributes = false;
 };
 
 // What loading did to the file's data besides parsing it.
@@ -225,6 +253,17 @@ struct SimplifyOptions {
   double min_normal_cos = 0;
   unsigned threads = 0;          // threads for the initial edge costs (0 = all cores)
   bool record_collapses = false; // record the collapse sequence (tests)
+  // An error bound besides (or instead of) the face target, as meshoptimizer's
+  // target_error: a collapse whose error exceeds it is refused, and simplification ends
+  // when no collapse within it is left (or the face target is reached). In units of the
+  // bounding-box diagonal of the mesh points (0.01 = 1%); 0 = no bound. A collapse's error
+  // is the RMS distance of the new vertex to the planes its quadric holds,
+  // sqrt(Q(v) / sum of the plane weights) (vertex weights cancel where they are equal).
+  // With target_error > 0 and neither target_faces nor ratio, the face target is 1.
+  double target_error = 0;
+  // Vertices on an open border (or a non-manifold edge) are neither moved nor removed:
+  // the border keeps its exact vertices and positions.
+  bool lock_border = false;
 };
 
 // One edge contraction: `removed` merges into `kept` (input indices); `cost` its quadric error.
@@ -244,12 +283,18 @@ struct SimplifyReport {
   size_t collapses = 0;
   size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
   double seconds = 0;         // wall time of the whole call
+  double error = 0;           // largest error of the collapses made (see target_error)
   std::vector<Collapse> sequence;      // when options.record_collapses
   std::vector<uint32_t> vertex_origin; // output vertex -> the input vertex it survived as
 };
 
 // Garland-Heckbert edge collapses with area-weighted plane quadrics, border quadrics and
-// optimal placement. vertex_weights (may be null): one weight W >= 0 per input vertex; each
+// optimal placement. Mesh::attributes are carried along: the vertex kept by a collapse
+// takes the attributes interpolated linearly along the collapsed edge at the new
+// position's projection onto it; nx ny nz of moved vertices are renormalised. Vertices
+// split at a seam (Mesh::position_vertex) and, with lock_border, border vertices are
+// locked: never moved or removed (a collapse onto a locked vertex keeps it in place), so
+// a UV seam stays closed and every triangle's texture coordinates come from one side. vertex_weights (may be null): one weight W >= 0 per input vertex; each
 // vertex quadric is multiplied by W once before any collapse (the paper's section 4; build
 // W with saliency_weights()). The output is manifold and oriented where the input is, never
 // has fewer faces than the target, and has exactly the target when reachable (otherwise
@@ -304,12 +349,14 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
 
 // The per-vertex weights W of saliency-guided simplification: saliency (computed with
 // `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
-// smoothed to Sm = G(S, 3 eps), then saliency_weights(). `alpha_out` receives alpha.
+// smoothed to Sm = G(S, 3 eps), then saliency_weights(). `alpha_out` receives alpha,
+// `saliency_out` S. A mesh split at seams (Mesh::position_vertex) is weighed welded.
 std::vector<double> simplification_weights(const Mesh& mesh,
                                            const SaliencyWeightOptions& weight_options,
                                            const SaliencyOptions& saliency_options,
                                            const std::vector<double>* saliency = nullptr,
-                                           double* alpha_out = nullptr);
+                                           double* alpha_out = nullptr,
+                                           std::vector<double>* saliency_out = nullptr);
 
 // Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
 // or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshsal/meshsal.h"
+#include "core/welded_view.h"
 #include "api/gpu_backend.h"
 #include "core/mesh_points.h"
 #include "saliency/gaussian_filter_fast.h"
@@ -91,6 +92,17 @@ Method resolve_method(const Mesh& mesh, const SaliencyOptions& options) {
 }
 
 SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options_in) {
+  // Vertices split at attribute seams: the surface is the position-welded mesh.
+  if (!mesh.position_vertex.empty()) {
+    check_position_vertex(mesh);
+    SaliencyResult r = compute_saliency(position_welded(mesh), options_in);
+    copy_to_twins(mesh, r.is_point);
+    copy_to_twins(mesh, r.curvature);
+    for (std::vector<double>& raw : r.raw) copy_to_twins(mesh, raw);
+    copy_to_twins(mesh, r.saliency);
+    copy_to_twins(mesh, r.smoothed);
+    return r;
+  }
   check_saliency_options(options_in);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);

@@ -3,6 +3,7 @@
 // `meshsal simplify` and the simplification benchmark share, and simplify_with_saliency()
 // for all four in one call.
 #include "core/mesh_points.h"
+#include "core/welded_view.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -11,17 +12,29 @@ std::vector<double> simplification_weights(const Mesh& mesh,
                                            const SaliencyWeightOptions& weight_options,
                                            const SaliencyOptions& saliency_options,
                                            const std::vector<double>* saliency,
-                                           double* alpha_out) {
+                                           double* alpha_out, std::vector<double>* saliency_out) {
+  // Vertices split at attribute seams: weigh the position-welded surface, then copy.
+  if (!mesh.position_vertex.empty()) {
+    check_position_vertex(mesh);
+    std::vector<double> w = simplification_weights(position_welded(mesh), weight_options, saliency_options,
+                                                   saliency, alpha_out, saliency_out);
+    copy_to_twins(mesh, w);
+    if (saliency_out) copy_to_twins(mesh, *saliency_out);
+    return w;
+  }
   std::vector<double> smoothed;
   if (saliency) {
     if (saliency->size() != mesh.vertex_count())
       throw Error("saliency has " + std::to_string(saliency->size()) + " values, the mesh has " +
                   std::to_string(mesh.vertex_count()) + " vertices");
     smoothed = smooth_saliency(mesh, *saliency, saliency_options.eps_frac, saliency_options.threads);
+    if (saliency_out) *saliency_out = *saliency;
   } else {
     SaliencyOptions so = saliency_options;
     so.smoothed = true;
-    smoothed = compute_saliency(mesh, so).smoothed;
+    SaliencyResult r = compute_saliency(mesh, so);
+    smoothed = std::move(r.smoothed);
+    if (saliency_out) *saliency_out = std::move(r.saliency);
   }
   return saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);
 }

@@ -25,10 +25,40 @@ struct Args {
   long long target_faces = 0;
   double ratio = 0;
   double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
-  bool has_target = false, has_ratio = false, quiet = false, json = false;
+  double target_error = 0;  // --target-error, % of the bounding-box diagonal
+  bool has_target = false, has_ratio = false, quiet = false, json = false, lock_border = false;
   bool lambda_given = false, alpha_given = false;  // override the --weights preset's
   unsigned threads = 0;
 };
+
+// Puts S on the mesh as its `quality` attribute (replacing one the input had).
+void set_quality(meshsal::Mesh& mesh, const std::vector<double>& saliency) {
+  if (saliency.size() != mesh.vertex_count()) return;
+  std::vector<float> q(saliency.begin(), saliency.end());
+  for (meshsal::VertexAttribute& at : mesh.attributes)
+    if (at.name == "quality") {
+      at.values = std::move(q);
+      return;
+    }
+  mesh.attributes.push_back({"quality", std::move(q)});
+}
+
+// S from a saliency PLY. For an OBJ split at UV seams, the file holds the saliency of its
+// positions (what `meshsal saliency` writes): the first vertices, the twins after them.
+std::vector<double> load_saliency_of_positions(const std::string& path, const meshsal::Mesh& mesh) {
+  const std::vector<uint32_t>& pv = mesh.position_vertex;
+  if (pv.empty()) return meshsal::load_saliency_ply(path, mesh);
+  size_t positions = 0;
+  while (positions < pv.size() && pv[positions] == positions) ++positions;
+  meshsal::Mesh own;
+  own.positions.assign(mesh.positions.begin(), mesh.positions.begin() + 3 * positions);
+  own.triangles = mesh.triangles;
+  for (uint32_t& v : own.triangles) v = pv[v];
+  std::vector<double> s = meshsal::load_saliency_ply(path, own);
+  s.resize(mesh.vertex_count());
+  for (size_t i = positions; i < s.size(); ++i) s[i] = s[pv[i]];
+  return s;
+}
 
 int run(const Args& a) {
   using namespace meshsal;
@@ -36,7 +66,9 @@ int run(const Args& a) {
   check_outputs({{a.output, "-o", {".obj", ".ply"}}}, {a.input, a.saliency_from});
   const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
                                             a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
-  if (a.has_target == a.has_ratio) throw UsageError("give exactly one of --target-faces N and --ratio R");
+  if (a.has_target && a.has_ratio) throw UsageError("give only one of --target-faces N and --ratio R");
+  if (!a.has_target && !a.has_ratio && a.target_error == 0)
+    throw UsageError("give --target-faces N, --ratio R or --target-error E");
   if (a.weights != "saliency" && a.weights != "balanced" && a.weights != "none")
     throw UsageError("--weights must be 'saliency', 'balanced' or 'none', got '" + a.weights + "'");
   if (a.weights == "none" && !a.saliency_from.empty())
@@ -50,15 +82,18 @@ int run(const Args& a) {
   Progress progress(!a.quiet && stderr_is_terminal());
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
-  const Mesh mesh = load_input(a.input, a.quiet);
+  // Attributes (OBJ vt/vn, PLY properties) are carried to the output.
+  Mesh mesh = load_input(a.input, a.quiet, nullptr, true);
   const double t_load = t0.seconds();
 
   SimplifyOptions opt;
   if (a.has_target) opt.target_faces = size_t(a.target_faces);
   else opt.ratio = a.ratio;
+  opt.target_error = a.target_error / 100;
+  opt.lock_border = a.lock_border;
   // A target at or above the face count keeps the mesh as it is (as meshoptimizer does),
   // so that batch scripts over meshes of any size do not stop on the small ones.
-  if (a.has_target ? size_t(a.target_faces) >= mesh.triangle_count() : a.ratio >= 1) {
+  if (a.has_target ? size_t(a.target_faces) >= mesh.triangle_count() : a.has_ratio && a.ratio >= 1) {
     progress.update("writing", 0.0);
     if (obj) write_obj(a.output, mesh);
     else write_ply(a.output, mesh, {});
@@ -96,19 +131,25 @@ int run(const Args& a) {
     };
     std::vector<double> from_file;
     if (!a.saliency_from.empty()) {
-      from_file = load_saliency_ply(a.saliency_from, mesh);
+      from_file = load_saliency_of_positions(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
     }
-    if (a.saliency_from.empty()) {
+    std::vector<double> saliency;
+    if (a.saliency_from.empty() && mesh.position_vertex.empty()) {
       // simplification_weights() computed here, to learn the saliency's device for the JSON.
       so.smoothed = true;
-      const SaliencyResult s = compute_saliency(mesh, so);
+      SaliencyResult s = compute_saliency(mesh, so);
       device = s.backend_name;
       weights = saliency_weights(s.smoothed, referenced_vertices(mesh), wo, &alpha);
+      if (!obj) saliency = std::move(s.saliency);
     } else {
-      weights = simplification_weights(mesh, wo, so, &from_file, &alpha);
+      // Seams (split vertices) are weighed on the position-welded mesh inside.
+      if (a.saliency_from.empty()) device = "backend " + a.backend;
+      weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
+                                       &alpha, obj ? nullptr : &saliency);
     }
     t_saliency = ts.seconds();
+    if (!obj) set_quality(mesh, saliency);  // S goes to the output PLY as `quality`
   }
 
   progress.update("simplifying", 0.0);
@@ -118,14 +159,17 @@ int run(const Args& a) {
   if (obj) write_obj(a.output, out);
   else write_ply(a.output, out, {});
   progress.finish();
-  if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
+  // With only an error bound there is no face target to miss.
+  if (!rep.reached && !a.quiet && (a.has_target || a.has_ratio)) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
   if (a.json) {
     JsonObject j;
     j.text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
         .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
         .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
         .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
-        .text("weights", a.weights).text("device", device);
+        .text("weights", a.weights).text("device", device)
+        .number("error_percent", 100 * rep.error).number("target_error_percent", a.target_error)
+        .flag("lock_border", a.lock_border).count("attributes", out.attributes.size());
     if (!weights.empty())
       j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
@@ -141,6 +185,14 @@ int run(const Args& a) {
       std::printf("weights    none (plain quadric error)\n");
     std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses in %.3f s\n",
                 rep.output_vertices, rep.output_faces, rep.target_faces, rep.collapses, rep.seconds);
+    std::printf("error      %.4g%% of the bounding-box diagonal (largest collapse)", 100 * rep.error);
+    if (a.target_error > 0) std::printf(", target %g%%", a.target_error);
+    std::printf("\n");
+    if (!out.attributes.empty()) {
+      std::string names;
+      for (const VertexAttribute& at : out.attributes) names += " " + at.name;
+      std::printf("attributes%s\n", names.c_str());
+    }
     std::printf("wrote      %s\n", a.output.c_str());
   }
   return 0;
@@ -153,7 +205,10 @@ RunFn setup(CLI::App& sub) {
       "(the default) every vertex quadric is first multiplied by W = lambda*Sm where the smoothed\n"
       "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4).\n"
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
-      "closed mesh only has even face counts, so an odd target ends one face above it (noted).");
+      "closed mesh only has even face counts, so an odd target ends one face above it (noted).\n"
+      "Texture coordinates and normals (OBJ vt/vn) and other PLY vertex properties are carried to\n"
+      "the output, interpolated along each collapsed edge; vertices on a UV seam stay in place.\n"
+      "A PLY output also gets the saliency S as `quality` (with --weights saliency).");
   sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   sub.add_option_function<long long>(
@@ -162,6 +217,11 @@ RunFn setup(CLI::App& sub) {
   sub.add_option_function<double>(
       "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
       "Fraction of the faces to keep, in (0, 1]")->check(finite_in(0, 1, true));
+  sub.add_option("--target-error", a->target_error,
+                 "Also stop where every further collapse would move the surface more than E% of the\n"
+                 "bounding-box diagonal (RMS distance to the merged planes); alone, simplify as far as E allows")
+      ->check(finite_in(0, 100, true));
+  sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
   sub.add_option("--weights", a->weights,
                  "saliency (the paper's recipe), balanced (salient detail at little cost elsewhere: "
                  "W = 1 + lambda on the top 30% of Sm, lambda 2) or none (plain quadric error)")

@@ -5,9 +5,12 @@
 
 namespace meshsal_cli {
 
-meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexProperties* properties) {
+meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexProperties* properties,
+                         bool attributes) {
   meshsal::LoadReport report;
-  meshsal::Mesh mesh = meshsal::load_mesh(path, properties, {}, &report);
+  meshsal::LoadOptions options;
+  options.attributes = attributes;
+  meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, &report);
   if (report.welded_corners && !quiet)
     std::fprintf(stderr, "note: %s: welded %llu STL corners into %zu shared vertices\n", path.c_str(),
                  static_cast<unsigned long long>(report.welded_corners), mesh.vertex_count());

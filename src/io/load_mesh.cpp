@@ -54,7 +54,7 @@ uint64_t explicit_limit(const LoadOptions& options) {
 }
 
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
-           VertexProperties* properties, uint64_t limit, LoadReport* report) {
+           VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes) {
   Bytes inflated;
   std::string_view bytes = raw;
   if (has_gzip_magic(raw)) {
@@ -71,10 +71,10 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
     throw Error(name + ": not a gzip file (the name ends in .gz but the data is not gzip)");
   }
   Mesh mesh;
-  if (ext == ".obj") mesh = load_obj_text(bytes, name);
+  if (ext == ".obj") mesh = load_obj_text(bytes, name, attributes);
   else if (ext == ".off") mesh = load_off_text(bytes, name);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
-  else mesh = load_ply_bytes(bytes, name, properties);
+  else mesh = load_ply_bytes(bytes, name, properties, attributes);
   return mesh;
 }
 
@@ -111,7 +111,7 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   return load_named(path, properties, [&] {
     const uint64_t limit = explicit_limit(options);
     const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes);
-    return parse(file.view(), path, ext, gz, properties, limit, report);
+    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes);
   });
 }
 
@@ -121,7 +121,9 @@ Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProp
   bool gz = false;
   const std::string ext = check_extension(name, gz);
   return load_named(name, properties,
-                    [&] { return parse(bytes, name, ext, gz, properties, explicit_limit(options), report); });
+                    [&] {
+    return parse(bytes, name, ext, gz, properties, explicit_limit(options), report, options.attributes);
+  });
 }
 
 }  // namespace meshsal

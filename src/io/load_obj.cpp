@@ -1,21 +1,152 @@
-// meshsal: Wavefront OBJ reader (v and f lines; everything else is ignored).
+// meshsal: Wavefront OBJ reader (v and f lines; with LoadOptions::attributes also vt, vn and
+// the v/vt/vn corners of faces; everything else is ignored).
 // A small dedicated parser instead of tinyobjloader: tinyobjloader turns an unparsable
 // coordinate ("nan", "1,5") into 0 and silently drops faces with < 3 vertices, and it
 // reads through iostreams. Here every problem is an Error naming the line.
+#include <cmath>
+#include <map>
 #include <string>
 #include <string_view>
+#include <tuple>
 
 #include "io/mesh_io_internal.h"
 #include "io/text_scan.h"
 
 namespace meshsal {
+namespace {
 
-Mesh load_obj_text(std::string_view text, const std::string& name) {
+constexpr uint32_t kNone = UINT32_MAX;  // a corner without vt or vn
+
+// One face corner's v, vt and vn (0-based; kNone when absent).
+struct Corner {
+  uint32_t v, vt, vn;
+};
+
+// "v", "v/vt", "v//vn" or "v/vt/vn"; negative indices count back from the entries defined
+// so far. Returns a problem, or "" when fine.
+std::string parse_corner(std::string_view tok, const int64_t defined[3], Corner& out) {
+  const std::string_view whole = tok;
+  uint32_t idx[3] = {kNone, kNone, kNone};
+  static const char* what[3] = {"face index", "texture coordinate index", "normal index"};
+  for (int part = 0; part < 3; ++part) {
+    const size_t slash = tok.find('/');
+    const std::string_view field = tok.substr(0, slash);
+    if (!field.empty() || part == 0) {
+      int64_t i;
+      auto r = std::from_chars(field.data() + (!field.empty() && field[0] == '+'),
+                               field.data() + field.size(), i);
+      if (field.empty() || r.ec != std::errc() || r.ptr != field.data() + field.size())
+        return "bad " + std::string(what[part]) + " " + quoted(whole);
+      if (i == 0) return std::string(what[part]) + " 0 (OBJ indices start at 1)";
+      // Negative = relative to the entries defined so far; positive ones are checked
+      // against the final count at the end (forward references are legal).
+      const int64_t v = i > 0 ? i - 1 : defined[part] + i;
+      if (v < 0) return std::string(what[part]) + " " + std::to_string(i) + " points before the first entry";
+      if (v > 0xFFFFFFFEll) return std::string(what[part]) + " " + std::to_string(i) + " is out of range";
+      idx[part] = uint32_t(v);
+    }
+    if (slash == std::string_view::npos) break;
+    tok.remove_prefix(slash + 1);
+    if (part == 2) return "bad face corner (more than v/vt/vn)";
+  }
+  out = {idx[0], idx[1], idx[2]};
+  return "";
+}
+
+// Takes n floats (at least `need`, at most n) from the line into out (missing ones 0).
+std::string take_floats(std::string_view& line, int need, int n, std::vector<float>& out) {
+  for (int k = 0; k < n; ++k) {
+    std::string_view tok = next_token(line);
+    float x = 0;
+    if (tok.empty()) {
+      if (k < need) return "needs " + std::to_string(need) + " numbers";
+    } else if (!parse_coord(tok, x) || !std::isfinite(x)) {
+      return "bad number " + quoted(tok);
+    }
+    out.push_back(x);
+  }
+  return "";
+}
+
+// One vertex per distinct (v, vt, vn) corner: a v's first combination keeps index v, the
+// others become twins appended after the file's vertices (position_vertex = v).
+void split_corners(Mesh& mesh, const std::vector<Corner>& corners, const std::vector<float>& texcoords,
+                   const std::vector<float>& normals, bool any_vt, bool any_vn, const std::string& name) {
+  const size_t nv = mesh.vertex_count(), nvt = texcoords.size() / 2, nvn = normals.size() / 3;
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const Corner& c = corners[i];
+    if (c.vt != kNone && c.vt >= nvt)
+      throw Error(name + ": a face uses texture coordinate " + std::to_string(uint64_t(c.vt) + 1) +
+                  " but the file has " + std::to_string(nvt));
+    if (c.vn != kNone && c.vn >= nvn)
+      throw Error(name + ": a face uses normal " + std::to_string(uint64_t(c.vn) + 1) + " but the file has " +
+                  std::to_string(nvn));
+  }
+  std::vector<uint32_t> first_vt(nv, kNone), first_vn(nv, kNone);
+  std::vector<uint8_t> used(nv, 0);
+  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, uint32_t> twins;
+  std::vector<uint32_t> pv;
+  std::vector<Corner> source;  // which vt/vn each vertex takes
+  source.reserve(nv);
+  for (size_t v = 0; v < nv; ++v) source.push_back({uint32_t(v), kNone, kNone});
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const Corner& c = corners[i];
+    if (c.v >= nv) continue;  // validate_mesh names it
+    if (!used[c.v]) {
+      used[c.v] = 1;
+      source[c.v] = c;
+      mesh.triangles[i] = c.v;
+      continue;
+    }
+    if (source[c.v].vt == c.vt && source[c.v].vn == c.vn) {
+      mesh.triangles[i] = c.v;
+      continue;
+    }
+    auto [it, fresh] = twins.try_emplace({c.v, c.vt, c.vn}, uint32_t(source.size()));
+    if (fresh) {
+      if (source.size() >= 0xFFFFFFFEu) throw Error(name + ": too many split vertices");
+      source.push_back(c);
+      for (int k = 0; k < 3; ++k) mesh.positions.push_back(mesh.positions[3 * size_t(c.v) + k]);
+    }
+    mesh.triangles[i] = it->second;
+  }
+  const size_t n = source.size();
+  if (n > nv) {
+    mesh.position_vertex.resize(n);
+    for (size_t v = 0; v < n; ++v) mesh.position_vertex[v] = source[v].v;
+  }
+  if (any_vt) {
+    VertexAttribute u{"u", std::vector<float>(n, 0.f)}, w{"v", std::vector<float>(n, 0.f)};
+    for (size_t v = 0; v < n; ++v)
+      if (source[v].vt != kNone) {
+        u.values[v] = texcoords[2 * size_t(source[v].vt)];
+        w.values[v] = texcoords[2 * size_t(source[v].vt) + 1];
+      }
+    mesh.attributes.push_back(std::move(u));
+    mesh.attributes.push_back(std::move(w));
+  }
+  if (any_vn) {
+    static const char* names[3] = {"nx", "ny", "nz"};
+    for (int k = 0; k < 3; ++k) {
+      VertexAttribute a{names[k], std::vector<float>(n, 0.f)};
+      for (size_t v = 0; v < n; ++v)
+        if (source[v].vn != kNone) a.values[v] = normals[3 * size_t(source[v].vn) + k];
+      mesh.attributes.push_back(std::move(a));
+    }
+  }
+}
+
+}  // namespace
+
+Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes) {
   Mesh mesh;
   TextScan scan(text, name);
   scan.skip_bom();  // otherwise the first line's key would be "\xEF\xBB\xBFv" and be ignored
   std::string_view line;
   std::vector<uint32_t> poly;
+  std::vector<Corner> face, corners;  // with attributes: this face's, and every triangle's
+  std::vector<float> texcoords, normals;
+  bool any_vt = false, any_vn = false;
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
   };
@@ -26,6 +157,31 @@ Mesh load_obj_text(std::string_view text, const std::string& name) {
       const std::string problem = take_xyz(line, mesh.positions);
       if (!problem.empty()) throw fail(problem);
       // Optional w or r g b columns follow; they are not needed.
+    } else if (attributes && key == "vt") {
+      const std::string problem = take_floats(line, 1, 2, texcoords);  // u [v [w]]
+      if (!problem.empty()) throw fail("texture coordinate " + problem);
+    } else if (attributes && key == "vn") {
+      const std::string problem = take_floats(line, 3, 3, normals);
+      if (!problem.empty()) throw fail("normal " + problem);
+    } else if (key == "f" && attributes) {
+      face.clear();
+      const int64_t defined[3] = {int64_t(mesh.vertex_count()), int64_t(texcoords.size() / 2),
+                                  int64_t(normals.size() / 3)};
+      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
+        Corner c;
+        const std::string problem = parse_corner(tok, defined, c);
+        if (!problem.empty()) throw fail(problem);
+        any_vt |= c.vt != kNone;
+        any_vn |= c.vn != kNone;
+        face.push_back(c);
+      }
+      if (face.size() < 3)
+        throw fail("face with " + std::to_string(face.size()) + " vertices (needs at least 3)");
+      for (size_t i = 1; i + 1 < face.size(); ++i)
+        for (const Corner& c : {face[0], face[i], face[i + 1]}) {
+          corners.push_back(c);
+          mesh.triangles.push_back(c.v);
+        }
     } else if (key == "f") {
       poly.clear();
       const int64_t defined = static_cast<int64_t>(mesh.vertex_count());
@@ -45,6 +201,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name) {
       append_fan(mesh.triangles, poly.data(), poly.size());
     }
   }
+  if (any_vt || any_vn) split_corners(mesh, corners, texcoords, normals, any_vt, any_vn, name);
   return mesh;
 }
 

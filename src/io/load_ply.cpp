@@ -525,7 +525,8 @@ void check_nothing_after(std::string_view bytes, size_t end, bool ascii, const s
 
 }  // namespace
 
-Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties) {
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
+                    bool attributes) {
   const Header h = parse_header(bytes, name);
   const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
   check_counts_fit(h, body_size, name);
@@ -539,7 +540,7 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   if (vertex->count > 0xFFFFFFFFull) throw Error(name + ": too many vertices");
 
   Mesh mesh;
-  ElementPlans plan = plan_elements(h, vertex, face, body_size, properties != nullptr, mesh, name);
+  ElementPlans plan = plan_elements(h, vertex, face, body_size, properties != nullptr || attributes, mesh, name);
   if (!face) {
     bool strips = false;
     for (const Element& e : h.elements) strips |= e.name == "tristrips";
@@ -549,9 +550,10 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   Reader reader{bytes, name, mesh};
   const size_t end = read_body(reader, h, plan.plans, vertex);
   check_nothing_after(bytes, end, h.format == Format::Ascii, name);
-  if (properties)
-    for (size_t i = 0; i < plan.extras.size(); ++i)
-      (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);
+  for (size_t i = 0; i < plan.extras.size(); ++i) {
+    if (attributes) mesh.attributes.push_back({plan.extra_names[i], plan.extras[i]});
+    if (properties) (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);
+  }
   return mesh;
 }
 

@@ -12,9 +12,12 @@
 
 namespace meshsal {
 
-Mesh load_obj_text(std::string_view text, const std::string& name);
+// `attributes`: also vt, vn and v/vt/vn corners (LoadOptions::attributes).
+Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false);
 Mesh load_off_text(std::string_view text, const std::string& name);
-Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties);
+// `attributes`: the extra scalar vertex properties also go to Mesh::attributes, in file order.
+Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
+                    bool attributes = false);
 // STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/welded_view.h"
 
 namespace meshsal {
 
@@ -22,6 +23,11 @@ void validate_mesh(const Mesh& mesh) {
       throw Error("triangle " + std::to_string(i / 3) + " uses vertex index " +
                   std::to_string(mesh.triangles[i]) + " but the mesh has only " +
                   std::to_string(nv) + " vertices");
+  for (const VertexAttribute& a : mesh.attributes)
+    if (a.values.size() != nv)
+      throw Error("attribute '" + a.name + "' has " + std::to_string(a.values.size()) +
+                  " values for " + std::to_string(nv) + " vertices");
+  check_position_vertex(mesh);
   const float* p = mesh.positions.data();
   for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
     const float* a = p + 3 * size_t(mesh.triangles[t]);

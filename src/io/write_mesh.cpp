@@ -2,6 +2,7 @@
 // Both go through write_file_atomically (atomic_write.h): a failure never leaves a
 // half-written or clobbered file.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -36,6 +37,17 @@ void check_mesh(const std::string& path, const Mesh& mesh) {
                   " but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
 }
 
+// PLY keeps colours as bytes: these channels are written as uchar (rounded, clamped).
+bool is_colour_channel(const std::string& name) {
+  return name == "red" || name == "green" || name == "blue" || name == "alpha";
+}
+
+const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
+  for (const VertexAttribute& a : mesh.attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
 }  // namespace
 
 void write_ply(const std::string& path, const Mesh& mesh,
@@ -51,6 +63,19 @@ void write_ply(const std::string& path, const Mesh& mesh,
                   std::to_string(p.values ? p.values->size() : 0) + " values for " +
                   std::to_string(nv) + " vertices");
   }
+  // The mesh's own attributes, unless a given property or the colours replace them.
+  std::vector<const VertexAttribute*> attrs;
+  for (const VertexAttribute& a : mesh.attributes) {
+    bool replaced = rgb && (a.name == "red" || a.name == "green" || a.name == "blue");
+    for (const PlyFloatProperty& p : properties) replaced |= p.name == a.name;
+    if (replaced) continue;
+    if (a.name.empty() || a.name.find_first_of(" \t\r\n") != std::string::npos)
+      throw Error(path + ": cannot write: bad attribute name '" + a.name + "'");
+    if (a.values.size() != nv)
+      throw Error(path + ": cannot write: attribute '" + a.name + "' has " + std::to_string(a.values.size()) +
+                  " values for " + std::to_string(nv) + " vertices");
+    attrs.push_back(&a);
+  }
   if (rgb && rgb->size() != 3 * nv)
     throw Error(path + ": cannot write: " + std::to_string(rgb->size()) + " colour bytes for " +
                 std::to_string(nv) + " vertices (need 3 each)");
@@ -58,6 +83,8 @@ void write_ply(const std::string& path, const Mesh& mesh,
   std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by meshsal\n";
   header += "element vertex " + std::to_string(nv) + "\n";
   header += "property float x\nproperty float y\nproperty float z\n";
+  for (const VertexAttribute* a : attrs)
+    header += (is_colour_channel(a->name) ? "property uchar " : "property float ") + a->name + "\n";
   for (const PlyFloatProperty& p : properties) header += "property float " + p.name + "\n";
   if (rgb) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   header += "element face " + std::to_string(mesh.triangle_count()) + "\n";
@@ -70,6 +97,13 @@ void write_ply(const std::string& path, const Mesh& mesh,
     buf.reserve(chunk * (12 + 4 * properties.size() + 3));
     for (size_t v = 0; v < nv; ++v) {
       for (int k = 0; k < 3; ++k) append_le(buf, mesh.positions[3 * v + k]);
+      for (const VertexAttribute* a : attrs) {
+        const float x = a->values[v];
+        if (is_colour_channel(a->name))
+          buf.push_back(char(uint8_t(x >= 255 ? 255 : x > 0 ? std::lround(x) : 0)));  // NaN -> 0
+        else
+          append_le(buf, x);
+      }
       for (const PlyFloatProperty& p : properties) append_le(buf, static_cast<float>((*p.values)[v]));
       if (rgb) buf.insert(buf.end(), rgb->begin() + 3 * v, rgb->begin() + 3 * v + 3);
       if (buf.size() >= chunk * 12) {
@@ -91,31 +125,87 @@ void write_ply(const std::string& path, const Mesh& mesh,
 
 void write_obj(const std::string& path, const Mesh& mesh) {
   check_mesh(path, mesh);
+  // vt from the first texture-coordinate pair found, vn from nx ny nz; other attributes
+  // have no place in OBJ.
+  const VertexAttribute* uv[2] = {nullptr, nullptr};
+  for (auto names : {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"}})
+    if (!uv[0]) {
+      uv[0] = find_attribute(mesh, names.first);
+      uv[1] = find_attribute(mesh, names.second);
+      if (!uv[1]) uv[0] = nullptr;
+    }
+  const VertexAttribute* nrm[3] = {find_attribute(mesh, "nx"), find_attribute(mesh, "ny"),
+                                   find_attribute(mesh, "nz")};
+  const bool has_vt = uv[0] != nullptr, has_vn = nrm[0] && nrm[1] && nrm[2];
+  for (const VertexAttribute* a : {uv[0], uv[1], nrm[0], nrm[1], nrm[2]})
+    if (a && a->values.size() != mesh.vertex_count())
+      throw Error(path + ": cannot write: attribute '" + a->name + "' has " + std::to_string(a->values.size()) +
+                  " values for " + std::to_string(mesh.vertex_count()) + " vertices");
+  // Split twins (position_vertex) share one v line: a seam stays one surface in the file.
+  const std::vector<uint32_t>& pv = mesh.position_vertex;
+  const bool welded = pv.size() == mesh.vertex_count();
+  std::vector<uint64_t> v_line;
+  if (welded) {
+    v_line.resize(pv.size());
+    uint64_t n = 0;
+    for (size_t v = 0; v < pv.size(); ++v) v_line[v] = pv[v] == v ? ++n : 0;
+    for (size_t v = 0; v < pv.size(); ++v)
+      if (pv[v] != v) {
+        if (pv[v] > v || pv[pv[v]] != pv[v]) throw Error(path + ": cannot write: a position_vertex is not below its vertex");
+        v_line[v] = v_line[pv[v]];
+      }
+  }
   write_file_atomically(path, [&](std::FILE* f) {
     std::string out;
     out.reserve(1 << 20);
     char num[64];
-    // One "key x y z" line; to_chars gives the shortest text that reads back to the same
-    // float bits. Written out in blocks of about 1 MiB.
-    auto add_line = [&](char key, auto x, auto y, auto z) {
-      out += key;
-      for (auto value : {x, y, z}) {
-        auto r = std::to_chars(num, num + sizeof num, value);
-        out += ' ';
-        out.append(num, r.ptr);
-      }
-      out += '\n';
+    auto flush = [&] {
       if (out.size() > (1 << 20) - 256) {
         write_all(f, out.data(), out.size(), path);
         out.clear();
       }
     };
+    auto add_number = [&](auto value) {
+      auto r = std::to_chars(num, num + sizeof num, value);
+      out.append(num, r.ptr);
+    };
+    // One "key x y z" line; to_chars gives the shortest text that reads back to the same
+    // float bits. Written out in blocks of about 1 MiB.
+    auto add_line = [&](const char* key, std::initializer_list<float> values) {
+      out += key;
+      for (float value : values) {
+        out += ' ';
+        add_number(value);
+      }
+      out += '\n';
+      flush();
+    };
     out += "# written by meshsal\n";
     const float* p = mesh.positions.data();
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) add_line('v', p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (!welded || pv[v] == v) add_line("v", {p[3 * v], p[3 * v + 1], p[3 * v + 2]});
+    if (has_vt)
+      for (size_t v = 0; v < mesh.vertex_count(); ++v) add_line("vt", {uv[0]->values[v], uv[1]->values[v]});
+    if (has_vn)
+      for (size_t v = 0; v < mesh.vertex_count(); ++v)
+        add_line("vn", {nrm[0]->values[v], nrm[1]->values[v], nrm[2]->values[v]});
     const uint32_t* t = mesh.triangles.data();
-    for (size_t i = 0; i < mesh.triangles.size(); i += 3)
-      add_line('f', uint64_t(t[i]) + 1, uint64_t(t[i + 1]) + 1, uint64_t(t[i + 2]) + 1);
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+      out += i % 3 == 0 ? "f " : " ";
+      add_number(welded ? v_line[t[i]] : uint64_t(t[i]) + 1);
+      if (has_vt || has_vn) {
+        out += '/';
+        if (has_vt) add_number(uint64_t(t[i]) + 1);
+        if (has_vn) {
+          out += '/';
+          add_number(uint64_t(t[i]) + 1);
+        }
+      }
+      if (i % 3 == 2) {
+        out += '\n';
+        flush();
+      }
+    }
     write_all(f, out.data(), out.size(), path);
   });
 }

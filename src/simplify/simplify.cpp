@@ -23,6 +23,10 @@ namespace meshsal {
 size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) {
   if (input_faces == 0) throw Error("simplify: the mesh has no non-degenerate triangles");
   size_t target = options.target_faces;
+  if (!(options.target_error >= 0 && options.target_error <= 1))
+    throw Error("simplify: target error must be in [0, 1] (a fraction of the bounding-box diagonal), got " +
+                std::to_string(options.target_error));
+  if (target == 0 && options.ratio == 0 && options.target_error > 0) return 1;
   if (target == 0) {
     const double r = options.ratio;
     if (r == 0)
@@ -80,6 +84,30 @@ struct State {
   const float* input_positions = nullptr;
   std::vector<double> pos;                   // 3 per vertex, internal coordinates
   std::vector<Quadric> quad;
+  // Sum of the plane weights in quad[v] (triangle areas, border weights, times W): the
+  // collapse error sqrt(Q(v) / weight) is a distance (target_error).
+  std::vector<double> plane_weight;
+  double max_error2 = HUGE_VAL;              // target_error squared (internal units)
+  double reached_error2 = 0;                 // largest squared error of a collapse made
+  size_t error_refused = 0;                  // refusals for the error bound
+  // Locked vertices (seam twins, lock_border) neither move nor go.
+  std::vector<uint8_t> locked;
+  bool has_locks = false;
+  // Seam twins: twin_next[v] is the next vertex of v's position group (a cycle), NONE
+  // outside groups; pos_group[v] names v's group (a member's id; v itself outside groups).
+  static constexpr uint32_t NONE = UINT32_MAX;
+  std::vector<uint32_t> twin_next, pos_group, weld_mark;
+  uint32_t weld_stamp = 0;
+  bool has_twins = false;
+  // The link condition on the welded surface when `keep` (a seam twin) takes `gone`'s
+  // triangles: no other twin of keep may already neighbour gone or one of gone's
+  // neighbours, the opposites of the edge aside (else the welded mesh gets a
+  // non-manifold edge or a doubled triangle across the seam).
+  bool welded_link_ok(uint32_t keep, uint32_t gone, const uint32_t* opposites, size_t k);
+  // Attributes: `nattr` floats per internal vertex; nx ny nz at normal_at (-1: none).
+  size_t nattr = 0;
+  std::vector<float> attr;
+  int normal_at[3] = {-1, -1, -1};
   std::vector<uint32_t> tri;                 // 3 per triangle
   std::vector<uint8_t> tri_alive;
   // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
@@ -139,7 +167,31 @@ struct State {
   const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
 
   double cost(uint32_t a, uint32_t b, double out[3]) const {
+    if (has_locks && (locked[a] | locked[b])) {  // the new vertex stays where the locked one is
+      const double* k = p(locked[a] ? a : b);
+      for (int i = 0; i < 3; ++i) out[i] = k[i];
+      return (quad[a] + quad[b]).error(k);
+    }
     return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
+  }
+  // No collapse can join two locked vertices: such edges never enter the queue.
+  bool both_locked(uint32_t a, uint32_t b) const { return has_locks && locked[a] && locked[b]; }
+  // The collapse's error squared (see SimplifyOptions::target_error).
+  double error2(uint32_t a, uint32_t b, double cost) const {
+    const double w = plane_weight[a] + plane_weight[b];
+    return w > 0 ? cost / w : 0;
+  }
+  // Refuses a collapse over the error bound (before the costlier check()).
+  bool over_error(uint32_t a, uint32_t b, double cost) {
+    if (!(error2(a, b, cost) > max_error2)) return false;
+    ++error_refused;
+    return true;
+  }
+  // check() passed: collapses the edge onto its locked end if it has one, else onto a.
+  void apply(uint32_t a, uint32_t b, const double np[3], double cost) {
+    reached_error2 = std::max(reached_error2, error2(a, b, cost));
+    if (has_locks && locked[b]) std::swap(a, b);
+    collapse(a, b, np, cost);
   }
 
   // Setup, in this order (init calls them): the input checked and its degenerate
@@ -149,6 +201,7 @@ struct State {
   void init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
             std::vector<Entry>* edges);
   void take_input(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w);
+  void take_locks_and_attributes(const Mesh& mesh, bool lock_border);
   void order_vertices(const Mesh& mesh);
   void build_triangle_runs();
   void build_edges(double border_weight, std::vector<uint32_t>* edge_a, std::vector<uint32_t>* edge_b);
@@ -162,7 +215,9 @@ struct State {
     return (changed[e.a] <= e.stamp) & (changed[e.b] <= e.stamp);
   }
   size_t collapses = 0;
+  const Mesh* mesh_in = nullptr;
   Mesh output(SimplifyReport* report) const;
+  void output_attributes(const Mesh& in, const std::vector<uint32_t>& origin, Mesh* out) const;
 };
 
 void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* w,
@@ -173,7 +228,12 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   std::vector<uint32_t> unique_edges_a, unique_edges_b;
   build_edges(options.border_weight, &unique_edges_a, &unique_edges_b);
   if (w)
-    for (size_t v = 0; v < nv; ++v) quad[v] *= (*w)[order[v]];
+    for (size_t v = 0; v < nv; ++v) {
+      quad[v] *= (*w)[order[v]];
+      plane_weight[v] *= (*w)[order[v]];
+    }
+  if (options.target_error > 0) max_error2 = options.target_error * options.target_error;
+  take_locks_and_attributes(mesh, options.lock_border);
   changed.assign(nv, 0);
   link.assign(nv, 0);
   for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
@@ -193,6 +253,7 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
 
 void State::take_input(const Mesh& mesh, const SimplifyOptions& options,
                        const std::vector<double>* w) {
+  mesh_in = &mesh;
   nv = mesh.vertex_count();
   input_positions = mesh.positions.data();
   const size_t nt_in = mesh.triangle_count();
@@ -219,6 +280,74 @@ void State::take_input(const Mesh& mesh, const SimplifyOptions& options,
   target = resolve_target_faces(options, nt);
   min_cos = options.min_normal_cos;
   record = options.record_collapses;
+}
+
+void State::take_locks_and_attributes(const Mesh& mesh, bool lock_border) {
+  locked.assign(nv, 0);
+  if (lock_border)
+    for (size_t v = 0; v < nv; ++v) locked[v] = border[v];
+  const std::vector<uint32_t>& pv = mesh.position_vertex;
+  if (!pv.empty()) {
+    if (pv.size() != nv) throw Error("simplify: position_vertex does not have one entry per vertex");
+    std::vector<uint32_t> group(nv, 0);
+    for (size_t i = 0; i < nv; ++i) {
+      if (pv[i] > i || pv[pv[i]] != pv[i])
+        throw Error("simplify: position_vertex of vertex " + std::to_string(i) + " is not a lower vertex that stands for itself");
+      ++group[pv[i]];
+    }
+    for (size_t i = 0; i < nv; ++i) locked[inv[i]] |= group[pv[i]] > 1;  // a seam twin
+    twin_next.assign(nv, NONE);
+    pos_group.resize(nv);
+    std::vector<uint32_t> last(nv, NONE);  // per group (input id): the member linked last
+    for (size_t i = 0; i < nv; ++i) {
+      const uint32_t v = inv[i], r = pv[i];
+      pos_group[v] = inv[r];
+      if (group[r] < 2) continue;
+      has_twins = true;
+      if (last[r] == NONE) {
+        twin_next[v] = v;
+      } else {  // insert after the last one, closing the cycle through the first
+        twin_next[v] = twin_next[last[r]];
+        twin_next[last[r]] = v;
+      }
+      last[r] = v;
+    }
+    weld_mark.assign(nv, 0);
+  }
+  for (uint8_t x : locked) has_locks |= x != 0;
+  nattr = mesh.attributes.size();
+  if (!nattr) return;
+  attr.resize(nattr * nv);
+  for (size_t i = 0; i < nattr; ++i) {
+    const VertexAttribute& a = mesh.attributes[i];
+    if (a.values.size() != nv)
+      throw Error("simplify: attribute '" + a.name + "' has " + std::to_string(a.values.size()) +
+                  " values for " + std::to_string(nv) + " vertices");
+    for (size_t v = 0; v < nv; ++v) attr[nattr * v + i] = a.values[order[v]];
+    const int k = a.name == "nx" ? 0 : a.name == "ny" ? 1 : a.name == "nz" ? 2 : -1;
+    if (k >= 0 && normal_at[k] < 0) normal_at[k] = int(i);
+  }
+}
+
+bool State::welded_link_ok(uint32_t keep, uint32_t gone, const uint32_t* opposites, size_t k) {
+  weld_stamp += 2;
+  const uint32_t forbidden = weld_stamp, allowed = weld_stamp + 1;
+  weld_mark[pos_group[gone]] = forbidden;
+  for (uint32_t t : vt(gone)) {
+    if (!tri_alive[t]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t g = pos_group[tri[3 * size_t(t) + c]];
+      if (g != pos_group[keep]) weld_mark[g] = forbidden;
+    }
+  }
+  for (size_t i = 0; i < k; ++i) weld_mark[pos_group[opposites[i]]] = allowed;
+  for (uint32_t w = twin_next[keep]; w != keep; w = twin_next[w])
+    for (uint32_t t : vt(w)) {
+      if (!tri_alive[t]) continue;
+      for (int c = 0; c < 3; ++c)
+        if (weld_mark[pos_group[tri[3 * size_t(t) + c]]] == forbidden) return false;
+    }
+  return true;
 }
 
 void State::order_vertices(const Mesh& mesh) {
@@ -303,12 +432,15 @@ void State::build_triangle_runs() {
     vt_pool.resize(off);
   }
   quad.assign(nv, Quadric{});
+  plane_weight.assign(nv, 0);
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* v = &tri[3 * t];
     const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
+    const double area = q.a00 + q.a11 + q.a22;  // the trace: area times |n|^2
     for (int k = 0; k < 3; ++k) {
       vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
       quad[v[k]] += q;
+      plane_weight[v[k]] += area;
     }
   }
 }
@@ -367,6 +499,8 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
       const Quadric q = border_quadric(p(v0), p(v1), p(v2), border_weight);
       quad[v0] += q;
       quad[v1] += q;
+      plane_weight[v0] += q.a00 + q.a11 + q.a22;
+      plane_weight[v1] += q.a00 + q.a11 + q.a22;
       border[a] = border[b] = 1;
     }
   }
@@ -492,12 +626,30 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     if (bad_triangle(fa[i], a, np)) return Check::Refused;
   for (size_t i = 0; i < nfb; ++i)
     if (bad_triangle(fb[i], b, np)) return Check::Refused;
+  if (has_twins) {  // a seam twin keeps the other end (both twins: never queued)
+    const uint32_t keep = twin_next[a] != NONE ? a : twin_next[b] != NONE ? b : NONE;
+    if (keep != NONE && !welded_link_ok(keep, keep == a ? b : a, op, k)) return Check::Refused;
+  }
   return Check::Ok;
 }
 
 void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
+  if (nattr && !(has_locks && locked[a])) {
+    // Linear along the edge, at the new position's projection onto it.
+    double d[3], e[3];
+    for (int k = 0; k < 3; ++k) {
+      d[k] = pos[3 * size_t(b) + k] - pos[3 * size_t(a) + k];
+      e[k] = np[k] - pos[3 * size_t(a) + k];
+    }
+    const double dd = dot3(d, d);
+    const double t = dd > 0 ? std::min(1.0, std::max(0.0, dot3(d, e) / dd)) : 0;
+    float* xa = &attr[nattr * a];
+    const float* xb = &attr[nattr * b];
+    for (size_t i = 0; i < nattr; ++i) xa[i] = float((1 - t) * double(xa[i]) + t * double(xb[i]));
+  }
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
+  plane_weight[a] += plane_weight[b];
   if (border[a] && border[b]) --border_vertices;
   border[a] = border[a] | border[b];
   compact(a);
@@ -539,6 +691,39 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   if (record) sequence.push_back({order[a], order[b], c});
 }
 
+void State::output_attributes(const Mesh& in, const std::vector<uint32_t>& origin, Mesh* out) const {
+  const size_t n = origin.size();
+  for (size_t i = 0; i < nattr; ++i) {
+    VertexAttribute a{in.attributes[i].name, std::vector<float>(n)};
+    for (size_t o = 0; o < n; ++o) a.values[o] = attr[nattr * inv[origin[o]] + i];
+    out->attributes.push_back(std::move(a));
+  }
+  if (normal_at[0] >= 0 && normal_at[1] >= 0 && normal_at[2] >= 0) {
+    float* c[3] = {out->attributes[size_t(normal_at[0])].values.data(), out->attributes[size_t(normal_at[1])].values.data(),
+                   out->attributes[size_t(normal_at[2])].values.data()};
+    for (size_t o = 0; o < n; ++o) {
+      if (changed[inv[origin[o]]] == 0) continue;  // never touched: the input's exact normal
+      const double len = std::sqrt(double(c[0][o]) * c[0][o] + double(c[1][o]) * c[1][o] + double(c[2][o]) * c[2][o]);
+      if (len > 0)
+        for (int k = 0; k < 3; ++k) c[k][o] = float(c[k][o] / len);
+    }
+  }
+  // Seam twins are locked, so each group survives whole (or not at all where its
+  // triangles went); each points at its group's first survivor.
+  if (!in.position_vertex.empty()) {
+    std::vector<uint32_t> first(nv, UINT32_MAX);
+    out->position_vertex.resize(n);
+    bool split = false;
+    for (size_t o = 0; o < n; ++o) {
+      uint32_t& f = first[in.position_vertex[origin[o]]];
+      if (f == UINT32_MAX) f = uint32_t(o);
+      out->position_vertex[o] = f;
+      split |= f != o;
+    }
+    if (!split) out->position_vertex.clear();
+  }
+}
+
 Mesh State::output(SimplifyReport* report) const {
   std::vector<uint32_t> remap(nv, UINT32_MAX);
   Mesh out;
@@ -560,6 +745,7 @@ Mesh State::output(SimplifyReport* report) const {
   for (size_t t = 0; t < tri_alive.size(); ++t)
     if (tri_alive[t])
       for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
+  output_attributes(*mesh_in, origin, &out);
   if (report) {
     report->input_faces = tri_alive.size();
     report->target_faces = target;
@@ -580,6 +766,10 @@ Mesh State::output(SimplifyReport* report) const {
                        "and unfolded; stopped at " + std::to_string(faces);
     }
     report->refused = refused;
+    report->error = std::sqrt(reached_error2);
+    if (!report->reached && error_refused > 0 && max_error2 < HUGE_VAL)
+      report->note = "stopped at " + std::to_string(faces) + " faces (target " + std::to_string(target) +
+                     "): every further collapse would exceed the target error or break the mesh";
     report->sequence = sequence;
     report->collapses = tri_alive.size() - faces;  // overwritten by the callers
     report->vertex_origin = std::move(origin);
@@ -601,14 +791,15 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
   EdgeQueue heap;
-  for (const Entry& x : initial) heap.push(x);
+  for (const Entry& x : initial)
+    if (!s.both_locked(x.a, x.b)) heap.push(x);
   std::vector<Entry>().swap(initial);
 
   std::vector<std::vector<Entry>> refused(s.nv);
   // Puts the refused edges of w back (both ends' lists forget them).
   // Whether refused[w] is not empty: one byte per vertex stays in cache, the vectors not.
   std::vector<uint8_t> has_refused(s.nv, 0);
-  auto release = [&](uint32_t w) {
+  auto release_one = [&](uint32_t w) {
     if (!has_refused[w]) return;
     has_refused[w] = 0;
     for (const Entry& e : refused[w]) {
@@ -620,6 +811,12 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       if (s.current(e)) heap.push(e);
     }
     refused[w].clear();
+  };
+  // A seam twin's edges also depend on its twins' neighbourhoods (welded_link_ok).
+  auto release = [&](uint32_t w) {
+    release_one(w);
+    if (s.has_twins && s.twin_next[w] != State::NONE)
+      for (uint32_t x = s.twin_next[w]; x != w; x = s.twin_next[x]) release_one(x);
   };
 
   std::vector<uint32_t> mark(s.nv, UINT32_MAX);
@@ -654,7 +851,7 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     }
     if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
-    const Check c = s.check(e.a, e.b, np);
+    const Check c = s.over_error(e.a, e.b, exact) ? Check::Refused : s.check(e.a, e.b, np);
     if (c != Check::Ok) {
       ++s.refused;
       refused[e.a].push_back(e);
@@ -662,8 +859,10 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       has_refused[e.a] = has_refused[e.b] = 1;
       continue;
     }
-    const uint32_t a = e.a, b = e.b;
-    s.collapse(a, b, np, exact);
+    s.apply(e.a, e.b, np, exact);
+    // The survivor: the locked end when there is one.
+    const bool swap = s.has_locks && s.locked[e.b];
+    const uint32_t a = swap ? e.b : e.a, b = swap ? e.a : e.b;
     if (has_refused[b]) {
       std::vector<Entry>().swap(refused[b]);
       has_refused[b] = 0;
@@ -692,6 +891,7 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     for (size_t i = 0; i < nring; ++i) {
       const uint32_t y = ring[i];
       const uint32_t lo = select_u32(a < y, a, y), hi = select_u32(a < y, y, a);
+      if (s.both_locked(lo, hi)) continue;
       heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
     }
   }
@@ -724,6 +924,8 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
     cand.erase(std::unique(cand.begin(), cand.end(),
                            [](const Entry& x, const Entry& y) { return x.a == y.a && x.b == y.b; }),
                cand.end());
+    cand.erase(std::remove_if(cand.begin(), cand.end(), [&](const Entry& e) { return s.both_locked(e.a, e.b); }),
+               cand.end());
     double tmp[3];
     for (Entry& e : cand) e.cost = float(s.cost(e.a, e.b, tmp));
     std::sort(cand.begin(), cand.end(), key_less);
@@ -731,11 +933,11 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
     for (const Entry& e : cand) {
       double np[3];
       const double exact = s.cost(e.a, e.b, np);
-      if (s.check(e.a, e.b, np) != Check::Ok) {
+      if (s.over_error(e.a, e.b, exact) || s.check(e.a, e.b, np) != Check::Ok) {
         ++s.refused;
         continue;
       }
-      s.collapse(e.a, e.b, np, exact);
+      s.apply(e.a, e.b, np, exact);
       done = true;
       break;
     }
