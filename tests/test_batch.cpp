@@ -207,3 +207,27 @@ TEST_CASE("batch: output names stay distinct when inputs share a name", "[batch]
   CHECK(load_mesh((dir / "out" / "ball.obj_2_saliency.ply").string()).vertex_count() ==
         make_sphere(2.0, 1).vertex_count());
 }
+
+TEST_CASE("batch: on a terminal a progress line shows models done, the current one and the time left", "[batch]") {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) {
+    WARN("skipped: script(1) (bsdutils) is missing: no terminal to test the progress line on");
+    return;
+  }
+  const fs::path dir = batch_scratch("progress");
+  const fs::path in = make_batch_inputs(dir), out = dir / "out";
+  // script(1) runs the command on a pseudo-terminal and records what it drew.
+  const std::string cmd = std::string(MESHSAL_CLI) + " batch " + in.string() + " -o " + out.string() +
+                          " --backend cpu --view --size 64 --resolution 32 --restarts 1";
+  const std::string script = "script -qec '" + cmd + "' " + (dir / "typescript").string() + " > /dev/null 2>&1 < /dev/null";
+  CHECK(std::system(script.c_str()) != 0);  // -e: the batch's own status, 1 for broken.obj
+  const std::string drawn = read_text(dir / "typescript");
+  INFO(drawn);
+  CHECK(drawn.find("[1/4] ball.obj  reading   0%") != std::string::npos);
+  CHECK(drawn.find("[2/4] broken.obj") != std::string::npos);
+  CHECK(drawn.find("[4/4] cube.off") != std::string::npos);
+  CHECK(drawn.find(" left") != std::string::npos);  // after the first model, an estimate
+  CHECK(drawn.find("batch: 4 models: 3 computed, 0 skipped, 1 failed") != std::string::npos);
+  // Through a pipe (every other test here) nothing of it is drawn.
+  const BatchRun piped = run_meshsal("batch " + in.string() + " -o " + out.string() + " --backend cpu --force", dir);
+  CHECK(piped.err.find("[1/4]") == std::string::npos);
+}
