@@ -308,14 +308,16 @@ void write_plot(const std::string& path, const std::vector<Run>& runs) {
       if (x.model != r.model || x.ratio != r.ratio || x.method == "none") continue;
       const meshsal::TradeoffPoint pt{x.rms_rel, x.salient_rel};
       if (x.sweep) {
-        const int series = x.options.curve == WeightCurve::Threshold ? 0 : x.options.curve == WeightCurve::Rank ? 1 : 2;
+        const int series = x.options.curve == WeightCurve::Threshold ? meshsal::kSweepThreshold
+                           : x.options.curve == WeightCurve::Rank    ? meshsal::kSweepRank
+                                                                     : meshsal::kSweepContinuous;
         p.series[series].push_back(pt);
       } else if (x.method == "saliency") {
-        p.series[3].push_back(pt);
+        p.series[meshsal::kPaperRecipe].push_back(pt);
       } else if (x.method == "balanced") {
-        p.series[4].push_back(pt);
+        p.series[meshsal::kBalancedPreset].push_back(pt);
       } else if (x.method == "meshopt") {
-        p.series[5].push_back(pt);
+        p.series[meshsal::kMeshoptimizer].push_back(pt);
       }
     }
     panels.push_back(p);
