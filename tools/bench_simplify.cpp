@@ -1,6 +1,7 @@
 // bench_simplify: quality and speed of simplification on real meshes, side by side:
 // plain quadric error (--weights none), saliency-weighted (SPEC 2) and meshoptimizer's
-// meshopt_simplify (when built with it). `meshsal bench --simplify` runs this program.
+// meshopt_simplify (when built with it). `meshsal bench --simplify` (cmd_bench_simplify.cpp)
+// does the same and more: the balanced preset, a sweep of the weighting, the plot.
 //
 //   bench_simplify [MESHES...] [--data-dir DIR] [--ratios 0.01,0.05] [--repeat 3]
 //                  [--threads N] [--samples N] [--json]

@@ -325,9 +325,9 @@ struct SaliencyWeightOptions {
 
 // The named weightings of `meshsal simplify --weights`: None (plain quadrics, no weights),
 // Saliency (the paper's recipe: SaliencyWeightOptions{} as declared, the default) and
-// Balanced (a step of the saliency rank, chosen by measurement so that the salient-region
-// error drops without the rest of the surface paying much for it; docs/method.md has the
-// table).
+// Balanced (parameters chosen by measurement, docs/method.md "Weightings": the salient-region
+// error drops by about a fifth while RMS and Hausdorff error stay within 1.25x of plain's on
+// most models; weight_preset() returns them).
 enum class Weighting { None, Saliency, Balanced };
 
 // "none", "saliency" or "balanced"; throws Error on anything else.

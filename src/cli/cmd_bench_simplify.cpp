@@ -107,6 +107,16 @@ std::vector<SweepPoint> sweep_points(const std::string& which) {
   for (double l : {2.0, 4.0}) out.push_back(rank(70, l, 0, true));
   for (double l : {2.0, 6.0}) out.push_back(rank(50, l, 2));
   for (double l : {1.0, 2.0}) out.push_back(continuous(70, l, 1, 4));
+  // Around the threshold curve's best (igea_134k misses the target with all of the above).
+  for (double fl : {0.3, 0.6}) {
+    SweepPoint p = threshold(70, 3);
+    p.options.floor = fl;
+    p.label += " floor" + fmt("%g", fl);
+    out.push_back(p);
+  }
+  out.push_back(threshold(85, 3));
+  out.push_back(threshold(50, 2));
+  out.push_back(rank(70, 8, 0, true));
   return out;
 }
 
@@ -267,8 +277,9 @@ void print_json(const std::vector<Run>& runs, const std::vector<std::pair<std::s
                   json_string(r.model).c_str(), r.ratio, json_string(r.method).c_str());
       first = false;
       if (tradeoff && !r.curve.empty())
-        std::printf("\"curve\": \"%s\", \"lambda\": %g, \"alpha_percentile\": %g, \"gamma\": %g, \"cap\": %g, ",
-                    r.curve.c_str(), r.options.lambda, r.options.alpha_percentile, r.options.gamma, r.options.cap);
+        std::printf("\"curve\": \"%s\", \"lambda\": %g, \"alpha_percentile\": %g, \"gamma\": %g, \"cap\": %g, \"floor\": %g, ",
+                    r.curve.c_str(), r.options.lambda, r.options.alpha_percentile, r.options.gamma, r.options.cap,
+                    r.options.floor);
       if (tradeoff)
         std::printf("\"sweep\": %s, \"salient_rel\": %.6g, \"rms_rel\": %.6g, \"hausdorff_rel\": %.6g, "
                     "\"meets_target\": %s, \"seconds\": %.6f}",
@@ -297,14 +308,16 @@ void write_plot(const std::string& path, const std::vector<Run>& runs) {
       if (x.model != r.model || x.ratio != r.ratio || x.method == "none") continue;
       const meshsal::TradeoffPoint pt{x.rms_rel, x.salient_rel};
       if (x.sweep) {
-        const int series = x.options.curve == WeightCurve::Threshold ? 0 : x.options.curve == WeightCurve::Rank ? 1 : 2;
+        const int series = x.options.curve == WeightCurve::Threshold ? meshsal::kSweepThreshold
+                           : x.options.curve == WeightCurve::Rank    ? meshsal::kSweepRank
+                                                                     : meshsal::kSweepContinuous;
         p.series[series].push_back(pt);
       } else if (x.method == "saliency") {
-        p.series[3].push_back(pt);
+        p.series[meshsal::kPaperRecipe].push_back(pt);
       } else if (x.method == "balanced") {
-        p.series[4].push_back(pt);
+        p.series[meshsal::kBalancedPreset].push_back(pt);
       } else if (x.method == "meshopt") {
-        p.series[5].push_back(pt);
+        p.series[meshsal::kMeshoptimizer].push_back(pt);
       }
     }
     panels.push_back(p);

@@ -203,7 +203,8 @@ RunFn setup(CLI::App& sub) {
   sub.footer(
       "Simplify IN by Garland-Heckbert edge collapses to a face count. With --weights saliency\n"
       "(the default) every vertex quadric is first multiplied by W = lambda*Sm where the smoothed\n"
-      "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4).\n"
+      "saliency Sm = G(S, 3 eps) reaches the alpha-percentile, else Sm (Lee et al. 2005, sec. 4;\n"
+      "alpha at the 30th percentile, lambda 100). --weights balanced: alpha at the 50th, lambda 3.\n"
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
       "closed mesh only has even face counts, so an odd target ends one face above it (noted).\n"
       "Texture coordinates and normals (OBJ vt/vn) and other PLY vertex properties are carried to\n"
@@ -223,8 +224,9 @@ RunFn setup(CLI::App& sub) {
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
   sub.add_option("--weights", a->weights,
-                 "saliency (the paper's recipe), balanced (salient detail at little cost elsewhere: "
-                 "W = 1 + lambda on the top 30% of Sm, lambda 2) or none (plain quadric error)")
+                 "saliency (the paper's recipe), balanced (the paper's curve with alpha at the 50th "
+                 "percentile and lambda 3: salient detail at little cost elsewhere) or none (plain "
+                 "quadric error)")
       ->capture_default_str();
   CLI::Option* lambda = sub.add_option("--lambda", a->lambda, "Amplification of the salient vertices "
                                        "(default: the --weights preset's, 100 for saliency)")
