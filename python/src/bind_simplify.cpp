@@ -35,14 +35,22 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   meshsal::SimplifyOptions options;
   options.threads = threads;
   if (!target_faces.is_none()) {
-    if (!py::isinstance<py::int_>(target_faces))
-      throw py::type_error("target_faces must be an int");
-    const long long t = target_faces.cast<long long>();
+    // Any integer (numpy's too), as Python's operator.index takes it.
+    PyObject* index = PyNumber_Index(target_faces.ptr());
+    if (!index) {
+      PyErr_Clear();
+      throw py::type_error("target_faces must be an integer, got " +
+                           std::string(py::str(target_faces.get_type().attr("__name__"))));
+    }
+    const long long t = py::reinterpret_steal<py::int_>(index).cast<long long>();
     if (t < 1 || t > 4000000000LL)
       throw py::value_error("target_faces must be in [1, 4000000000], got " + std::to_string(t));
     options.target_faces = size_t(t);
   } else {
-    const double r = ratio.cast<double>();
+    if (!py::isinstance<py::float_>(ratio) && !py::isinstance<py::int_>(ratio) &&
+        !PyNumber_Check(ratio.ptr()))
+      throw py::type_error("ratio must be a number");
+    const double r = py::float_(ratio).cast<double>();
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1], got " + std::string(py::str(ratio)));
     options.ratio = r;
   }

@@ -91,6 +91,11 @@ def test_bad_options_refused():
         meshsal.simplify(V, F, ratio=1.5)
     with pytest.raises(ValueError, match=r"target_faces must be in \[1, 4000000000\], got 0"):
         meshsal.simplify(V, F, 0)
+    with pytest.raises(TypeError, match="target_faces must be an integer, got float"):
+        meshsal.simplify(V, F, 2.5)
+    with pytest.raises(TypeError, match="ratio must be a number"):
+        meshsal.simplify(V, F, ratio="half")
+    assert meshsal.simplify(V, F, np.int64(2), weights="none").output_faces >= 2  # numpy ints
     with pytest.raises(ValueError, match="weights must be 'saliency', 'none' or an array"):
         meshsal.simplify(V, F, 2, weights="heavy")
     with pytest.raises(ValueError, match="up must be"):

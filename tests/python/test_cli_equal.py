@@ -129,3 +129,15 @@ def test_gpu_saliency_equals_cli(mesh_path, cli, tmp_path):
     _, _, props = meshsal.load(str(out), properties=True)
     assert r.backend == j["device"] and r.precision == j["precision"]
     np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
+
+
+def test_best_view_curvature_score_equals_cli(mesh_path, cli):
+    # The paper's baseline, --score curvature, is abs(curvature) of the saliency result.
+    path = mesh_path("max_planck_5k.obj")
+    j = cli.json("viewpoint", path, "--score", "curvature", "--backend", "cpu", "--resolution", "256")
+    V, F = meshsal.load(str(path))
+    H = meshsal.saliency(V, F, backend="cpu").curvature
+    b = meshsal.best_view(V, F, np.abs(H), backend="cpu", resolution=256)
+    assert float("%.9g" % b["U"]) == j["U"]
+    assert float("%.6f" % b["U_fraction"]) == j["U_fraction"]
+    assert (float("%.6f" % b["theta"]), float("%.6f" % b["phi"])) == (j["theta"], j["phi"])
