@@ -42,10 +42,11 @@ double usable_cell(const BoundingBox& box, double cell) {
 }
 
 // The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
-// cell of the query grid, r = ceil(radius / h) + 1 (fast_query.comp walks the rows of the
-// ball's cells, a subset). Sliding sums along x, y and z over the cell counts.
+// cell of the query grid, r = ceil(radius / h) + 3 (fast_query.comp walks the rows of the
+// ball's cells around a box of at most 2 cells in x and 1 in y and z: a subset). Sliding
+// sums along x, y and z over the cell counts.
 uint64_t most_candidates(const GridPlan& g, const std::vector<uint32_t>& starts, double radius) {
-  const int64_t r = int64_t(std::ceil(radius / g.h)) + 1;
+  const int64_t r = int64_t(std::ceil(radius / g.h)) + 3;
   const int64_t nx = g.nx, ny = g.ny, nz = g.nz;
   std::vector<uint32_t> a(size_t(nx * ny * nz)), b(a.size());
   auto at = [&](int64_t x, int64_t y, int64_t z) { return size_t(x + nx * (y + ny * z)); };
