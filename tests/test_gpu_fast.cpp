@@ -19,6 +19,7 @@
 
 #include "core/synthetic.h"
 #include "gpu/gpu_fast.h"
+#include "gpu/gpu_fast_cells.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
@@ -258,4 +259,16 @@ TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vul
   CliRun e = run_cli("bench " + input + " --repeat 1 --backend gpu");
   CHECK(e.exit_code == 2);
   CHECK(e.err == "error: bench: --backend applies to --method fast (exact times every backend) (see --help)\n");
+}
+
+TEST_CASE("gpu fast: cells past 32-bit keys are refused naming the CPU path", "[gpu][fast]") {
+  const double extent[3] = {1.0, 1.0, 0.5};
+  const gpu::FastGrid g = gpu::plan_fast_grid(extent, 0.01);
+  CHECK(g.nx == 101);
+  CHECK(g.ny == 101);
+  CHECK(g.nz == 51);
+  CHECK(g.cell == 0.01);
+  // 10001 x 10001 x 5001 cells: more than 32-bit keys hold.
+  CHECK_THROWS_WITH(gpu::plan_fast_grid(extent, 1e-4),
+                    Catch::Contains("fewer than 2^32 cells") && Catch::Contains("--backend cpu"));
 }
