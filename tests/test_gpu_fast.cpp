@@ -19,6 +19,7 @@
 
 #include "core/synthetic.h"
 #include "gpu/gpu_fast.h"
+#include "gpu/gpu_fast_cells.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
@@ -156,6 +157,17 @@ TEST_CASE("gpu fast under forced staging matches the cpu and the unified path", 
   CHECK(a.smoothed == b.smoothed);
 }
 
+TEST_CASE("gpu fast: each sigma's averages fit a buffer of their own", "[gpu][fast]") {
+  // Lavapipe allows 128 MiB per buffer: the averages of all 8 sigmas in one buffer passed
+  // it at 2 million vertices (igea_loop2). Here 128 KiB per buffer on 2.6k vertices: 166
+  // KiB of averages in all, 21 KiB per sigma.
+  vk::Context ctx(-1, true);
+  ctx.properties.limits.maxStorageBufferRange = 128 << 10;
+  const Mesh mesh = make_bumpy_sphere(4);
+  REQUIRE(mesh.vertex_count() * 8 * 8 > (128u << 10));
+  compare(ctx, mesh, fast_options(), "128 KiB per buffer");
+}
+
 TEST_CASE("gpu fast matches the cpu fast path on real meshes", "[gpu][fast]") {
   const SaliencyOptions opt = fast_options();
   for (const char* name : {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj"}) {
@@ -247,4 +259,16 @@ TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vul
   CliRun e = run_cli("bench " + input + " --repeat 1 --backend gpu");
   CHECK(e.exit_code == 2);
   CHECK(e.err == "error: bench: --backend applies to --method fast (exact times every backend) (see --help)\n");
+}
+
+TEST_CASE("gpu fast: cells past 32-bit keys are refused naming the CPU path", "[gpu][fast]") {
+  const double extent[3] = {1.0, 1.0, 0.5};
+  const gpu::FastGrid g = gpu::plan_fast_grid(extent, 0.01);
+  CHECK(g.nx == 101);
+  CHECK(g.ny == 101);
+  CHECK(g.nz == 51);
+  CHECK(g.cell == 0.01);
+  // 10001 x 10001 x 5001 cells: more than 32-bit keys hold.
+  CHECK_THROWS_WITH(gpu::plan_fast_grid(extent, 1e-4),
+                    Catch::Contains("fewer than 2^32 cells") && Catch::Contains("--backend cpu"));
 }

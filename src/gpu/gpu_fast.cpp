@@ -29,7 +29,7 @@ struct QueryPush {
   double h, cut2, radius, coef;
 };
 struct FinishPush { uint32_t base, n, dense, offset; double s2; };
-struct CenterSurroundPush { uint32_t base, n, nout, pad; uint32_t ab[16]; };
+struct CenterSurroundPush { uint32_t base, n, map, has_b; };
 
 // Cell edge of at least `cell`, grown until every axis has fewer than 2^21 cells: a copy of
 // usable_cell() in gaussian_filter_fast.cpp (file-local there), so that both paths take
@@ -42,10 +42,11 @@ double usable_cell(const BoundingBox& box, double cell) {
 }
 
 // The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
-// cell of the query grid, r = ceil(radius / h) + 1 (fast_query.comp walks the rows of the
-// ball's cells, a subset). Sliding sums along x, y and z over the cell counts.
+// cell of the query grid, r = ceil(radius / h) + 3 (fast_query.comp walks the rows of the
+// ball's cells around a box of at most 2 cells in x and 1 in y and z: a subset). Sliding
+// sums along x, y and z over the cell counts.
 uint64_t most_candidates(const GridPlan& g, const std::vector<uint32_t>& starts, double radius) {
-  const int64_t r = int64_t(std::ceil(radius / g.h)) + 1;
+  const int64_t r = int64_t(std::ceil(radius / g.h)) + 3;
   const int64_t nx = g.nx, ny = g.ny, nz = g.nz;
   std::vector<uint32_t> a(size_t(nx * ny * nz)), b(a.size());
   auto at = [&](int64_t x, int64_t y, int64_t z) { return size_t(x + nx * (y + ny * z)); };
@@ -165,7 +166,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
     }
   }
   vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-    FinishPush fp{0, 0, dense ? 1u : 0u, job.k * job.nv, s * s};
+    FinishPush fp{0, 0, dense ? 1u : 0u, 0, s * s};
     vk::dispatch(ctx, cmd, k_finish, s_finish, &fp, 0, dense ? fc.pieces : job.np, kLocal);
   });
   std::vector<uint32_t> per_query(queries);
@@ -190,32 +191,42 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   const uint32_t nv = uint32_t(mesh.vertex_count());
   const uint32_t nsig = uint32_t(plan.sigmas.size());
   const uint32_t nout = uint32_t(plan.out_a.size());
-  if (nsig == 0 || nsig > 0xffff || nout == 0 || nout > 16 || plan.out_b.size() != nout)
+  bool bad = nsig == 0 || nout == 0 || nout > 16 || plan.out_b.size() != nout;
+  for (uint32_t o = 0; !bad && o < nout; ++o)
+    bad = plan.out_a[o] < 0 || plan.out_a[o] >= int(nsig) || plan.out_b[o] >= int(nsig);
+  if (bad)
     throw Error("internal: a GPU fast filter plan of " + std::to_string(nsig) + " sigmas and " +
                 std::to_string(nout) + " outputs");
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
   vk::Buffer pos32 = upload_float_positions(ctx, mesh);
-  vk::Buffer g(ctx, size_t(nsig) * nv * 8, "the fast method's averages");
-  const FastInputs in{&pos, &flags, &pos32};
-  vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {  // vertices that are not mesh points
-    vkCmdFillBuffer(cmd, g.handle(), 0, VK_WHOLE_SIZE, 0);
+  // A buffer per sigma (all of them in one passed lavapipe's 128 MiB per buffer at 2
+  // million vertices), zero for the vertices that are not mesh points.
+  std::vector<vk::Buffer> g;
+  for (uint32_t k = 0; k < nsig; ++k) g.emplace_back(ctx, size_t(nv) * 8, "the fast method's averages");
+  vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
+    for (const vk::Buffer& b : g) vkCmdFillBuffer(cmd, b.handle(), 0, VK_WHOLE_SIZE, 0);
   });
+  const FastInputs in{&pos, &flags, &pos32};
   uint64_t pairs = 0;
   for (uint32_t k = 0; k < nsig; ++k)
-    pairs += filter_one_sigma(ctx, pos, in, box, {plan.sigmas[k], k, nsig, nv, np, extent}, g,
+    pairs += filter_one_sigma(ctx, pos, in, box, {plan.sigmas[k], k, nsig, nv, np, extent}, g[k],
                               options, stage);
 
   auto& k_cs = vk::cached_kernel(ctx, spv_fast_center_surround_comp,
-                                 sizeof spv_fast_center_surround_comp, 3,
+                                 sizeof spv_fast_center_surround_comp, 4,
                                  sizeof(CenterSurroundPush), "fast_center_surround");
-  vk::DescriptorPool pool(ctx, 1, 4);
-  VkDescriptorSet set = pool.bind(k_cs, {&g, &flags, &result});
-  CenterSurroundPush cp{0, 0, nout, 0, {}};
-  for (uint32_t o = 0; o < nout; ++o)
-    cp.ab[o] = uint32_t(plan.out_a[o]) | uint32_t(plan.out_b[o] + 1) << 16;
+  vk::DescriptorPool pool(ctx, nout, 4 * nout);
+  std::vector<VkDescriptorSet> sets;
+  for (uint32_t o = 0; o < nout; ++o) {
+    const int a = plan.out_a[o], b = plan.out_b[o];
+    sets.push_back(pool.bind(k_cs, {&g[size_t(a)], &g[size_t(b < 0 ? a : b)], &flags, &result}));
+  }
   vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-    vk::dispatch(ctx, cmd, k_cs, set, &cp, 0, nv, kLocal);
+    for (uint32_t o = 0; o < nout; ++o) {
+      CenterSurroundPush cp{0, 0, o, plan.out_b[o] >= 0 ? 1u : 0u};
+      vk::dispatch(ctx, cmd, k_cs, sets[o], &cp, 0, nv, kLocal);
+    }
   });
   return pairs;
 }

@@ -12,11 +12,11 @@ layout(std430, binding = 2) readonly buffer PieceStart { uint piece_start[]; };
 layout(std430, binding = 3) readonly buffer PieceCell { uint piece_cell[]; };
 layout(std430, binding = 4) readonly buffer Order { uint order[]; };
 layout(std430, binding = 5) readonly buffer Pos { dvec4 pos[]; };  // xyz - min, value
-layout(std430, binding = 6) buffer G { double g[]; };              // [sigma][vertex]
+layout(std430, binding = 6) buffer G { double g[]; };              // this sigma, per vertex
 layout(push_constant) uniform Push {
   uint base; uint n;  // pieces (dense) or sorted mesh points (sparse)
   uint dense;
-  uint offset;        // this sigma's first entry in g
+  uint offset;        // first entry of g to write (0: each sigma has its own buffer)
   double s2;          // sigma^2
 } pc;
 void main() {

@@ -2,15 +2,20 @@
 // sum count*w and sum sum*w over the cell aggregates with |centroid - q| < 2 sigma (strict),
 // and in dense mode also their gradients in q (times sigma^2) for the extrapolation to a
 // cell's vertices. A lane per query point: a cell's centroid (dense) or a mesh point
-// (sparse); no subgroup operations, so any subgroup size gives the same sums. The
-// aggregates are on a uniform grid (gpu_grid.h) and the rows of cells are culled against
-// the ball as sweep_point() in sweep.glsl culls them. Lavapipe ends an invocation's loops
+// (sparse), in sorted order. As in sweep_layout_rows.glsl, the lanes of a subgroup walk
+// the rows of cells around the box of those of the subgroup's query points that lie in
+// their own row of cells, so that they load the same candidates at once (lavapipe runs a
+// lane per SIMD slot: a gather per lane would cost ~8x); any box holding the lane's own
+// point gives it the same sums, so the subgroup size changes nothing but the order of the
+// additions. The aggregates are on a uniform grid (gpu_grid.h) and the rows of cells are
+// culled against the ball as sweep_point() in sweep.glsl culls them. Lavapipe ends an invocation's loops
 // silently after 65,535 steps in all, so a dispatch visits only the candidates whose
 // ordinal (in the order the rows are walked) lies in [ord_lo, ord_hi): the host splits a
 // query's candidates into windows of at most 32768 and the sums are added up across them.
 // All in double: with cells of sigma/6 a cutoff decided by a float distance would move
 // whole cells in or out of a sum, and the sums of the two scales of a raw map are close.
 #version 450
+#extension GL_KHR_shader_subgroup_basic : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Sorted { dvec4 sorted_pos[]; };  // centroid - min, sum
 layout(std430, binding = 1) readonly buffer SortedCell { uint sorted_cell[]; };
@@ -48,26 +53,44 @@ double exp_neg_cutoff(double x) {
 }
 
 void main() {
-  const uint j = pc.base + gl_GlobalInvocationID.x;
-  if (j >= pc.n) return;
+  const uint gid = gl_GlobalInvocationID.x;
+  const uint j = min(pc.base + gid, pc.n - 1u);
+  const bool live = pc.base + gid < pc.n;  // a lane past the end only shares the loads
+  const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
   const bool dense = pc.dense != 0u;
   const dvec3 q = query_pos[dense ? j : order[j]].xyz;
+  const double c = pc.h, R = pc.radius, R2 = pc.cut2;
+  dvec3 lo = q, hi = q;
+  const ivec2 my_row = ivec2(q.yz / c);
+  for (uint e = 0u; e < gl_SubgroupSize; ++e) {
+    const uint je = min(g0 + e, pc.n - 1u);
+    const dvec3 o = query_pos[dense ? je : order[je]].xyz;
+    if (ivec2(o.yz / c) == my_row) {
+      lo = min(lo, o);
+      hi = max(hi, o);
+    }
+  }
+  // A row whose points lie far apart (two crossings of the surface): each lane alone. The
+  // host's bound on a walk's candidates counts on a box of at most 2 cells in x.
+  if (hi.x - lo.x > 2.0LF * c) {
+    lo = q;
+    hi = q;
+  }
   double num = 0.0LF, den = 0.0LF;
   dvec3 gn = dvec3(0.0LF), gd = dvec3(0.0LF);
   uint count = 0u;
-  const double c = pc.h, R = pc.radius, R2 = pc.cut2;
-  int zlo = max(0, int(floor((q.z - R) / c))), zhi = min(int(pc.nz) - 1, int(floor((q.z + R) / c)));
-  int ylo = max(0, int(floor((q.y - R) / c))), yhi = min(int(pc.ny) - 1, int(floor((q.y + R) / c)));
+  int zlo = max(0, int(floor((lo.z - R) / c))), zhi = min(int(pc.nz) - 1, int(floor((hi.z + R) / c)));
+  int ylo = max(0, int(floor((lo.y - R) / c))), yhi = min(int(pc.ny) - 1, int(floor((hi.y + R) / c)));
   uint ord = 0u;  // candidates of the rows walked so far
   for (int z = zlo; z <= zhi && ord < pc.ord_hi; ++z) {
-    double dz = max(0.0LF, max(double(z) * c - q.z, q.z - double(z + 1) * c));
+    double dz = max(0.0LF, max(double(z) * c - hi.z, lo.z - double(z + 1) * c));
     for (int y = ylo; y <= yhi && ord < pc.ord_hi; ++y) {
-      double dy = max(0.0LF, max(double(y) * c - q.y, q.y - double(y + 1) * c));
+      double dy = max(0.0LF, max(double(y) * c - hi.y, lo.y - double(y + 1) * c));
       double rest = R2 - dz * dz - dy * dy;
       if (rest <= 0.0LF) continue;
       double hx = sqrt(rest);
-      int xa = max(0, int(floor((q.x - hx) / c)));
-      int xb = min(int(pc.nx) - 1, int(floor((q.x + hx) / c)));
+      int xa = max(0, int(floor((lo.x - hx) / c)));
+      int xb = min(int(pc.nx) - 1, int(floor((hi.x + hx) / c)));
       uint row = pc.nx * (uint(y) + pc.ny * uint(z));
       uint j0 = starts[row + uint(xa)];
       uint len = starts[row + uint(xb) + 1u] - j0;
@@ -95,6 +118,7 @@ void main() {
       ord += len;
     }
   }
+  if (!live) return;
   if (dense) {
     const uint o = 8u * j;
     sums[o] += num;
