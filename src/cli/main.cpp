@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command.h"
+#include "core/heap_policy.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal_cli {
@@ -53,6 +54,7 @@ static std::string suggestion(const std::string& given, const std::vector<std::s
 
 int main(int argc, char** argv) {
   using namespace meshsal_cli;
+  meshsal::keep_freed_memory_for_reuse();
   CLI::App app{
       "meshsal: mesh saliency (Lee, Varshney, Jacobs 2005) on the CPU and on Vulkan GPUs,\n"
       "saliency-guided simplification and best-viewpoint selection.\n"

@@ -1,0 +1,37 @@
+// The CLI's heap policy: large blocks come from the heap and stay there once freed.
+#include <cstdlib>
+#include <cstring>
+
+#include "core/heap_policy.h"
+#include "test_util.h"
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+// AddressSanitizer brings its own allocator: glibc's heap figures say nothing there.
+#if defined(__SANITIZE_ADDRESS__)
+#define MESHSAL_OWN_ALLOCATOR 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MESHSAL_OWN_ALLOCATOR 1
+#endif
+#endif
+
+TEST_CASE("heap policy: a freed 64 MB block stays in the heap for the next one", "[parallel]") {
+#if defined(__GLIBC__) && !defined(MESHSAL_OWN_ALLOCATOR)
+  meshsal::keep_freed_memory_for_reuse();
+  const size_t size = size_t(64) << 20;
+  const size_t mapped_before = mallinfo2().hblkhd;
+  char* block = static_cast<char*>(std::malloc(size));
+  REQUIRE(block != nullptr);
+  std::memset(block, 1, size);
+  static char* volatile escape;  // the compiler may not drop the block
+  escape = block;
+  CHECK(mallinfo2().hblkhd == mapped_before);  // not a mapping of its own
+  std::free(block);
+  const struct mallinfo2 after = mallinfo2();
+  CHECK(after.fordblks >= size);  // kept as free heap memory, not given back
+  CHECK(after.arena >= size);
+#else
+  WARN("skipped: not glibc's allocator");
+#endif
+}
