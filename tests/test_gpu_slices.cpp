@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,13 +54,17 @@ TEST_CASE("sweep submissions sized by time: a tiny target splits the sweep, resu
   CHECK(slices_default <= 6);
   CHECK(ctx.sweep_slices > 10);
   CHECK(sliced.pairs == whole.pairs);
-  // The same sums up to their order (a subgroup's shared rows depend on where slices start).
-  double mx = 0, err = 0;
-  for (size_t v = 0; v < m.vertex_count(); ++v) {
-    mx = std::max(mx, std::fabs(whole.saliency[v]));
-    err = std::max(err, std::fabs(whole.saliency[v] - sliced.saliency[v]));
-  }
-  CHECK(mx > 0);
-  CHECK(err <= 1e-6 * mx);
+  // The same sums bit for bit: slices end on whole work groups, so the lanes that share
+  // rows (and where their steps of candidates begin) do not depend on how the sweep is cut.
+  // Cell-aligned slices gave differences of ~1e-16 here, and made the forced-staging test
+  // fail at random on a loaded machine.
+  CHECK(sliced.saliency == whole.saliency);
+  CHECK(sliced.raw == whole.raw);
+  // A fixed budget of candidate pairs cuts elsewhere again (cells of any size).
+  ctx.sweep_pairs_per_submission = 12345;
+  SaliencyResult fixed = compute_saliency_gpu(ctx, m, opt);
+  CHECK(ctx.sweep_slices > 10);
+  CHECK(fixed.raw == whole.raw);
+  CHECK(fixed.saliency == whole.saliency);
   CHECK(vk::validation_message_count() == before);
 }

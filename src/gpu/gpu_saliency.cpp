@@ -140,6 +140,13 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
                         : first_slice_budget(ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU,
                                              work.before.back());
   SweepPush p{0, 0, g.nx, g.ny, g.nz, per_group, m.nv, nsig, nout, 0, g.h, radius * radius};
+  // Slice ends on multiples of kLocal points (the last at the end): the lane-per-point layout
+  // shares a box among the points of a subgroup counted from the slice's start, and the box
+  // decides where its sums of PER_STEP candidates begin. Cell-aligned, timed slices made the
+  // sums' last bits depend on the machine's load.
+  const auto slice_point = [&](size_t cut) {
+    return cut + 1 == work.first.size() ? work.first[cut] : work.first[cut] / kLocal * kLocal;
+  };
   ctx.sweep_slices = 0;
   ctx.sweep_longest_s = 0;
   for (size_t at = 0; at + 1 < work.first.size();) {
@@ -153,7 +160,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
         if (mixed) vkCmdFillBuffer(cmd, m.bound.handle(), 0, VK_WHOLE_SIZE, 0);
         vk::barrier(cmd);
       }
-      const uint32_t begin = work.first[at], end = work.first[next];
+      const uint32_t begin = slice_point(at), end = slice_point(next);
       const uint32_t gap = gpu::test_sweep_gap_at;  // test hook: a plan that leaves one point out
       if (gap >= begin && gap < end) {
         if (gap > begin) vk::dispatch(ctx, cmd, k, set, &p, begin, gap, per_group);
