@@ -187,6 +187,13 @@ TEST_CASE("simplify keeps a UV seam closed and every texture coordinate on its s
   CHECK(worst_u < 0.03);
   CHECK(worst_v < 0.02);
   CHECK(worst_normal > 0.995);
+  // The locked seam bounds the reduction, and the note says so.
+  o.target_faces = 20;
+  const Mesh small = simplify_mesh(in, o, nullptr, &rep);
+  CHECK(small.triangle_count() == 94);
+  CHECK_FALSE(rep.reached);
+  CHECK(rep.note.find("locked (seam or border) vertices in place; stopped at 94") != std::string::npos);
+  CHECK(simplify_test::topology(position_welded(small)).nonmanifold_edges == 0);
 }
 
 TEST_CASE("simplify with locks and attributes: the heap matches the brute-force oracle", "[simplify]") {

@@ -203,8 +203,9 @@ RunFn setup(CLI::App& sub) {
       "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
       "Fraction of the faces to keep, in (0, 1]")->check(finite_in(0, 1, true));
   sub.add_option("--target-error", a->target_error,
-                 "Also stop where every further collapse would move the surface more than E% of the\n"
-                 "bounding-box diagonal (RMS distance to the merged planes); alone, simplify as far as E allows")
+                 "Error bound E in % of the bounding-box diagonal: stop where every further collapse would\n"
+                 "move the surface more than that (RMS distance to the merged planes); alone, or with a face\n"
+                 "target (whichever comes first). The error reached is reported")
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
   sub.add_option("--weights", a->weights, "saliency or none (plain quadric error)")->capture_default_str();

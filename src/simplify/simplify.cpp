@@ -763,7 +763,8 @@ Mesh State::output(SimplifyReport* report) const {
       else
         report->note = "target of " + std::to_string(target) +
                        " faces is not reachable: no further collapse keeps the mesh manifold "
-                       "and unfolded; stopped at " + std::to_string(faces);
+                       "and unfolded" + std::string(has_locks ? " and its locked (seam or border) vertices in place" : "") +
+                       "; stopped at " + std::to_string(faces);
     }
     report->refused = refused;
     report->error = std::sqrt(reached_error2);
