@@ -103,6 +103,9 @@ struct State {
   bool pair(uint32_t v) const { return !partner.empty() && partner[v] != NONE; }
   bool seam_edge(uint32_t a, uint32_t b) const { return pair(a) && pair(b); }
   bool seam_mode = false;  // check() runs for one side of a seam edge
+  // 1 for a twin and (at least) every vertex next to one: only their collapses need the
+  // welded link condition (elsewhere the split one is the same). Kept by collapse().
+  std::vector<uint8_t> near_seam;
   double seam_cost(uint32_t a, uint32_t b, double out[3]) const {
     if (!seam_edge(a, b)) return HUGE_VAL;
     const Quadric q = quad[a] + quad[partner[a]] + quad[b] + quad[partner[b]];
@@ -342,6 +345,10 @@ void State::take_locks_and_attributes(const Mesh& mesh, bool lock_border) {
       last[r] = v;
     }
     weld_mark.assign(nv, 0);
+    near_seam.assign(nv, 0);
+    for (size_t t = 0; t < tri.size(); t += 3)
+      if (twin_next[tri[t]] != NONE || twin_next[tri[t + 1]] != NONE || twin_next[tri[t + 2]] != NONE)
+        near_seam[tri[t]] = near_seam[tri[t + 1]] = near_seam[tri[t + 2]] = 1;
     if (!lock_border) {
       partner.assign(nv, NONE);
       for (size_t v = 0; v < nv; ++v)
@@ -689,7 +696,8 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     if (bad_triangle(fb[i], b, np)) return Check::Refused;
   // Twins at one position are one vertex of the surface: the link condition again, welded
   // (along a seam check_edge does it for both sides at once).
-  if (has_twins && !seam_mode && !welded_link_ok(a, b, k, false)) return Check::Refused;
+  if (has_twins && !seam_mode && (near_seam[a] | near_seam[b]) && !welded_link_ok(a, b, k, false))
+    return Check::Refused;
   return Check::Ok;
 }
 
@@ -706,6 +714,13 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     float* xa = &attr[nattr * a];
     const float* xb = &attr[nattr * b];
     for (size_t i = 0; i < nattr; ++i) xa[i] = float((1 - t) * double(xa[i]) + t * double(xb[i]));
+  }
+  if (has_twins) {  // a gains b's neighbours; if a is a twin, they gain a twin neighbour
+    near_seam[a] |= near_seam[b];
+    if (twin_next[a] != NONE)
+      for (uint32_t t : vt(b))
+        if (tri_alive[t])
+          for (int k = 0; k < 3; ++k) near_seam[tri[3 * size_t(t) + k]] = 1;
   }
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
