@@ -192,7 +192,8 @@ RunFn setup(CLI::App& sub) {
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
       "closed mesh only has even face counts, so an odd target ends one face above it (noted).\n"
       "Texture coordinates and normals (OBJ vt/vn) and other PLY vertex properties are carried to\n"
-      "the output, interpolated along each collapsed edge; vertices on a UV seam stay in place.\n"
+      "the output, interpolated along each collapsed edge; UV seams stay closed (seam vertices\n"
+      "do not move and collapse only along the seam, both sides at once).\n"
       "A PLY output also gets the saliency S as `quality` (with --weights saliency).");
   sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
