@@ -66,7 +66,7 @@ struct Mesh {
   // twins after the file's own vertices). Empty = no vertex is split. Saliency and
   // curvature are computed on the position-welded mesh (each corner replaced by its
   // position_vertex) and copied to the twins, so a seam does not cut the surface; the
-  // simplifier never moves or removes a split vertex, so seams stay closed.
+  // simplifier keeps seams closed (see simplify_mesh).
   std::vector<uint32_t> position_vertex;
 
   size_t vertex_count() const { return positions.size() / 3; }
@@ -292,9 +292,11 @@ struct SimplifyReport {
 // optimal placement. Mesh::attributes are carried along: the vertex kept by a collapse
 // takes the attributes interpolated linearly along the collapsed edge at the new
 // position's projection onto it; nx ny nz of moved vertices are renormalised. Vertices
-// split at a seam (Mesh::position_vertex) and, with lock_border, border vertices are
-// locked: never moved or removed (a collapse onto a locked vertex keeps it in place), so
-// a UV seam stays closed and every triangle's texture coordinates come from one side. vertex_weights (may be null): one weight W >= 0 per input vertex; each
+// split at a seam (Mesh::position_vertex) never move or take another side's attributes: a
+// collapse onto one keeps it in place, and a seam edge between two positions with one twin
+// each side collapses along the seam on both sides at once; so a UV seam stays closed and
+// every triangle's texture coordinates come from one side. With lock_border, border
+// vertices (seam vertices included) are neither moved nor removed. vertex_weights (may be null): one weight W >= 0 per input vertex; each
 // vertex quadric is multiplied by W once before any collapse (the paper's section 4; build
 // W with saliency_weights()). The output is manifold and oriented where the input is, never
 // has fewer faces than the target, and has exactly the target when reachable (otherwise

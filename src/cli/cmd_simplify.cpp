@@ -208,7 +208,8 @@ RunFn setup(CLI::App& sub) {
       "Collapses that would make the mesh non-manifold, flip or fold a triangle are refused; a\n"
       "closed mesh only has even face counts, so an odd target ends one face above it (noted).\n"
       "Texture coordinates and normals (OBJ vt/vn) and other PLY vertex properties are carried to\n"
-      "the output, interpolated along each collapsed edge; vertices on a UV seam stay in place.\n"
+      "the output, interpolated along each collapsed edge; UV seams stay closed (seam vertices\n"
+      "do not move and collapse only along the seam, both sides at once).\n"
       "A PLY output also gets the saliency S as `quality` (with --weights saliency).");
   sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
   sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
@@ -219,8 +220,9 @@ RunFn setup(CLI::App& sub) {
       "--ratio", [a](double r) { a->ratio = r; a->has_ratio = true; },
       "Fraction of the faces to keep, in (0, 1]")->check(finite_in(0, 1, true));
   sub.add_option("--target-error", a->target_error,
-                 "Also stop where every further collapse would move the surface more than E% of the\n"
-                 "bounding-box diagonal (RMS distance to the merged planes); alone, simplify as far as E allows")
+                 "Error bound E in % of the bounding-box diagonal: stop where every further collapse would\n"
+                 "move the surface more than that (RMS distance to the merged planes); alone, or with a face\n"
+                 "target (whichever comes first). The error reached is reported")
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
   sub.add_option("--weights", a->weights,

@@ -97,13 +97,30 @@ struct State {
   // outside groups; pos_group[v] names v's group (a member's id; v itself outside groups).
   static constexpr uint32_t NONE = UINT32_MAX;
   std::vector<uint32_t> twin_next, pos_group, weld_mark;
+  // A seam vertex whose group has two members (one each side) has a partner: a seam edge
+  // between two such vertices collapses on both sides at once, along the seam.
+  std::vector<uint32_t> partner;
+  bool pair(uint32_t v) const { return !partner.empty() && partner[v] != NONE; }
+  bool seam_edge(uint32_t a, uint32_t b) const { return pair(a) && pair(b); }
+  bool seam_mode = false;  // check() runs for one side of a seam edge
+  // 1 for a twin and (at least) every vertex next to one: only their collapses need the
+  // welded link condition (elsewhere the split one is the same). Kept by collapse().
+  std::vector<uint8_t> near_seam;
+  double seam_cost(uint32_t a, uint32_t b, double out[3]) const {
+    if (!seam_edge(a, b)) return HUGE_VAL;
+    const Quadric q = quad[a] + quad[partner[a]] + quad[b] + quad[partner[b]];
+    const double ea = q.error(p(a)), eb = q.error(p(b));
+    const double* k = eb < ea ? p(b) : p(a);  // the cheaper end stays, on both sides
+    for (int i = 0; i < 3; ++i) out[i] = k[i];
+    return std::min(ea, eb);
+  }
+  Check check_edge(uint32_t a, uint32_t b, const double np[3]);
   uint32_t weld_stamp = 0;
   bool has_twins = false;
-  // The link condition on the welded surface when `keep` (a seam twin) takes `gone`'s
-  // triangles: no other twin of keep may already neighbour gone or one of gone's
-  // neighbours, the opposites of the edge aside (else the welded mesh gets a
-  // non-manifold edge or a doubled triangle across the seam).
-  bool welded_link_ok(uint32_t keep, uint32_t gone, const uint32_t* opposites, size_t k);
+  // The link condition on the welded surface (seams closed): merging b's position group
+  // into a's, their only common welded neighbours are the `expected` opposites (k, or one
+  // each side along a seam), and no other twin of one end neighbours the other end.
+  bool welded_link_ok(uint32_t a, uint32_t b, size_t expected, bool along_seam);
   // Attributes: `nattr` floats per internal vertex; nx ny nz at normal_at (-1: none).
   size_t nattr = 0;
   std::vector<float> attr;
@@ -168,6 +185,7 @@ struct State {
 
   double cost(uint32_t a, uint32_t b, double out[3]) const {
     if (has_locks && (locked[a] | locked[b])) {  // the new vertex stays where the locked one is
+      if (locked[a] && locked[b]) return seam_cost(a, b, out);
       const double* k = p(locked[a] ? a : b);
       for (int i = 0; i < 3; ++i) out[i] = k[i];
       return (quad[a] + quad[b]).error(k);
@@ -175,10 +193,13 @@ struct State {
     return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
   }
   // No collapse can join two locked vertices: such edges never enter the queue.
-  bool both_locked(uint32_t a, uint32_t b) const { return has_locks && locked[a] && locked[b]; }
+  bool both_locked(uint32_t a, uint32_t b) const {
+    return has_locks && locked[a] && locked[b] && !seam_edge(a, b);
+  }
   // The collapse's error squared (see SimplifyOptions::target_error).
   double error2(uint32_t a, uint32_t b, double cost) const {
-    const double w = plane_weight[a] + plane_weight[b];
+    double w = plane_weight[a] + plane_weight[b];
+    if (seam_edge(a, b)) w += plane_weight[partner[a]] + plane_weight[partner[b]];
     return w > 0 ? cost / w : 0;
   }
   // Refuses a collapse over the error bound (before the costlier check()).
@@ -188,10 +209,21 @@ struct State {
     return true;
   }
   // check() passed: collapses the edge onto its locked end if it has one, else onto a.
-  void apply(uint32_t a, uint32_t b, const double np[3], double cost) {
+  // Returns how many collapses it made (2 along a seam); kept[i] took removed[i].
+  int apply(uint32_t a, uint32_t b, const double np[3], double cost, uint32_t kept[2], uint32_t removed[2]) {
     reached_error2 = std::max(reached_error2, error2(a, b, cost));
+    if (seam_edge(a, b)) {
+      const double* pb = p(b);
+      if (np[0] == pb[0] && np[1] == pb[1] && np[2] == pb[2]) std::swap(a, b);  // b's end stays
+      kept[0] = a, removed[0] = b, kept[1] = partner[a], removed[1] = partner[b];
+      collapse(a, b, np, cost);
+      collapse(kept[1], removed[1], np, cost);
+      return 2;
+    }
     if (has_locks && locked[b]) std::swap(a, b);
+    kept[0] = a, removed[0] = b;
     collapse(a, b, np, cost);
+    return 1;
   }
 
   // Setup, in this order (init calls them): the input checked and its degenerate
@@ -313,6 +345,15 @@ void State::take_locks_and_attributes(const Mesh& mesh, bool lock_border) {
       last[r] = v;
     }
     weld_mark.assign(nv, 0);
+    near_seam.assign(nv, 0);
+    for (size_t t = 0; t < tri.size(); t += 3)
+      if (twin_next[tri[t]] != NONE || twin_next[tri[t + 1]] != NONE || twin_next[tri[t + 2]] != NONE)
+        near_seam[tri[t]] = near_seam[tri[t + 1]] = near_seam[tri[t + 2]] = 1;
+    if (!lock_border) {
+      partner.assign(nv, NONE);
+      for (size_t v = 0; v < nv; ++v)
+        if (twin_next[v] != NONE && twin_next[twin_next[v]] == v && twin_next[v] != v) partner[v] = twin_next[v];
+    }
   }
   for (uint8_t x : locked) has_locks |= x != 0;
   nattr = mesh.attributes.size();
@@ -329,25 +370,51 @@ void State::take_locks_and_attributes(const Mesh& mesh, bool lock_border) {
   }
 }
 
-bool State::welded_link_ok(uint32_t keep, uint32_t gone, const uint32_t* opposites, size_t k) {
+Check State::check_edge(uint32_t a, uint32_t b, const double np[3]) {
+  if (!seam_edge(a, b)) return check(a, b, np);
+  if (faces < target + 2) return Check::Refused;  // two collapses, one face each
+  seam_mode = true;
+  Check c = check(a, b, np);
+  if (c == Check::Ok) c = check(partner[a], partner[b], np);
+  seam_mode = false;
+  if (c == Check::Ok && !welded_link_ok(a, b, 2, true)) c = Check::Refused;
+  return c;
+}
+
+bool State::welded_link_ok(uint32_t a, uint32_t b, size_t expected, bool along_seam) {
   weld_stamp += 2;
-  const uint32_t forbidden = weld_stamp, allowed = weld_stamp + 1;
-  weld_mark[pos_group[gone]] = forbidden;
-  for (uint32_t t : vt(gone)) {
-    if (!tri_alive[t]) continue;
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t g = pos_group[tri[3 * size_t(t) + c]];
-      if (g != pos_group[keep]) weld_mark[g] = forbidden;
+  const uint32_t seen = weld_stamp, counted = weld_stamp + 1;
+  const uint32_t ga = pos_group[a], gb = pos_group[b];
+  // Calls f(member, corner) over the live triangles of v's group (v alone outside one).
+  auto for_group = [&](uint32_t v, auto f) {
+    uint32_t w = v;
+    do {
+      for (uint32_t t : vt(w))
+        if (tri_alive[t])
+          for (int c = 0; c < 3; ++c) f(w, tri[3 * size_t(t) + c]);
+      w = twin_next[w] == NONE ? v : twin_next[w];
+    } while (w != v);
+  };
+  bool ok = true;
+  // The edge itself (and its twin along a seam) is the only contact between the groups.
+  auto allowed_contact = [&](uint32_t w, uint32_t c, uint32_t self, uint32_t other) {
+    return (w == self && c == other) || (along_seam && w == partner[self] && c == partner[other]);
+  };
+  for_group(b, [&](uint32_t w, uint32_t c) {
+    const uint32_t g = pos_group[c];
+    if (g == ga) ok &= allowed_contact(w, c, b, a);
+    else if (g != gb) weld_mark[g] = seen;
+  });
+  size_t common = 0;
+  for_group(a, [&](uint32_t w, uint32_t c) {
+    const uint32_t g = pos_group[c];
+    if (g == gb) ok &= allowed_contact(w, c, a, b);
+    if (weld_mark[g] == seen) {
+      weld_mark[g] = counted;
+      ++common;
     }
-  }
-  for (size_t i = 0; i < k; ++i) weld_mark[pos_group[opposites[i]]] = allowed;
-  for (uint32_t w = twin_next[keep]; w != keep; w = twin_next[w])
-    for (uint32_t t : vt(w)) {
-      if (!tri_alive[t]) continue;
-      for (int c = 0; c < 3; ++c)
-        if (weld_mark[pos_group[tri[3 * size_t(t) + c]]] == forbidden) return false;
-    }
-  return true;
+  });
+  return ok && common == expected;
 }
 
 void State::order_vertices(const Mesh& mesh) {
@@ -578,6 +645,7 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     nfa += !has_b;
   }
   if (k == 0) return Check::NotEdge;
+  if (seam_mode && k != 1) return Check::Refused;  // a seam edge is a border on each side
   if (k > 2) return Check::Refused;                 // non-manifold edge
   if (k > faces - target) return Check::Refused;    // would overshoot the target
   if (k == 2 && (op[0] == op[1] || (border[a] && border[b]))) return Check::Refused;
@@ -626,10 +694,10 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     if (bad_triangle(fa[i], a, np)) return Check::Refused;
   for (size_t i = 0; i < nfb; ++i)
     if (bad_triangle(fb[i], b, np)) return Check::Refused;
-  if (has_twins) {  // a seam twin keeps the other end (both twins: never queued)
-    const uint32_t keep = twin_next[a] != NONE ? a : twin_next[b] != NONE ? b : NONE;
-    if (keep != NONE && !welded_link_ok(keep, keep == a ? b : a, op, k)) return Check::Refused;
-  }
+  // Twins at one position are one vertex of the surface: the link condition again, welded
+  // (along a seam check_edge does it for both sides at once).
+  if (has_twins && !seam_mode && (near_seam[a] | near_seam[b]) && !welded_link_ok(a, b, k, false))
+    return Check::Refused;
   return Check::Ok;
 }
 
@@ -646,6 +714,13 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     float* xa = &attr[nattr * a];
     const float* xb = &attr[nattr * b];
     for (size_t i = 0; i < nattr; ++i) xa[i] = float((1 - t) * double(xa[i]) + t * double(xb[i]));
+  }
+  if (has_twins) {  // a gains b's neighbours; if a is a twin, they gain a twin neighbour
+    near_seam[a] |= near_seam[b];
+    if (twin_next[a] != NONE)
+      for (uint32_t t : vt(b))
+        if (tri_alive[t])
+          for (int k = 0; k < 3; ++k) near_seam[tri[3 * size_t(t) + k]] = 1;
   }
   for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
   quad[a] += quad[b];
@@ -763,7 +838,8 @@ Mesh State::output(SimplifyReport* report) const {
       else
         report->note = "target of " + std::to_string(target) +
                        " faces is not reachable: no further collapse keeps the mesh manifold "
-                       "and unfolded; stopped at " + std::to_string(faces);
+                       "and unfolded" + std::string(has_locks ? " and its locked (seam or border) vertices in place" : "") +
+                       "; stopped at " + std::to_string(faces);
     }
     report->refused = refused;
     report->error = std::sqrt(reached_error2);
@@ -821,12 +897,44 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
 
   std::vector<uint32_t> mark(s.nv, UINT32_MAX);
   std::vector<uint32_t> ring;
-  double np[3], tmp[3];
+  double np[3];
   // Stale entries waiting in the queue only cost memory (they are dropped when their
   // bucket comes up): sweep them out in one pass whenever the queue has doubled since the
   // last sweep, so that sweeping costs O(1) per push and memory stays within 2x.
   size_t sweep_at = 2 * heap.size() + 4096;
   const auto current = [&](const Entry& x) { return s.current(x); };
+  uint32_t ring_stamp = 0;
+  // After a collapse into a: its new 1-ring's refused edges count again, and every edge
+  // of a gets a fresh entry.
+  const auto refresh = [&](uint32_t a) {
+    const uint32_t now = uint32_t(s.collapses), stamp = ring_stamp++;
+    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
+    mark[a] = stamp;
+    const uint32_t* tl = s.tris_of(a);
+    if (ring.size() < 2 * size_t(s.vt_count[a]) + 1) ring.resize(2 * size_t(s.vt_count[a]) + 1);
+    size_t nring = 0;
+    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
+      for (int k = 0; k < 3; ++k) {  // no branch on the mark: seen or not is random
+        const uint32_t y = tv[k];
+        ring[nring] = y;
+        nring += mark[y] != stamp;
+        mark[y] = stamp;
+        __builtin_prefetch(&s.quad[y]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
+        __builtin_prefetch(&s.pos[3 * size_t(y)]);
+      }
+    }
+    release(a);
+    for (size_t i = 0; i < nring; ++i) release(ring[i]);
+    double tmp[3];
+    for (size_t i = 0; i < nring; ++i) {
+      const uint32_t y = ring[i];
+      const uint32_t lo = select_u32(a < y, a, y), hi = select_u32(a < y, y, a);
+      if (s.both_locked(lo, hi)) continue;
+      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
+    }
+  };
   while (s.faces > s.target) {
     // One face short on a closed manifold surface: every collapse removes two faces and
     // would overshoot, so the scan below would refuse every edge left. Stop now instead
@@ -851,7 +959,7 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     }
     if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
-    const Check c = s.over_error(e.a, e.b, exact) ? Check::Refused : s.check(e.a, e.b, np);
+    const Check c = s.over_error(e.a, e.b, exact) ? Check::Refused : s.check_edge(e.a, e.b, np);
     if (c != Check::Ok) {
       ++s.refused;
       refused[e.a].push_back(e);
@@ -859,40 +967,21 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       has_refused[e.a] = has_refused[e.b] = 1;
       continue;
     }
-    s.apply(e.a, e.b, np, exact);
-    // The survivor: the locked end when there is one.
-    const bool swap = s.has_locks && s.locked[e.b];
-    const uint32_t a = swap ? e.b : e.a, b = swap ? e.a : e.b;
-    if (has_refused[b]) {
-      std::vector<Entry>().swap(refused[b]);
-      has_refused[b] = 0;
-    }
-    const uint32_t now = uint32_t(s.collapses);
-    // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
-    mark[a] = now;
-    const uint32_t* tl = s.tris_of(a);
-    if (ring.size() < 2 * size_t(s.vt_count[a]) + 1) ring.resize(2 * size_t(s.vt_count[a]) + 1);
-    size_t nring = 0;
-    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
-      const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
-      for (int k = 0; k < 3; ++k) {  // no branch on the mark: seen or not is random
-        const uint32_t y = tv[k];
-        ring[nring] = y;
-        nring += mark[y] != now;
-        mark[y] = now;
-        __builtin_prefetch(&s.quad[y]);
-        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
-        __builtin_prefetch(&s.pos[3 * size_t(y)]);
+    uint32_t kept[2], removed[2];
+    const int made = s.apply(e.a, e.b, np, exact, kept, removed);
+    for (int i = 0; i < made; ++i)
+      if (has_refused[removed[i]]) {
+        std::vector<Entry>().swap(refused[removed[i]]);
+        has_refused[removed[i]] = 0;
       }
-    }
-    // The 1-ring of a changed: refused edges there count again.
-    release(a);
-    for (size_t i = 0; i < nring; ++i) release(ring[i]);
-    for (size_t i = 0; i < nring; ++i) {
-      const uint32_t y = ring[i];
-      const uint32_t lo = select_u32(a < y, a, y), hi = select_u32(a < y, y, a);
-      if (s.both_locked(lo, hi)) continue;
-      heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
+    for (int i = 0; i < made; ++i) refresh(kept[i]);
+    // A seam edge's cost holds the partners' quadrics: a partner whose twin took a
+    // collapse has changed too.
+    if (made == 1 && s.pair(kept[0])) {
+      const uint32_t w = s.partner[kept[0]];
+      s.changed[w] = uint32_t(s.collapses);
+      s.compact(w);
+      refresh(w);
     }
   }
   Mesh out = s.output(report);
@@ -933,11 +1022,12 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
     for (const Entry& e : cand) {
       double np[3];
       const double exact = s.cost(e.a, e.b, np);
-      if (s.over_error(e.a, e.b, exact) || s.check(e.a, e.b, np) != Check::Ok) {
+      if (s.over_error(e.a, e.b, exact) || s.check_edge(e.a, e.b, np) != Check::Ok) {
         ++s.refused;
         continue;
       }
-      s.apply(e.a, e.b, np, exact);
+      uint32_t kept[2], removed[2];
+      s.apply(e.a, e.b, np, exact, kept, removed);
       done = true;
       break;
     }
