@@ -162,13 +162,17 @@ int run(const Args& a) {
   // With only an error bound there is no face target to miss.
   if (!rep.reached && !a.quiet && (a.has_target || a.has_ratio)) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
   if (a.json) {
+    const double diagonal = mesh_points_bbox(mesh, referenced_vertices(mesh)).diagonal();
     JsonObject j;
     j.text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
         .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
         .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
         .flag("unchanged", false).count("collapses", rep.collapses).flag("reached", rep.reached)
         .text("weights", a.weights).text("device", device)
-        .number("error_percent", 100 * rep.error).number("target_error_percent", a.target_error)
+        // The error in model units and in % of the diagonal, as every command gives distances.
+        .number("diagonal", diagonal).number("error", rep.error * diagonal)
+        .number("error_percent", 100 * rep.error).number("target_error", a.target_error / 100 * diagonal)
+        .number("target_error_percent", a.target_error)
         .flag("lock_border", a.lock_border).count("attributes", out.attributes.size());
     if (!weights.empty())
       j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
