@@ -8,24 +8,17 @@
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "core/synthetic.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 using namespace meshsal;
 namespace fs = std::filesystem;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
+
 namespace {
-
-struct RunResult {
-  int exit_code;  // -1 when killed by a signal
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 fs::path scratch_dir(const std::string& name) {
   fs::path d = fs::temp_directory_path() / ("meshsal_cli_" + name + "_" + std::to_string(::getpid()));
@@ -34,26 +27,15 @@ fs::path scratch_dir(const std::string& name) {
   return d;
 }
 
-RunResult run_cli(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
-  int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream f(p, std::ios::binary);
   f << text;
 }
 
 // A failed run: exit code 1 (not a signal), exactly one line on stderr starting "error: ".
-void check_clean_failure(const RunResult& r) {
+void check_clean_failure(const CliRun& r) {
   INFO("stderr: " << r.err);
-  CHECK(r.exit_code == 1);
+  CHECK(r.rc == 1);
   CHECK(r.err.rfind("error: ", 0) == 0);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
 }
@@ -64,9 +46,9 @@ TEST_CASE("cli: saliency writes the SPEC PLY with the CPU path's numbers", "[cli
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
   fs::path dir = scratch_dir("saliency");
   fs::path out = dir / "bunny.ply";
-  RunResult r = run_cli("saliency " + input + " -o " + out.string() + " --backend cpu --dump-scales", dir);
+  CliRun r = run_cli("saliency " + input + " -o " + out.string() + " --backend cpu --dump-scales", dir);
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   CHECK(r.out.find("vertices   3485") != std::string::npos);
   CHECK(r.out.find("pairs/s") != std::string::npos);
 
@@ -112,8 +94,8 @@ TEST_CASE("cli: bad input gets one error line and exit code 1", "[cli]") {
   SECTION("bad scales") {
     write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     // A usage error: exit 2, the option and its range named.
-    RunResult r = run_cli("saliency " + (dir / "t.obj").string() + " -o " + out + " --scales 2,x", dir);
-    CHECK(r.exit_code == 2);
+    CliRun r = run_cli("saliency " + (dir / "t.obj").string() + " -o " + out + " --scales 2,x", dir);
+    CHECK(r.rc == 2);
     CHECK(r.err.rfind("error: --scales: must be a comma-separated list of numbers in (0, 100], got '2,x'", 0) == 0);
   }
   SECTION("output not .ply") {
@@ -134,30 +116,30 @@ TEST_CASE("cli: a failed run leaves an earlier output untouched", "[cli]") {
   write_text(out, "previous result");
   write_text(dir / "bad.obj", "v 0 0 0\nf 1 2 3\n");
   check_clean_failure(run_cli("saliency " + (dir / "bad.obj").string() + " -o " + out.string(), dir));
-  CHECK(slurp(out) == "previous result");
+  CHECK(read_file(out) == "previous result");
   fs::remove_all(dir);
 }
 
 TEST_CASE("cli: help explains every command and option", "[cli]") {
   fs::path dir = scratch_dir("help");
-  RunResult top = run_cli("--help", dir);
-  CHECK(top.exit_code == 0);
+  CliRun top = run_cli("--help", dir);
+  CHECK(top.rc == 0);
   for (const char* cmd : {"saliency", "demo", "bench"}) CHECK(top.out.find(cmd) != std::string::npos);
-  RunResult sal = run_cli("saliency --help", dir);
-  CHECK(sal.exit_code == 0);
+  CliRun sal = run_cli("saliency --help", dir);
+  CHECK(sal.rc == 0);
   for (const char* opt : {"--backend", "--scales", "--eps-frac", "--dump-scales", "--threads", "--output"})
     CHECK(sal.out.find(opt) != std::string::npos);
-  RunResult none = run_cli("", dir);
-  CHECK(none.exit_code != 0);
-  CHECK(none.exit_code != -1);
+  CliRun none = run_cli("", dir);
+  CHECK(none.rc != 0);
+  CHECK(none.rc != -1);
   fs::remove_all(dir);
 }
 
 TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
   fs::path dir = scratch_dir("demo");
-  RunResult r = run_cli("demo -o " + (dir / "out").string() + " --subdivisions 5 --backend cpu", dir);
+  CliRun r = run_cli("demo -o " + (dir / "out").string() + " --subdivisions 5 --backend cpu", dir);
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   VertexProperties props;
   Mesh m = load_mesh((dir / "out" / "bumpy_sphere_saliency.ply").string(), &props);
   CHECK(m.vertex_count() == 10242);
@@ -175,9 +157,9 @@ TEST_CASE("cli: bench --json escapes model names", "[cli]") {
   fs::path dir = scratch_dir("bench_json");
   const std::string name = "odd \"name\" \\ 1.obj";
   write_obj((dir / name).string(), make_sphere(1.0, 2));
-  RunResult r = run_cli("bench --json --repeat 1 --threads 1 '" + (dir / name).string() + "'", dir);
+  CliRun r = run_cli("bench --json --repeat 1 --threads 1 '" + (dir / name).string() + "'", dir);
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"name\": \"odd \\\"name\\\" \\\\ 1.obj\"") != std::string::npos);
   CHECK(r.out.find("\"device\": \"cpu") != std::string::npos);
   fs::remove_all(dir);

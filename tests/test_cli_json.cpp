@@ -13,28 +13,17 @@
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 using meshsal_test::json_number;
 using meshsal_test::json_valid;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
+
 namespace {
-
-struct Run {
-  int rc = -1;
-  std::string out, err;
-};
-
-Run run_cli(const std::string& args, const meshsal_test::TempDir& dir) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = meshsal_test::read_file(out);
-  r.err = meshsal_test::read_file(err);
-  return r;
-}
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
@@ -94,7 +83,7 @@ TEST_CASE("cli --json: saliency, simplify, compare and viewpoint print one JSON 
   meshsal::write_ply(mesh, bumpy, {});
   const std::string sal = dir.file("sal.ply");
 
-  Run r = run_cli("saliency " + q(mesh) + " -o " + q(sal) + " --backend cpu --json", dir);
+  CliRun r = run_cli("saliency " + q(mesh) + " -o " + q(sal) + " --backend cpu --json", dir);
   REQUIRE(r.rc == 0);
   check_one_object(r.out);
   CHECK(r.out.find("\"mesh\": \"" + dir.file("bumpy \\\"quoted\\\".ply") + "\"") != std::string::npos);
@@ -157,7 +146,7 @@ TEST_CASE("cli --json: every command that prints a summary follows one conventio
   const std::string mesh = dir.file("bumpy.ply"), sal = dir.file("sal.ply"), small = dir.file("small.obj");
   meshsal::write_ply(mesh, bumpy, {});
   const std::string m = q(mesh);
-  // Run in this order: simplify needs saliency's file, compare simplify's.
+  // CliRun in this order: simplify needs saliency's file, compare simplify's.
   const std::pair<const char*, std::string> commands[] = {
       {"saliency", "saliency " + m + " -o " + q(sal) + " --backend cpu --json"},
       {"simplify", "simplify " + m + " -o " + q(small) + " --ratio 0.25 --backend cpu --json"},
@@ -169,7 +158,7 @@ TEST_CASE("cli --json: every command that prints a summary follows one conventio
   };
   for (const auto& [name, args] : commands) {
     INFO(name);
-    const Run r = run_cli(args, dir);
+    const CliRun r = run_cli(args, dir);
     INFO(r.err);
     REQUIRE(r.rc == 0);
     check_one_object(r.out);
@@ -194,7 +183,7 @@ TEST_CASE("cli --json: every command that prints a summary follows one conventio
     }
   }
   // compare: each distance both ways; its device is the CPU (saliency read from the file).
-  const Run c = run_cli("compare " + m + " " + q(small) + " --saliency-from " + q(sal) + " --samples 2000", dir);
+  const CliRun c = run_cli("compare " + m + " " + q(small) + " --saliency-from " + q(sal) + " --samples 2000", dir);
   REQUIRE(c.rc == 0);
   for (const char* d : {"hausdorff", "rms", "forward_max", "forward_rms", "backward_max", "backward_rms", "salient_error"})
     CHECK(has_key(json_keys(c.out), std::string(d) + "_percent"));
@@ -209,7 +198,7 @@ TEST_CASE("cli --json: render --json gives the view, U and the picture; bench on
   for (size_t i = 0; i < qv.size(); ++i) qv[i] = std::max(0.0, double(s.positions[3 * i]));
   const std::string mesh = dir.file("s.ply"), png = dir.file("r.png");
   meshsal::write_ply(mesh, s, {{"quality", &qv}});
-  Run r = run_cli("render " + q(mesh) + " --theta 90 --phi 0 --size 64 -o " + q(png) + " --json", dir);
+  CliRun r = run_cli("render " + q(mesh) + " --theta 90 --phi 0 --size 64 -o " + q(png) + " --json", dir);
   REQUIRE(r.rc == 0);
   check_one_object(r.out);
   INFO(r.out);

@@ -13,28 +13,17 @@
 #include "core/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
 using meshsal_test::put_bin;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
+
 namespace {
-
-struct Run {
-  int rc = -1;
-  std::string out, err;
-};
-
-Run run_cli(const std::string& args, const meshsal_test::TempDir& dir) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = meshsal_test::read_file(out);
-  r.err = meshsal_test::read_file(err);
-  return r;
-}
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
@@ -55,7 +44,7 @@ std::string binary_stl(const meshsal::Mesh& mesh) {
 
 TEST_CASE("cli: an unknown command says so and suggests the nearest", "[cli]") {
   meshsal_test::TempDir dir;
-  Run r = run_cli("salency x.obj", dir);
+  CliRun r = run_cli("salency x.obj", dir);
   CHECK(r.rc == 2);
   CHECK(r.err == "error: unknown command 'salency', did you mean 'saliency'? (see meshsal --help)\n");
   r = run_cli("simp", dir);
@@ -71,7 +60,7 @@ TEST_CASE("cli: an unknown command says so and suggests the nearest", "[cli]") {
 TEST_CASE("cli: option combinations are usage errors (exit 2), bad files exit 1", "[cli]") {
   meshsal_test::TempDir dir;
   const std::string mesh = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  Run r = run_cli("simplify " + q(mesh) + " -o " + q(dir.file("o.obj")) + " --weights none", dir);
+  CliRun r = run_cli("simplify " + q(mesh) + " -o " + q(dir.file("o.obj")) + " --weights none", dir);
   CHECK(r.rc == 2);
   CHECK(r.err == "error: give --target-faces N, --ratio R or --target-error E (see --help)\n");
   r = run_cli("saliency " + q(mesh) + " -o " + q(dir.file("o.ply")) + " --backend fast", dir);
@@ -86,7 +75,7 @@ TEST_CASE("cli: STL input is welded with a note that -q silences", "[cli][stl]")
   meshsal_test::TempDir dir;
   const std::string stl = dir.write("sphere.stl", binary_stl(meshsal::make_sphere(1.0, 2)));
   const std::string out = dir.file("sphere_saliency.ply");
-  Run r = run_cli("saliency " + q(stl) + " -o " + q(out) + " --backend cpu", dir);
+  CliRun r = run_cli("saliency " + q(stl) + " -o " + q(out) + " --backend cpu", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
   CHECK(r.err == "note: " + stl + ": welded 798 STL corners into 162 shared vertices\n");
@@ -106,7 +95,7 @@ TEST_CASE("cli simplify: a target at or above the face count writes the mesh unc
   for (const std::string target : {"--target-faces 80", "--target-faces 1000", "--ratio 1"}) {
     INFO(target);
     const std::string out = dir.file("out.obj");
-    Run r = run_cli("simplify " + q(dir.file("in.ply")) + " -o " + q(out) + " --weights none " + target, dir);
+    CliRun r = run_cli("simplify " + q(dir.file("in.ply")) + " -o " + q(out) + " --weights none " + target, dir);
     CHECK(r.rc == 0);
     CHECK(r.err.find("note: the target (" + std::string(target == "--target-faces 1000" ? "1000" : "80") +
                      " faces) is at or above the mesh's 80 faces: wrote it unchanged\n") == 0);
@@ -115,7 +104,7 @@ TEST_CASE("cli simplify: a target at or above the face count writes the mesh unc
     CHECK(m.triangles == sphere.triangles);
     fs::remove(out);
   }
-  Run r = run_cli("simplify " + q(dir.file("in.ply")) + " -o " + q(dir.file("o.obj")) + " --target-faces 80 -q", dir);
+  CliRun r = run_cli("simplify " + q(dir.file("in.ply")) + " -o " + q(dir.file("o.obj")) + " --target-faces 80 -q", dir);
   CHECK(r.rc == 0);
   CHECK(r.err.empty());
   CHECK(r.out.empty());
@@ -128,7 +117,7 @@ TEST_CASE("cli compare: --saliency-from like the other commands", "[cli]") {
   REQUIRE(run_cli("saliency " + q(dir.file("sphere.ply")) + " -o " + q(sal) + " --backend cpu -q", dir).rc == 0);
   REQUIRE(run_cli("simplify " + q(dir.file("sphere.ply")) + " -o " + q(dir.file("s.ply")) +
                       " --ratio 0.5 --saliency-from " + q(sal) + " -q", dir).rc == 0);
-  Run r = run_cli("compare " + q(dir.file("sphere.ply")) + " " + q(dir.file("s.ply")) + " --saliency-from " + q(sal) +
+  CliRun r = run_cli("compare " + q(dir.file("sphere.ply")) + " " + q(dir.file("s.ply")) + " --saliency-from " + q(sal) +
                       " --samples 1000", dir);
   INFO(r.err);
   CHECK(r.rc == 0);
@@ -160,7 +149,7 @@ TEST_CASE("cli: viewpoint and compare show progress on a terminal", "[cli]") {
   CHECK(tty.find("reading") != std::string::npos);
   CHECK(tty.find("comparing surfaces") != std::string::npos);
   // Not a terminal: nothing but the JSON.
-  const Run r = run_cli("compare " + mesh + " " + mesh + " --backend cpu --samples 100", dir);
+  const CliRun r = run_cli("compare " + mesh + " " + mesh + " --backend cpu --samples 100", dir);
   CHECK(r.rc == 0);
   CHECK(r.err.empty());
 }

@@ -10,36 +10,16 @@
 
 #include "meshsal/meshsal.h"
 #include "core/synthetic.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli_merged;
+
 namespace {
-
-struct Run {
-  int rc = -1;
-  std::string out;  // stdout and stderr together
-};
-
-Run run_cli(const std::string& args) {
-  Run r;
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " 2>&1 < /dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 struct Scratch {
   fs::path dir;
@@ -67,11 +47,11 @@ TEST_CASE("cli: no command writes over one of its inputs", "[cli]") {
     f << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   }
   const std::string sal = s / "sal.ply";
-  REQUIRE(run_cli("saliency " + q(obj) + " -o " + q(sal) + " -q --backend cpu").rc == 0);
+  REQUIRE(run_cli_merged("saliency " + q(obj) + " -o " + q(sal) + " -q --backend cpu").rc == 0);
   fs::create_symlink(obj, s / "link.obj");
   fs::create_hard_link(ply, s / "hard.ply");
-  const std::string obj_bytes = slurp(obj), off_bytes = slurp(off), ply_bytes = slurp(ply),
-                    sal_bytes = slurp(sal);
+  const std::string obj_bytes = read_file(obj), off_bytes = read_file(off), ply_bytes = read_file(ply),
+                    sal_bytes = read_file(sal);
 
   struct Case {
     std::string args, named;
@@ -89,20 +69,20 @@ TEST_CASE("cli: no command writes over one of its inputs", "[cli]") {
   };
   for (const Case& c : cases) {
     INFO(c.args);
-    const Run r = run_cli(c.args);
+    const CliRun r = run_cli_merged(c.args);
     INFO(r.out);
     CHECK(r.rc == 1);
     CHECK(r.out.rfind("error: " + c.named + ": ", 0) == 0);
     CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
   }
-  CHECK(slurp(obj) == obj_bytes);
+  CHECK(read_file(obj) == obj_bytes);
   CHECK(fs::is_symlink(s / "link.obj"));
-  CHECK(slurp(off) == off_bytes);
-  CHECK(slurp(ply) == ply_bytes);
-  CHECK(slurp(s / "hard.ply") == ply_bytes);
-  CHECK(slurp(sal) == sal_bytes);
+  CHECK(read_file(off) == off_bytes);
+  CHECK(read_file(ply) == ply_bytes);
+  CHECK(read_file(s / "hard.ply") == ply_bytes);
+  CHECK(read_file(sal) == sal_bytes);
   CHECK_FALSE(fs::exists(s / "v.png"));
-  const Run same_inode = run_cli("saliency " + q(s / "hard.ply") + " -o " + q(ply) + " --backend cpu");
+  const CliRun same_inode = run_cli_merged("saliency " + q(s / "hard.ply") + " -o " + q(ply) + " --backend cpu");
   CHECK(same_inode.out.find("is the input file") != std::string::npos);
 }
 
@@ -127,14 +107,14 @@ TEST_CASE("cli: outputs are checked before any work", "[cli]") {
   };
   for (const Case& c : cases) {
     INFO(c.args);
-    const Run r = run_cli(c.args);
+    const CliRun r = run_cli_merged(c.args);
     INFO(r.out);
     CHECK(r.rc == 1);
     CHECK(r.out.rfind("error: " + c.expected, 0) == 0);
   }
   // demo: a file where the folder should be is refused before the demo mesh is built.
   { std::ofstream(s / "plainfile") << "x"; }
-  const Run demo = run_cli("demo -o " + q(s / "plainfile") + " --subdivisions 5 --backend cpu");
+  const CliRun demo = run_cli_merged("demo -o " + q(s / "plainfile") + " --subdivisions 5 --backend cpu");
   INFO(demo.out);
   CHECK(demo.rc == 1);
   CHECK(demo.out.rfind("error: " + s / "plainfile" + ": cannot create the output folder", 0) == 0);
@@ -182,7 +162,7 @@ TEST_CASE("cli: numbers that make no sense are refused with the option and its r
   };
   for (const Case& c : cases) {
     INFO(c.args);
-    const Run r = run_cli(c.args);
+    const CliRun r = run_cli_merged(c.args);
     INFO(r.out);
     CHECK(r.rc == 2);
     CHECK(r.out.rfind(c.expected, 0) == 0);
@@ -191,7 +171,7 @@ TEST_CASE("cli: numbers that make no sense are refused with the option and its r
   CHECK_FALSE(fs::exists(s / "o.obj"));
   CHECK_FALSE(fs::exists(s / "o.png"));
   // A combination the ranges alone allow: the widest Gaussian would exceed the mesh.
-  const Run wide = run_cli(sal + "--scales 100 --eps-frac 0.01");
+  const CliRun wide = run_cli_merged(sal + "--scales 100 --eps-frac 0.01");
   CHECK(wide.rc == 1);
   CHECK(wide.out.rfind("error: scales and eps-frac: the widest surround sigma", 0) == 0);
 }

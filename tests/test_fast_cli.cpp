@@ -10,31 +10,16 @@
 #include <unistd.h>
 
 #include "meshsal/meshsal.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
+
 namespace {
-
-struct Run {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-Run run_cli(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " +
-                    err.string() + " < /dev/null";
-  int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
 
 fs::path scratch_dir() {
   fs::path d = fs::temp_directory_path() / ("meshsal_fast_cli_" + std::to_string(::getpid()));
@@ -48,9 +33,9 @@ fs::path scratch_dir() {
 TEST_CASE("cli: every command that computes saliency takes --method", "[cli][fast]") {
   fs::path dir = scratch_dir();
   for (const char* cmd : {"saliency", "simplify", "viewpoint", "render", "demo", "compare", "bench"}) {
-    Run r = run_cli(std::string(cmd) + " --help", dir);
+    CliRun r = run_cli(std::string(cmd) + " --help", dir);
     INFO(cmd);
-    CHECK(r.exit_code == 0);
+    CHECK(r.rc == 0);
     CHECK(r.out.find("--method") != std::string::npos);
   }
   fs::remove_all(dir);
@@ -58,28 +43,28 @@ TEST_CASE("cli: every command that computes saliency takes --method", "[cli][fas
 
 TEST_CASE("cli: a bad --method is a usage error", "[cli][fast]") {
   fs::path dir = scratch_dir();
-  Run r = run_cli("saliency in.obj -o out.ply --method quick", dir);
-  CHECK(r.exit_code == 2);
+  CliRun r = run_cli("saliency in.obj -o out.ply --method quick", dir);
+  CHECK(r.rc == 2);
   CHECK(r.err.find("--method") != std::string::npos);
   CHECK(!fs::exists(dir / "out.ply"));
-  Run b = run_cli("bench in.obj --method auto", dir);
-  CHECK(b.exit_code == 2);
+  CliRun b = run_cli("bench in.obj --method auto", dir);
+  CHECK(b.rc == 2);
   fs::remove_all(dir);
 }
 
 TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
   fs::path dir = scratch_dir();
-  Run r = run_cli("saliency " + input + " -o " + (dir / "f.ply").string() + " --method fast --backend cpu", dir);
+  CliRun r = run_cli("saliency " + input + " -o " + (dir / "f.ply").string() + " --method fast --backend cpu", dir);
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   CHECK(r.out.find("method     fast") != std::string::npos);
   meshsal::VertexProperties props;
   meshsal::Mesh m = meshsal::load_mesh((dir / "f.ply").string(), &props);
   REQUIRE(props.count("quality") == 1);
   CHECK(props["quality"].size() == m.vertex_count());
-  Run e = run_cli("saliency " + input + " -o " + (dir / "e.ply").string() + " --backend cpu", dir);
-  REQUIRE(e.exit_code == 0);
+  CliRun e = run_cli("saliency " + input + " -o " + (dir / "e.ply").string() + " --backend cpu", dir);
+  REQUIRE(e.rc == 0);
   CHECK(e.out.find("method     fast") == std::string::npos);
   fs::remove_all(dir);
 }
@@ -87,9 +72,9 @@ TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]
 TEST_CASE("cli: bench --method fast --json reports the error against exact", "[cli][fast]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
   fs::path dir = scratch_dir();
-  Run r = run_cli("bench " + input + " --repeat 1 --json --method fast", dir);
+  CliRun r = run_cli("bench " + input + " --repeat 1 --json --method fast", dir);
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"method\": \"fast\"") != std::string::npos);
   CHECK(r.out.find("\"exact_measured\": true") != std::string::npos);
   const size_t at = r.out.find("\"correlation\": ");

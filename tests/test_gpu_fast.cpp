@@ -24,9 +24,14 @@
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 using namespace meshsal;
+
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
 
 namespace {
 
@@ -217,47 +222,18 @@ TEST_CASE("gpu fast: the memory estimate counts the fast method's arrays", "[gpu
                     Catch::Contains("mesh too large") && Catch::Contains("--backend cpu"));
 }
 
-namespace {
-
-struct CliRun {
-  int exit_code;
-  std::string out, err;
-};
-
-// The meshsal command with `args`, in a scratch folder of this process.
-CliRun run_cli(const std::string& args) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("meshsal_gpu_fast_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(MESHSAL_CLI) + " " + args + " > " + out.string() + " 2> " +
-                          err.string() + " < /dev/null";
-  const int status = std::system(cmd.c_str());
-  auto slurp = [](const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-  };
-  CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-  fs::remove_all(dir);
-  return r;
-}
-
-}  // namespace
-
 TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vulkan device",
           "[gpu][fast][cli]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
   CliRun r = run_cli("bench " + input + " --repeat 1 --json --method fast --backend gpu");
   INFO(r.err);
-  REQUIRE(r.exit_code == 0);
+  REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"method\": \"fast\"") != std::string::npos);
   CHECK(r.out.find("\"device\": \"" + context().info.name) != std::string::npos);
   CHECK(r.out.find("\"exact_measured\": true") != std::string::npos);
   // Exact already times every backend: --backend there is a usage error.
   CliRun e = run_cli("bench " + input + " --repeat 1 --backend gpu");
-  CHECK(e.exit_code == 2);
+  CHECK(e.rc == 2);
   CHECK(e.err == "error: bench: --backend applies to --method fast (exact times every backend) (see --help)\n");
 }
 

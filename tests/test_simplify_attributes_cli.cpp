@@ -10,29 +10,16 @@
 #include "core/synthetic.h"
 #include "test_io_util.h"
 #include "test_simplify_attributes_util.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 using namespace meshsal;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli_merged;
+
 namespace {
-
-struct Run {
-  int rc = -1;
-  std::string out;  // stdout and stderr together
-};
-
-Run run_cli(const std::string& args) {
-  Run r;
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
@@ -42,7 +29,7 @@ TEST_CASE("cli simplify: OBJ vt/vn and the saliency reach the output", "[simplif
   meshsal_test::TempDir dir;
   const std::string in = dir.write("seamed.obj", attr_test::seamed_sphere_obj(make_sphere(1.0, 3)));
   const std::string out_obj = dir.file("out.obj"), out_ply = dir.file("out.ply"), sal = dir.file("sal.ply");
-  Run r = run_cli("simplify " + q(in) + " -o " + q(out_obj) + " --target-faces 300 --weights none --json");
+  CliRun r = run_cli_merged("simplify " + q(in) + " -o " + q(out_obj) + " --target-faces 300 --weights none --json");
   INFO(r.out);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"attributes\": 5") != std::string::npos);
@@ -60,11 +47,11 @@ TEST_CASE("cli simplify: OBJ vt/vn and the saliency reach the output", "[simplif
 
   // The saliency of the positions (the OBJ read without vt/vn), reused; the PLY output
   // carries the attributes and S as `quality`.
-  REQUIRE(run_cli("saliency " + q(in) + " -o " + q(sal) + " --backend cpu -q").rc == 0);
+  REQUIRE(run_cli_merged("saliency " + q(in) + " -o " + q(sal) + " --backend cpu -q").rc == 0);
   VertexProperties sal_props;
   load_mesh(sal, &sal_props);
   const std::vector<float>& s_in = sal_props.at("quality");
-  r = run_cli("simplify " + q(in) + " -o " + q(out_ply) + " --target-faces 300 --saliency-from " + q(sal));
+  r = run_cli_merged("simplify " + q(in) + " -o " + q(out_ply) + " --target-faces 300 --saliency-from " + q(sal));
   INFO(r.out);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("attributes u v nx ny nz quality") != std::string::npos);
@@ -91,7 +78,7 @@ TEST_CASE("cli simplify: --target-error and --lock-border", "[simplify][cli]") {
   meshsal_test::TempDir dir;
   const std::string plane = dir.file("plane.ply"), out = dir.file("out.ply");
   write_ply(plane, make_plane(2.0, 12), {});
-  Run r = run_cli("simplify " + q(plane) + " -o " + q(out) + " --target-error 0.5 --weights none --json");
+  CliRun r = run_cli_merged("simplify " + q(plane) + " -o " + q(out) + " --target-error 0.5 --weights none --json");
   INFO(r.out);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"output_faces\": 2,") != std::string::npos);
@@ -101,7 +88,7 @@ TEST_CASE("cli simplify: --target-error and --lock-border", "[simplify][cli]") {
   const std::string bump = dir.file("bump.ply");
   const Mesh grid = make_plane_with_bump(2.0, 16, 0.3, 0.4);
   write_ply(bump, grid, {});
-  r = run_cli("simplify " + q(bump) + " -o " + q(out) + " --target-faces 100 --weights none --lock-border");
+  r = run_cli_merged("simplify " + q(bump) + " -o " + q(out) + " --target-faces 100 --weights none --lock-border");
   INFO(r.out);
   REQUIRE(r.rc == 0);
   const Mesh m = load_mesh(out);

@@ -8,29 +8,16 @@
 
 #include "meshsal/meshsal.h"
 #include "core/synthetic.h"
+#include "cli_run.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli_merged;
+
 namespace {
-
-struct Run {
-  int rc = -1;
-  std::string out;  // stdout and stderr together
-};
-
-Run run_cli(const std::string& args) {
-  Run r;
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path temp_dir() {
   fs::path d = fs::temp_directory_path() / ("meshsal_simplify_cli_" + std::to_string(getpid()));
@@ -44,20 +31,20 @@ TEST_CASE("cli simplify: target counts, formats and the saliency PLY", "[simplif
   MESHSAL_REQUIRE_MESH(bunny, "bunny_3k.off");
   const fs::path dir = temp_dir();
   const std::string obj = (dir / "plain.obj").string(), ply = (dir / "sal.ply").string();
-  Run r = run_cli("simplify '" + bunny + "' -o '" + obj + "' --target-faces 1000 --weights none");
+  CliRun r = run_cli_merged("simplify '" + bunny + "' -o '" + obj + "' --target-faces 1000 --weights none");
   INFO(r.out);
   REQUIRE(r.rc == 0);
   CHECK(meshsal::load_mesh(obj).triangle_count() == 1000);
 
   const std::string sal = (dir / "bunny_sal.ply").string();
-  REQUIRE(run_cli("saliency '" + bunny + "' -o '" + sal + "' --backend cpu -q").rc == 0);
-  r = run_cli("simplify '" + bunny + "' -o '" + ply + "' --ratio 0.1 --saliency-from '" + sal + "'");
+  REQUIRE(run_cli_merged("saliency '" + bunny + "' -o '" + sal + "' --backend cpu -q").rc == 0);
+  r = run_cli_merged("simplify '" + bunny + "' -o '" + ply + "' --ratio 0.1 --saliency-from '" + sal + "'");
   REQUIRE(r.rc == 0);
   const meshsal::Mesh out = meshsal::load_mesh(ply);
   CHECK(out.triangle_count() == 698);  // 10% of 6966 is 697: odd, so one above on a closed mesh
   CHECK(r.out.find("even face count") != std::string::npos);
 
-  r = run_cli("compare '" + bunny + "' '" + ply + "' --saliency '" + sal + "' --samples 20000");
+  r = run_cli_merged("compare '" + bunny + "' '" + ply + "' --saliency '" + sal + "' --samples 20000");
   REQUIRE(r.rc == 0);
   for (const char* key : {"\"hausdorff\": ", "\"rms\": ", "\"salient_error\": ", "\"simplified_faces\": 698"})
     CHECK(r.out.find(key) != std::string::npos);
@@ -85,7 +72,7 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
       {"--target-error nan", "--target-error: must be a finite number in (0, 100]", 2},
   };
   for (const Case& c : cases) {
-    const Run r = run_cli(base + c.args);
+    const CliRun r = run_cli_merged(base + c.args);
     INFO(c.args << "\n" << r.out);
     CHECK(r.rc == c.rc);
     CHECK(r.out.find("error: ") != std::string::npos);
@@ -93,15 +80,15 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   }
   // A saliency PLY of another mesh.
   const std::string sal = (dir / "spot_sal.ply").string();
-  REQUIRE(run_cli("saliency '" + spot + "' -o '" + sal + "' --backend cpu -q").rc == 0);
-  Run r = run_cli("simplify '" + bunny + "' -o '" + out + "' --target-faces 500 --saliency-from '" + sal + "'");
+  REQUIRE(run_cli_merged("saliency '" + spot + "' -o '" + sal + "' --backend cpu -q").rc == 0);
+  CliRun r = run_cli_merged("simplify '" + bunny + "' -o '" + out + "' --target-faces 500 --saliency-from '" + sal + "'");
   INFO(r.out);
   CHECK(r.rc == 1);
   CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
-  r = run_cli("compare '" + bunny + "' '" + spot + "' --saliency '" + sal + "'");
+  r = run_cli_merged("compare '" + bunny + "' '" + spot + "' --saliency '" + sal + "'");
   CHECK(r.rc == 1);
   CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
-  r = run_cli("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
+  r = run_cli_merged("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
   CHECK(r.rc == 1);
   CHECK(r.out.find("x.stl: -o must be a .obj or .ply file") != std::string::npos);
   CHECK_FALSE(fs::exists(out));

@@ -13,37 +13,18 @@
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "simplify/saliency_weights.h"
+#include "cli_run.h"
 #include "test_util.h"
 #include "view/tradeoff_plot.h"
 
 namespace fs = std::filesystem;
 using namespace meshsal;
 
+using meshsal_test::CliRun;
+using meshsal_test::read_file;
+using meshsal_test::run_cli;
+
 namespace {
-
-struct CliRun {
-  int rc = -1;
-  std::string out, err;
-};
-
-CliRun run_cli(const std::string& args) {
-  CliRun r;
-  const fs::path err = fs::temp_directory_path() / ("meshsal_weights_err_" + std::to_string(getpid()));
-  const std::string cmd = std::string("'") + MESHSAL_CLI + "' " + args + " 2>'" + err.string() + "'";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (FILE* f = std::fopen(err.c_str(), "rb")) {
-    while ((n = fread(buf, 1, sizeof buf, f)) > 0) r.err.append(buf, n);
-    std::fclose(f);
-  }
-  fs::remove(err);
-  return r;
-}
 
 fs::path temp_dir() {
   fs::path d = fs::temp_directory_path() / ("meshsal_weights_" + std::to_string(getpid()));

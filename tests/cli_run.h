@@ -1,0 +1,53 @@
+// Runs the meshsal executable as a user would (stdin closed) and keeps what it printed:
+// the one way the CLI tests start the tool.
+#pragma once
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "test_io_util.h"
+
+namespace meshsal_test {
+
+struct CliRun {
+  int rc = -1;          // the exit status; -1 when a signal ended the tool
+  std::string out, err;  // stdout and stderr (run_cli_merged: both in `out`, in order)
+};
+
+inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+inline int exit_status(int system_status) {
+  return WIFEXITED(system_status) ? WEXITSTATUS(system_status) : -1;
+}
+
+// `meshsal ARGS`, stdout and stderr apart, through stdout.txt and stderr.txt in `dir`.
+inline CliRun run_cli(const std::string& args, const std::filesystem::path& dir) {
+  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+  const std::string cmd = quoted(MESHSAL_CLI) + " " + args + " > " + quoted(out) + " 2> " +
+                          quoted(err) + " < /dev/null";
+  CliRun r;
+  r.rc = exit_status(std::system(cmd.c_str()));
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+inline CliRun run_cli(const std::string& args, const TempDir& dir) { return run_cli(args, dir.path); }
+inline CliRun run_cli(const std::string& args) { return run_cli(args, TempDir()); }
+
+// `meshsal ARGS` with stderr merged into stdout, as a terminal shows them.
+inline CliRun run_cli_merged(const std::string& args) {
+  const std::string cmd = quoted(MESHSAL_CLI) + " " + args + " 2>&1 < /dev/null";
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  r.rc = exit_status(pclose(p));
+  return r;
+}
+
+}  // namespace meshsal_test
