@@ -241,6 +241,15 @@ TEST_CASE("cli bench --simplify: the JSON tables and the plot", "[simplify]") {
   CHECK(count("\"method\": \"saliency\"") == 4);
   CHECK(count("\"curve\": \"threshold\"") == 4);  // saliency and balanced, two ratios
   CHECK(count("\"salient_rel\": ") >= 4);
+  // The runs follow the other commands' keys: mesh, device, seconds, distances also in %.
+  CHECK(count("\"device\": \"cpu\"") >= 8);
+  const std::string run0 = r.out.substr(r.out.find("\"runs\""));
+  CHECK(run0.find("\"mesh\": \"") != std::string::npos);
+  const double diagonal = meshsal_test::json_number(run0, "diagonal");
+  REQUIRE(diagonal > 0);
+  for (const char* d : {"hausdorff", "rms", "salient_error"})
+    CHECK(meshsal_test::json_number(run0, std::string(d) + "_percent") ==
+          Approx(100 * meshsal_test::json_number(run0, d) / diagonal));
   const double sal = meshsal_test::json_number(r.out.substr(r.out.find("\"tradeoff\"")), "salient_rel");
   CHECK(sal > 0);
   CHECK(sal < 2);

@@ -144,7 +144,8 @@ Mesh meshopt(const Mesh& in, size_t target_faces) {
 
 // One simplification of one model at one ratio.
 struct Run {
-  std::string model, method;  // method: none, saliency, balanced, meshopt, or a sweep label
+  std::string path, model, method;  // model: the file name; method: none, saliency, balanced,
+                                    // meshopt, or a sweep label
   std::string curve;          // the sweep's curve ("" for the named methods)
   SaliencyWeightOptions options;
   bool sweep = false;
@@ -273,8 +274,9 @@ void print_json(const std::vector<Run>& runs, const std::vector<std::pair<std::s
     bool first = true;
     for (const Run& r : runs) {
       if (tradeoff ? r.method == "none" : r.sweep) continue;
-      std::printf("%s  {\"model\": %s, \"ratio\": %g, \"method\": %s, ", first ? "" : ",\n",
-                  json_string(r.model).c_str(), r.ratio, json_string(r.method).c_str());
+      std::printf("%s  {\"mesh\": %s, \"name\": %s, \"device\": \"cpu\", \"ratio\": %g, \"method\": %s, ",
+                  first ? "" : ",\n", json_string(r.path).c_str(), json_string(r.model).c_str(), r.ratio,
+                  json_string(r.method).c_str());
       first = false;
       if (tradeoff && !r.curve.empty())
         std::printf("\"curve\": \"%s\", \"lambda\": %g, \"alpha_percentile\": %g, \"gamma\": %g, \"cap\": %g, \"floor\": %g, ",
@@ -286,10 +288,16 @@ void print_json(const std::vector<Run>& runs, const std::vector<std::pair<std::s
                     r.sweep ? "true" : "false", r.salient_rel, r.rms_rel, r.hausdorff_rel,
                     r.meets() ? "true" : "false", r.seconds);
       else
-        std::printf("\"faces_in\": %zu, \"target\": %zu, \"faces\": %zu, \"seconds\": %.6f, \"diagonal\": %.9g, "
-                    "\"hausdorff\": %.9g, \"rms\": %.9g, \"salient_error\": %.9g}",
-                    r.faces_in, r.target, r.faces, r.seconds, r.cmp.diagonal, r.cmp.hausdorff, r.cmp.rms,
-                    r.cmp.salient_error);
+      {
+        // Distances in model units and in % of the diagonal, as every command gives them.
+        const double pct = r.cmp.diagonal > 0 ? 100 / r.cmp.diagonal : 0;
+        std::printf("\"input_faces\": %zu, \"target_faces\": %zu, \"output_faces\": %zu, \"seconds\": %.6f, "
+                    "\"diagonal\": %.9g, \"hausdorff\": %.9g, \"hausdorff_percent\": %.9g, \"rms\": %.9g, "
+                    "\"rms_percent\": %.9g, \"salient_error\": %.9g, \"salient_error_percent\": %.9g}",
+                    r.faces_in, r.target, r.faces, r.seconds, r.cmp.diagonal, r.cmp.hausdorff,
+                    r.cmp.hausdorff * pct, r.cmp.rms, r.cmp.rms * pct, r.cmp.salient_error,
+                    r.cmp.salient_error * pct);
+      }
     }
     std::printf("\n");
   }
@@ -363,6 +371,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
       const size_t first = runs.size();
       auto add = [&](const std::string& method, const Mesh& out, double seconds) -> Run& {
         Run r;
+        r.path = path;
         r.model = model;
         r.method = method;
         r.ratio = ratio;
