@@ -27,7 +27,7 @@ std::vector<double> score_or_saliency(const meshsal::Mesh& mesh, std::vector<dou
 }
 
 // One view as `meshsal viewpoint` prints it: angles in the frame of `up`, degrees, the
-// direction in the mesh's coordinates and U.
+// direction in the mesh's coordinates and U (visible_score).
 py::dict view_dict(const meshsal::ViewAngles& y_up, meshsal::UpAxis up, double U) {
   double d[3];
   const meshsal::ViewAngles a = angles_for_up(y_up, up, d);
@@ -37,7 +37,7 @@ py::dict view_dict(const meshsal::ViewAngles& y_up, meshsal::UpAxis up, double U
   v["theta_deg"] = a.theta * kDeg;
   v["phi_deg"] = a.phi * kDeg;
   v["direction"] = py::make_tuple(d[0], d[1], d[2]);
-  v["U"] = U;
+  v["visible_score"] = U;
   return v;
 }
 
@@ -73,16 +73,16 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
     s = score_or_saliency(mesh, std::move(given), so);
     b = meshsal::best_viewpoint(mesh, s, oo, views, vo, so.backend, device);
   }
-  // U_fraction: U over the score of every mesh point, in the visibility's float weights.
+  // visible_fraction: U over the score of every mesh point, in the visibility's float weights.
   std::vector<uint8_t> used(mesh.vertex_count(), 0);
   for (uint32_t v : mesh.triangles) used[v] = 1;
   double total = 0;
   for (size_t v = 0; v < s.size(); ++v)
     if (used[v]) total += double(float(s[v]));
   py::dict out = view_dict(b.optimised.best, up_axis, b.optimised.U);
-  out["U_fraction"] = total > 0 ? b.optimised.U / total : 0.0;
+  out["visible_fraction"] = total > 0 ? b.optimised.U / total : 0.0;
   out["score_source"] = computed ? "computed (" + b.backend_name + ")" : std::string("given");
-  out["backend"] = b.backend_name;
+  out["device"] = b.backend_name;
   out["resolution"] = resolution;
   out["depth_tol_px"] = depth_tol;
   out["restarts"] = restarts;
@@ -167,8 +167,9 @@ abs(curvature) for the paper's baseline); None computes the saliency first. Grad
 from `restarts` seeded random directions; views > 0 also scores that many Fibonacci-sphere
 directions exhaustively. Returns the CLI's JSON keys: theta, phi (radians), theta_deg,
 phi_deg and direction (unit vector in the mesh's coordinates) in the frame of `up` ('x',
-'y', 'z', '-x', '-y', '-z': the axis that points up), U, U_fraction (U over the score of all
-mesh points), score_source, backend, resolution, depth_tol_px, restarts, seed, exhaustive
+'y', 'z', '-x', '-y', '-z': the axis that points up), visible_score (U, the score summed
+over the visible mesh points), visible_fraction (U over the score of all mesh points),
+score_source, device, resolution, depth_tol_px, restarts, seed, exhaustive
 (a dict of the same view keys plus 'views', or None), views_evaluated, notices.
 The GIL is released while it computes.
 )") + kSaliencyArgsDoc).c_str());

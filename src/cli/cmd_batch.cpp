@@ -120,8 +120,8 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   JsonObject j;
   j.text("output", png).number("theta_deg", shown.theta * kDeg).number("phi_deg", shown.phi * kDeg)
       .raw("direction", "[" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " + std::to_string(d[2]) + "]")
-      .number("U", best.U).number("U_fraction", total > 0 ? best.U / total : 0.0)
-      .text("backend", backend_name).count("views_evaluated", best.views_evaluated).number("seconds", t.seconds());
+      .number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0)
+      .text("device", backend_name).count("views_evaluated", best.views_evaluated).number("seconds", t.seconds());
   return j;
 }
 

@@ -63,7 +63,7 @@ def test_best_view_with_given_score(sphere):
     b = meshsal.best_view(V, F, score, restarts=4, resolution=128, backend="cpu")
     assert b["score_source"] == "given"
     assert b["direction"][0] > 0.9 and abs(b["theta_deg"] - 90) < 15
-    assert 0.5 < b["U_fraction"] <= 1 and b["exhaustive"] is None
+    assert 0.5 < b["visible_fraction"] <= 1 and b["exhaustive"] is None
     up_z = meshsal.best_view(V, F, score, restarts=4, resolution=128, backend="cpu", up="z")
     assert up_z["direction"] == pytest.approx(b["direction"])  # same direction, other angles
 
