@@ -10,6 +10,7 @@
 Arrays from trimesh (mesh.vertices, mesh.faces) or Open3D (np.asarray(mesh.vertices),
 np.asarray(mesh.triangles)) go straight in. Every function releases the GIL while it
 computes; the library's errors raise meshsal.Error (a ValueError and a RuntimeError).
+Importing it makes the C heap keep freed memory for reuse (see keep_freed_memory).
 """
 from ._meshsal import (  # noqa: F401
     Error,
@@ -18,6 +19,7 @@ from ._meshsal import (  # noqa: F401
     best_view,
     built_with_vulkan,
     devices,
+    keep_freed_memory,
     load,
     render,
     saliency,
@@ -26,4 +28,6 @@ from ._meshsal import (  # noqa: F401
 )
 
 __all__ = ["Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
-           "devices", "load", "render", "saliency", "simplify", "version"]
+           "devices", "keep_freed_memory", "load", "render", "saliency", "simplify", "version"]
+
+keep_freed_memory(True)

@@ -10,5 +10,6 @@ void bind_io(py::module_& m);        // load, devices
 void bind_saliency(py::module_& m);  // saliency
 void bind_simplify(py::module_& m);  // simplify
 void bind_view(py::module_& m);      // best_view, render
+void bind_heap(py::module_& m);      // keep_freed_memory
 
 }  // namespace meshsal_py

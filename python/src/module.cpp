@@ -39,4 +39,5 @@ PYBIND11_MODULE(_meshsal, m) {
   meshsal_py::bind_saliency(m);
   meshsal_py::bind_simplify(m);
   meshsal_py::bind_view(m);
+  meshsal_py::bind_heap(m);
 }
