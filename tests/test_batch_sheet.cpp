@@ -1,7 +1,7 @@
 // `meshsal batch --contact-sheet`: one thumbnail per model with its name, by pixels.
 #include <catch2/catch.hpp>
 
-#include <stb/stb_image.h>  // implemented in test_render.cpp
+#include <stb/stb_image.h>  // implemented in stb_image_impl.cpp
 
 #include "test_batch_util.h"
 

@@ -10,8 +10,6 @@
 #include <string>
 #include <unistd.h>
 
-#include <stb/stb_image.h>  // implemented in test_render.cpp
-
 #include "core/colormap.h"
 #include "core/synthetic.h"
 #include "meshsal/meshsal.h"
@@ -23,54 +21,16 @@
 #include "view/render.h"
 #include "view/text.h"
 #include "view/viewpoint.h"
+#include "png_check.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::colormap_position;
+using meshsal_test::PictureDir;
+using meshsal_test::read_png;
 
 namespace {
 const double kPi = 3.14159265358979323846;
-
-struct PicDir {
-  std::string path;
-  PicDir() {
-    char tmpl[] = "/tmp/meshsal_pictures_XXXXXX";
-    const char* d = mkdtemp(tmpl);
-    REQUIRE(d != nullptr);
-    path = d;
-  }
-  ~PicDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
-
-Image load_png(const std::string& path) {
-  int w = 0, h = 0, c = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &c, 3);
-  REQUIRE(data != nullptr);
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
-  stbi_image_free(data);
-  return img;
-}
-
-// Position t on the colour scale of a (possibly shaded) colour: nearest chromaticity.
-double scale_t(const uint8_t* p) {
-  double sum = double(p[0]) + p[1] + p[2] + 1e-9, best = 1e9, best_t = 0;
-  for (int k = 0; k <= 200; ++k) {
-    uint8_t c[3];
-    colormap_rgb(k / 200.0, c);
-    double cs = double(c[0]) + c[1] + c[2] + 1e-9, e = 0;
-    for (int j = 0; j < 3; ++j) e += std::pow(p[j] / sum - c[j] / cs, 2);
-    if (e < best) {
-      best = e;
-      best_t = k / 200.0;
-    }
-  }
-  return best_t;
-}
 
 bool same_rgb(const uint8_t* a, const uint8_t* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
 
@@ -97,7 +57,7 @@ int find_colour_bar(const Image& img, int min_len, int* x0 = nullptr, int* x1 = 
       if (same_rgb(img.at(x, y), lo) && start < 0) start = x;
       if (start >= 0 && same_rgb(img.at(x, y), hi) && x - start + 1 >= min_len) {
         bool rising = true;
-        for (int k = start + 4; k <= x && rising; k += 4) rising = scale_t(img.at(k, y)) + 0.03 >= scale_t(img.at(k - 4, y));
+        for (int k = start + 4; k <= x && rising; k += 4) rising = colormap_position(img.at(k, y)) + 0.03 >= colormap_position(img.at(k - 4, y));
         if (!rising) break;
         if (x0) *x0 = start;
         if (x1) *x1 = x;
@@ -192,9 +152,9 @@ TEST_CASE("pictures: the demo's unique feature is hotter than its repeated bumps
   ViewAngles view = direction_angles(c);
   RenderStyle style;
   style.size = 400;
-  PicDir dir;
+  PictureDir dir;
   write_png(dir.path + "/demo.png", titled_view(mesh, &s.saliency, view, style, "demo", "saliency"));
-  Image img = load_png(dir.path + "/demo.png");
+  Image img = read_png(dir.path + "/demo.png");
   const int top = title_height(text_size_for(400), 2);
   // The feature (about 0.1 of the sphere's radius across) at the centre; bumps in a ring
   // between 0.45 and 0.8 of the radius around it.
@@ -202,7 +162,7 @@ TEST_CASE("pictures: the demo's unique feature is hotter than its repeated bumps
   for (int y = 0; y < 400; ++y)
     for (int x = 0; x < 400; ++x) {
       const double r = std::hypot(x + 0.5 - 200, y + 0.5 - 200) / (200 / style.margin);
-      const double t = scale_t(img.at(x, top + y));
+      const double t = colormap_position(img.at(x, top + y));
       if (r < 0.05) hot += t, nh += 1;
       if (r > 0.45 && r < 0.8) cool += t, nc += 1;
     }
@@ -229,7 +189,7 @@ TEST_CASE("pictures: the demo's unique feature is hotter than its repeated bumps
 }
 
 TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best view", "[view]") {
-  PicDir dir;
+  PictureDir dir;
   Mesh pyr = z_up_pyramid();
   write_obj(dir.path + "/pyr.obj", pyr);
   // Shape in the picture body (below the two title lines) of `render --grey`.
@@ -237,7 +197,7 @@ TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best v
     std::string out;
     REQUIRE(cli("render " + dir.path + "/pyr.obj --grey --size 300 --theta 20 --phi 5 --up " + up + " -o " +
                     dir.path + "/p.png", &out) == 0);
-    Image img = load_png(dir.path + "/p.png");
+    Image img = read_png(dir.path + "/p.png");
     const int top = title_height(text_size_for(300), 1);
     int x0, y0, x1, y1;
     ink_box(img, top, img.height, &x0, &y0, &x1, &y1);
@@ -275,7 +235,7 @@ TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best v
 }
 
 TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and says so", "[view]") {
-  PicDir dir;
+  PictureDir dir;
   Mesh s = make_sphere(1.0, 3);
   std::vector<double> q(s.vertex_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
@@ -283,9 +243,9 @@ TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and s
   std::string out;
   REQUIRE(cli("render " + dir.path + "/s.ply --theta 90 --size 320 -o " + dir.path + "/r.png", &out) == 0);
   CHECK(out.find("s.ply: using its own saliency") != std::string::npos);
-  Image img = load_png(dir.path + "/r.png");
+  Image img = read_png(dir.path + "/r.png");
   const int top = title_height(text_size_for(320), 2);
-  CHECK(scale_t(img.at(160, top + 160)) > 0.8);  // max(0, x) faces the viewer: hot
+  CHECK(colormap_position(img.at(160, top + 160)) > 0.8);  // max(0, x) faces the viewer: hot
   REQUIRE(cli("viewpoint " + dir.path + "/s.ply --backend cpu --resolution 64 --restarts 2", &out) == 0);
   CHECK(out.find("\"score_source\": \"" + dir.path + "/s.ply\"") != std::string::npos);
   CHECK(out.find("using its own saliency") != std::string::npos);
@@ -293,8 +253,8 @@ TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and s
   // --color-range 0,0.25: everything above 0.25 is the top colour; bad ranges are usage errors.
   REQUIRE(cli("render " + dir.path + "/s.ply --theta 90 --size 320 --color-range 0,0.25 -o " + dir.path + "/c.png",
               &out) == 0);
-  img = load_png(dir.path + "/c.png");
-  CHECK(scale_t(img.at(160 - 70, top + 160)) > 0.9);  // x about 0.9 there: clipped at the top
+  img = read_png(dir.path + "/c.png");
+  CHECK(colormap_position(img.at(160 - 70, top + 160)) > 0.9);  // x about 0.9 there: clipped at the top
   CHECK(cli("render " + dir.path + "/s.ply --color-range 2,1 -o " + dir.path + "/c.png", &out) == 2);
   CHECK(out.find("--color-range: LO must be below HI") != std::string::npos);
   // A missing font is a one-line error naming it, and no picture.
@@ -348,7 +308,7 @@ bool is_white(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 2
 }  // namespace
 
 TEST_CASE("pictures: render --compare labels each panel, colours the simplified ones by distance, with colour bars", "[view]") {
-  PicDir dir;
+  PictureDir dir;
   // The original: a sphere with saliency max(0, x). "plain": its +x cap pushed out by 15%
   // (far from the original there, on it elsewhere); "saliency-weighted": the sphere itself.
   Mesh original = make_sphere(1.0, 3);
@@ -366,7 +326,7 @@ TEST_CASE("pictures: render --compare labels each panel, colours the simplified 
   REQUIRE(cli("render " + dir.path + "/o.ply --compare " + dir.path + "/plain.obj " + dir.path +
                   "/salient.obj --size 240 --theta 0 --phi 0 -o " + dir.path + "/c.png", &out) == 0);
   INFO(out);
-  const Image img = load_png(dir.path + "/c.png");
+  const Image img = read_png(dir.path + "/c.png");
   const int size = 240, gap = 4;
   REQUIRE(img.width == 3 * size + 2 * gap);
   const double px = text_size_for(size);
@@ -391,7 +351,7 @@ TEST_CASE("pictures: render --compare labels each panel, colours the simplified 
   auto t_at = [&](int panel, double fx, double fy) {
     const uint8_t* p = img.at(panel * (size + gap) + size / 2 + int(fx * R), cy - int(fy * R));
     REQUIRE(!is_white(p));
-    return scale_t(p);
+    return colormap_position(p);
   };
   CHECK(t_at(0, 0.7, 0) > 0.75);   // original by saliency: max(0, x) hot on the right
   CHECK(t_at(0, -0.7, 0) < 0.1);   // and cold on the left
@@ -432,10 +392,10 @@ TEST_CASE("pictures: the view map has its axes' ticks, a colour bar, its markers
   // The ring on the hottest colour, the cross on the coldest: each must show on either.
   const ViewAngles ring{kPi / 2, 0}, cross{-kPi / 2, 0.2};
   const int width = 720;
-  PicDir dir;
+  PictureDir dir;
   write_png(dir.path + "/map.png", view_map_picture(map, width, ring, "exhaustive maximum", cross,
                                                     "optimiser's result", "a title"));
-  const Image img = load_png(dir.path + "/map.png");
+  const Image img = read_png(dir.path + "/map.png");
 
   // Find the plot (with both markers, as render_view_map draws them) in the picture.
   const Image plot = render_view_map(map, width, &ring, &cross);
@@ -457,7 +417,7 @@ TEST_CASE("pictures: the view map has its axes' ticks, a colour bar, its markers
   const int r = std::max(4, width / 100);
   int cx, cy;
   view_map_pixel(ring, width, &cx, &cy);
-  CHECK(scale_t(bare.at(cx + 2, cy + 2)) > 0.9);  // beside the grid lines through (90, 0)
+  CHECK(colormap_position(bare.at(cx + 2, cy + 2)) > 0.9);  // beside the grid lines through (90, 0)
   int white = 0, black = 0, on_ring = 0, rim = 0;
   for (int dy = -r - 2; dy <= r + 2; ++dy)
     for (int dx = -r - 2; dx <= r + 2; ++dx) {
@@ -468,9 +428,9 @@ TEST_CASE("pictures: the view map has its axes' ticks, a colour bar, its markers
     }
   CHECK(white == on_ring);
   CHECK(black == rim);
-  CHECK(scale_t(img.at(left + cx + 2, top + cy + 2)) > 0.9);  // the maximum stays visible inside
+  CHECK(colormap_position(img.at(left + cx + 2, top + cy + 2)) > 0.9);  // the maximum stays visible inside
   view_map_pixel(cross, width, &cx, &cy);
-  CHECK(scale_t(bare.at(cx + 3, cy + 3)) < 0.1);
+  CHECK(colormap_position(bare.at(cx + 3, cy + 3)) < 0.1);
   for (int k = -r; k <= r; ++k) {
     CHECK(img.at(left + cx + k, top + cy)[0] == 0);
     CHECK(img.at(left + cx, top + cy + k)[1] == 0);

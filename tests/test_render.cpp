@@ -8,8 +8,6 @@
 #include <string>
 #include <unistd.h>
 
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb/stb_image.h>
 
 #include "view/camera.h"
 #include "core/colormap.h"
@@ -19,56 +17,16 @@
 #include "view/legend.h"
 #include "cli/render_demo.h"
 #include "core/synthetic.h"
+#include "png_check.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::colormap_position;
+using meshsal_test::PictureDir;
+using meshsal_test::read_png;
 
 namespace {
 const double kPi = 3.14159265358979323846;
-
-// A fresh folder under /tmp, removed with everything in it when the test ends.
-struct TempDir {
-  std::string path;
-  TempDir() {
-    char tmpl[] = "/tmp/meshsal_render_XXXXXX";
-    const char* d = mkdtemp(tmpl);
-    REQUIRE(d != nullptr);
-    path = d;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
-
-Image read_png(const std::string& path) {
-  int w = 0, h = 0, c = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &c, 3);
-  REQUIRE(data != nullptr);
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
-  stbi_image_free(data);
-  return img;
-}
-
-// The colour-map position t of a (possibly shaded) colour: the t whose colour has the nearest
-// chromaticity (shading scales r, g, b alike).
-double decode_t(const uint8_t* p) {
-  double sum = double(p[0]) + p[1] + p[2] + 1e-9, best = 1e9, best_t = 0;
-  for (int k = 0; k <= 200; ++k) {
-    uint8_t c[3];
-    colormap_rgb(k / 200.0, c);
-    double cs = double(c[0]) + c[1] + c[2] + 1e-9, e = 0;
-    for (int j = 0; j < 3; ++j) e += std::pow(p[j] / sum - c[j] / cs, 2);
-    if (e < best) {
-      best = e;
-      best_t = k / 200.0;
-    }
-  }
-  return best_t;
-}
 
 bool is_background(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
@@ -131,7 +89,7 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
       const uint8_t* p = img.at(x, y);
       if (is_background(p)) continue;
       int b = std::min(3, std::max(0, (x - 4) * 4 / 152));  // the disc spans about x 4..156
-      band[b] += decode_t(p);
+      band[b] += colormap_position(p);
       count[b] += 1;
     }
   for (int b = 0; b < 4; ++b) {
@@ -148,8 +106,8 @@ TEST_CASE("render: colours follow saliency (low blue, high red)", "[view]") {
   std::vector<double> one_hot(s.vertex_count(), 0.0);
   one_hot[0] = 1000.0;
   std::vector<uint8_t> c2 = score_colours(s, one_hot);
-  CHECK(decode_t(&c2[0]) > 0.95);
-  CHECK(decode_t(&c2[3]) < 0.05);
+  CHECK(colormap_position(&c2[0]) > 0.95);
+  CHECK(colormap_position(&c2[3]) < 0.05);
   CHECK(c2[3] == c2[6]);
 }
 
@@ -172,8 +130,8 @@ TEST_CASE("render: view map, side by side and PNG round trip", "[view]") {
   CHECK(y == 90);
   const uint8_t* h = m.at(x + 2, y + 1);   // inside the ring
   const uint8_t* c = m.at(90 + 2, 90 + 1);  // theta -90: coldest
-  CHECK(decode_t(h) > 0.9);
-  CHECK(decode_t(c) < 0.1);
+  CHECK(colormap_position(h) > 0.9);
+  CHECK(colormap_position(c) < 0.1);
   const uint8_t* ring = m.at(x + std::max(4, 360 / 100), y);
   CHECK((ring[0] == 255 && ring[1] == 255 && ring[2] == 255));
 
@@ -190,7 +148,7 @@ TEST_CASE("render: view map, side by side and PNG round trip", "[view]") {
   for (int yy = 0; yy < 64; ++yy)
     for (int xx = 0; xx < 64; ++xx) REQUIRE(std::equal(sbs.at(xx, yy), sbs.at(xx, yy) + 3, sbs.at(xx + 136, yy)));
 
-  TempDir tmp;
+  PictureDir tmp;
   const std::string& dir = tmp.path;
   write_png(dir + "/sbs.png", sbs);
   Image back = read_png(dir + "/sbs.png");
@@ -207,7 +165,7 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   Mesh mesh = make_bumpy_sphere(3, &feature);
   std::vector<double> sal(mesh.vertex_count());
   for (size_t i = 0; i < sal.size(); ++i) sal[i] = feature[i] ? 1.0 : 0.05;
-  TempDir tmp;
+  PictureDir tmp;
   const std::string& dir = tmp.path;
   DemoPictureOptions opt;
   opt.image_size = 256;
@@ -221,7 +179,7 @@ TEST_CASE("render: demo pictures are written", "[view]") {
 }
 
 TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws any view", "[view]") {
-  TempDir tmp;
+  PictureDir tmp;
   const std::string& dir = tmp.path;
   // A sphere whose saliency (PLY quality) is max(0, x): the best view looks from +x.
   Mesh s = make_sphere(1.0, 3);
@@ -252,7 +210,7 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws 
   CHECK(r.width == 320);
   const int top = title_height(text_size_for(320), 2);
   const uint8_t* centre = r.at(160, top + 160);  // looking from +x at the most salient side: red
-  CHECK(decode_t(centre) > 0.8);
+  CHECK(colormap_position(centre) > 0.8);
   REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
                   dir + "/c.png", &out) == 0);
   CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
