@@ -33,23 +33,14 @@ using meshsal_test::CliRun;
 using meshsal_test::read_file;
 using meshsal_test::run_cli;
 
+using meshsal_test::rel_error;
+
 namespace {
 
 // One validated context for the whole file (the pipelines compile once).
 vk::Context& context() {
   static std::unique_ptr<vk::Context> ctx = std::make_unique<vk::Context>(-1, true);
   return *ctx;
-}
-
-// max_v |a - b| / max_v |a|  (0 when both are zero)
-double rel_error(const std::vector<double>& cpu, const std::vector<double>& gpu) {
-  REQUIRE(cpu.size() == gpu.size());
-  double mx = 0, err = 0;
-  for (size_t v = 0; v < cpu.size(); ++v) {
-    mx = std::max(mx, std::fabs(cpu[v]));
-    err = std::max(err, std::fabs(cpu[v] - gpu[v]));
-  }
-  return mx > 0 ? err / mx : err;
 }
 
 SaliencyOptions fast_options() {

@@ -1,6 +1,9 @@
 // Shared helpers for the tests: where the real meshes are, and skipping cleanly without them.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 #include <sys/stat.h>
 
 #include <catch2/catch.hpp>
@@ -22,6 +25,18 @@ inline std::string shared_mesh(const std::string& name) {
     return "";
   }
   return path;
+}
+
+// max_v |a - b| / max_v |a| (the error of b against the reference a, relative to a's
+// largest value); max_v |a - b| when a is all zero.
+inline double rel_error(const std::vector<double>& a, const std::vector<double>& b) {
+  REQUIRE(a.size() == b.size());
+  double mx = 0, err = 0;
+  for (size_t v = 0; v < a.size(); ++v) {
+    mx = std::max(mx, std::fabs(a[v]));
+    err = std::max(err, std::fabs(a[v] - b[v]));
+  }
+  return mx > 0 ? err / mx : err;
 }
 
 }  // namespace meshsal_test
