@@ -2,6 +2,7 @@
 // the one way the CLI tests start the tool.
 #pragma once
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,16 @@ struct CliRun {
 };
 
 inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// An empty folder meshsal_NAME_PID under the temporary directory (emptied if it exists), for
+// a test's inputs and outputs; ctest runs each test case in a process of its own.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const std::filesystem::path d = std::filesystem::temp_directory_path() /
+                                  ("meshsal_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
 
 inline int exit_status(int system_status) {
   return WIFEXITED(system_status) ? WEXITSTATUS(system_status) : -1;

@@ -16,16 +16,10 @@ namespace fs = std::filesystem;
 
 using meshsal_test::CliRun;
 using meshsal_test::read_file;
+using meshsal_test::scratch_dir;
 using meshsal_test::run_cli;
 
 namespace {
-
-fs::path scratch_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("meshsal_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream f(p, std::ios::binary);
@@ -44,7 +38,7 @@ void check_clean_failure(const CliRun& r) {
 
 TEST_CASE("cli: saliency writes the SPEC PLY with the CPU path's numbers", "[cli]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
-  fs::path dir = scratch_dir("saliency");
+  fs::path dir = scratch_dir("cli_saliency");
   fs::path out = dir / "bunny.ply";
   CliRun r = run_cli("saliency " + input + " -o " + out.string() + " --backend cpu --dump-scales", dir);
   INFO(r.err);
@@ -68,7 +62,7 @@ TEST_CASE("cli: saliency writes the SPEC PLY with the CPU path's numbers", "[cli
 }
 
 TEST_CASE("cli: bad input gets one error line and exit code 1", "[cli]") {
-  fs::path dir = scratch_dir("bad");
+  fs::path dir = scratch_dir("cli_bad");
   const std::string out = (dir / "out.ply").string();
   SECTION("missing file") { check_clean_failure(run_cli("saliency " + (dir / "nope.obj").string() + " -o " + out, dir)); }
   SECTION("unknown extension") {
@@ -111,7 +105,7 @@ TEST_CASE("cli: bad input gets one error line and exit code 1", "[cli]") {
 }
 
 TEST_CASE("cli: a failed run leaves an earlier output untouched", "[cli]") {
-  fs::path dir = scratch_dir("keep");
+  fs::path dir = scratch_dir("cli_keep");
   const fs::path out = dir / "out.ply";
   write_text(out, "previous result");
   write_text(dir / "bad.obj", "v 0 0 0\nf 1 2 3\n");
@@ -121,7 +115,7 @@ TEST_CASE("cli: a failed run leaves an earlier output untouched", "[cli]") {
 }
 
 TEST_CASE("cli: help explains every command and option", "[cli]") {
-  fs::path dir = scratch_dir("help");
+  fs::path dir = scratch_dir("cli_help");
   CliRun top = run_cli("--help", dir);
   CHECK(top.rc == 0);
   for (const char* cmd : {"saliency", "demo", "bench"}) CHECK(top.out.find(cmd) != std::string::npos);
@@ -136,7 +130,7 @@ TEST_CASE("cli: help explains every command and option", "[cli]") {
 }
 
 TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
-  fs::path dir = scratch_dir("demo");
+  fs::path dir = scratch_dir("cli_demo");
   CliRun r = run_cli("demo -o " + (dir / "out").string() + " --subdivisions 5 --backend cpu", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
@@ -154,7 +148,7 @@ TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
 
 TEST_CASE("cli: bench --json escapes model names", "[cli]") {
   // A file name with a quote and a backslash: the JSON must still parse to the same name.
-  fs::path dir = scratch_dir("bench_json");
+  fs::path dir = scratch_dir("cli_bench_json");
   const std::string name = "odd \"name\" \\ 1.obj";
   write_obj((dir / name).string(), make_sphere(1.0, 2));
   CliRun r = run_cli("bench --json --repeat 1 --threads 1 '" + (dir / name).string() + "'", dir);

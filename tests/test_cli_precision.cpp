@@ -19,16 +19,10 @@ namespace fs = std::filesystem;
 
 using meshsal_test::CliRun;
 using meshsal_test::read_file;
+using meshsal_test::scratch_dir;
 using meshsal_test::run_cli;
 
 namespace {
-
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("meshsal_cli_precision_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::vector<float> quality(const fs::path& ply) {
   VertexProperties props;
@@ -41,7 +35,7 @@ std::vector<float> quality(const fs::path& ply) {
 
 TEST_CASE("cli: saliency --precision mixed and double agree on the gpu", "[cli][gpu][precision]") {
   MESHSAL_REQUIRE_MESH(input, "fandisk_6k.obj");
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("cli_precision");
   CliRun mixed = run_cli("saliency " + input + " -o " + (dir / "m.ply").string() +
                           " --backend gpu --precision mixed", dir);
   INFO(mixed.err);
@@ -64,7 +58,7 @@ TEST_CASE("cli: saliency --precision mixed and double agree on the gpu", "[cli][
 }
 
 TEST_CASE("cli: a bad --precision is a usage error", "[cli][precision]") {
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("cli_precision");
   CliRun r = run_cli("saliency in.obj -o out.ply --precision single", dir);
   CHECK(r.rc == 2);
   CHECK(r.err.find("--precision") != std::string::npos);
@@ -74,7 +68,7 @@ TEST_CASE("cli: a bad --precision is a usage error", "[cli][precision]") {
 
 TEST_CASE("cli: bench has a row per sweep precision for each Vulkan device", "[cli][gpu][precision]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("cli_precision");
   CliRun r = run_cli("bench " + input + " --repeat 1 --json", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);

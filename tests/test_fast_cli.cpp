@@ -17,21 +17,11 @@ namespace fs = std::filesystem;
 
 using meshsal_test::CliRun;
 using meshsal_test::read_file;
+using meshsal_test::scratch_dir;
 using meshsal_test::run_cli;
 
-namespace {
-
-fs::path scratch_dir() {
-  fs::path d = fs::temp_directory_path() / ("meshsal_fast_cli_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-}  // namespace
-
 TEST_CASE("cli: every command that computes saliency takes --method", "[cli][fast]") {
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("fast_cli");
   for (const char* cmd : {"saliency", "simplify", "viewpoint", "render", "demo", "compare", "bench"}) {
     CliRun r = run_cli(std::string(cmd) + " --help", dir);
     INFO(cmd);
@@ -42,7 +32,7 @@ TEST_CASE("cli: every command that computes saliency takes --method", "[cli][fas
 }
 
 TEST_CASE("cli: a bad --method is a usage error", "[cli][fast]") {
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("fast_cli");
   CliRun r = run_cli("saliency in.obj -o out.ply --method quick", dir);
   CHECK(r.rc == 2);
   CHECK(r.err.find("--method") != std::string::npos);
@@ -54,7 +44,7 @@ TEST_CASE("cli: a bad --method is a usage error", "[cli][fast]") {
 
 TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("fast_cli");
   CliRun r = run_cli("saliency " + input + " -o " + (dir / "f.ply").string() + " --method fast --backend cpu", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
@@ -71,7 +61,7 @@ TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]
 
 TEST_CASE("cli: bench --method fast --json reports the error against exact", "[cli][fast]") {
   MESHSAL_REQUIRE_MESH(input, "bunny_3k.off");
-  fs::path dir = scratch_dir();
+  fs::path dir = scratch_dir("fast_cli");
   CliRun r = run_cli("bench " + input + " --repeat 1 --json --method fast", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);

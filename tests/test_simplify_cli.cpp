@@ -15,21 +15,12 @@ namespace fs = std::filesystem;
 
 using meshsal_test::CliRun;
 using meshsal_test::read_file;
+using meshsal_test::scratch_dir;
 using meshsal_test::run_cli_merged;
-
-namespace {
-
-fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() / ("meshsal_simplify_cli_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-}  // namespace
 
 TEST_CASE("cli simplify: target counts, formats and the saliency PLY", "[simplify]") {
   MESHSAL_REQUIRE_MESH(bunny, "bunny_3k.off");
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir("simplify_cli");
   const std::string obj = (dir / "plain.obj").string(), ply = (dir / "sal.ply").string();
   CliRun r = run_cli_merged("simplify '" + bunny + "' -o '" + obj + "' --target-faces 1000 --weights none");
   INFO(r.out);
@@ -55,7 +46,7 @@ TEST_CASE("cli simplify: target counts, formats and the saliency PLY", "[simplif
 TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   MESHSAL_REQUIRE_MESH(bunny, "bunny_3k.off");
   MESHSAL_REQUIRE_MESH(spot, "spot_3k.obj");
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir("simplify_cli");
   const std::string out = (dir / "out.obj").string();
   const std::string base = "simplify '" + bunny + "' -o '" + out + "' --weights none ";
   // Out-of-range numbers are usage errors (exit 2), the rest bad input (exit 1).

@@ -22,17 +22,8 @@ using namespace meshsal;
 
 using meshsal_test::CliRun;
 using meshsal_test::read_file;
+using meshsal_test::scratch_dir;
 using meshsal_test::run_cli;
-
-namespace {
-
-fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() / ("meshsal_weights_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-}  // namespace
 
 TEST_CASE("weights: the three curves on known values", "[simplify]") {
   const std::vector<double> sm{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
@@ -132,7 +123,7 @@ TEST_CASE("weights: the balanced preset on the bumpy sphere", "[simplify]") {
 }
 
 TEST_CASE("cli simplify --weights balanced and bad names", "[simplify]") {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir("weights");
   const std::string in = (dir / "bumpy.obj").string(), out = (dir / "out.obj").string();
   write_obj(in, make_bumpy_sphere(4));
   CliRun r = run_cli("simplify '" + in + "' -o '" + out + "' --ratio 0.2 --weights balanced --json");
@@ -223,7 +214,7 @@ TEST_CASE("tradeoff plot: axes, markers and legend", "[simplify]") {
 }
 
 TEST_CASE("cli bench --simplify: the JSON tables and the plot", "[simplify]") {
-  const fs::path dir = temp_dir();
+  const fs::path dir = scratch_dir("weights");
   const std::string in = (dir / "bumpy.obj").string(), png = (dir / "tradeoff.png").string();
   write_obj(in, make_bumpy_sphere(5));
   CliRun r = run_cli("bench --simplify '" + in + "' --sweep none --repeat 1 --json --plot '" + png + "'");
