@@ -5,30 +5,6 @@
 
 namespace meshsal {
 
-Quadric& Quadric::operator+=(const Quadric& q) {
-  a00 += q.a00; a01 += q.a01; a02 += q.a02; a11 += q.a11; a12 += q.a12; a22 += q.a22;
-  b0 += q.b0; b1 += q.b1; b2 += q.b2;
-  c += q.c;
-  return *this;
-}
-
-Quadric& Quadric::operator*=(double s) {
-  a00 *= s; a01 *= s; a02 *= s; a11 *= s; a12 *= s; a22 *= s;
-  b0 *= s; b1 *= s; b2 *= s;
-  c *= s;
-  return *this;
-}
-
-Quadric operator+(Quadric a, const Quadric& b) { return a += b; }
-
-double Quadric::error(const double p[3]) const {
-  const double x = p[0], y = p[1], z = p[2];
-  double e = a00 * x * x + a11 * y * y + a22 * z * z +
-             2 * (a01 * x * y + a02 * x * z + a12 * y * z) +
-             2 * (b0 * x + b1 * y + b2 * z) + c;
-  return e > 0 ? e : 0;
-}
-
 Quadric plane_quadric(const double n[3], double d, double w) {
   Quadric q;
   q.a00 = w * n[0] * n[0]; q.a01 = w * n[0] * n[1]; q.a02 = w * n[0] * n[2];

@@ -10,13 +10,30 @@ struct Quadric {
   double b0 = 0, b1 = 0, b2 = 0;
   double c = 0;
 
-  Quadric& operator+=(const Quadric& q);
-  Quadric& operator*=(double s);
+  // Inline: the simplifier sums and evaluates quadrics about ten times per collapse.
+  Quadric& operator+=(const Quadric& q) {
+    a00 += q.a00; a01 += q.a01; a02 += q.a02; a11 += q.a11; a12 += q.a12; a22 += q.a22;
+    b0 += q.b0; b1 += q.b1; b2 += q.b2;
+    c += q.c;
+    return *this;
+  }
+  Quadric& operator*=(double s) {
+    a00 *= s; a01 *= s; a02 *= s; a11 *= s; a12 *= s; a22 *= s;
+    b0 *= s; b1 *= s; b2 *= s;
+    c *= s;
+    return *this;
+  }
   // Error of point p (clamped at 0: rounding can make it slightly negative).
-  double error(const double p[3]) const;
+  double error(const double p[3]) const {
+    const double x = p[0], y = p[1], z = p[2];
+    const double e = a00 * x * x + a11 * y * y + a22 * z * z +
+                     2 * (a01 * x * y + a02 * x * z + a12 * y * z) +
+                     2 * (b0 * x + b1 * y + b2 * z) + c;
+    return e > 0 ? e : 0;
+  }
 };
 
-Quadric operator+(Quadric a, const Quadric& b);
+inline Quadric operator+(Quadric a, const Quadric& b) { return a += b; }
 
 // Quadric of the plane n.x + d = 0 (n unit length) times `weight`: weight * dist(p)^2.
 Quadric plane_quadric(const double n[3], double d, double weight);

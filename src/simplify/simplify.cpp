@@ -66,6 +66,17 @@ inline void other_corners(const uint32_t* v, uint32_t c, uint32_t* x, uint32_t* 
   *y = select_u32(v[2] == c, v[1], v[2]);
 }
 
+// The 10 low bits of x spread out to every third bit (bit i to bit 3i): interleaving three
+// of them gives a 30-bit Morton code.
+inline uint32_t spread_bits(uint32_t x) {
+  x &= 0x3ffu;
+  x = (x | (x << 16)) & 0x030000ffu;
+  x = (x | (x << 8)) & 0x0300f00fu;
+  x = (x | (x << 4)) & 0x030c30c3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
 inline void cross3(const double u[3], const double v[3], double o[3]) {
   o[0] = u[1] * v[2] - u[2] * v[1];
   o[1] = u[2] * v[0] - u[0] * v[2];
@@ -82,11 +93,16 @@ struct State {
   // The input's positions (3 per input vertex): a vertex no collapse moved is written back
   // with these exact values, not through the rounding of (p - center) * scale and back.
   const float* input_positions = nullptr;
-  std::vector<double> pos;                   // 3 per vertex, internal coordinates
-  std::vector<Quadric> quad;
-  // Sum of the plane weights in quad[v] (triangle areas, border weights, times W): the
-  // collapse error sqrt(Q(v) / weight) is a distance (target_error).
-  std::vector<double> plane_weight;
+  // What a collapse reads of each vertex around it, in two cache lines of one record
+  // (instead of a miss in each of three arrays).
+  struct alignas(64) Vertex {
+    Quadric q;
+    // Sum of the plane weights in q (triangle areas, border weights, times W): the
+    // collapse error sqrt(Q(v) / weight) is a distance (target_error).
+    double plane_weight;
+    double p[3];  // internal coordinates
+  };
+  std::vector<Vertex> vert;
   double max_error2 = HUGE_VAL;              // target_error squared (internal units)
   double reached_error2 = 0;                 // largest squared error of a collapse made
   size_t error_refused = 0;                  // refusals for the error bound
@@ -108,7 +124,7 @@ struct State {
   std::vector<uint8_t> near_seam;
   double seam_cost(uint32_t a, uint32_t b, double out[3]) const {
     if (!seam_edge(a, b)) return HUGE_VAL;
-    const Quadric q = quad[a] + quad[partner[a]] + quad[b] + quad[partner[b]];
+    const Quadric q = vert[a].q + vert[partner[a]].q + vert[b].q + vert[partner[b]].q;
     const double ea = q.error(p(a)), eb = q.error(p(b));
     const double* k = eb < ea ? p(b) : p(a);  // the cheaper end stays, on both sides
     for (int i = 0; i < 3; ++i) out[i] = k[i];
@@ -127,18 +143,23 @@ struct State {
   int normal_at[3] = {-1, -1, -1};
   std::vector<uint32_t> tri;                 // 3 per triangle
   std::vector<uint8_t> tri_alive;
-  // Triangles of each vertex (may hold dead ones): runs in one pool, vt_count[v] entries
-  // from vt_start[v], room for vt_cap[v]; a run that outgrows its room moves to the end.
-  std::vector<uint32_t> vt_pool, vt_start, vt_count, vt_cap;
+  // Triangles of each vertex (may hold dead ones): runs in one pool, run_of[v].count
+  // entries from run_of[v].start, room for run_of[v].cap; a run that outgrows its room
+  // moves to the end.
+  struct alignas(16) RunPlace {  // one record: one miss per vertex, not three
+    uint32_t start, count, cap;
+  };
+  std::vector<uint32_t> vt_pool;
+  std::vector<RunPlace> run_of;
   struct Run {
     const uint32_t* b;
     const uint32_t* e;
     const uint32_t* begin() const { return b; }
     const uint32_t* end() const { return e; }
   };
-  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + vt_start[v]; }
-  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + vt_start[v]; }
-  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + vt_count[v]}; }
+  uint32_t* tris_of(uint32_t v) { return vt_pool.data() + run_of[v].start; }
+  const uint32_t* tris_of(uint32_t v) const { return vt_pool.data() + run_of[v].start; }
+  Run vt(uint32_t v) const { return {tris_of(v), tris_of(v) + run_of[v].count}; }
   // Lays all runs out again in vertex order, live triangles only, each with room for half
   // as many more: instead of growing the pool (a copy of all of it, and page faults), and it
   // puts the runs back in Morton order.
@@ -150,17 +171,17 @@ struct State {
       if (alive[v])
         for (uint32_t t : vt(uint32_t(v)))
           if (tri_alive[t]) fresh.push_back(t);
-      vt_start[v] = start;
-      vt_count[v] = uint32_t(fresh.size()) - start;
-      vt_cap[v] = vt_count[v] + vt_count[v] / 2;
-      fresh.resize(start + vt_cap[v]);
+      run_of[v].start = start;
+      run_of[v].count = uint32_t(fresh.size()) - start;
+      run_of[v].cap = run_of[v].count + run_of[v].count / 2;
+      fresh.resize(start + run_of[v].cap);
     }
     vt_pool.swap(fresh);
   }
   // Drops the dead triangles from v's run.
   void compact(uint32_t v) {
     const auto live = [&](uint32_t t) { return tri_alive[t] != 0; };
-    vt_count[v] = uint32_t(keep_if(tris_of(v), vt_count[v], live));
+    run_of[v].count = uint32_t(keep_if(tris_of(v), run_of[v].count, live));
   }
   std::vector<uint8_t> alive;
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
@@ -178,19 +199,31 @@ struct State {
   bool record = false;
   // scratch
   std::vector<uint32_t> opp, flip_a, flip_b;  // sized to the largest fan seen
-  std::vector<uint32_t> link;  // per vertex: link-condition marks (stamps)
-  uint32_t link_stamp = 0;
+  // Per vertex: marks for the link condition (check) and the new ring (after a collapse),
+  // one array for both so that the ring's marks are still in cache; each use takes fresh
+  // stamp values, so nothing is ever cleared.
+  std::vector<uint32_t> mark;
+  uint32_t stamp = 0;
+  // n fresh stamp values; returns the last. Starts over (all marks cleared) before the
+  // counter would wrap.
+  uint32_t new_stamps(uint32_t n) {
+    if (stamp > UINT32_MAX - n) {
+      std::fill(mark.begin(), mark.end(), 0);
+      stamp = 0;
+    }
+    return stamp += n;
+  }
 
-  const double* p(uint32_t v) const { return &pos[3 * size_t(v)]; }
+  const double* p(uint32_t v) const { return vert[v].p; }
 
   double cost(uint32_t a, uint32_t b, double out[3]) const {
     if (has_locks && (locked[a] | locked[b])) {  // the new vertex stays where the locked one is
       if (locked[a] && locked[b]) return seam_cost(a, b, out);
       const double* k = p(locked[a] ? a : b);
       for (int i = 0; i < 3; ++i) out[i] = k[i];
-      return (quad[a] + quad[b]).error(k);
+      return (vert[a].q + vert[b].q).error(k);
     }
-    return optimal_placement(quad[a] + quad[b], p(a), p(b), out);
+    return optimal_placement(vert[a].q + vert[b].q, p(a), p(b), out);
   }
   // No collapse can join two locked vertices: such edges never enter the queue.
   bool both_locked(uint32_t a, uint32_t b) const {
@@ -198,8 +231,8 @@ struct State {
   }
   // The collapse's error squared (see SimplifyOptions::target_error).
   double error2(uint32_t a, uint32_t b, double cost) const {
-    double w = plane_weight[a] + plane_weight[b];
-    if (seam_edge(a, b)) w += plane_weight[partner[a]] + plane_weight[partner[b]];
+    double w = vert[a].plane_weight + vert[b].plane_weight;
+    if (seam_edge(a, b)) w += vert[partner[a]].plane_weight + vert[partner[b]].plane_weight;
     return w > 0 ? cost / w : 0;
   }
   // Refuses a collapse over the error bound (before the costlier check()).
@@ -261,13 +294,13 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   build_edges(options.border_weight, &unique_edges_a, &unique_edges_b);
   if (w)
     for (size_t v = 0; v < nv; ++v) {
-      quad[v] *= (*w)[order[v]];
-      plane_weight[v] *= (*w)[order[v]];
+      vert[v].q *= (*w)[order[v]];
+      vert[v].plane_weight *= (*w)[order[v]];
     }
   if (options.target_error > 0) max_error2 = options.target_error * options.target_error;
   take_locks_and_attributes(mesh, options.lock_border);
   changed.assign(nv, 0);
-  link.assign(nv, 0);
+  mark.assign(nv, 0);
   for (size_t v = 0; v < nv; ++v) border_vertices += alive[v] && border[v];
 
   if (edges) {
@@ -450,8 +483,7 @@ void State::order_vertices(const Mesh& mesh) {
         uint32_t q[3];
         for (int k = 0; k < 3; ++k)
           q[k] = uint32_t(std::min(1.0, std::max(0.0, (mesh.positions[3 * v + k] - lo[k]) * inv_ext[k])) * 1023.0);
-        for (int bit = 9; bit >= 0; --bit)
-          for (int k = 0; k < 3; ++k) c = (c << 1) | ((q[k] >> bit) & 1u);
+        c = (spread_bits(q[0]) << 2) | (spread_bits(q[1]) << 1) | spread_bits(q[2]);
       } else {
         c = uint64_t(1) << 30;  // after every 30-bit code
       }
@@ -478,10 +510,10 @@ void State::order_vertices(const Mesh& mesh) {
     for (size_t i = 0; i < nv; ++i) a2[i] = alive[order[i]];
     alive.swap(a2);
   }
-  pos.resize(3 * nv);
+  vert.assign(nv, Vertex{});
   for (size_t i = 0; i < nv; ++i)
     for (int k = 0; k < 3; ++k)
-      pos[3 * i + k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
+      vert[i].p[k] = (mesh.positions[3 * size_t(order[i]) + k] - center[k]) * scale;
 }
 
 void State::build_triangle_runs() {
@@ -489,25 +521,21 @@ void State::build_triangle_runs() {
   tri_alive.assign(nt, 1);
   std::vector<uint32_t> deg(nv, 0);
   for (uint32_t v : tri) ++deg[v];
-  vt_start.resize(nv);
-  vt_count.assign(nv, 0);
-  vt_cap.resize(nv);
+  run_of.assign(nv, RunPlace{0, 0, 0});
   {
     size_t off = 0;
-    for (size_t v = 0; v < nv; ++v) { vt_start[v] = uint32_t(off); vt_cap[v] = deg[v]; off += deg[v]; }
+    for (size_t v = 0; v < nv; ++v) { run_of[v].start = uint32_t(off); run_of[v].cap = deg[v]; off += deg[v]; }
     vt_pool.reserve(2 * off + 64);
     vt_pool.resize(off);
   }
-  quad.assign(nv, Quadric{});
-  plane_weight.assign(nv, 0);
   for (size_t t = 0; t < nt; ++t) {
     const uint32_t* v = &tri[3 * t];
     const Quadric q = triangle_quadric(p(v[0]), p(v[1]), p(v[2]));
     const double area = q.a00 + q.a11 + q.a22;  // the trace: area times |n|^2
     for (int k = 0; k < 3; ++k) {
-      vt_pool[vt_start[v[k]] + vt_count[v[k]]++] = uint32_t(t);
-      quad[v[k]] += q;
-      plane_weight[v[k]] += area;
+      vt_pool[run_of[v[k]].start + run_of[v[k]].count++] = uint32_t(t);
+      vert[v[k]].q += q;
+      vert[v[k]].plane_weight += area;
     }
   }
 }
@@ -530,7 +558,7 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
   std::vector<uint32_t> seen(nv, UINT32_MAX), on_edge(nv, 0), edge_tri(nv), edge_corner(nv);
   std::vector<uint32_t> higher, border_b;
   for (uint32_t a = 0; a < nv; ++a) {
-    const uint32_t deg_a = vt_count[a];
+    const uint32_t deg_a = run_of[a].count;
     if (higher.size() < 2 * size_t(deg_a)) higher.resize(2 * size_t(deg_a));
     size_t n = 0;
     for (uint32_t t : vt(a)) {
@@ -564,10 +592,10 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
       const uint32_t t = edge_tri[b], k = edge_corner[b];
       const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
       const Quadric q = border_quadric(p(v0), p(v1), p(v2), border_weight);
-      quad[v0] += q;
-      quad[v1] += q;
-      plane_weight[v0] += q.a00 + q.a11 + q.a22;
-      plane_weight[v1] += q.a00 + q.a11 + q.a22;
+      vert[v0].q += q;
+      vert[v1].q += q;
+      vert[v0].plane_weight += q.a00 + q.a11 + q.a22;
+      vert[v1].plane_weight += q.a00 + q.a11 + q.a22;
       border[a] = border[b] = 1;
     }
   }
@@ -615,17 +643,16 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
   // Drop dead triangles from both lists first (they are only ever appended to).
   compact(a);
   compact(b);
-  const uint32_t na = vt_count[a], nb = vt_count[b];
+  const uint32_t na = run_of[a].count, nb = run_of[b].count;
   if (opp.size() < na) {
     opp.resize(na);
     flip_a.resize(na);
   }
   if (flip_b.size() < nb) flip_b.resize(nb);
   // a's triangles: those on the edge give the vertices opposite it (k of them); the two
-  // other corners of every triangle of a are marked (link[] == in_a) for the link
+  // other corners of every triangle of a are marked (mark[] == in_a) for the link
   // condition. Marking b changes nothing below: b is never a corner of b's triangles.
-  link_stamp += 2;
-  const uint32_t in_a = link_stamp, counted = link_stamp + 1;
+  const uint32_t counted = new_stamps(2), in_a = counted - 1;
   uint32_t* const op = opp.data();
   uint32_t* const fa = flip_a.data();
   uint32_t* const fb = flip_b.data();
@@ -637,8 +664,10 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     const bool has_b = has_corner(v, b);
     uint32_t x, y;
     other_corners(v, a, &x, &y);
-    link[x] = in_a;
-    link[y] = in_a;
+    __builtin_prefetch(p(x));  // for the flip tests below: all misses at once
+    __builtin_prefetch(p(y));
+    mark[x] = in_a;
+    mark[y] = in_a;
     op[k] = x ^ y ^ b;  // on the edge, {x, y} = {b, opposite}
     k += has_b;
     fa[nfa] = t;
@@ -670,10 +699,12 @@ Check State::check(uint32_t a, uint32_t b, const double np[3]) {
     const bool has_a = has_corner(v, a);
     uint32_t x, y;
     other_corners(v, b, &x, &y);
+    __builtin_prefetch(p(x));
+    __builtin_prefetch(p(y));
     b_has_pair |= is_opp_pair(x, y);
     for (uint32_t z : {x, y}) {
-      const bool m = link[z] == in_a;
-      link[z] = select_u32(m, counted, link[z]);
+      const bool m = mark[z] == in_a;
+      mark[z] = select_u32(m, counted, mark[z]);
       common += m;
     }
     fb[nfb] = t;
@@ -706,8 +737,8 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     // Linear along the edge, at the new position's projection onto it.
     double d[3], e[3];
     for (int k = 0; k < 3; ++k) {
-      d[k] = pos[3 * size_t(b) + k] - pos[3 * size_t(a) + k];
-      e[k] = np[k] - pos[3 * size_t(a) + k];
+      d[k] = vert[b].p[k] - vert[a].p[k];
+      e[k] = np[k] - vert[a].p[k];
     }
     const double dd = dot3(d, d);
     const double t = dd > 0 ? std::min(1.0, std::max(0.0, dot3(d, e) / dd)) : 0;
@@ -722,29 +753,29 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
         if (tri_alive[t])
           for (int k = 0; k < 3; ++k) near_seam[tri[3 * size_t(t) + k]] = 1;
   }
-  for (int k = 0; k < 3; ++k) pos[3 * size_t(a) + k] = np[k];
-  quad[a] += quad[b];
-  plane_weight[a] += plane_weight[b];
+  for (int k = 0; k < 3; ++k) vert[a].p[k] = np[k];
+  vert[a].q += vert[b].q;
+  vert[a].plane_weight += vert[b].plane_weight;
   if (border[a] && border[b]) --border_vertices;
   border[a] = border[a] | border[b];
   compact(a);
-  const uint32_t need = vt_count[a] + vt_count[b];
-  if (need > vt_cap[a]) {  // move a's run to the end of the pool, with room to grow
+  const uint32_t need = run_of[a].count + run_of[b].count;
+  if (need > run_of[a].cap) {  // move a's run to the end of the pool, with room to grow
     const uint32_t cap = need + need / 2;
     if (vt_pool.size() + cap > vt_pool.capacity()) repack();
     const size_t start = vt_pool.size();
     vt_pool.resize(start + cap);
-    std::copy(vt_pool.begin() + vt_start[a], vt_pool.begin() + vt_start[a] + vt_count[a],
+    std::copy(vt_pool.begin() + run_of[a].start, vt_pool.begin() + run_of[a].start + run_of[a].count,
               vt_pool.begin() + start);
-    vt_start[a] = uint32_t(start);
-    vt_cap[a] = cap;
+    run_of[a].start = uint32_t(start);
+    run_of[a].cap = cap;
   }
   uint32_t* la = tris_of(a);
-  uint32_t na_ = vt_count[a];
+  uint32_t na_ = run_of[a].count;
   const uint32_t* lb = tris_of(b);
   // b's triangles on the edge die; the others take a for b and join a's list. Without
   // branches (which of them is on the edge is a coin toss).
-  for (uint32_t i = 0, n = vt_count[b]; i < n; ++i) {
+  for (uint32_t i = 0, n = run_of[b].count; i < n; ++i) {
     const uint32_t t = lb[i];
     uint32_t* v = &tri[3 * size_t(t)];
     const bool live = tri_alive[t];
@@ -756,9 +787,9 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
     la[na_] = t;
     na_ += moves;
   }
-  vt_count[a] = na_;
+  run_of[a].count = na_;
   compact(a);
-  vt_count[b] = 0;
+  run_of[b].count = 0;
   alive[b] = 0;
   ++collapses;
   changed[a] = uint32_t(collapses);
@@ -814,7 +845,7 @@ Mesh State::output(SimplifyReport* report) const {
     // changed[v] == 0: no collapse ever moved v (a moved vertex has its collapse count).
     for (int k = 0; k < 3; ++k)
       out.positions.push_back(changed[v] == 0 ? input_positions[3 * size_t(iv) + k]
-                                              : float(pos[3 * v + k] / scale + center[k]));
+                                              : float(vert[v].p[k] / scale + center[k]));
   }
   out.triangles.reserve(3 * faces);
   for (size_t t = 0; t < tri_alive.size(); ++t)
@@ -895,7 +926,6 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       for (uint32_t x = s.twin_next[w]; x != w; x = s.twin_next[x]) release_one(x);
   };
 
-  std::vector<uint32_t> mark(s.nv, UINT32_MAX);
   std::vector<uint32_t> ring;
   double np[3];
   // Stale entries waiting in the queue only cost memory (they are dropped when their
@@ -903,26 +933,25 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
   // last sweep, so that sweeping costs O(1) per push and memory stays within 2x.
   size_t sweep_at = 2 * heap.size() + 4096;
   const auto current = [&](const Entry& x) { return s.current(x); };
-  uint32_t ring_stamp = 0;
   // After a collapse into a: its new 1-ring's refused edges count again, and every edge
   // of a gets a fresh entry.
   const auto refresh = [&](uint32_t a) {
-    const uint32_t now = uint32_t(s.collapses), stamp = ring_stamp++;
+    const uint32_t now = uint32_t(s.collapses), stamp = s.new_stamps(1);
+    std::vector<uint32_t>& mark = s.mark;
     // The new 1-ring of a; its quadrics are scattered in memory: prefetch them together.
     mark[a] = stamp;
     const uint32_t* tl = s.tris_of(a);
-    if (ring.size() < 2 * size_t(s.vt_count[a]) + 1) ring.resize(2 * size_t(s.vt_count[a]) + 1);
+    if (ring.size() < 2 * size_t(s.run_of[a].count) + 1) ring.resize(2 * size_t(s.run_of[a].count) + 1);
     size_t nring = 0;
-    for (uint32_t i = 0, n = s.vt_count[a]; i < n; ++i) {
+    for (uint32_t i = 0, n = s.run_of[a].count; i < n; ++i) {
       const uint32_t* tv = &s.tri[3 * size_t(tl[i])];
       for (int k = 0; k < 3; ++k) {  // no branch on the mark: seen or not is random
         const uint32_t y = tv[k];
         ring[nring] = y;
         nring += mark[y] != stamp;
         mark[y] = stamp;
-        __builtin_prefetch(&s.quad[y]);
-        __builtin_prefetch(reinterpret_cast<const char*>(&s.quad[y]) + 64);
-        __builtin_prefetch(&s.pos[3 * size_t(y)]);
+        __builtin_prefetch(&s.vert[y]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&s.vert[y]) + 64);
       }
     }
     release(a);
@@ -950,12 +979,12 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       const Entry& n = heap.top();
       __builtin_prefetch(&s.changed[n.a]);
       __builtin_prefetch(&s.changed[n.b]);
-      __builtin_prefetch(&s.vt_start[n.a]);
-      __builtin_prefetch(&s.vt_start[n.b]);
-      __builtin_prefetch(&s.vt_count[n.a]);
-      __builtin_prefetch(&s.vt_count[n.b]);
-      __builtin_prefetch(&s.quad[n.a]);
-      __builtin_prefetch(&s.quad[n.b]);
+      __builtin_prefetch(&s.run_of[n.a]);
+      __builtin_prefetch(&s.run_of[n.b]);
+      __builtin_prefetch(&s.vert[n.a]);
+      __builtin_prefetch(&s.vert[n.b]);
+      __builtin_prefetch(reinterpret_cast<const char*>(&s.vert[n.a]) + 64);
+      __builtin_prefetch(reinterpret_cast<const char*>(&s.vert[n.b]) + 64);
     }
     if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
