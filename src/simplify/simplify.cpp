@@ -555,7 +555,12 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
   const size_t nt = tri.size() / 3;
   unique_edges_a.reserve(nt * 3 / 2 + 16);
   unique_edges_b.reserve(nt * 3 / 2 + 16);
-  std::vector<uint32_t> seen(nv, UINT32_MAX), on_edge(nv, 0), edge_tri(nv), edge_corner(nv);
+  // Per neighbour u of a: the vertex a it was last seen from, the triangles on (a, u), and
+  // the last of them with the corner where the edge starts: one record, one cache line.
+  struct Seen {
+    uint32_t from, count, tri, corner;
+  };
+  std::vector<Seen> seen(nv, Seen{UINT32_MAX, 0, 0, 0});
   std::vector<uint32_t> higher, border_b;
   for (uint32_t a = 0; a < nv; ++a) {
     const uint32_t deg_a = run_of[a].count;
@@ -570,18 +575,19 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
       const uint32_t ends[2] = {u1, u2};
       for (int e = 0; e < 2; ++e) {
         const uint32_t u = ends[e];
-        const bool fresh = seen[u] != a;
-        seen[u] = a;
-        on_edge[u] = fresh ? 1 : on_edge[u] + 1;
-        edge_tri[u] = t;  // the triangle of a border edge (read only when it is the one)
-        edge_corner[u] = corner[e];
+        Seen& s = seen[u];
+        const bool fresh = s.from != a;
+        s.from = a;
+        s.count = fresh ? 1 : s.count + 1;
+        s.tri = t;  // the triangle of a border edge (read only when it is the one)
+        s.corner = corner[e];
         higher[n] = u;
         n += fresh & (u > a);
       }
     }
     border_b.clear();
     for (size_t i = 0; i < n; ++i) {
-      const uint32_t b = higher[i], c = on_edge[b];
+      const uint32_t b = higher[i], c = seen[b].count;
       if (c == 1) border_b.push_back(b);
       if (c > 2) border[a] = border[b] = 1;
       unique_edges_a.push_back(a);
@@ -589,7 +595,7 @@ void State::build_edges(double border_weight, std::vector<uint32_t>* edge_a,
     }
     std::sort(border_b.begin(), border_b.end());
     for (uint32_t b : border_b) {
-      const uint32_t t = edge_tri[b], k = edge_corner[b];
+      const uint32_t t = seen[b].tri, k = seen[b].corner;
       const uint32_t v0 = tri[3 * t + k], v1 = tri[3 * t + (k + 1) % 3], v2 = tri[3 * t + (k + 2) % 3];
       const Quadric q = border_quadric(p(v0), p(v1), p(v2), border_weight);
       vert[v0].q += q;
