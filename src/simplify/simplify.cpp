@@ -1010,6 +1010,11 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
         has_refused[removed[i]] = 0;
       }
     for (int i = 0; i < made; ++i) refresh(kept[i]);
+    if (heap.has_top()) {  // the next pick's triangles, for its check
+      const Entry& n = heap.top();
+      for (uint32_t v : {n.a, n.b})
+        for (uint32_t t : s.vt(v)) __builtin_prefetch(&s.tri[3 * size_t(t)]);
+    }
     // A seam edge's cost holds the partners' quadrics: a partner whose twin took a
     // collapse has changed too.
     if (made == 1 && s.pair(kept[0])) {
