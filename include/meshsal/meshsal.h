@@ -61,9 +61,12 @@ struct Mesh {
   // simplify_mesh interpolates them at each new vertex and renormalises nx ny nz.
   std::vector<VertexAttribute> attributes;
   // Optional: set when vertices were split where their attributes differ at one position
-  // (an OBJ v used with different vt/vn: a UV seam). position_vertex[i] is the lowest
-  // vertex at the same position (i itself for that one; the loaders append the split
-  // twins after the file's own vertices). Empty = no vertex is split. Saliency and
+  // (a UV seam: an OBJ v used with different vt/vn, or PLY vertices at exactly one
+  // position with different property values). position_vertex[i] is the lowest vertex at
+  // the same position (i itself for that one; the OBJ loader appends the split twins after
+  // the file's own vertices, a PLY keeps the file's order). Empty = no vertex is split;
+  // PLY vertices that share a position and agree in every property are plain duplicates
+  // and stay separate vertices. Saliency and
   // curvature are computed on the position-welded mesh (each corner replaced by its
   // position_vertex) and copied to the twins, so a seam does not cut the surface; the
   // simplifier keeps seams closed (see simplify_mesh).
@@ -98,8 +101,9 @@ struct LoadOptions {
   uint64_t max_input_bytes = 0;
   // Fill Mesh::attributes (and Mesh::position_vertex): OBJ vt/vn, whose faces' v/vt/vn
   // corners become one vertex per distinct (v, vt, vn) (a v's first combination keeps its
-  // index, the others are appended), and PLY's other scalar vertex properties. Off by
-  // default: then an OBJ's vt/vn are ignored and vertices are the file's v lines.
+  // index, the others are appended), and PLY's other scalar vertex properties (with its
+  // seams found by position). Off by default: then an OBJ's vt/vn are ignored and vertices
+  // are the file's v lines.
   bool attributes = false;
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/mesh_io_internal.h"
+#include "io/seam_twins.h"
 #include "io/text_scan.h"
 
 namespace meshsal {
@@ -554,6 +555,9 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
     if (attributes) mesh.attributes.push_back({plan.extra_names[i], plan.extras[i]});
     if (properties) (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);
   }
+  // A PLY stores a UV seam as vertices split at one position: found here, so that saliency
+  // and simplification see one surface, as for an OBJ's v/vt corners.
+  if (attributes) find_seam_twins(mesh);
   return mesh;
 }
 

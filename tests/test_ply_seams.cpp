@@ -1,0 +1,87 @@
+// PLY files store a UV seam as vertices split at one position (find_seam_twins): loading
+// with attributes finds them, and simplification keeps such a seam closed as it does an
+// OBJ's.
+#include <string>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+#include "core/synthetic.h"
+#include "core/welded_view.h"
+#include "io/seam_twins.h"
+#include "test_io_util.h"
+#include "test_simplify_attributes_util.h"
+#include "test_simplify_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+Mesh load_ply_text(const std::string& text, bool attributes) {
+  LoadOptions o;
+  o.attributes = attributes;
+  return load_mesh_bytes(text, "seam.ply", nullptr, o);
+}
+
+// Two triangles over the unit square; vertex 4 sits where vertex 2 is, with u = `u4`.
+std::string quad_ply(float u4) {
+  return "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+         "property float z\nproperty float u\nelement face 2\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0 0\n1 0 0 1\n1 1 0 1\n0 1 -0 0\n1 1 0 " +
+         std::to_string(u4) + "\n3 0 1 2\n3 0 4 3\n";
+}
+
+}  // namespace
+
+TEST_CASE("ply attributes: vertices split at one position with other values are seam twins", "[io][simplify]") {
+  const Mesh split = load_ply_text(quad_ply(0.5f), true);
+  CHECK(split.position_vertex == std::vector<uint32_t>{0, 1, 2, 3, 2});
+  // The same values: a plain duplicate, left as the file has it.
+  CHECK(load_ply_text(quad_ply(1.0f), true).position_vertex.empty());
+  // Without attributes nothing tells a seam from a duplicate: the vertices as in the file.
+  CHECK(load_ply_text(quad_ply(0.5f), false).position_vertex.empty());
+  // -0 is the same position as +0.
+  const std::string negzero =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float u\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0\n1 0 0 0\n0 1 0 0\n-0 0 0 1\n3 0 1 2\n3 3 2 1\n";
+  CHECK(load_ply_text(negzero, true).position_vertex == std::vector<uint32_t>{0, 1, 2, 0});
+}
+
+TEST_CASE("simplify keeps a PLY's UV seam closed", "[simplify][io]") {
+  // The seamed sphere as an exporter writes it: split vertices in a PLY with u, v, nx, ny, nz.
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh obj = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 4)), "seamed.obj", nullptr, lo);
+  meshsal_test::TempDir dir;
+  const std::string path = dir.file("seamed.ply");
+  Mesh file = obj;
+  file.position_vertex.clear();  // a PLY cannot say which vertices are twins
+  write_ply(path, file, {});
+  const Mesh in = load_mesh(path, nullptr, lo);
+  REQUIRE(in.vertex_count() == obj.vertex_count());
+  CHECK(in.position_vertex == obj.position_vertex);  // found again from the positions alone
+
+  SimplifyOptions o;
+  o.target_faces = 1000;
+  SimplifyReport rep;
+  const Mesh out = simplify_mesh(in, o, nullptr, &rep);
+  CHECK(out.triangle_count() == 1000);
+  const simplify_test::Topology topo = simplify_test::topology(position_welded(out));
+  CHECK(topo.border_edges == 0);
+  CHECK(topo.nonmanifold_edges == 0);
+  size_t moved = 0;
+  for (size_t i = 0; i < out.vertex_count(); ++i) {
+    const uint32_t src = rep.vertex_origin[i];
+    if (in.position_vertex[src] == src && out.position_vertex[i] == i) continue;  // not a twin
+    for (int k = 0; k < 3; ++k) moved += out.positions[3 * i + k] != in.positions[3 * size_t(src) + k];
+  }
+  CHECK(moved == 0);
+
+  // Taken as the file's vertices alone, the seam is a cut and simplification opens it: its
+  // two sides no longer meet, even welded by position.
+  Mesh torn = in;
+  torn.position_vertex.clear();
+  torn = simplify_mesh(torn, o);
+  find_seam_twins(torn);
+  CHECK(simplify_test::topology(position_welded(torn)).border_edges > 20);
+}
