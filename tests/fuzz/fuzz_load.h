@@ -17,9 +17,12 @@
 namespace meshsal_fuzz {
 
 // Loads `data` as a file called `name`: "" (and the mesh) when it loads, else the Error.
-inline std::string load(const uint8_t* data, size_t size, const std::string& name, meshsal::Mesh& mesh) {
+// `attributes`: LoadOptions::attributes (OBJ vt/vn corners, PLY properties and seams).
+inline std::string load(const uint8_t* data, size_t size, const std::string& name, meshsal::Mesh& mesh,
+                        bool attributes = false) {
   meshsal::LoadOptions options;
   options.max_input_bytes = 8u << 20;
+  options.attributes = attributes;
   try {
     meshsal::VertexProperties properties;
     mesh = meshsal::load_mesh_bytes(std::string_view(reinterpret_cast<const char*>(data), size), name,
@@ -38,8 +41,13 @@ inline std::string load(const uint8_t* data, size_t size, const std::string& nam
 // meshes that load go through the CPU saliency pipeline). Returns load's result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
-  if (target == "obj" || target == "off" || target == "ply" || target == "stl")
+  if (target == "obj" || target == "off" || target == "ply" || target == "stl") {
+    if (target == "obj" || target == "ply") {  // the attribute paths too (what simplify reads)
+      meshsal::Mesh with_attributes;
+      load(data, size, "fuzz." + target, with_attributes, true);
+    }
     return load(data, size, "fuzz." + target, mesh);
+  }
   if (size < 1) return "empty input";
   static const char* const formats[] = {"obj", "off", "ply"};
   const std::string name = std::string("fuzz.") + formats[data[0] % 3] + (target == "gz" ? ".gz" : "");
