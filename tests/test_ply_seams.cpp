@@ -1,6 +1,6 @@
 // PLY files store a UV seam as vertices split at one position (find_seam_twins): loading
-// with attributes finds them, and simplification keeps such a seam closed as it does an
-// OBJ's.
+// with attributes finds them, simplification keeps such a seam closed as it does an OBJ's,
+// and every command's saliency sees one surface there.
 #include <string>
 #include <vector>
 
@@ -8,6 +8,7 @@
 #include "core/synthetic.h"
 #include "core/welded_view.h"
 #include "io/seam_twins.h"
+#include "cli_run.h"
 #include "test_io_util.h"
 #include "test_simplify_attributes_util.h"
 #include "test_simplify_util.h"
@@ -84,4 +85,31 @@ TEST_CASE("simplify keeps a PLY's UV seam closed", "[simplify][io]") {
   torn = simplify_mesh(torn, o);
   find_seam_twins(torn);
   CHECK(simplify_test::topology(position_welded(torn)).border_edges > 20);
+}
+
+TEST_CASE("cli saliency of a PLY with a UV seam: the seam does not cut the surface", "[cli][io]") {
+  // The seamed sphere in a PLY (twins split at one position) and the same sphere unsplit.
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh sphere = make_sphere(1.0, 3);
+  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(sphere), "seamed.obj", nullptr, lo);
+  const std::vector<uint32_t> pv = split.position_vertex;
+  split.position_vertex.clear();
+  meshsal_test::TempDir dir;
+  write_ply(dir.file("split.ply"), split, {});
+  write_ply(dir.file("plain.ply"), sphere, {});
+  for (const char* name : {"split", "plain"}) {
+    const meshsal_test::CliRun r = meshsal_test::run_cli(
+        "saliency " + dir.file(std::string(name) + ".ply") + " -o " + dir.file(std::string(name) + "_s.ply") +
+            " -q --backend cpu", dir);
+    REQUIRE(r.rc == 0);
+  }
+  Mesh file_split = split;
+  file_split.attributes.clear();
+  const std::vector<double> s_split = load_saliency_ply(dir.file("split_s.ply"), file_split);
+  const std::vector<double> s_plain = load_saliency_ply(dir.file("plain_s.ply"), sphere);
+  REQUIRE(s_split.size() == pv.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < pv.size(); ++i) differ += s_split[i] != s_plain[pv[i]];
+  CHECK(differ == 0);
 }

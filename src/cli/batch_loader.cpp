@@ -4,6 +4,7 @@
 #include <new>
 
 #include "core/timer.h"
+#include "load_input.h"
 
 namespace meshsal_cli {
 
@@ -32,7 +33,7 @@ void ModelLoader::run() {
     const meshsal::Timer t;
     try {
       meshsal::LoadReport report;
-      m.mesh = meshsal::load_mesh(path, nullptr, {}, &report);
+      m.mesh = load_input_mesh(path, nullptr, false, &report);  // as `meshsal saliency` reads it
       m.welded_corners = report.welded_corners;
     } catch (const std::bad_alloc&) {
       m.mesh = {};

@@ -1,4 +1,5 @@
-// meshsal CLI: loading an input mesh with the notes a user should see (STL welding).
+// meshsal CLI: loading an input mesh the way every command does (PLY seams found) with the
+// notes a user should see (STL welding).
 #pragma once
 #include <string>
 
@@ -6,9 +7,15 @@
 
 namespace meshsal_cli {
 
-// load_mesh, then, unless `quiet`, one note on stderr when STL corners were welded:
+// load_mesh with LoadOptions::attributes = `attributes` (OBJ vt/vn, PLY properties into
+// Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain
+// duplicates by their properties: Mesh::position_vertex) are found either way, so that
+// saliency sees one surface there; its properties are then kept only when asked.
+meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
+                              bool attributes, meshsal::LoadReport* report);
+
+// load_input_mesh, then, unless `quiet`, one note on stderr when STL corners were welded:
 // "note: PATH: welded N STL corners into V shared vertices".
-// `attributes`: LoadOptions::attributes (OBJ vt/vn, PLY properties into Mesh::attributes).
 meshsal::Mesh load_input(const std::string& path, bool quiet,
                          meshsal::VertexProperties* properties = nullptr, bool attributes = false);
 

@@ -2,7 +2,6 @@
 #include "io/seam_twins.h"
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <numeric>
 
@@ -10,15 +9,18 @@ namespace meshsal {
 
 namespace {
 
-// The position's bits, -0 read as +0, for exact comparison.
-std::array<uint32_t, 3> position_key(const Mesh& mesh, uint32_t v) {
-  std::array<uint32_t, 3> key;
-  for (int k = 0; k < 3; ++k) {
-    const float x = mesh.positions[3 * size_t(v) + k] == 0.0f ? 0.0f : mesh.positions[3 * size_t(v) + k];
-    std::memcpy(&key[k], &x, 4);
+// A vertex by its position's bits (-0 read as +0): sorting these puts each group of
+// vertices at one exact position together, lowest index first.
+struct Keyed {
+  uint32_t key[3];
+  uint32_t v;
+  bool same_place(const Keyed& o) const { return key[0] == o.key[0] && key[1] == o.key[1] && key[2] == o.key[2]; }
+  bool operator<(const Keyed& o) const {
+    for (int k = 0; k < 3; ++k)
+      if (key[k] != o.key[k]) return key[k] < o.key[k];
+    return v < o.v;
   }
-  return key;
-}
+};
 
 bool same_attributes(const Mesh& mesh, uint32_t a, uint32_t b) {
   for (const VertexAttribute& at : mesh.attributes)
@@ -32,29 +34,31 @@ void find_seam_twins(Mesh& mesh) {
   mesh.position_vertex.clear();
   const size_t n = mesh.vertex_count();
   if (mesh.attributes.empty() || n < 2) return;
-  // Vertices sorted by position, then index: each group is one run, lowest vertex first.
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::vector<std::array<uint32_t, 3>> keys(n);
-  for (size_t v = 0; v < n; ++v) keys[v] = position_key(mesh, uint32_t(v));
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
-  });
-  std::vector<uint32_t> pv(n);
-  std::iota(pv.begin(), pv.end(), 0u);
-  bool any = false;
+  std::vector<Keyed> sorted(n);
+  for (size_t v = 0; v < n; ++v) {
+    sorted[v].v = uint32_t(v);
+    for (int k = 0; k < 3; ++k) {
+      const float x = mesh.positions[3 * v + k] == 0.0f ? 0.0f : mesh.positions[3 * v + k];
+      std::memcpy(&sorted[v].key[k], &x, 4);
+    }
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<uint32_t> pv;
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
-    while (j < n && keys[order[j]] == keys[order[i]]) ++j;
+    while (j < n && sorted[j].same_place(sorted[i])) ++j;
     bool split = false;
-    for (size_t k = i + 1; k < j && !split; ++k) split = !same_attributes(mesh, order[i], order[k]);
+    for (size_t k = i + 1; k < j && !split; ++k) split = !same_attributes(mesh, sorted[i].v, sorted[k].v);
     if (split) {
-      for (size_t k = i; k < j; ++k) pv[order[k]] = order[i];
-      any = true;
+      if (pv.empty()) {
+        pv.resize(n);
+        std::iota(pv.begin(), pv.end(), 0u);
+      }
+      for (size_t k = i; k < j; ++k) pv[sorted[k].v] = sorted[i].v;
     }
     i = j;
   }
-  if (any) mesh.position_vertex = std::move(pv);
+  mesh.position_vertex = std::move(pv);
 }
 
 }  // namespace meshsal
