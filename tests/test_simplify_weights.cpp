@@ -14,6 +14,7 @@
 #include "meshsal/meshsal.h"
 #include "simplify/saliency_weights.h"
 #include "cli_run.h"
+#include "test_simplify_attributes_util.h"
 #include "test_util.h"
 #include "view/tradeoff_plot.h"
 
@@ -120,6 +121,51 @@ TEST_CASE("weights: the balanced preset on the bumpy sphere", "[simplify]") {
   REQUIRE(feature_n > 0);
   CHECK(feature_high == feature_n);
   CHECK(double(high - feature_high) <= 0.5 * double(n - feature_n));
+}
+
+TEST_CASE("weights: device_out names the saliency's device, seams or not", "[simplify]") {
+  SaliencyOptions so;
+  so.backend = Backend::Cpu;
+  const SaliencyWeightOptions wo = weight_preset(Weighting::Saliency);
+  const Mesh plain = make_bumpy_sphere(3);
+  std::string device = "unset";
+  simplification_weights(plain, wo, so, nullptr, nullptr, nullptr, &device);
+  CHECK(device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
+
+  // Split at a UV seam: weighed on the position-welded mesh, the device still comes back.
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh seamed = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 3)), "seamed.obj", nullptr, lo);
+  REQUIRE_FALSE(seamed.position_vertex.empty());
+  device = "unset";
+  std::vector<double> s;
+  const std::vector<double> w = simplification_weights(seamed, wo, so, nullptr, nullptr, &s, &device);
+  CHECK(device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
+  CHECK(w.size() == seamed.vertex_count());
+
+  // S given by the caller: no device computed it, the caller's value stays.
+  device = "file";
+  simplification_weights(seamed, wo, so, &s, nullptr, nullptr, &device);
+  CHECK(device == "file");
+}
+
+TEST_CASE("cli simplify --json: the device of a seamed OBJ's saliency", "[simplify]") {
+  const fs::path dir = scratch_dir("weights_seam_device");
+  const std::string in = (dir / "seamed.obj").string(), out = (dir / "out.obj").string();
+  {
+    std::FILE* f = std::fopen(in.c_str(), "wb");
+    REQUIRE(f);
+    const std::string text = attr_test::seamed_sphere_obj(make_sphere(1.0, 3));
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  const CliRun r = run_cli("simplify '" + in + "' -o '" + out + "' --ratio 0.5 --backend cpu --json");
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  CHECK(meshsal_test::json_valid(r.out));
+  CHECK(r.out.find("\"device\": \"cpu (") != std::string::npos);  // not "backend cpu"
+  CHECK(r.out.find("backend") == std::string::npos);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("cli simplify --weights balanced and bad names", "[simplify]") {

@@ -357,12 +357,16 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
 // `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
 // smoothed to Sm = G(S, 3 eps), then saliency_weights(). `alpha_out` receives alpha,
 // `saliency_out` S. A mesh split at seams (Mesh::position_vertex) is weighed welded.
+// `device_out` receives the name of the device that computed S (SaliencyResult::backend_name:
+// "cpu" or the Vulkan device's name), seams or not; when S is taken from `saliency` no device
+// computed it and *device_out is left unchanged (the caller's default).
 std::vector<double> simplification_weights(const Mesh& mesh,
                                            const SaliencyWeightOptions& weight_options,
                                            const SaliencyOptions& saliency_options,
                                            const std::vector<double>* saliency = nullptr,
                                            double* alpha_out = nullptr,
-                                           std::vector<double>* saliency_out = nullptr);
+                                           std::vector<double>* saliency_out = nullptr,
+                                           std::string* device_out = nullptr);
 
 // Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
 // or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into

@@ -12,12 +12,13 @@ std::vector<double> simplification_weights(const Mesh& mesh,
                                            const SaliencyWeightOptions& weight_options,
                                            const SaliencyOptions& saliency_options,
                                            const std::vector<double>* saliency,
-                                           double* alpha_out, std::vector<double>* saliency_out) {
+                                           double* alpha_out, std::vector<double>* saliency_out,
+                                           std::string* device_out) {
   // Vertices split at attribute seams: weigh the position-welded surface, then copy.
   if (!mesh.position_vertex.empty()) {
     check_position_vertex(mesh);
     std::vector<double> w = simplification_weights(position_welded(mesh), weight_options, saliency_options,
-                                                   saliency, alpha_out, saliency_out);
+                                                   saliency, alpha_out, saliency_out, device_out);
     copy_to_twins(mesh, w);
     if (saliency_out) copy_to_twins(mesh, *saliency_out);
     return w;
@@ -34,6 +35,7 @@ std::vector<double> simplification_weights(const Mesh& mesh,
     so.smoothed = true;
     SaliencyResult r = compute_saliency(mesh, so);
     smoothed = std::move(r.smoothed);
+    if (device_out) *device_out = r.backend_name;
     if (saliency_out) *saliency_out = std::move(r.saliency);
   }
   return saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);

@@ -134,20 +134,11 @@ int run(const Args& a) {
       from_file = load_saliency_of_positions(a.saliency_from, mesh);
       progress.update("smoothing saliency", 0.0);
     }
+    // One call for every case; it names the device that computed S (seams too), and leaves
+    // `device` at "cpu" when S comes from --saliency-from.
     std::vector<double> saliency;
-    if (a.saliency_from.empty() && mesh.position_vertex.empty()) {
-      // simplification_weights() computed here, to learn the saliency's device for the JSON.
-      so.smoothed = true;
-      SaliencyResult s = compute_saliency(mesh, so);
-      device = s.backend_name;
-      weights = saliency_weights(s.smoothed, referenced_vertices(mesh), wo, &alpha);
-      if (!obj) saliency = std::move(s.saliency);
-    } else {
-      // Seams (split vertices) are weighed on the position-welded mesh inside.
-      if (a.saliency_from.empty()) device = "backend " + a.backend;
-      weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
-                                       &alpha, obj ? nullptr : &saliency);
-    }
+    weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
+                                     &alpha, obj ? nullptr : &saliency, &device);
     t_saliency = ts.seconds();
     if (!obj) set_quality(mesh, saliency);  // S goes to the output PLY as `quality`
   }
