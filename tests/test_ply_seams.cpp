@@ -113,3 +113,26 @@ TEST_CASE("cli saliency of a PLY with a UV seam: the seam does not cut the surfa
   for (size_t i = 0; i < pv.size(); ++i) differ += s_split[i] != s_plain[pv[i]];
   CHECK(differ == 0);
 }
+
+TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file", "[cli][simplify]") {
+  LoadOptions lo;
+  lo.attributes = true;
+  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 3)), "seamed.obj", nullptr, lo);
+  split.position_vertex.clear();
+  meshsal_test::TempDir dir;
+  const std::string in = dir.file("split.ply"), sal = dir.file("split_s.ply");
+  write_ply(in, split, {});
+  REQUIRE(meshsal_test::run_cli("saliency " + in + " -o " + sal + " -q --backend cpu", dir).rc == 0);
+  // S from the file (one value per vertex of the PLY, twins included) gives the weights the
+  // computed S gives: the same output.
+  const meshsal_test::CliRun from_file =
+      meshsal_test::run_cli("simplify " + in + " --saliency-from " + sal + " --target-faces 300 -o " +
+                                dir.file("a.ply") + " -q", dir);
+  INFO(from_file.err);
+  REQUIRE(from_file.rc == 0);
+  REQUIRE(meshsal_test::run_cli("simplify " + in + " --backend cpu --target-faces 300 -o " + dir.file("b.ply") + " -q",
+                                dir).rc == 0);
+  const Mesh a = load_mesh(dir.file("a.ply")), b = load_mesh(dir.file("b.ply"));
+  CHECK(a.triangle_count() == 300);
+  CHECK(a.triangles == b.triangles);
+}

@@ -6,7 +6,6 @@
 #include "core/mesh_points.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
-#include "saliency/saliency.h"
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
@@ -43,11 +42,13 @@ void set_quality(meshsal::Mesh& mesh, const std::vector<double>& saliency) {
   mesh.attributes.push_back({"quality", std::move(q)});
 }
 
-// S from a saliency PLY. For an OBJ split at UV seams, the file holds the saliency of its
-// positions (what `meshsal saliency` writes): the first vertices, the twins after them.
-std::vector<double> load_saliency_of_positions(const std::string& path, const meshsal::Mesh& mesh) {
+// S from a saliency PLY, as `meshsal saliency` writes it for the same input. For an OBJ
+// split at UV seams that is the saliency of its positions: the first vertices, the twins
+// after them. A PLY's twins are vertices of the file: one value each.
+std::vector<double> load_saliency_of_positions(const std::string& path, const meshsal::Mesh& mesh,
+                                               bool ply_input) {
   const std::vector<uint32_t>& pv = mesh.position_vertex;
-  if (pv.empty()) return meshsal::load_saliency_ply(path, mesh);
+  if (pv.empty() || ply_input) return meshsal::load_saliency_ply(path, mesh);
   size_t positions = 0;
   while (positions < pv.size() && pv[positions] == positions) ++positions;
   meshsal::Mesh own;
@@ -131,7 +132,7 @@ int run(const Args& a) {
     };
     std::vector<double> from_file;
     if (!a.saliency_from.empty()) {
-      from_file = load_saliency_of_positions(a.saliency_from, mesh);
+      from_file = load_saliency_of_positions(a.saliency_from, mesh, is_ply_path(a.input));
       progress.update("smoothing saliency", 0.0);
     }
     // One call for every case; it names the device that computed S (seams too), and leaves

@@ -6,21 +6,16 @@
 
 namespace meshsal_cli {
 
-namespace {
-
-// .ply or .ply.gz, in any case.
-bool is_ply(std::string path) {
+bool is_ply_path(std::string path) {
   for (char& c : path) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0) path.resize(path.size() - 3);
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".ply") == 0;
 }
 
-}  // namespace
-
 meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
                               bool attributes, meshsal::LoadReport* report) {
   meshsal::LoadOptions options;
-  options.attributes = attributes || is_ply(path);
+  options.attributes = attributes || is_ply_path(path);
   meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, report);
   if (!attributes) mesh.attributes.clear();
   return mesh;

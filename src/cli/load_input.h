@@ -7,6 +7,9 @@
 
 namespace meshsal_cli {
 
+// Whether `path` names a PLY (.ply or .ply.gz, in any case).
+bool is_ply_path(std::string path);
+
 // load_mesh with LoadOptions::attributes = `attributes` (OBJ vt/vn, PLY properties into
 // Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain
 // duplicates by their properties: Mesh::position_vertex) are found either way, so that
