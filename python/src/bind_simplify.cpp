@@ -20,6 +20,7 @@ struct SimplifyOut {
   size_t input_faces = 0, target_faces = 0, output_faces = 0, collapses = 0;
   bool reached = false, unchanged = false;
   std::string note, weights;
+  std::string device = "cpu";  // what computed S; the CLI's JSON `device`
   double alpha = 0, seconds = 0;
 };
 
@@ -94,7 +95,8 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
         wo.lambda = lambda;
         wo.alpha_percentile = alpha_percentile;
         wo.floor = weight_floor;
-        w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha);
+        w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, nullptr,
+                                            &out.device);
       }
       result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
     }
@@ -135,6 +137,10 @@ void bind_simplify(py::module_& m) {
       .def_readonly("weights", &SimplifyOut::weights, "'saliency', 'none' or 'array'")
       .def_readonly("alpha", &SimplifyOut::alpha, "the alpha_percentile of Sm (weights='saliency')")
       .def_readonly("seconds", &SimplifyOut::seconds, "wall time of the simplification itself")
+      .def_readonly("device", &SimplifyOut::device,
+                    "the device that computed the saliency ('cpu (N threads)' or the Vulkan device's "
+                    "name); 'cpu' when no saliency was computed (weights 'none' or an array, or "
+                    "saliency given)")
       .def_readonly("notices", &SimplifyOut::notices, "list of str: the library's notices")
       .def("__iter__", [](const SimplifyOut& r) { return py::iter(py::make_tuple(r.vertices, r.faces)); })
       .def("__repr__", [](const SimplifyOut& r) {
