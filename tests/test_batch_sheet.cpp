@@ -1,40 +1,23 @@
 // `meshsal batch --contact-sheet`: one thumbnail per model with its name, by pixels.
 #include <catch2/catch.hpp>
 
-#include <stb/stb_image.h>  // implemented in stb_image_impl.cpp
-
+#include "png_check.h"
 #include "test_batch_util.h"
 
 using namespace meshsal_test;
 
 namespace {
 
-struct Pixels {
-  int w = 0, h = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const { return &rgb[(size_t(y) * w + x) * 3]; }
-};
-
-Pixels read_png(const fs::path& p) {
-  Pixels img;
-  int comp = 0;
-  unsigned char* data = stbi_load(p.c_str(), &img.w, &img.h, &comp, 3);
-  REQUIRE(data);
-  img.rgb.assign(data, data + size_t(img.w) * img.h * 3);
-  stbi_image_free(data);
-  return img;
-}
-
 // Pixels in [x0, x1) x [y0, y1) that are saturated colour (the saliency colours), dark
 // (text) and not white.
 struct Counts {
   int coloured = 0, dark = 0, not_white = 0;
 };
-Counts count(const Pixels& img, int x0, int y0, int x1, int y1) {
+Counts count(const meshsal::Image& img, int x0, int y0, int x1, int y1) {
   Counts c;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
-      const unsigned char* p = img.at(x, y);
+      const uint8_t* p = img.at(x, y);
       const int mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
       c.coloured += mx - mn > 80;
       c.dark += mx < 100;
@@ -55,9 +38,9 @@ TEST_CASE("batch: the contact sheet has one named thumbnail per good model", "[b
   CHECK(r.exit_code == 1);  // broken.obj
   for (const char* name : {"ball", "bumpy", "cube"}) CHECK(fs::exists(out / (std::string(name) + "_view.png")));
   // 3 thumbnails: 2 columns, 2 rows of 256 x (256 + 28) cells, 8 px apart and around.
-  Pixels img = read_png(sheet);
-  CHECK(img.w == 8 + 2 * (256 + 8));
-  CHECK(img.h == 8 + 2 * (256 + 28 + 8));
+  meshsal::Image img = read_png(sheet.string());
+  CHECK(img.width == 8 + 2 * (256 + 8));
+  CHECK(img.height == 8 + 2 * (256 + 28 + 8));
   for (int cell = 0; cell < 4; ++cell) {
     INFO("cell " << cell);
     const int x0 = 8 + (cell % 2) * 264, y0 = 8 + (cell / 2) * 292;
@@ -75,7 +58,7 @@ TEST_CASE("batch: the contact sheet has one named thumbnail per good model", "[b
   fs::remove(sheet);
   r = run_meshsal(args, dir);
   CHECK(r.out.find("0 computed, 3 skipped, 1 failed") != std::string::npos);
-  img = read_png(sheet);
-  CHECK(img.w == 8 + 2 * (256 + 8));
+  img = read_png(sheet.string());
+  CHECK(img.width == 8 + 2 * (256 + 8));
   CHECK(count(img, 8 + 264, 8, 8 + 264 + 256, 8 + 256).coloured > 500);
 }
