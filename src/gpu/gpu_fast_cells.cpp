@@ -7,39 +7,20 @@
 #include <vector>
 
 #include "meshsal/meshsal.h"
+#include "gpu/gpu_radix_sort.h"
 #include "gpu/vk_compute.h"
 
 #include "fast_aggregate_cells_comp.h"
 #include "fast_aggregate_pieces_comp.h"
 #include "fast_cell_key_comp.h"
-#include "grid_radix_count_comp.h"
-#include "grid_radix_scatter_comp.h"
-#include "grid_scan_comp.h"
 
 namespace meshsal::gpu {
 
 namespace {
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
-constexpr uint32_t kTile = 256;  // items per invocation of the radix passes (as gpu_grid.cpp)
 struct KeyPush { uint32_t base, n, nx, ny, nz, pad; double cell; };
 struct RangePush { uint32_t base, n; };
-struct RadixPush { uint32_t base, n, items, shift, first; };
 struct CellsPush { uint32_t base, n, pad0, pad1; double min[3]; };
-
-// One work group scans count[0, n) into start[0, n] (grid_scan.comp).
-void scan(VkCommandBuffer cmd, const vk::Kernel& k, VkDescriptorSet set, uint32_t n) {
-  RangePush p{0, n};
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout, 0, 1, &set, 0, nullptr);
-  vkCmdPushConstants(cmd, k.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof p, &p);
-  vkCmdDispatch(cmd, 1, 1, 1);
-}
-
-uint32_t radix_passes(uint64_t largest_key) {
-  uint32_t bits = 0;
-  while (bits < 32 && (largest_key >> bits) != 0) ++bits;
-  return std::max<uint32_t>(1, (bits + 7) / 8);
-}
 }  // namespace
 
 FastGrid plan_fast_grid(const double extent[3], double cell) {
@@ -61,61 +42,29 @@ FastGrid plan_fast_grid(const double extent[3], double cell) {
 }
 
 uint64_t fast_cells_bytes(uint64_t nv, uint64_t np) {
-  const uint64_t tiles = (nv + kTile - 1) / kTile;
-  const uint64_t sort = nv * 16 + (2 * 256 * tiles + 1) * 4;  // keys, values, digit counts
-  const uint64_t pieces = np + np / kFastPiece + 1;           // at most
+  const uint64_t sort = RadixSort::bytes(nv);
+  const uint64_t pieces = np + np / kFastPiece + 1;  // at most
   return sort + pieces * (4 + 4 + 32) + np * (4 + 32 + 8);    // piece arrays and sums, cells
 }
 
 FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, uint32_t np,
                           const FastGrid& g, const double box_min[3]) {
   const uint32_t cells = g.nx * g.ny * g.nz;
-  const uint32_t tiles = (nv + kTile - 1) / kTile;
-  const uint32_t digits = 256 * tiles;
-  vk::Buffer key[2] = {vk::Buffer(ctx, size_t(nv) * 4, "the fast method's cell keys"),
-                       vk::Buffer(ctx, size_t(nv) * 4, "the fast method's sorted cell keys")};
-  vk::Buffer value[2] = {vk::Buffer(ctx, size_t(nv) * 4, "the fast method's sorted vertices"),
-                         vk::Buffer(ctx, size_t(nv) * 4, "the fast method's sorted vertices")};
-  vk::Buffer counts(ctx, size_t(digits) * 4, "the radix digit counts");
-  vk::Buffer offsets(ctx, size_t(digits + 1) * 4, "the radix digit offsets");
-
-  const std::vector<int32_t> tile{int32_t(kTile)};
   auto& k_key = vk::cached_kernel(ctx, spv_fast_cell_key_comp, sizeof spv_fast_cell_key_comp, 3,
                                   sizeof(KeyPush), "fast_cell_key");
-  auto& k_scan = vk::cached_kernel(ctx, spv_grid_scan_comp, sizeof spv_grid_scan_comp, 2,
-                                   sizeof(RangePush), "grid_scan");
-  auto& k_count = vk::cached_kernel(ctx, spv_grid_radix_count_comp, sizeof spv_grid_radix_count_comp,
-                                    2, sizeof(RadixPush), "grid_radix_count", tile);
-  auto& k_scatter = vk::cached_kernel(ctx, spv_grid_radix_scatter_comp,
-                                      sizeof spv_grid_radix_scatter_comp, 5, sizeof(RadixPush),
-                                      "grid_radix_scatter", tile);
   vk::DescriptorPool pool(ctx, 8, 32);
-  VkDescriptorSet s_key = pool.bind(k_key, {in.pos, in.flags, &key[0]});
-  VkDescriptorSet s_digits = pool.bind(k_scan, {&counts, &offsets});
-  VkDescriptorSet s_count[2], s_scatter[2];
-  for (int i = 0; i < 2; ++i) {  // pass p reads array p % 2 and writes the other
-    s_count[i] = pool.bind(k_count, {&key[i], &counts});
-    s_scatter[i] = pool.bind(k_scatter, {&key[i], &value[i], &offsets, &key[1 - i], &value[1 - i]});
-  }
-  const uint32_t passes = radix_passes(cells);  // keys run up to `cells` (not a point)
+  RadixSort sort(ctx, pool, nv, cells, "the fast method's");  // keys run up to `cells` (not a point)
+  VkDescriptorSet s_key = pool.bind(k_key, {in.pos, in.flags, &sort.keys_in()});
   vk::submit(ctx, "fast method: cell sort", [&](VkCommandBuffer cmd) {
     KeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.cell};
     vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, nv, kLocal);
     vk::barrier(cmd);
-    for (uint32_t p = 0; p < passes; ++p) {
-      RadixPush rp{0, 0, nv, 8 * p, p == 0};
-      vk::dispatch(ctx, cmd, k_count, s_count[p % 2], &rp, 0, tiles, kLocal);
-      vk::barrier(cmd);
-      scan(cmd, k_scan, s_digits, digits);
-      vk::barrier(cmd);
-      vk::dispatch(ctx, cmd, k_scatter, s_scatter[p % 2], &rp, 0, tiles, kLocal);
-      vk::barrier(cmd);
-    }
+    sort.record(ctx, cmd);
   });
 
   // The occupied cells and their pieces, from the sorted keys (linear in the points).
   std::vector<uint32_t> sorted_key(np);
-  key[passes % 2].download(sorted_key.data(), size_t(np) * 4);
+  sort.sorted_keys().download(sorted_key.data(), size_t(np) * 4);
   std::vector<uint32_t> piece_start, piece_cell, cell_piece;
   piece_start.reserve(np / 2 + 2);
   for (uint32_t i = 0; i < np;) {
@@ -137,7 +86,7 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
   cell_piece.push_back(fc.pieces);
   piece_start.push_back(np);
 
-  fc.order = std::move(value[passes % 2]);
+  fc.order = std::move(sort.order());
   fc.piece_start = vk::Buffer(ctx, piece_start.size() * 4, "the fast method's pieces");
   fc.piece_cell = vk::Buffer(ctx, piece_cell.size() * 4, "the fast method's pieces");
   vk::Buffer cell_piece_buf(ctx, cell_piece.size() * 4, "the fast method's pieces");
