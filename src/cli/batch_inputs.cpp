@@ -4,22 +4,18 @@
 #include <glob.h>
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <set>
 
 #include "meshsal/meshsal.h"
+#include "load_input.h"
 
 namespace meshsal_cli {
 namespace {
 
 namespace fs = std::filesystem;
 using meshsal::Error;
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 bool is_glob(const std::string& item) { return item.find_first_of("*?[") != std::string::npos; }
 
@@ -107,12 +103,8 @@ class Expander {
 }  // namespace
 
 bool is_mesh_file_name(const std::string& path) {
-  std::string s = path;
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ends_with(s, ".gz")) s.resize(s.size() - 3);
-  for (const char* ext : {".obj", ".ply", ".off", ".stl"})
-    if (ends_with(s, ext)) return true;
-  return false;
+  const std::string ext = mesh_extension(path);
+  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
 }
 
 std::vector<std::string> expand_batch_inputs(const std::vector<std::string>& items,

@@ -132,7 +132,7 @@ int run(const Args& a) {
     };
     std::vector<double> from_file;
     if (!a.saliency_from.empty()) {
-      from_file = load_saliency_of_positions(a.saliency_from, mesh, is_ply_path(a.input));
+      from_file = load_saliency_of_positions(a.saliency_from, mesh, mesh_extension(a.input) == ".ply");
       progress.update("smoothing saliency", 0.0);
     }
     // One call for every case; it names the device that computed S (seams too), and leaves

@@ -6,16 +6,18 @@
 
 namespace meshsal_cli {
 
-bool is_ply_path(std::string path) {
-  for (char& c : path) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0) path.resize(path.size() - 3);
-  return path.size() > 4 && path.compare(path.size() - 4, 4, ".ply") == 0;
+std::string mesh_extension(const std::string& path) {
+  std::string name = path.substr(path.find_last_of('/') + 1);  // npos + 1 == 0
+  for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0) name.resize(name.size() - 3);
+  const size_t dot = name.find_last_of('.');
+  return dot == std::string::npos ? std::string() : name.substr(dot);
 }
 
 meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
                               bool attributes, meshsal::LoadReport* report) {
   meshsal::LoadOptions options;
-  options.attributes = attributes || is_ply_path(path);
+  options.attributes = attributes || mesh_extension(path) == ".ply";
   meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, report);
   if (!attributes) mesh.attributes.clear();
   return mesh;

@@ -7,8 +7,9 @@
 
 namespace meshsal_cli {
 
-// Whether `path` names a PLY (.ply or .ply.gz, in any case).
-bool is_ply_path(std::string path);
+// The format a file name gives: its extension in lower case, a trailing .gz dropped
+// (".ply" for "Scan.PLY.gz"); "" when it has none.
+std::string mesh_extension(const std::string& path);
 
 // load_mesh with LoadOptions::attributes = `attributes` (OBJ vt/vn, PLY properties into
 // Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain

@@ -11,7 +11,8 @@
 namespace meshsal::gpu {
 
 namespace {
-constexpr uint32_t kLocal = 64;  // local_size_x of the radix shaders
+constexpr uint32_t kLocal = 64;       // local_size_x of the radix shaders
+constexpr uint32_t kRadixTile = 256;  // keys per invocation of the count and scatter passes
 struct RangePush { uint32_t base, n; };
 struct RadixPush { uint32_t base, n, items, shift, first; };
 

@@ -11,8 +11,6 @@
 
 namespace meshsal::gpu {
 
-constexpr uint32_t kRadixTile = 256;  // keys per invocation of the count and scatter passes
-
 // One work group scans set's first buffer count[0, n) into its second, start[0, n]
 // (exclusive, start[n] = total): grid_scan.comp, bound as `scan_kernel(ctx)` gives it.
 void record_scan(VkCommandBuffer cmd, const vk::Kernel& scan, VkDescriptorSet set, uint32_t n);

@@ -63,10 +63,7 @@ Mesh weld(const std::vector<float>& corners, uint64_t* welded) {
   mesh.triangles.reserve(n);
   for (size_t c = 0; c < n; ++c) {
     Key key;
-    for (int k = 0; k < 3; ++k) {
-      const float x = corners[3 * c + k] == 0.0f ? 0.0f : corners[3 * c + k];
-      std::memcpy(&key.b[k], &x, 4);
-    }
+    for (int k = 0; k < 3; ++k) key.b[k] = position_bits(corners[3 * c + k]);
     auto [it, fresh] = index.emplace(key, static_cast<uint32_t>(mesh.positions.size() / 3));
     if (fresh) mesh.positions.insert(mesh.positions.end(), &corners[3 * c], &corners[3 * c] + 3);
     mesh.triangles.push_back(it->second);

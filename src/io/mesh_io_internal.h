@@ -4,6 +4,7 @@
 // (load_mesh) runs validate_mesh on the result.
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +22,15 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
 // STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
+
+// The bits of a coordinate for exact comparison of positions (STL welding, PLY seams):
+// float equality, -0 equal to +0.
+inline uint32_t position_bits(float x) {
+  if (x == 0.0f) x = 0.0f;
+  uint32_t b;
+  std::memcpy(&b, &x, 4);
+  return b;
+}
 
 // The fan triangulation of one polygon (n >= 3 indices, already checked): (p0, pi, pi+1).
 template <class Index>

@@ -2,8 +2,9 @@
 #include "io/seam_twins.h"
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
+
+#include "io/mesh_io_internal.h"
 
 namespace meshsal {
 
@@ -37,10 +38,7 @@ void find_seam_twins(Mesh& mesh) {
   std::vector<Keyed> sorted(n);
   for (size_t v = 0; v < n; ++v) {
     sorted[v].v = uint32_t(v);
-    for (int k = 0; k < 3; ++k) {
-      const float x = mesh.positions[3 * v + k] == 0.0f ? 0.0f : mesh.positions[3 * v + k];
-      std::memcpy(&sorted[v].key[k], &x, 4);
-    }
+    for (int k = 0; k < 3; ++k) sorted[v].key[k] = position_bits(mesh.positions[3 * v + k]);
   }
   std::sort(sorted.begin(), sorted.end());
   std::vector<uint32_t> pv;
