@@ -33,6 +33,7 @@ using meshsal_test::CliRun;
 using meshsal_test::read_file;
 using meshsal_test::run_cli;
 
+using meshsal_test::check_maps_match;
 using meshsal_test::rel_error;
 
 namespace {
@@ -63,14 +64,7 @@ SaliencyResult compare(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions
   CHECK(gpu.method == Method::Fast);
   CHECK(!gpu.mixed_precision);
   CHECK(gpu.eps == cpu.eps);
-  REQUIRE(gpu.raw.size() == cpu.raw.size());
-  for (size_t i = 0; i < cpu.raw.size(); ++i) {
-    INFO("raw map " << i << " (scale " << opt.scales[i] << ")");
-    CHECK(rel_error(cpu.raw[i], gpu.raw[i]) <= 1e-4);
-  }
-  CHECK(*std::max_element(cpu.saliency.begin(), cpu.saliency.end()) > 0);
-  CHECK(rel_error(cpu.saliency, gpu.saliency) <= 1e-4);
-  CHECK(rel_error(cpu.smoothed, gpu.smoothed) <= 1e-4);
+  check_maps_match(cpu, gpu, opt.scales, 1e-4);
   // (query, cell) pairs: the same cells within the same strict cutoffs.
   CHECK(cpu.pairs > mesh.vertex_count());
   CHECK(gpu.pairs == cpu.pairs);

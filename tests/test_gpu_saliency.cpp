@@ -18,7 +18,7 @@
 
 using namespace meshsal;
 
-using meshsal_test::rel_error;
+using meshsal_test::check_maps_match;
 
 namespace {
 
@@ -54,14 +54,7 @@ void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what
   CHECK(vk::validation_message_count() == before);
   CHECK(gpu.backend_name == context().info.name);
   CHECK(gpu.eps == cpu.eps);
-  REQUIRE(gpu.raw.size() == cpu.raw.size());
-  for (size_t i = 0; i < cpu.raw.size(); ++i) {
-    INFO("raw map " << i << " (scale " << opt.scales[i] << ")");
-    CHECK(rel_error(cpu.raw[i], gpu.raw[i]) <= 1e-4);
-  }
-  CHECK(*std::max_element(cpu.saliency.begin(), cpu.saliency.end()) > 0);
-  CHECK(rel_error(cpu.saliency, gpu.saliency) <= 1e-4);
-  CHECK(rel_error(cpu.smoothed, gpu.smoothed) <= 1e-4);
+  check_maps_match(cpu, gpu, opt.scales, 1e-4);
   // Pair counts: identical up to float-vs-double ties at the sweep radius.
   CHECK(cpu.pairs > mesh.vertex_count());
   CHECK(std::fabs(double(gpu.pairs) - double(cpu.pairs)) <= 1e-5 * double(cpu.pairs));

@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "meshsal/meshsal.h"
+
 namespace meshsal_test {
 
 inline std::string data_dir() { return MESHSAL_DATA_DIR; }
@@ -37,6 +39,20 @@ inline double rel_error(const std::vector<double>& a, const std::vector<double>&
     err = std::max(err, std::fabs(a[v] - b[v]));
   }
   return mx > 0 ? err / mx : err;
+}
+
+// A GPU twin's saliency against the CPU path's on the same options: as many raw maps, S
+// positive somewhere, and every raw map, S and Sm within `tol` (rel_error) of the CPU's.
+inline void check_maps_match(const meshsal::SaliencyResult& cpu, const meshsal::SaliencyResult& gpu,
+                             const std::vector<double>& scales, double tol) {
+  REQUIRE(gpu.raw.size() == cpu.raw.size());
+  for (size_t i = 0; i < cpu.raw.size(); ++i) {
+    INFO("raw map " << i << " (scale " << scales[i] << ")");
+    CHECK(rel_error(cpu.raw[i], gpu.raw[i]) <= tol);
+  }
+  CHECK(*std::max_element(cpu.saliency.begin(), cpu.saliency.end()) > 0);
+  CHECK(rel_error(cpu.saliency, gpu.saliency) <= tol);
+  CHECK(rel_error(cpu.smoothed, gpu.smoothed) <= tol);
 }
 
 }  // namespace meshsal_test
