@@ -3,11 +3,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <cerrno>
 #include <cstring>
+
+#include <cctype>
 #include <filesystem>
 
+#include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal_cli {
@@ -22,26 +24,11 @@ bool ends_with_nocase(const std::string& s, const std::string& suffix) {
   return true;
 }
 
-std::string folder_of(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 std::string joined(const std::vector<std::string>& items, const char* last_sep) {
   std::string s;
   for (size_t i = 0; i < items.size(); ++i)
     s += (i == 0 ? "" : i + 1 == items.size() ? last_sep : ", ") + items[i];
   return s;
-}
-
-void check_writable_folder(const std::string& path, const std::string& folder) {
-  struct stat st;
-  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
-    throw Error(path + ": cannot write: folder '" + folder + "' does not exist");
-  if (::access(folder.c_str(), W_OK | X_OK) != 0)
-    throw Error(path + ": cannot write: folder '" + folder + "' is not writable (" +
-                std::strerror(errno) + ")");
 }
 
 }  // namespace
@@ -54,10 +41,10 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std
     for (const std::string& ext : out.extensions) known = known || ends_with_nocase(out.path, ext);
     if (!known)
       throw Error(out.path + ": " + out.option + " must be a " + joined(out.extensions, " or ") + " file");
-    check_writable_folder(out.path, folder_of(out.path));
+    // The writers' own rule (atomic_write.h): folders, disks and sockets refused, links followed.
+    const meshsal::OutputTarget target = meshsal::output_target(out.path);
     struct stat os;
-    if (::stat(out.path.c_str(), &os) == 0) {
-      if (S_ISDIR(os.st_mode)) throw Error(out.path + ": cannot write: it is a folder");
+    if (::stat(target.path.c_str(), &os) == 0) {
       for (const std::string& in : inputs) {
         struct stat is;
         if (!in.empty() && ::stat(in.c_str(), &is) == 0 && is.st_dev == os.st_dev && is.st_ino == os.st_ino)
@@ -65,6 +52,7 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std
                       "' (an output never replaces an input)");
       }
     }
+    if (target.kind != meshsal::OutputKind::Direct) remove_stale_temporaries_of(target.path);
     std::error_code ec;
     std::filesystem::path canonical = std::filesystem::weakly_canonical(out.path, ec);
     if (ec) canonical = out.path;
@@ -75,12 +63,20 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std
   }
 }
 
+void remove_stale_temporaries_of(const std::string& file) {
+  const std::filesystem::path p(file);
+  const std::string name = p.filename().string();
+  const std::string folder = p.has_parent_path() ? p.parent_path().string() : ".";
+  meshsal::remove_stale_temporaries(folder, [&](const std::string& base) { return base == name; });
+}
+
 void prepare_output_folder(const std::string& dir) {
   if (dir.empty()) throw Error("the output folder name is empty");
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the output folder: " + ec.message());
-  check_writable_folder(dir + "/", dir);
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw Error(dir + ": cannot write: folder '" + dir + "' is not writable (" + std::strerror(errno) + ")");
 }
 
 }  // namespace meshsal_cli
