@@ -163,7 +163,7 @@ TEST_CASE("batch: bad options and inputs are refused before any work", "[batch]"
   CHECK(r.err == "error: " + (in / "*.stl").string() + ": no file matches\n");
   r = run_meshsal("batch --list " + (dir / "missing.txt").string() + " -o " + out.string(), dir);
   CHECK(r.exit_code == 1);
-  CHECK(r.err == "error: " + (dir / "missing.txt").string() + ": cannot read the list file\n");
+  CHECK(r.err == "error: " + (dir / "missing.txt").string() + ": cannot read the list file: No such file or directory\n");
   r = run_meshsal("batch " + in.string() + " -o " + out.string() + " --contact-sheet " + (dir / "sheet.jpg").string(), dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("--contact-sheet must be a .png file") != std::string::npos);

@@ -60,6 +60,7 @@ TEST_CASE("saliency weights: percentile threshold and amplification", "[simplify
   CHECK(percentile(sm, all, 100) == 5.0);
   CHECK(percentile(sm, all, 30) == Approx(1.5));
   SaliencyWeightOptions o;  // lambda 100, 30th percentile
+  o.floor = 0;              // the paper's literal rule (the default floor is tested below)
   double alpha = -1;
   std::vector<double> w = saliency_weights(sm, all, o, &alpha);
   CHECK(alpha == Approx(1.5));
@@ -71,7 +72,7 @@ TEST_CASE("saliency weights: percentile threshold and amplification", "[simplify
   CHECK(alpha == Approx(1.0));
   CHECK(w[5] == 0.0);
   CHECK(w[0] == Approx(100.0));  // Sm >= alpha is amplified
-  // The optional floor (off by default) lifts near-zero weights.
+  // A floor lifts near-zero weights.
   o.floor = 0.5;
   w = saliency_weights(sm, all, o, &alpha);
   CHECK(w[0] == Approx(0.5 * (0 + 1 + 200 + 300 + 400 + 500) / 6.0));

@@ -85,11 +85,13 @@ TEST_CASE("weights: the named presets", "[simplify]") {
   CHECK(paper.curve == WeightCurve::Threshold);
   CHECK(paper.lambda == 100);
   CHECK(paper.alpha_percentile == 30);
+  CHECK(paper.floor == kDefaultWeightFloor);
+  CHECK(kDefaultWeightFloor == 0.001);
   const SaliencyWeightOptions b = weight_preset(Weighting::Balanced);
   CHECK(b.curve == WeightCurve::Threshold);
   CHECK(b.alpha_percentile == 50);
   CHECK(b.lambda == 3);
-  CHECK(b.floor == 0);
+  CHECK(b.floor == kDefaultWeightFloor);
 }
 
 TEST_CASE("weights: the balanced preset on the bumpy sphere", "[simplify]") {

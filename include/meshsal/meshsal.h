@@ -22,6 +22,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <atomic>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -40,6 +41,13 @@ namespace meshsal {
 // single line; the command-line tool prints it after "error: ".
 struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Thrown by a call whose cancel flag was set (SaliencyOptions::cancel and its twins in the
+// other options): the call stopped early and returns nothing. An Error, so code that only
+// catches Error still stops; code that falls back on Error must let this one through.
+struct Cancelled : Error {
+  using Error::Error;
 };
 
 // One per-vertex attribute channel besides the position (a texture coordinate, a normal
@@ -85,6 +93,15 @@ Mesh make_mesh(const float* positions, size_t vertex_count, const uint32_t* indi
 // or no triangle has non-zero area.
 void validate_mesh(const Mesh& mesh);
 
+// "" when the float32 positions resolve the mesh's detail, else a one-line warning
+// ("float precision: ...") that they do not: the median edge (over a sample of triangles) is under 64 float steps at the
+// largest coordinate magnitude of the mesh points, so normals, curvature and collapse tests
+// work on rounding noise (a vertex 1e15 away from a 1-unit model; a scan at survey
+// coordinates in float). It names that vertex. compute_saliency passes it to
+// SaliencyOptions::notice ("warning: ...") and simplify_mesh to SimplifyReport::warning (and
+// to its note when the target is missed).
+std::string precision_warning(const Mesh& mesh);
+
 // ------------------------------------------------------------------------------------------
 // Reading and writing files
 
@@ -105,6 +122,9 @@ struct LoadOptions {
   // seams found by position). Off by default: then an OBJ's vt/vn are ignored and vertices
   // are the file's v lines.
   bool attributes = false;
+  // Refuse named pipes too: only regular files are read (meshsal batch, where a pipe
+  // among the inputs would block its loader until something writes to it).
+  bool regular_files_only = false;
 };
 
 // What loading did to the file's data besides parsing it.
@@ -114,6 +134,10 @@ struct LoadReport {
   // 3 * triangles - vertices of the result. STL stores every corner by value; welding
   // gives the shared vertices that curvature needs.
   uint64_t welded_corners = 0;
+  // PLY only: what the file holds that no loading keeps, e.g. "vertex list property
+  // 'texcoord'", "face property 'flags'", "element 'edge'" (scalar vertex properties are
+  // kept with LoadOptions::attributes). Tells a user what an output will lack.
+  std::vector<std::string> unread;
 };
 
 // Loads OBJ, PLY (ascii, binary little/big endian), OFF or STL (ascii or binary), optionally
@@ -151,8 +175,9 @@ void write_obj(const std::string& path, const Mesh& mesh);
 
 // Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
 // property) for `mesh`. Throws Error when the file has no quality property, a quality is
-// not finite, or the file belongs to another mesh: another vertex count, or a vertex at
-// another position (beyond float precision: 1e-6 of the bounding-box diagonal), named.
+// not finite or negative (S >= 0: a quality from another program), or the file belongs to
+// another mesh: another vertex count, or a vertex at another position (beyond float
+// precision: 1e-6 of the bounding-box diagonal), named.
 std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh);
 
 // ------------------------------------------------------------------------------------------
@@ -202,6 +227,11 @@ struct SaliencyOptions {
   std::function<void(const char* stage, double fraction)> progress;
   // Called with a one-line notice (e.g. "auto: no GPU, using the CPU path"). May be empty.
   std::function<void(const std::string&)> notice;
+  // Cancellation (may be null): set *cancel from any thread or a signal handler and the
+  // call throws Cancelled within a fraction of a second (it polls the flag between chunks
+  // of work on every thread, and between GPU submissions). The same in SimplifyOptions,
+  // OptimiserOptions and CompareOptions; the flag is only read.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct StageTime {
@@ -262,12 +292,14 @@ struct SimplifyOptions {
   // when no collapse within it is left (or the face target is reached). In units of the
   // bounding-box diagonal of the mesh points (0.01 = 1%); 0 = no bound. A collapse's error
   // is the RMS distance of the new vertex to the planes its quadric holds,
-  // sqrt(Q(v) / sum of the plane weights) (vertex weights cancel where they are equal).
+  // sqrt(Q(v) / sum of the plane weights), with the unweighted quadrics: vertex weights
+  // steer which collapses go first, never what their error reads.
   // With target_error > 0 and neither target_faces nor ratio, the face target is 1.
   double target_error = 0;
   // Vertices on an open border (or a non-manifold edge) are neither moved nor removed:
   // the border keeps its exact vertices and positions.
   bool lock_border = false;
+  const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
 };
 
 // One edge contraction: `removed` merges into `kept` (input indices); `cost` its quadric error.
@@ -284,6 +316,7 @@ struct SimplifyReport {
   size_t output_vertices = 0;
   bool reached = false;       // output_faces == target_faces
   std::string note;           // why the target was not reached (empty when it was)
+  std::string warning;        // precision_warning(mesh): the input is too coarse to trust
   size_t collapses = 0;
   size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
   double seconds = 0;         // wall time of the whole call
@@ -319,11 +352,19 @@ enum class WeightCurve {
                // (gamma 0: a step, 1 + lambda on the top 100 - alpha_percentile %)
 };
 
+constexpr double kDefaultWeightFloor = 0.001;
+
 struct SaliencyWeightOptions {
   double lambda = 100;            // amplification of salient vertices, >= 0
   double alpha_percentile = 30;   // alpha = this percentile of Sm over mesh points, [0, 100]
-  // Not in the paper (0 = off): W is raised to at least floor * mean(W) over mesh points.
-  double floor = 0;
+  // Not in the paper: W is raised to at least floor * mean(W) over mesh points, so that no
+  // collapse is free. The paper's rule gives W = 0 where Sm is 0 (flat regions), and there
+  // every collapse, border ones included, costs nothing: a plane with one bump lost half its
+  // area at 10% (Hausdorff 35% of the diagonal). kDefaultWeightFloor, chosen by measurement
+  // (docs/method.md, "Weight floor"), removes that and leaves the paper's recipe on the
+  // benchmark meshes as it was; 0 gives the literal rule. Where every W is 0 (nothing
+  // salient), a floor > 0 makes every W 1: plain quadrics.
+  double floor = kDefaultWeightFloor;
   WeightCurve curve = WeightCurve::Threshold;
   double gamma = 1;               // exponent of the Continuous and Rank curves, [0, 16]
   double cap = 0;                 // Continuous: largest (Sm / alpha)^gamma, 0 = no cap
@@ -384,6 +425,7 @@ struct CompareOptions {
   size_t face_samples = 200000;     // area samples per surface, on top of its vertices
   double salient_fraction = 0.30;   // top fraction of the original's mesh points by saliency
   unsigned threads = 0;             // 0 = all cores
+  const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
 };
 
 // Distances in model units (divide by `diagonal` for a share of the model's size).
@@ -435,6 +477,7 @@ struct OptimiserOptions {
   // step's way down to min_step, whichever is further), then, in best_viewpoint with
   // views > 0, "view map" (views scored / views). May be empty.
   std::function<void(const char* stage, double fraction)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel (best_viewpoint too)
 };
 
 struct OptimiserResult {
@@ -444,6 +487,9 @@ struct OptimiserResult {
   std::vector<ViewAngles> finals;    // where each restart ended
   std::vector<double> final_U;
   uint64_t views_evaluated = 0;
+  // Set when no direction tried saw anything (U = 0 everywhere): `best` is then the front
+  // view (0, 0), not an arbitrary start, and this says why.
+  std::string note;
 };
 
 struct ViewMap {
@@ -459,7 +505,8 @@ struct BestView {
 };
 
 // The view of largest visible score U = sum of score over the visible mesh points
-// (`score`: one value per vertex, e.g. SaliencyResult::saliency). `views` > 0 also
+// (`score`: one value per vertex, e.g. SaliencyResult::saliency; finite and >= 0 on the
+// mesh points, else Error). `views` > 0 also
 // evaluates that many directions exhaustively. backend as in SaliencyOptions.
 BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
                         const OptimiserOptions& options = {}, int views = 0,

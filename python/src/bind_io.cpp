@@ -9,7 +9,24 @@ namespace meshsal_py {
 
 namespace {
 
-py::object load(const std::string& path, bool properties, unsigned long long max_input_bytes) {
+// A path as the OS takes it: str, bytes or os.PathLike (pathlib.Path), encoded as
+// os.fsencode does. A NUL byte cannot be in a path: refused as open() refuses it, instead
+// of the name being cut at it.
+std::string path_bytes(const py::object& path) {
+  py::object encoded;
+  try {
+    encoded = py::module_::import("os").attr("fsencode")(path);
+  } catch (py::error_already_set&) {
+    throw py::type_error("path must be str, bytes or os.PathLike, got " +
+                         std::string(py::str(path.get_type().attr("__name__"))));
+  }
+  std::string bytes = encoded.cast<std::string>();
+  if (bytes.find('\0') != std::string::npos) throw py::value_error("path: embedded null byte");
+  return bytes;
+}
+
+py::object load(const py::object& path_obj, bool properties, unsigned long long max_input_bytes) {
+  const std::string path = path_bytes(path_obj);
   meshsal::Mesh mesh;
   meshsal::VertexProperties props;
   {
@@ -49,7 +66,7 @@ void bind_io(py::module_& m) {
         py::arg("max_input_bytes") = 0ULL,
         R"(load(path, *, properties=False, max_input_bytes=0) -> (V, F) or (V, F, props)
 
-Reads a mesh file as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
+Reads a mesh file (path: str, bytes or pathlib.Path) as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
 optionally .gz; polygons fan-triangulated, STL corners welded. Returns the vertices V,
 float32 (n, 3) (the library's own precision, so no conversion), and the faces F, uint32
 (m, 3), both owned by numpy without a copy. With properties=True also a dict of the PLY's

@@ -9,6 +9,7 @@
 #include "numpy_in.h"
 #include "numpy_out.h"
 #include "saliency_args.h"
+#include "interrupt.h"
 
 namespace meshsal_py {
 
@@ -33,7 +34,8 @@ SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool r
   options.smoothed = smoothed;
   meshsal::SaliencyResult r;
   {
-    py::gil_scoped_release unlocked;  // other Python threads run while it computes
+    const InterruptibleCall call;  // other Python threads run while it computes; Ctrl-C stops it
+    options.cancel = call.flag();
     r = meshsal::compute_saliency(mesh, options);
   }
   SaliencyOut out;

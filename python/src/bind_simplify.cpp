@@ -1,4 +1,6 @@
 // meshsal Python module: simplify() and its result object.
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -9,10 +11,23 @@
 #include "numpy_in.h"
 #include "numpy_out.h"
 #include "saliency_args.h"
+#include "interrupt.h"
 
 namespace meshsal_py {
 
 namespace {
+
+// The bounding-box diagonal of the mesh points.
+double mesh_diagonal(const meshsal::Mesh& mesh) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (uint32_t v : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], double(mesh.positions[3 * size_t(v) + k]));
+      hi[k] = std::max(hi[k], double(mesh.positions[3 * size_t(v) + k]));
+    }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
 
 // What simplify() returns: the mesh and the report `meshsal simplify --json` prints.
 struct SimplifyOut {
@@ -21,7 +36,7 @@ struct SimplifyOut {
   bool reached = false, unchanged = false;
   std::string note, weights;
   std::string device = "cpu";  // what computed S; the CLI's JSON `device`
-  double alpha = 0, seconds = 0;
+  double alpha = 0, seconds = 0, error = 0;
 };
 
 SimplifyOut simplify(const py::object& vertices, const py::object& faces, const py::object& target_faces,
@@ -43,9 +58,11 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
       throw py::type_error("target_faces must be an integer, got " +
                            std::string(py::str(target_faces.get_type().attr("__name__"))));
     }
-    const long long t = py::reinterpret_steal<py::int_>(index).cast<long long>();
-    if (t < 1 || t > 4000000000LL)
-      throw py::value_error("target_faces must be in [1, 4000000000], got " + std::to_string(t));
+    int overflow = 0;
+    const long long t = PyLong_AsLongLongAndOverflow(index, &overflow);  // 2**70 is no C++ integer
+    const std::string given = py::str(py::reinterpret_steal<py::object>(index));
+    if (overflow || t < 1 || t > 4000000000LL)
+      throw py::value_error("target_faces must be in [1, 4000000000], got " + given);
     options.target_faces = size_t(t);
   } else {
     if (!py::isinstance<py::float_>(ratio) && !py::isinstance<py::int_>(ratio) &&
@@ -72,14 +89,16 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (mode == "array") w = vertex_values(weights, n, "weights");
   if (!saliency.is_none()) s = vertex_values(saliency, n, "saliency");
   std::vector<std::string> notices;
-  const meshsal::SaliencyOptions so =
+  meshsal::SaliencyOptions so =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
 
   SimplifyOut out;
+  const double diagonal = mesh_diagonal(mesh);  // for the error in model units, as the CLI's JSON
   meshsal::Mesh result;
   meshsal::SimplifyReport report;
   {
-    py::gil_scoped_release unlocked;
+    const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
+    options.cancel = so.cancel = call.flag();
     // A target at or above the face count keeps the mesh as it is, as the CLI does.
     if (options.target_faces ? options.target_faces >= mesh.triangle_count() : options.ratio >= 1) {
       out.unchanged = true;
@@ -105,6 +124,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   out.vertices = to_numpy(std::move(result.positions), {nv, 3});
   out.faces = to_numpy(std::move(result.triangles), {nf, 3});
   out.vertex_origin = to_numpy(std::move(report.vertex_origin));
+  if (!report.warning.empty()) notices.push_back("warning: " + report.warning);
   out.notices = py::cast(notices);
   out.input_faces = report.input_faces;
   out.target_faces = report.target_faces;
@@ -116,6 +136,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
                            : report.note;
   out.weights = out.unchanged ? "none" : mode;
   out.seconds = report.seconds;
+  out.error = report.error * diagonal;
   return out;
 }
 
@@ -137,6 +158,8 @@ void bind_simplify(py::module_& m) {
       .def_readonly("weights", &SimplifyOut::weights, "'saliency', 'none' or 'array'")
       .def_readonly("alpha", &SimplifyOut::alpha, "the alpha_percentile of Sm (weights='saliency')")
       .def_readonly("seconds", &SimplifyOut::seconds, "wall time of the simplification itself")
+      .def_readonly("error", &SimplifyOut::error,
+                    "the largest collapse's error in model units (RMS distance to its merged planes, unweighted)")
       .def_readonly("device", &SimplifyOut::device,
                     "the device that computed the saliency ('cpu (N threads)' or the Vulkan device's "
                     "name); 'cpu' when no saliency was computed (weights 'none' or an array, or "
@@ -150,22 +173,25 @@ void bind_simplify(py::module_& m) {
   m.def("simplify", &simplify, py::arg("vertices"), py::arg("faces"), py::arg("target_faces") = py::none(),
         py::kw_only(), py::arg("ratio") = py::none(), py::arg("weights") = "saliency",
         py::arg("saliency") = py::none(), py::arg("lambda_") = 100.0, py::arg("alpha_percentile") = 30.0,
-        py::arg("weight_floor") = 0.0, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
+        py::arg("weight_floor") = meshsal::kDefaultWeightFloor, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
         py::arg("device") = -1, py::arg("threads") = 0u,
         (std::string(R"(simplify(vertices, faces, target_faces=None, *, ratio=None, weights='saliency', saliency=None,
-         lambda_=100, alpha_percentile=30, weight_floor=0, scales=None, eps_frac=0.003,
+         lambda_=100, alpha_percentile=30, weight_floor=0.001, scales=None, eps_frac=0.003,
          method='exact', backend='auto', precision='auto', device=-1, threads=0) -> SimplifyResult
 
 Garland-Heckbert edge collapses to target_faces, or to ratio times the faces
 (`meshsal simplify`; give exactly one). weights='saliency' (default) multiplies each vertex
 quadric by W = lambda_ * Sm where the smoothed saliency Sm reaches its alpha_percentile,
-else Sm (Lee et al. 2005, section 4); saliency=S (one value per vertex, e.g. a previous
+else Sm (Lee et al. 2005, section 4), raised to at least weight_floor times the mean W so
+that no collapse is free (0: the paper's literal rule, which erases flat regions); saliency=S (one value per vertex, e.g. a previous
 saliency().saliency) reuses S instead of computing it, as --saliency-from does.
 weights='none' is plain quadric error; an array gives W per vertex directly. A target at
 or above the face count returns the mesh unchanged (.unchanged, .note).
-The result unpacks as V, F = simplify(...); .vertex_origin maps output to input vertices.
-Arrays as in saliency(); the GIL is released while it computes.
+The result unpacks as V, F = simplify(...); .vertex_origin maps output to input vertices;
+.error is the largest collapse's error (unweighted quadric distance) in model units.
+Arrays as in saliency(); the GIL is released while it computes, and Ctrl-C stops it
+(KeyboardInterrupt).
 )") + kSaliencyArgsDoc).c_str());
 }
 

@@ -11,6 +11,7 @@
 #include "numpy_in.h"
 #include "numpy_out.h"
 #include "saliency_args.h"
+#include "interrupt.h"
 
 namespace meshsal_py {
 
@@ -57,7 +58,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   if (!score.is_none()) given = vertex_values(score, mesh.vertex_count(), "score");
   const bool computed = given.empty();
   std::vector<std::string> notices;
-  const meshsal::SaliencyOptions so =
+  meshsal::SaliencyOptions so =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
   meshsal::OptimiserOptions oo;
   oo.restarts = restarts;
@@ -69,7 +70,8 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   meshsal::BestView b;
   std::vector<double> s;
   {
-    py::gil_scoped_release unlocked;
+    const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
+    so.cancel = oo.cancel = call.flag();
     s = score_or_saliency(mesh, std::move(given), so);
     b = meshsal::best_viewpoint(mesh, s, oo, views, vo, so.backend, device);
   }
@@ -95,6 +97,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
     out["exhaustive"] = py::none();
   }
   out["views_evaluated"] = b.optimised.views_evaluated + uint64_t(views);
+  out["note"] = b.optimised.note;  // why the front view, when no view saw anything
   out["notices"] = py::cast(notices);
   return out;
 }
@@ -126,11 +129,12 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
   }
   std::vector<double> given;
   if (!values.is_none()) given = vertex_values(values, mesh.vertex_count(), "values");
-  const meshsal::SaliencyOptions so =
+  meshsal::SaliencyOptions so =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, nullptr);
   meshsal::Image image;
   {
-    py::gil_scoped_release unlocked;
+    const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
+    so.cancel = call.flag();
     std::vector<double> score;
     if (!grey || best) score = score_or_saliency(mesh, std::move(given), so);
     meshsal::ViewAngles view{theta / kDeg, phi / kDeg};
@@ -138,7 +142,9 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       // The view of most visible score, found as `meshsal render --best` finds it.
       meshsal::VisibilityOptions vo;
       vo.threads = threads;
-      const meshsal::BestView b = meshsal::best_viewpoint(mesh, score, {}, 0, vo, so.backend, device);
+      meshsal::OptimiserOptions oo;
+      oo.cancel = so.cancel;
+      const meshsal::BestView b = meshsal::best_viewpoint(mesh, score, oo, 0, vo, so.backend, device);
       double d[3];
       view = angles_for_up(b.optimised.best, style.up, d);
     }
@@ -170,7 +176,8 @@ phi_deg and direction (unit vector in the mesh's coordinates) in the frame of `u
 'y', 'z', '-x', '-y', '-z': the axis that points up), visible_score (U, the score summed
 over the visible mesh points), visible_fraction (U over the score of all mesh points),
 score_source, device, resolution, depth_tol_px, restarts, seed, exhaustive
-(a dict of the same view keys plus 'views', or None), views_evaluated, notices.
+(a dict of the same view keys plus 'views', or None), views_evaluated, notices, note ('', or why
+the front view was returned: no direction saw any score).
 The GIL is released while it computes.
 )") + kSaliencyArgsDoc).c_str());
   m.def("render", &render, py::arg("vertices"), py::arg("faces"), py::arg("values") = py::none(),

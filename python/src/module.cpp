@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "meshsal/meshsal.h"
+#include "interrupt.h"
 
 namespace py = pybind11;
 
@@ -28,6 +29,8 @@ PYBIND11_MODULE(_meshsal, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const meshsal::Cancelled&) {
+      meshsal_py::translate_cancelled();  // Ctrl-C stopped the call (interrupt.h)
     } catch (const meshsal::Error& e) {
       PyErr_SetString(error_class, e.what());
     }

@@ -1,6 +1,9 @@
 #include "numpy_in.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 
@@ -77,6 +80,19 @@ void read_faces(const py::array& a, size_t vertex_count, std::vector<uint32_t>& 
     }
 }
 
+// Raises MemoryError when copying `bytes` would not fit in this machine's memory.
+void check_fits_memory(double bytes, const std::string& what) {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return;
+  const double memory = double(pages) * double(page);
+  if (bytes <= memory) return;
+  char buf[128];
+  std::snprintf(buf, sizeof buf, " need %.1f GiB as the library's arrays, more than this machine's %.1f GiB",
+                bytes / 1073741824.0, memory / 1073741824.0);
+  PyErr_SetString(PyExc_MemoryError, (what + buf).c_str());
+  throw py::error_already_set();
+}
+
 }  // namespace
 
 meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle& faces_obj) {
@@ -94,6 +110,12 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
   faces = native_order(faces);
   if (vertices.shape(0) > py::ssize_t(std::numeric_limits<uint32_t>::max()))
     throw py::value_error("vertices: more than 2^32 - 1 vertices");
+  if (faces.shape(0) > py::ssize_t(std::numeric_limits<uint32_t>::max()))
+    throw py::value_error("faces: more than 2^32 - 1 faces");
+  // The shape can claim more than memory holds (a broadcast array's rows cost nothing):
+  // say so before asking for it, instead of a bad_alloc after a long wait.
+  check_fits_memory(12.0 * double(vertices.shape(0)) + 12.0 * double(faces.shape(0)),
+                    std::to_string(vertices.shape(0)) + " vertices and " + std::to_string(faces.shape(0)) + " faces");
 
   meshsal::Mesh mesh;
   if (vertices.itemsize() == 4) read_vertices<float>(vertices, mesh.positions);

@@ -11,6 +11,7 @@
 #include "core/mesh_points.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
+#include "core/cancel.h"
 
 namespace meshsal {
 
@@ -31,6 +32,8 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
     std::vector<DeviceInfo> devices;
     try {
       devices = list_devices();
+    } catch (const Cancelled&) {
+      throw;
     } catch (const Error& e) {
       tell(options, std::string("auto: no Vulkan (") + e.what() + "), using the CPU path");
       return compute_saliency_cpu(mesh, options);
@@ -42,6 +45,8 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
   }
   try {
     return gpu_backend().saliency(mesh, gpu);
+  } catch (const Cancelled&) {
+    throw;  // stopped on purpose: no fallback
   } catch (const Error& e) {
     tell(options, std::string("auto: the GPU path failed (") + e.what() + "), using the CPU path");
     return compute_saliency_cpu(mesh, options);
@@ -92,6 +97,7 @@ Method resolve_method(const Mesh& mesh, const SaliencyOptions& options) {
 }
 
 SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options_in) {
+  const CancelScope cancel(options_in.cancel);
   // Vertices split at attribute seams: the surface is the position-welded mesh.
   if (!mesh.position_vertex.empty()) {
     check_position_vertex(mesh);
@@ -104,6 +110,8 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
     return r;
   }
   check_saliency_options(options_in);
+  if (options_in.notice)
+    if (const std::string w = precision_warning(mesh); !w.empty()) options_in.notice("warning: " + w);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);
   // Exact and fast alike: the same device rule (compute_auto) and the same fallback.

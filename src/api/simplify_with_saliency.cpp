@@ -2,6 +2,7 @@
 // quadric simplification): simplification_weights() for the first three steps, which
 // `meshsal simplify` and the simplification benchmark share, and simplify_with_saliency()
 // for all four in one call.
+#include "core/cancel.h"
 #include "core/mesh_points.h"
 #include "core/welded_view.h"
 #include "meshsal/meshsal.h"
@@ -14,6 +15,7 @@ std::vector<double> simplification_weights(const Mesh& mesh,
                                            const std::vector<double>* saliency,
                                            double* alpha_out, std::vector<double>* saliency_out,
                                            std::string* device_out) {
+  const CancelScope cancel(saliency_options.cancel);
   // Vertices split at attribute seams: weigh the position-welded surface, then copy.
   if (!mesh.position_vertex.empty()) {
     check_position_vertex(mesh);
@@ -46,6 +48,7 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
                             const SaliencyOptions& saliency_options,
                             const std::vector<double>* saliency, SimplifyReport* report,
                             double* alpha_out) {
+  const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
   const std::vector<double> weights =
       simplification_weights(mesh, weight_options, saliency_options, saliency, alpha_out);
   return simplify_mesh(mesh, options, &weights, report);

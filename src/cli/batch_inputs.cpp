@@ -1,11 +1,15 @@
 // meshsal batch: expand_batch_inputs (see batch_inputs.h).
 #include "batch_inputs.h"
 
+#include <fcntl.h>
 #include <glob.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "meshsal/meshsal.h"
@@ -16,6 +20,46 @@ namespace {
 
 namespace fs = std::filesystem;
 using meshsal::Error;
+
+// Bounds on a list file: it is read whole, so it must not be endless (/dev/zero) or huge.
+constexpr size_t kMaxListBytes = size_t(64) << 20;
+constexpr size_t kMaxListLine = 4096;  // PATH_MAX
+constexpr size_t kMaxListItems = 1000000;
+
+std::string list_name(const std::string& path) { return path == "-" ? "standard input" : path; }
+
+// A list file's text: a regular file, or "-" for standard input, at most kMaxListBytes.
+std::string read_list_file(const std::string& path) {
+  const bool stdin_list = path == "-";
+  // O_NONBLOCK: a FIFO given as a list is refused below, not waited on.
+  const int fd = stdin_list ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw Error(path + ": cannot read the list file: " + std::strerror(errno));
+  struct stat st;
+  if (!stdin_list && (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))) {
+    ::close(fd);
+    throw Error(path + ": a list file must be a regular file, or - for standard input");
+  }
+  std::string text;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int e = errno;
+      if (!stdin_list) ::close(fd);
+      throw Error(list_name(path) + ": cannot read the list file: " + std::strerror(e));
+    }
+    if (n == 0) break;
+    text.append(buf, size_t(n));
+    if (text.size() > kMaxListBytes) {
+      if (!stdin_list) ::close(fd);
+      throw Error(list_name(path) + ": a list file larger than " + std::to_string(kMaxListBytes >> 20) +
+                  " MiB (a list holds one path per line)");
+    }
+  }
+  if (!stdin_list) ::close(fd);
+  return text;
+}
 
 bool is_glob(const std::string& item) { return item.find_first_of("*?[") != std::string::npos; }
 
@@ -72,21 +116,32 @@ class Expander {
   }
 
   void list(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot read the list file");
-    const fs::path base = fs::path(path).parent_path();
-    std::string line;
-    while (std::getline(in, line)) {
-      while (!line.empty() && (line.back() == '\r' || std::isspace(static_cast<unsigned char>(line.back()))))
-        line.pop_back();
+    const fs::path base = path == "-" ? fs::path() : fs::path(path).parent_path();
+    const std::string text = read_list_file(path);
+    size_t line_no = 0, items = 0;
+    for (size_t at = 0; at < text.size();) {
+      size_t end = text.find('\n', at);
+      if (end == std::string::npos) end = text.size();
+      std::string line = text.substr(at, end - at);
+      at = end + 1;
+      ++line_no;
+      const std::string where = list_name(path) + ":" + std::to_string(line_no);
+      if (line.size() > kMaxListLine)
+        throw Error(where + ": a line longer than " + std::to_string(kMaxListLine) + " bytes (a list holds one path per line)");
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
       size_t start = 0;
       while (start < line.size() && std::isspace(static_cast<unsigned char>(line[start]))) ++start;
       line = line.substr(start);
       if (line.empty() || line[0] == '#') continue;
+      for (unsigned char c : line)
+        if (c < 0x20 && c != '\t')
+          throw Error(where + ": not a line of text (a " + (c == 0 ? std::string("NUL byte") : "control character") +
+                      "): a list file holds one path per line");
+      if (++items > kMaxListItems)
+        throw Error(list_name(path) + ": more than " + std::to_string(kMaxListItems) + " items");
       const fs::path p(line);
       item(p.is_absolute() || base.empty() ? line : (base / p).string(), true);
     }
-    if (in.bad()) throw Error(path + ": cannot read the list file");
   }
 
  private:

@@ -33,7 +33,8 @@ void ModelLoader::run() {
     const meshsal::Timer t;
     try {
       meshsal::LoadReport report;
-      m.mesh = load_input_mesh(path, nullptr, false, &report);  // as `meshsal saliency` reads it
+      m.mesh = load_input_mesh(path, nullptr, false, &report, true);  // as `meshsal saliency` reads it
+                                                                        // (but never waits on a pipe)
       m.welded_corners = report.welded_corners;
     } catch (const std::bad_alloc&) {
       m.mesh = {};

@@ -1,25 +1,34 @@
 // meshsal batch: BatchLog (see batch_log.h).
 #include "batch_log.h"
 
-#include "io/atomic_write.h"
+#include <cstdio>
+
+#include "json_string.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal_cli {
 
 void BatchLog::add(const std::string& json_line) {
-  lines_.push_back(json_line);
-  if (std::chrono::steady_clock::now() - last_write_ >= std::chrono::seconds(2)) write();
+  try {
+    file_->append(json_line);
+  } catch (const meshsal::Error& e) {
+    ++lost_;
+    failed(std::string(e.what()) + ": the log misses this model's line; the run goes on");
+  }
 }
 
-void BatchLog::finish() { write(); }
+void BatchLog::finish() {
+  try {
+    file_->sync();
+  } catch (const meshsal::Error& e) {
+    failed(e.what());
+  }
+}
 
-void BatchLog::write() {
-  meshsal::write_file_atomically(path_, [this](std::FILE* f) {
-    for (const std::string& line : lines_) {
-      meshsal::write_all(f, line.data(), line.size(), path_);
-      meshsal::write_all(f, "\n", 1, path_);
-    }
-  });
-  last_write_ = std::chrono::steady_clock::now();
+void BatchLog::failed(const std::string& error) {
+  if (!error_.empty()) return;  // once: the same reason would follow every model
+  error_ = error;
+  std::fprintf(stderr, "error: %s\n", printable(error).c_str());
 }
 
 }  // namespace meshsal_cli

@@ -1,26 +1,30 @@
-// meshsal batch: the JSON Lines log, one object per model (json_object.h's conventions).
-// It is rewritten atomically (write_file_atomically) at most every 2 seconds while the
-// run goes on and once at its end, so it is never half a file and a long run can be
-// watched.
+// meshsal batch: the JSON Lines log, one object per model (json_object.h's conventions),
+// appended line by line as models finish: what a run did is on disk even when it is
+// killed, and a later run's lines follow the earlier ones'. A line that cannot be written
+// (a full disk) is reported once on stderr and the run goes on; failed() tells the end.
 #pragma once
-#include <chrono>
+#include <memory>
 #include <string>
-#include <vector>
+
+#include "io/append_file.h"
 
 namespace meshsal_cli {
 
 class BatchLog {
  public:
-  explicit BatchLog(std::string path) : path_(std::move(path)) {}
-  void add(const std::string& json_line);  // may write the file
-  void finish();                           // writes the file (throws Error naming it)
-  const std::string& path() const { return path_; }
+  // Opens (creates) the log for appending. Throws meshsal::Error naming it.
+  explicit BatchLog(const std::string& path) : file_(std::make_unique<meshsal::AppendFile>(path)) {}
+  void add(const std::string& json_line);  // never throws for a failed write
+  void finish();                           // syncs it to disk (a failure counts as failed())
+  size_t lost() const { return lost_; }    // lines that could not be written
+  const std::string& error() const { return error_; }  // the first write error
+  const std::string& path() const { return file_->path(); }
 
  private:
-  void write();
-  std::string path_;
-  std::vector<std::string> lines_;
-  std::chrono::steady_clock::time_point last_write_ = std::chrono::steady_clock::now();
+  void failed(const std::string& error);
+  std::unique_ptr<meshsal::AppendFile> file_;
+  size_t lost_ = 0;
+  std::string error_;
 };
 
 }  // namespace meshsal_cli

@@ -1,7 +1,5 @@
-// meshsal batch: output names and the resume check (see batch_outputs.h).
+// meshsal batch: output names (see batch_outputs.h).
 #include "batch_outputs.h"
-
-#include <sys/stat.h>
 
 #include <cctype>
 #include <map>
@@ -24,11 +22,6 @@ std::string stem(const std::string& name) {
   for (const char* ext : {".obj", ".ply", ".off", ".stl"})
     if (end > 4 && lower.compare(end - 4, 4, ext) == 0) return name.substr(0, end - 4);
   return name;
-}
-
-bool modified_after(const struct stat& a, const struct stat& b) {
-  if (a.st_mtim.tv_sec != b.st_mtim.tv_sec) return a.st_mtim.tv_sec > b.st_mtim.tv_sec;
-  return a.st_mtim.tv_nsec > b.st_mtim.tv_nsec;
 }
 
 }  // namespace
@@ -64,16 +57,6 @@ ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool
   if (view) o.view = base + "_view.png";
   if (simplified) o.simplified = base + "_simplified.obj";
   return o;
-}
-
-bool outputs_up_to_date(const std::string& input, const ModelOutputs& outputs) {
-  struct stat in;
-  if (::stat(input.c_str(), &in) != 0) return false;
-  for (const std::string& out : outputs.all()) {
-    struct stat st;
-    if (::stat(out.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || !modified_after(st, in)) return false;
-  }
-  return true;
 }
 
 }  // namespace meshsal_cli

@@ -1,4 +1,4 @@
-// meshsal batch: the files a run writes for each model, and whether they are up to date.
+// meshsal batch: the files a run writes for each model (batch_state.h says whether they are up to date).
 #pragma once
 #include <string>
 #include <vector>
@@ -18,9 +18,5 @@ struct ModelOutputs {
 std::vector<std::string> output_names(const std::vector<std::string>& inputs);
 
 ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified);
-
-// True when every output exists and was modified after `input` (nanosecond times); false
-// when any is missing or older, or the input cannot be read (it is computed, and fails).
-bool outputs_up_to_date(const std::string& input, const ModelOutputs& outputs);
 
 }  // namespace meshsal_cli

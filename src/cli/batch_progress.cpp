@@ -1,5 +1,6 @@
 // meshsal batch: BatchProgress (see batch_progress.h).
 #include "batch_progress.h"
+#include "json_string.h"
 
 #include <algorithm>
 #include <cmath>
@@ -42,7 +43,7 @@ void BatchProgress::stage(const char* stage, double fraction) {
   if (now - last_draw_ < std::chrono::milliseconds(100)) return;
   last_draw_ = now;
   char buf[512];
-  std::snprintf(buf, sizeof buf, "[%zu/%zu] %s  %s %3d%%", done_ + 1, total_, name_.c_str(), stage,
+  std::snprintf(buf, sizeof buf, "[%zu/%zu] %s  %s %3d%%", done_ + 1, total_, printable(name_).c_str(), stage,
                 int(fraction * 100.0 + 0.5));
   std::string text = buf;
   if (computed_ > 0) {

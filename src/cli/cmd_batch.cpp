@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <new>
@@ -22,9 +23,11 @@
 #include "batch_log.h"
 #include "batch_outputs.h"
 #include "batch_progress.h"
+#include "batch_state.h"
 #include "command.h"
 #include "contact_sheet.h"
 #include "core/timer.h"
+#include "io/atomic_write.h"
 #include "json_object.h"
 #include "json_string.h"
 #include "meshsal/meshsal.h"
@@ -38,6 +41,7 @@
 #include "view/render.h"
 #include "view/viewpoint.h"
 #include "view/visibility.h"
+#include "interrupt.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/gpu_session.h"
 #endif
@@ -53,6 +57,8 @@ struct Options {
   double simplify = 0;  // 0: none; (0, 1]: a ratio of the faces; > 1: a face count
   bool view = false, force = false, quiet = false;
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
+  std::string weights = "saliency";  // --simplify's weighting
+  double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
   double eps_frac = 0.003;
   unsigned threads = 0;
   int device = -1, size = 512, restarts = 8, resolution = 512;
@@ -62,6 +68,7 @@ struct Options {
 struct Plan {
   const Options* o;
   SaliencyOptions saliency;
+  SaliencyWeightOptions weights;  // --simplify's
   RenderStyle style;
   Backend backend;
 };
@@ -93,6 +100,7 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   vopt.threads = p.o->threads;
   OptimiserOptions oopt;
   oopt.restarts = p.o->restarts;
+  oopt.cancel = interrupt_flag();
   OptimiserResult best;
   std::string backend_name;
   {
@@ -122,19 +130,22 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
       .raw("direction", "[" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " + std::to_string(d[2]) + "]")
       .number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0)
       .text("device", backend_name).count("views_evaluated", best.views_evaluated).number("seconds", t.seconds());
+  if (!best.note.empty()) j.text("note", best.note);
   return j;
 }
 
 JsonObject simplified(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& out) {
   SimplifyOptions so;
   so.threads = p.o->threads;
+  so.cancel = interrupt_flag();
   if (p.o->simplify <= 1)
     so.ratio = p.o->simplify;
   else
     so.target_faces = size_t(p.o->simplify);
   SimplifyReport rep;
   const Timer t;
-  const Mesh m = simplify_with_saliency(mesh, so, {}, p.saliency, &r.saliency, &rep);
+  const Mesh m = p.o->weights == "none" ? simplify_mesh(mesh, so, nullptr, &rep)
+                                         : simplify_with_saliency(mesh, so, p.weights, p.saliency, &r.saliency, &rep);
   write_obj(out, m);
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
@@ -184,6 +195,57 @@ std::string output_is_an_input(const ModelOutputs& out, const std::set<std::pair
   return "";
 }
 
+// Why an input is not read: "" for a regular file (and for a missing one: loading it fails
+// with its own message). A named pipe would block the loader until something writes to
+// it, a device never ends.
+std::string not_read_reason(const std::string& input) {
+  struct stat st;
+  if (::stat(input.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return "";
+  const char* kind = S_ISFIFO(st.st_mode)  ? "a named pipe (FIFO)"
+                     : S_ISCHR(st.st_mode) ? "a character device"
+                     : S_ISBLK(st.st_mode) ? "a block device"
+                     : S_ISSOCK(st.st_mode) ? "a socket"
+                     : S_ISDIR(st.st_mode) ? "a folder"
+                                           : "not a regular file";
+  return std::string("it is ") + kind + ": batch reads regular files only";
+}
+
+// Everything that shapes a model's outputs, as one line (batch_state.h): a change in any of
+// them makes the model out of date.
+std::string options_line(const Options& o) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "version=%d method=%s scales=%s eps_frac=%.17g precision=%s backend=%s device=%d view=%d "
+                "size=%d restarts=%d resolution=%d up=%s simplify=%.17g weights=%s weight_floor=%.17g",
+                MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
+                o.backend.c_str(), o.device, int(o.view), o.size, o.restarts, o.resolution, o.up.c_str(),
+                o.simplify, o.weights.c_str(), o.weight_floor);
+  return buf;
+}
+
+// The sizes of the outputs just written, in ModelOutputs::all() order.
+std::vector<uint64_t> output_sizes(const ModelOutputs& out) {
+  std::vector<uint64_t> sizes;
+  for (const std::string& path : out.all()) {
+    struct stat st;
+    sizes.push_back(::stat(path.c_str(), &st) == 0 ? uint64_t(st.st_size) : 0);
+  }
+  return sizes;
+}
+
+// The log line of a model skipped as up to date: the record of the run that made its
+// outputs, with its status "skipped", the reason and when it was made (its numbers stay).
+std::string skipped_line(const std::string& record) {
+  std::string line = record;
+  const std::string done = "\"status\": \"done\"";
+  const size_t at = line.find(done);
+  if (at != std::string::npos) line.replace(at, done.size(), "\"status\": \"skipped\"");
+  if (!line.empty() && line.back() == '}')
+    line.insert(line.size() - 1, ", \"reason\": " + json_string("up to date: the same input (size, time and content) "
+                                                                 "and options made its outputs (--force redoes it)"));
+  return line;
+}
+
 int run(Options o) {
   if (o.inputs.empty() && o.list_file.empty())
     throw UsageError("give the models: files, folders, globs, @LIST or --list FILE");
@@ -202,7 +264,10 @@ int run(Options o) {
   p.saliency.precision = parse_precision(o.precision);
   p.saliency.method = parse_method(o.method);
   p.saliency.device = o.device;
+  p.saliency.cancel = interrupt_flag();
   check_saliency_options(p.saliency);
+  p.weights = weight_preset(parse_weighting(o.weights));
+  if (o.weight_floor >= 0) p.weights.floor = o.weight_floor;
   p.style.size = o.size;
   p.style.up = parse_up_axis(o.up);
   check_render_style(p.style);
@@ -217,19 +282,39 @@ int run(Options o) {
     struct stat st;
     if (::stat(in.c_str(), &st) == 0) input_ids.insert({st.st_dev, st.st_ino});
   }
+  // What runs killed mid-write left: temporaries of the outputs a batch writes.
+  const auto batch_output = [](const std::string& base) {
+    for (const char* end : {"_saliency.ply", "_view.png", "_simplified.obj", ".state"})
+      if (base.size() > std::strlen(end) && base.compare(base.size() - std::strlen(end), std::string::npos, end) == 0)
+        return true;
+    return false;
+  };
+  remove_stale_temporaries(o.out_dir, batch_output);
+  remove_stale_temporaries(o.out_dir + "/.meshsal-batch", batch_output);
 
+  // Each model: not read (refused, not a regular file), up to date (skipped) or loaded.
+  const std::string options = options_line(o);
   const std::vector<std::string> names = output_names(inputs);
   std::vector<ModelOutputs> outs;
-  std::vector<std::string> refused(inputs.size());  // an output that is an input
-  std::vector<bool> skip(inputs.size(), false);
+  std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<std::string> to_load;
   for (size_t i = 0; i < inputs.size(); ++i) {
     outs.push_back(model_outputs(o.out_dir, names[i], o.view, o.simplify > 0));
     refused[i] = output_is_an_input(outs[i], input_ids);
-    if (refused[i].empty()) skip[i] = !o.force && outputs_up_to_date(inputs[i], outs[i]);
-    if (refused[i].empty() && !skip[i]) to_load.push_back(inputs[i]);
+    if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
+    if (!refused[i].empty() || !not_read[i].empty()) continue;
+    ModelState saved;
+    if (!o.force && load_state(state_path(o.out_dir, names[i]), &saved)) {
+      try {
+        if (up_to_date(saved, fingerprint(inputs[i]), options, outs[i].all())) skip_record[i] = saved.record;
+      } catch (const Error&) {
+        // unreadable now: it is loaded, and fails with the loader's message
+      }
+    }
+    if (skip_record[i].empty()) to_load.push_back(inputs[i]);
   }
 
+  BatchLog log(log_path);
   BatchProgress progress(!o.quiet && stderr_is_terminal(), inputs.size());
   std::set<std::string> told;  // each notice once per run, not once per model
   std::vector<std::string>* model_notes = nullptr;
@@ -238,32 +323,41 @@ int run(Options o) {
     if (model_notes) model_notes->push_back(line);
     if (!o.quiet && told.insert(line).second) {
       progress.clear();
-      std::fprintf(stderr, "%s\n", line.c_str());
+      std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
   };
+  const auto report_failure = [&](const std::string& in, size_t i, const std::string& error) {
+    progress.clear();
+    log.add(failed_line(in, names[i], error));
+    std::fprintf(stderr, "error: %s\n", printable(error).c_str());
+  };
 
-  BatchLog log(log_path);
   const Timer t_run;
   size_t computed = 0, skipped = 0, failed = 0, left = to_load.size();
+  bool interrupted = false;
+  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
   std::unique_ptr<ModelLoader> loader;
   if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load);
   for (size_t i = 0; i < inputs.size(); ++i) {
     const std::string& in = inputs[i];
-    if (skip[i]) {
+    if (!refused[i].empty()) {
+      report_failure(in, i, refused[i]);
+      failed++;
+      continue;
+    }
+    if (!not_read[i].empty()) {
       JsonObject j;
-      JsonObject files;
-      for (const std::string& f : outs[i].all()) files.text(f == outs[i].saliency ? "saliency" : f == outs[i].view ? "view" : "simplified", f);
-      j.text("mesh", in).text("status", "skipped").text("name", names[i]).object("outputs", files)
-          .text("reason", "every output is newer than the input (--force redoes it)");
+      j.text("mesh", in).text("status", "skipped").text("name", names[i]).text("reason", not_read[i]);
+      progress.clear();
       log.add(j.str());
+      if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
       skipped++;
       continue;
     }
-    if (!refused[i].empty()) {
-      log.add(failed_line(in, names[i], refused[i]));
-      progress.clear();
-      std::fprintf(stderr, "error: %s\n", refused[i].c_str());
-      failed++;
+    if (!skip_record[i].empty()) {
+      log.add(skipped_line(skip_record[i]));
+      has_view[i] = o.view;
+      skipped++;
       continue;
     }
     progress.remaining(--left);
@@ -281,9 +375,20 @@ int run(Options o) {
           for (size_t k = 0; k < notes.size(); ++k) arr += (k ? ", " : "") + json_string(notes[k]);
           j.raw("notes", arr + "]");
         }
-        log.add(j.str());
+        // The record that lets a later run skip this model, after its outputs are in place.
+        ModelState state;
+        state.input = fingerprint(in);
+        state.options = options;
+        state.output_sizes = output_sizes(outs[i]);
+        state.record = j.str();
+        save_state(state_path(o.out_dir, names[i]), state);
+        progress.clear();
+        log.add(state.record);
         progress.computed(t.seconds() + m.seconds);
+        has_view[i] = o.view;
         computed++;
+      } catch (const Cancelled&) {
+        interrupted = true;
       } catch (const std::bad_alloc&) {
         error = in + ": out of memory";
       } catch (const std::exception& e) {
@@ -292,10 +397,15 @@ int run(Options o) {
     }
     model_notes = nullptr;
     m.mesh = {};  // free it before the next one is read
-    if (!error.empty()) {
-      log.add(failed_line(in, names[i], error));
+    if (interrupted) {  // Ctrl-C: this model's line says so, then the summary
+      JsonObject j;
+      j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
       progress.clear();
-      std::fprintf(stderr, "error: %s\n", error.c_str());
+      log.add(j.str());
+      break;
+    }
+    if (!error.empty()) {
+      report_failure(in, i, error);
       failed++;
     }
   }
@@ -303,24 +413,37 @@ int run(Options o) {
   progress.clear();
   log.finish();
 
-  if (!o.contact_sheet.empty()) {
+  bool sheet_failed = false;
+  if (!o.contact_sheet.empty() && !interrupted) {
     std::vector<SheetItem> items;
     for (size_t i = 0; i < inputs.size(); ++i)
-      if (refused[i].empty() && outputs_up_to_date(inputs[i], outs[i]))
-        items.push_back({file_name(inputs[i]), outs[i].view});
+      if (has_view[i]) items.push_back({file_name(inputs[i]), outs[i].view});
     if (items.empty()) {
       std::fprintf(stderr, "note: no contact sheet: no model has a best-view picture\n");
     } else {
-      write_png(o.contact_sheet, contact_sheet(items));
+      try {
+        write_png(o.contact_sheet, contact_sheet(items));
+      } catch (const Error& e) {
+        std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+        sheet_failed = true;
+      }
     }
   }
   if (!o.quiet) {
-    std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed in %.3f s; log %s\n", inputs.size(),
-                computed, skipped, failed, t_run.seconds(), log_path.c_str());
-    if (!o.contact_sheet.empty()) std::printf("wrote  %s\n", o.contact_sheet.c_str());
+    std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed%s in %.3f s; log %s\n", inputs.size(),
+                computed, skipped, failed, interrupted ? ", then interrupted" : "", t_run.seconds(),
+                printable(log_path).c_str());
+    if (!o.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o.contact_sheet).c_str());
     std::fflush(stdout);
   }
-  return failed ? 1 : 0;
+  if (!log.error().empty())
+    std::fprintf(stderr, "error: the log %s misses %zu line%s (the write error is above)\n",
+                 printable(log_path).c_str(), log.lost(), log.lost() == 1 ? "" : "s");
+  if (interrupted) {
+    std::fprintf(stderr, "interrupted (a new run resumes where this one stopped)\n");
+    return kInterruptedExit;
+  }
+  return failed || !log.error().empty() || sheet_failed ? 1 : 0;
 }
 
 RunFn setup(CLI::App& sub) {
@@ -331,14 +454,21 @@ RunFn setup(CLI::App& sub) {
       "Per model, in DIR: NAME_saliency.ply (as `meshsal saliency`), with --view NAME_view.png\n"
       "(the best view, as `meshsal viewpoint -o`), with --simplify NAME_simplified.obj. NAME is\n"
       "the file name without its extension (the whole name, or a _2.. suffix, where two inputs\n"
-      "share it). DIR/batch.jsonl (or --log) gets one JSON object per model: its input, status\n"
-      "(done, skipped, failed), outputs, counts, seconds per stage, saliency statistics as\n"
-      "`saliency --json` prints them, the best view, the device; or `error` with the message.\n"
-      "A model whose outputs all exist and are newer than its input is skipped (--force redoes\n"
-      "it). A failing model is logged and the others go on; the exit status is 1 when any\n"
-      "failed. Inputs: files, folders (the mesh files inside, sorted by name), quoted globs\n"
-      "('scans/*.ply'), @LIST or --list LIST (one item per line, # comments; relative items are\n"
-      "taken from the list's folder).");
+      "share it). DIR/batch.jsonl (or --log) gets one JSON object per model, appended as each\n"
+      "ends (earlier runs' lines stay): its input, status (done, skipped, failed), outputs,\n"
+      "counts, seconds per stage, saliency statistics as `saliency --json` prints them, the best\n"
+      "view, the device; or `error` with the message. Names that are not UTF-8 appear with\n"
+      "\\udcXX escapes for their odd bytes (Python: os.fsencode(json.loads(line)['mesh'])).\n"
+      "Resume: DIR/.meshsal-batch/NAME.state records what made each model's outputs; a model\n"
+      "is skipped when its input (size, time and a content hash) and these options are the same\n"
+      "and its outputs are in place (its line repeats the earlier numbers); otherwise it is\n"
+      "computed again (--force: always). Only regular files are read: a named pipe or a device\n"
+      "among the inputs is skipped with its reason. A failing model is logged and the others go\n"
+      "on; the exit status is 1 when any failed or a log line could not be written. Inputs:\n"
+      "files, folders (the mesh files inside, sorted by name), quoted globs ('scans/*.ply'),\n"
+      "@LIST or --list LIST (a regular file or - for standard input: one item per line, #\n"
+      "comments, relative items taken from the list's folder; at most 64 MiB, 4096 bytes a\n"
+      "line, 1,000,000 items).");
   sub.add_option("inputs", o->inputs, "Mesh files, folders, globs or @LIST files");
   sub.add_option("--list", o->list_file, "A file listing the inputs, one per line");
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();
@@ -347,6 +477,13 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--simplify", o->simplify,
                  "Also write NAME_simplified.obj with saliency weights: a ratio of the faces in (0, 1], "
                  "or a face count above 1")->check(finite_in(0, 1e12, true));
+  sub.add_option("--weights", o->weights,
+                 "--simplify's weighting: saliency (the paper's recipe), balanced or none (see simplify --help)")
+      ->capture_default_str()->check(CLI::IsMember({"saliency", "balanced", "none"}));
+  sub.add_option("--weight-floor", o->weight_floor,
+                 "--simplify: raise every weight W to at least this fraction of the mean W (default: the "
+                 "weighting's, see simplify --help; 0 = the paper's literal rule)")
+      ->check(finite_in(0, 100));
   sub.add_option("--contact-sheet", o->contact_sheet,
                  "One PNG of every model's best-view picture as a thumbnail with its name (implies --view)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");

@@ -8,6 +8,7 @@
 
 #include "cmd_bench_simplify.h"
 #include "command.h"
+#include "json_string.h"
 #include "core/timer.h"
 #include "json_object.h"
 #include "cli/data_dir.h"
@@ -19,6 +20,7 @@
 #include "saliency/method_error.h"
 #include "saliency/saliency.h"
 #include "saliency_output.h"
+#include "interrupt.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
@@ -72,6 +74,7 @@ struct Row {
 // once per sweep precision.
 std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
   meshsal::SaliencyOptions cpu;
+  cpu.cancel = interrupt_flag();
   cpu.backend = meshsal::Backend::Cpu;
   cpu.threads = a.threads;
   std::vector<meshsal::SaliencyOptions> out{cpu};
@@ -87,7 +90,7 @@ std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
       }
     }
   } catch (const meshsal::Error& e) {
-    std::fprintf(stderr, "no Vulkan rows: %s\n", e.what());
+    std::fprintf(stderr, "no Vulkan rows: %s\n", printable(e.what()).c_str());
   }
   return out;
 }
@@ -128,6 +131,7 @@ Row bench_one(const std::string& model, const meshsal::Mesh& mesh, double read,
 // its pair count passes kExactReferencePairLimit) and the error of fast against it.
 Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read, const Args& a) {
   meshsal::SaliencyOptions opt;
+  opt.cancel = interrupt_flag();
   opt.backend = a.backend == "gpu" ? meshsal::Backend::Gpu : meshsal::Backend::Cpu;
   opt.threads = a.threads;
   opt.method = meshsal::Method::Fast;
@@ -235,7 +239,7 @@ int run(const Args& a) {
       if (std::filesystem::exists(p))
         paths.push_back(p);
       else
-        std::fprintf(stderr, "skipped %s: not found (give meshes as arguments or --data-dir)\n", p.c_str());
+        std::fprintf(stderr, "skipped %s: not found (give meshes as arguments or --data-dir)\n", printable(p).c_str());
     }
     if (paths.empty()) throw meshsal::Error("no benchmark meshes found in '" + dir + "'");
   }
@@ -258,13 +262,14 @@ int run(const Args& a) {
       continue;
     }
     for (const auto& opt : bench_backends(a)) {
-      if (!a.json && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", p.c_str());
+      if (!a.json && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", printable(p).c_str());
       try {
         rows.push_back(bench_one(model, mesh, read, opt, a.repeat));
         rows.back().path = p;
       } catch (const meshsal::Error& e) {
         if (opt.backend == meshsal::Backend::Cpu) throw;
-        std::fprintf(stderr, "skipped %s on Vulkan device %d: %s\n", p.c_str(), opt.device, e.what());
+        std::fprintf(stderr, "skipped %s on Vulkan device %d: %s\n", printable(p).c_str(), opt.device,
+                     printable(e.what()).c_str());
       }
     }
   }

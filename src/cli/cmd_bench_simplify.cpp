@@ -21,6 +21,7 @@
 #include "output_check.h"
 #include "simplify/simplify.h"
 #include "view/tradeoff_plot.h"
+#include "interrupt.h"
 
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER
 #include <meshoptimizer.h>
@@ -184,7 +185,7 @@ std::vector<std::string> default_meshes(const std::string& dir) {
   for (const char* name : {"armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz", "lucy_50k.ply"}) {
     const std::string p = dir + "/" + name;
     if (std::filesystem::exists(p)) paths.push_back(p);
-    else std::fprintf(stderr, "skipped %s: not found (give meshes as arguments or --data-dir)\n", p.c_str());
+    else std::fprintf(stderr, "skipped %s: not found (give meshes as arguments or --data-dir)\n", printable(p).c_str());
   }
   if (paths.empty()) throw meshsal::Error("no benchmark meshes found in '" + dir + "'");
   return paths;
@@ -354,6 +355,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
     const std::string model = std::filesystem::path(path).filename().string();
     const Mesh mesh = load_mesh(path);
     SaliencyOptions so;
+    so.cancel = interrupt_flag();
     so.backend = Backend::Cpu;
     so.threads = a.threads;
     so.smoothed = true;
@@ -363,9 +365,11 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
     sal_times.push_back({model, ts.seconds()});
     const std::vector<double> w_balanced = saliency_weights(s.smoothed, s.is_point, balanced);
     CompareOptions co;
+    co.cancel = interrupt_flag();
     co.threads = a.threads;
     for (double ratio : {0.01, 0.05}) {
       SimplifyOptions opt;
+      opt.cancel = interrupt_flag();
       opt.ratio = ratio;
       opt.threads = a.threads;
       const size_t target = resolve_target_faces(opt, mesh.triangle_count());

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -15,6 +16,7 @@
 #include "number_options.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -43,11 +45,12 @@ int run(const Args& a) {
     source = a.saliency;
   } else {
     SaliencyOptions so;
+    so.cancel = interrupt_flag();
     so.backend = parse_backend(a.backend);
     so.precision = meshsal::parse_precision(a.precision);
     so.method = meshsal::parse_method(a.method);
     so.threads = a.threads;
-    so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", printable(line).c_str()); };
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     SaliencyResult r = compute_saliency(original, so);
     s = std::move(r.saliency);
@@ -55,6 +58,7 @@ int run(const Args& a) {
     device = r.backend_name;
   }
   CompareOptions co;
+  co.cancel = interrupt_flag();
   co.face_samples = size_t(a.samples);
   co.salient_fraction = a.fraction;
   co.threads = a.threads;

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "json_string.h"
 #include "meshsal/meshsal.h"
 #include "cli/render_demo.h"
 #include "saliency/saliency.h"
@@ -15,6 +16,7 @@
 #include "output_check.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -59,6 +61,7 @@ int run(const Args& a) {
   std::printf("demo mesh: a sphere with ~900 identical small bumps and one larger unique feature\n");
 
   SaliencyOptions opt;
+  opt.cancel = interrupt_flag();
   opt.smoothed = true;  // Sm = G(S, 3 eps) for the simplification below
   opt.threads = a.threads;
   opt.backend = parse_backend(a.backend);
@@ -66,7 +69,7 @@ int run(const Args& a) {
   opt.method = meshsal::parse_method(a.method);
   Progress progress(stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", printable(line).c_str()); };
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.finish();
   print_saliency_summary(mesh, r, 0.0);
@@ -77,10 +80,11 @@ int run(const Args& a) {
   std::printf("unique feature   %16.3f   %13.3f\n", mean_over(r.curvature, feature), mean_over(r.saliency, feature));
   std::printf("repeated bumps   %16.3f   %13.3f\n", mean_over(r.curvature, bumps), mean_over(r.saliency, bumps));
   std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
-  std::printf("wrote %s (open in MeshLab: colour = saliency)\n", out.c_str());
+  std::printf("wrote %s (open in MeshLab: colour = saliency)\n", printable(out).c_str());
 
   // Simplification to 4% of the faces, plain quadrics against saliency-weighted ones.
   SimplifyOptions so;
+  so.cancel = interrupt_flag();
   so.ratio = 0.04;
   std::vector<double> weights = saliency_weights(r.smoothed, r.is_point, {});
   Mesh plain = simplify_mesh(mesh, so);
@@ -91,7 +95,7 @@ int run(const Args& a) {
               salient.triangle_count());
   std::printf("feature error (mean dist.) %15.5f   %17.5f\n", mean_distance(mesh, feature, plain),
               mean_distance(mesh, feature, salient));
-  std::printf("wrote %s/simplified_plain.obj and simplified_saliency.obj\n", a.dir.c_str());
+  std::printf("wrote %s/simplified_plain.obj and simplified_saliency.obj\n", printable(a.dir).c_str());
 
   // Pictures: best view coloured by saliency, the map of visible saliency over all view
   // directions, and original | plain | saliency-simplified side by side.
@@ -101,7 +105,7 @@ int run(const Args& a) {
   std::vector<std::string> pictures = write_demo_pictures(mesh, r.saliency, a.dir, &plain, &salient, po);
   progress.finish();
   std::printf("\n");
-  for (const std::string& p : pictures) std::printf("wrote %s\n", p.c_str());
+  for (const std::string& p : pictures) std::printf("wrote %s\n", printable(p).c_str());
   return 0;
 }
 

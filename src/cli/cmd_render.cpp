@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/timer.h"
 #include "json_object.h"
 #include "load_input.h"
@@ -20,6 +21,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "view_json.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -62,12 +64,13 @@ int run(const Options& o) {
   if (!o.grey || o.best) {
     Progress progress(stderr_is_terminal());
     SaliencyOptions sopt;
+    sopt.cancel = interrupt_flag();
     sopt.threads = o.threads;
     sopt.backend = parse_backend(o.backend);
     sopt.precision = meshsal::parse_precision(o.precision);
     sopt.method = meshsal::parse_method(o.method);
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-    sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+    sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", printable(m).c_str()); };
     const std::string from = saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency);
     score = vertex_score(mesh, kind, from, sopt, &source);
     progress.finish();
@@ -76,12 +79,15 @@ int run(const Options& o) {
     // The view of most visible score (best_viewpoint's defaults), found in the up axis's frame.
     VisibilityOptions vopt;
     vopt.threads = o.threads;
-    BestView b = best_viewpoint(mesh, score, {}, 0, vopt, parse_backend(o.backend));
+    OptimiserOptions oopt;
+    oopt.cancel = interrupt_flag();
+    BestView b = best_viewpoint(mesh, score, oopt, 0, vopt, parse_backend(o.backend));
     double d[3];
     view_direction(b.optimised.best, d);  // y-up angles of the search
     view = direction_angles(frame_mesh(mesh, style.up), d);
     device = b.backend_name;
     std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
+    if (!b.optimised.note.empty()) std::fprintf(stderr, "note: %s\n", b.optimised.note.c_str());
   }
   const std::vector<double>* shown = o.grey ? nullptr : &score;
   const std::string name = std::filesystem::path(o.input).filename().string();

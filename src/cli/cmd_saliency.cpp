@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -10,6 +11,7 @@
 #include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -29,6 +31,7 @@ int run(const Args& a) {
   // Before any work: the output is a writable .ply that is not the input.
   check_outputs({{a.output, "-o", {".ply"}}}, {a.input});
   SaliencyOptions opt;
+  opt.cancel = interrupt_flag();
   opt.eps_frac = a.eps_frac;
   opt.scales = parse_scales(a.scales);
   opt.threads = a.threads;
@@ -40,7 +43,7 @@ int run(const Args& a) {
   Progress progress(!a.quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
   opt.notice = [&a](const std::string& line) {
-    if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
   };
 
   const meshsal::Timer t0;
@@ -55,7 +58,7 @@ int run(const Args& a) {
     print_saliency_json(a.input, a.output, mesh, r, load);
   } else if (!a.quiet) {
     print_saliency_summary(mesh, r, load);
-    std::printf("wrote      %s\n", a.output.c_str());
+    std::printf("wrote      %s\n", printable(a.output).c_str());
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/mesh_points.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
@@ -13,6 +14,7 @@
 #include "load_input.h"
 #include "progress.h"
 #include "saliency_output.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -23,7 +25,7 @@ struct Args {
   std::string input, output, weights = "saliency", saliency_from, backend = "auto";
   long long target_faces = 0;
   double ratio = 0;
-  double lambda = 100, alpha_percentile = 30, weight_floor = 0, eps_frac = 0.003;
+  double lambda = 100, alpha_percentile = 30, weight_floor = meshsal::kDefaultWeightFloor, eps_frac = 0.003;
   double target_error = 0;  // --target-error, % of the bounding-box diagonal
   bool has_target = false, has_ratio = false, quiet = false, json = false, lock_border = false;
   bool lambda_given = false, alpha_given = false;  // override the --weights preset's
@@ -88,6 +90,7 @@ int run(const Args& a) {
   const double t_load = t0.seconds();
 
   SimplifyOptions opt;
+  opt.cancel = interrupt_flag();
   if (a.has_target) opt.target_faces = size_t(a.target_faces);
   else opt.ratio = a.ratio;
   opt.target_error = a.target_error / 100;
@@ -108,7 +111,7 @@ int run(const Args& a) {
     if (!a.quiet) {
       std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
                    a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
-      if (!a.json) std::printf("wrote      %s\n", a.output.c_str());
+      if (!a.json) std::printf("wrote      %s\n", printable(a.output).c_str());
     }
     return 0;
   }
@@ -116,19 +119,22 @@ int run(const Args& a) {
   resolve_target_faces(opt, mesh.triangle_count());
 
   std::vector<double> weights;
+  bool told_precision = false;  // the saliency's notice already gave precision_warning
   double t_saliency = 0, alpha = 0;
   std::string device = "cpu";  // simplification runs on the CPU; computed saliency names its own
   if (a.weights != "none") {
     const meshsal::Timer ts;
     SaliencyOptions so;
+    so.cancel = interrupt_flag();
     so.eps_frac = a.eps_frac;
     so.threads = a.threads;
     so.backend = parse_backend(a.backend);
     so.precision = meshsal::parse_precision(a.precision);
     so.method = meshsal::parse_method(a.method);
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-    so.notice = [&a](const std::string& line) {
-      if (!a.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+    so.notice = [&](const std::string& line) {
+      told_precision |= line.find("float precision") != std::string::npos;
+      if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
     };
     std::vector<double> from_file;
     if (!a.saliency_from.empty()) {
@@ -152,7 +158,9 @@ int run(const Args& a) {
   else write_ply(a.output, out, {});
   progress.finish();
   // With only an error bound there is no face target to miss.
-  if (!rep.reached && !a.quiet && (a.has_target || a.has_ratio)) std::fprintf(stderr, "note: %s\n", rep.note.c_str());
+  if (!rep.warning.empty() && !told_precision && !a.quiet && rep.note.find(rep.warning) == std::string::npos)
+    std::fprintf(stderr, "warning: %s\n", printable(rep.warning).c_str());
+  if (!rep.reached && !a.quiet && (a.has_target || a.has_ratio)) std::fprintf(stderr, "note: %s\n", printable(rep.note).c_str());
   if (a.json) {
     const double diagonal = mesh_points_bbox(mesh, referenced_vertices(mesh)).diagonal();
     JsonObject j;
@@ -163,7 +171,8 @@ int run(const Args& a) {
         .text("weights", a.weights).text("device", device)
         // The error in model units and in % of the diagonal, as every command gives distances.
         .number("diagonal", diagonal).number("error", rep.error * diagonal)
-        .number("error_percent", 100 * rep.error).number("target_error", a.target_error / 100 * diagonal)
+        .number("error_percent", 100 * rep.error).number("weight_floor", weights.empty() ? 0.0 : wo.floor)
+        .number("target_error", a.target_error / 100 * diagonal)
         .number("target_error_percent", a.target_error)
         .flag("lock_border", a.lock_border).count("attributes", out.attributes.size());
     if (!weights.empty())
@@ -175,7 +184,7 @@ int run(const Args& a) {
                 rep.input_faces, t_load);
     if (!weights.empty())
       std::printf("weights    %s%s, lambda %g, alpha %.6g (%g-th percentile), %.3f s\n", a.weights.c_str(),
-                  a.saliency_from.empty() ? "" : (" from " + a.saliency_from).c_str(), wo.lambda,
+                  a.saliency_from.empty() ? "" : printable(" from " + a.saliency_from).c_str(), wo.lambda,
                   alpha, wo.alpha_percentile, t_saliency);
     else
       std::printf("weights    none (plain quadric error)\n");
@@ -187,9 +196,9 @@ int run(const Args& a) {
     if (!out.attributes.empty()) {
       std::string names;
       for (const VertexAttribute& at : out.attributes) names += " " + at.name;
-      std::printf("attributes%s\n", names.c_str());
+      std::printf("attributes%s\n", printable(names).c_str());
     }
-    std::printf("wrote      %s\n", a.output.c_str());
+    std::printf("wrote      %s\n", printable(a.output).c_str());
   }
   return 0;
 }
@@ -235,7 +244,8 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--saliency-from", a->saliency_from,
                  "Reuse S from this saliency PLY (`quality` property) instead of computing it");
   sub.add_option("--weight-floor", a->weight_floor,
-                 "Not in the paper: raise W to at least this fraction of its mean (0 = off)")
+                 "Not in the paper: raise W to at least this fraction of its mean W, so that no collapse is free\n"
+                 "(flat regions have Sm = 0; 0 = the paper's literal rule, which can erase them)")
       ->capture_default_str()->check(finite_in(0, 100));
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
       ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));

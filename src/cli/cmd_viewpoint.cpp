@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
 #include "view/legend.h"
@@ -23,6 +24,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "view_json.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 namespace {
@@ -55,13 +57,14 @@ int run(const Options& o) {
 
   Progress progress(stderr_is_terminal());
   SaliencyOptions sopt;
+  sopt.cancel = interrupt_flag();
   sopt.threads = o.threads;
   sopt.backend = backend;
   sopt.precision = parse_precision(o.precision);
   sopt.method = meshsal::parse_method(o.method);
   sopt.device = o.device;
   sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+  sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", printable(m).c_str()); };
   std::string source;
   std::vector<double> score = vertex_score(
       mesh, kind, saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency), sopt, &source);
@@ -74,6 +77,7 @@ int run(const Options& o) {
   ViewScorerSetup setup = make_view_scorer(mesh, score, vopt, backend, o.device, sopt.notice);
 
   OptimiserOptions oopt;
+  oopt.cancel = interrupt_flag();
   oopt.restarts = o.restarts;
   oopt.seed = o.seed;
   // The optimiser reports after every batch of views ("best view"), then the map ("view map").
@@ -120,6 +124,10 @@ int run(const Options& o) {
       .count("resolution", uint64_t(o.resolution)).number("depth_tol_px", o.depth_tol).text("up", o.up);
   add_view(j, up_frame, best_view).number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0);
   j.count("restarts", uint64_t(o.restarts)).count("seed", o.seed);
+  if (!best.note.empty()) {
+    j.text("note", best.note);
+    std::fprintf(stderr, "note: %s\n", best.note.c_str());
+  }
   if (map_views > 0) {
     JsonObject ex;
     ex.count("views", uint64_t(map_views));

@@ -1,5 +1,6 @@
 // meshsal CLI: load_input (see load_input.h).
 #include "load_input.h"
+#include "json_string.h"
 
 #include <cctype>
 #include <cstdio>
@@ -15,8 +16,9 @@ std::string mesh_extension(const std::string& path) {
 }
 
 meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
-                              bool attributes, meshsal::LoadReport* report) {
+                              bool attributes, meshsal::LoadReport* report, bool regular_only) {
   meshsal::LoadOptions options;
+  options.regular_files_only = regular_only;
   options.attributes = attributes || mesh_extension(path) == ".ply";
   meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, report);
   if (!attributes) mesh.attributes.clear();
@@ -28,8 +30,15 @@ meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexPro
   meshsal::LoadReport report;
   meshsal::Mesh mesh = load_input_mesh(path, properties, attributes, &report);
   if (report.welded_corners && !quiet)
-    std::fprintf(stderr, "note: %s: welded %llu STL corners into %zu shared vertices\n", path.c_str(),
+    std::fprintf(stderr, "note: %s: welded %llu STL corners into %zu shared vertices\n", printable(path).c_str(),
                  static_cast<unsigned long long>(report.welded_corners), mesh.vertex_count());
+  // A command that carries attributes (simplify) would otherwise lose these silently.
+  if (attributes && !report.unread.empty() && !quiet) {
+    std::string what;
+    for (size_t i = 0; i < report.unread.size(); ++i) what += (i ? ", " : "") + report.unread[i];
+    std::fprintf(stderr, "note: %s: not carried to the output (only scalar vertex properties are): %s\n",
+                 printable(path).c_str(), printable(what).c_str());
+  }
   return mesh;
 }
 

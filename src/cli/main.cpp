@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "command.h"
+#include "json_string.h"
 #include "core/heap_policy.h"
 #include "meshsal/meshsal.h"
+#include "interrupt.h"
 
 namespace meshsal_cli {
 
@@ -55,6 +57,7 @@ static std::string suggestion(const std::string& given, const std::vector<std::s
 int main(int argc, char** argv) {
   using namespace meshsal_cli;
   meshsal::keep_freed_memory_for_reuse();
+  install_interrupt_handler();
   CLI::App app{
       "meshsal: mesh saliency (Lee, Varshney, Jacobs 2005) on the CPU and on Vulkan GPUs,\n"
       "saliency-guided simplification and best-viewpoint selection.\n"
@@ -78,7 +81,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> names;
     for (const Command& c : commands) names.push_back(c.name);
     if (std::find(names.begin(), names.end(), given) == names.end()) {
-      std::fprintf(stderr, "error: unknown command '%s'%s (see meshsal --help)\n", given.c_str(),
+      std::fprintf(stderr, "error: unknown command '%s'%s (see meshsal --help)\n", printable(given).c_str(),
                    suggestion(given, names).c_str());
       return 2;
     }
@@ -93,23 +96,26 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Usage errors: one line, exit status 2 (bad input files exit with 1).
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "error: %s (see --help)\n", printable(e.what()).c_str());
     return 2;
   }
   try {
     for (auto& [sub, run] : runs)
       if (sub->parsed()) return run();
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "error: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "error: %s (see --help)\n", printable(e.what()).c_str());
     return 2;
+  } catch (const meshsal::Cancelled&) {
+    std::fprintf(stderr, "interrupted\n");
+    return kInterruptedExit;
   } catch (const meshsal::Error& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
     return 1;
   }
   return 1;

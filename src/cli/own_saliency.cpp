@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "json_string.h"
+
 namespace meshsal_cli {
 
 std::string saliency_source_file(const std::string& input, const meshsal::VertexProperties& props,
@@ -9,7 +11,7 @@ std::string saliency_source_file(const std::string& input, const meshsal::Vertex
   if (!saliency_from.empty() || !saliency_score) return saliency_from;
   if (!props.count("quality")) return "";
   std::fprintf(stderr, "%s: using its own saliency (per-vertex quality, as `meshsal saliency` writes it), "
-                       "not computing it again\n", input.c_str());
+                       "not computing it again\n", printable(input).c_str());
   return input;
 }
 

@@ -1,5 +1,7 @@
 #include "core/parallel.h"
 
+#include "core/cancel.h"
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -25,11 +27,16 @@ void parallel_for(size_t n, unsigned threads, size_t chunk,
                   const std::function<void(size_t, size_t)>& body, const ThreadStarter& start) {
   if (n == 0) return;
   if (chunk == 0) chunk = 1;
+  // The caller's cancel flag, polled before every chunk on every thread (core/cancel.h).
+  const std::atomic<bool>* cancel = current_cancel_flag();
   unsigned t = resolve_threads(threads);
   size_t chunks = (n + chunk - 1) / chunk;
   if (t > chunks) t = unsigned(chunks);
   if (t <= 1) {
-    body(0, n);
+    for (size_t begin = 0; begin < n; begin += chunk) {
+      throw_if_cancelled();
+      body(begin, std::min(n, begin + chunk));
+    }
     return;
   }
   std::atomic<size_t> next{0};
@@ -37,9 +44,11 @@ void parallel_for(size_t n, unsigned threads, size_t chunk,
   std::mutex failure_mutex;
   auto worker = [&] {
     try {
+      const CancelScope scope(cancel);  // nested library code on this worker polls it too
       for (;;) {
         size_t begin = next.fetch_add(chunk);
         if (begin >= n) break;
+        throw_if_cancelled();
         body(begin, std::min(n, begin + chunk));
       }
     } catch (...) {

@@ -16,6 +16,7 @@
 #include "fast_center_surround_comp.h"
 #include "fast_finish_comp.h"
 #include "fast_query_comp.h"
+#include "core/cancel.h"
 
 namespace meshsal::gpu {
 
@@ -163,6 +164,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
       done += next - at;
       at = next;
       if (options.progress) options.progress(stage, (job.k + done / total) / job.nsig);
+      throw_if_cancelled();  // between submissions: nothing of this one is still running
     }
   }
   vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {

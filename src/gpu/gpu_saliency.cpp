@@ -31,6 +31,7 @@
 #include "sweep8_rows_comp.h"
 #include "sweep8_rows_mixed_comp.h"
 #include "sweepn_comp.h"
+#include "core/cancel.h"
 
 namespace meshsal {
 
@@ -177,6 +178,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
                            ctx.submission_target_s);
     at = next;
     if (options.progress) options.progress(stage, double(work.first[at]) / std::max<uint32_t>(m.np, 1));
+    throw_if_cancelled();  // between submissions: nothing of this slice is still running
   }
   std::vector<uint32_t> pairs(m.np);
   m.pairs.download(pairs.data(), pairs.size() * 4);

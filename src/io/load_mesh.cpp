@@ -74,7 +74,7 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
   if (ext == ".obj") mesh = load_obj_text(bytes, name, attributes);
   else if (ext == ".off") mesh = load_off_text(bytes, name);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
-  else mesh = load_ply_bytes(bytes, name, properties, attributes);
+  else mesh = load_ply_bytes(bytes, name, properties, attributes, report ? &report->unread : nullptr);
   return mesh;
 }
 
@@ -110,7 +110,7 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
     const uint64_t limit = explicit_limit(options);
-    const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes);
+    const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
     return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes);
   });
 }

@@ -174,9 +174,9 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         any_vt |= c.vt != kNone;
         any_vn |= c.vn != kNone;
         face.push_back(c);
+        if (face.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
       }
-      if (face.size() < 3)
-        throw fail("face with " + std::to_string(face.size()) + " vertices (needs at least 3)");
+      if (const std::string problem = polygon_size_problem(face.size()); !problem.empty()) throw fail(problem);
       for (size_t i = 1; i + 1 < face.size(); ++i)
         for (const Corner& c : {face[0], face[i], face[i + 1]}) {
           corners.push_back(c);
@@ -195,9 +195,9 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         if (v < 0) throw fail("face index " + std::to_string(idx) + " points before the first vertex");
         if (v > 0xFFFFFFFEll) throw fail("face index " + std::to_string(idx) + " is out of range");
         poly.push_back(static_cast<uint32_t>(v));
+        if (poly.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
       }
-      if (poly.size() < 3)
-        throw fail("face with " + std::to_string(poly.size()) + " vertices (needs at least 3)");
+      if (const std::string problem = polygon_size_problem(poly.size()); !problem.empty()) throw fail(problem);
       append_fan(mesh.triangles, poly.data(), poly.size());
     }
   }

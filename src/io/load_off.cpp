@@ -92,7 +92,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
     std::string_view tok = next_token(line);
     uint64_t n;
     if (!parse_number(tok, n)) throw fail("bad face vertex count " + quoted(tok));
-    if (n < 3) throw fail("face with " + std::to_string(n) + " vertices (needs at least 3)");
+    if (const std::string problem = polygon_size_problem(n); !problem.empty()) throw fail(problem);
     poly.clear();
     for (uint64_t i = 0; i < n; ++i) {
       tok = next_token(line);

@@ -203,6 +203,9 @@ struct Reader {
            std::to_string(face) + problem);
     };
     if (n < 3) bad(" has " + std::to_string(n) + " vertices (needs at least 3)");
+    if (n > kMaxPolygonCorners)
+      bad(" has " + std::to_string(n) + " vertices (" + std::to_string(kMaxPolygonCorners) +
+          " is the most a polygon may have)");
     for (uint64_t i = 0; i < n; ++i)
       if (idx[i] < 0 || static_cast<uint64_t>(idx[i]) >= vertex_count ||
           static_cast<uint64_t>(idx[i]) > 0xFFFFFFFEull)
@@ -421,6 +424,9 @@ struct ElementPlans {
   std::vector<Plan> plans;                 // per element
   std::vector<std::vector<float>> extras;  // storage while reading, moved out at the end
   std::vector<std::string> extra_names;
+  // What no reading keeps (vertex list properties, face properties besides the indices,
+  // other elements), for LoadReport::unread.
+  std::vector<std::string> unread;
 };
 
 ElementPlans plan_elements(const Header& h, const Element* vertex, const Element* face,
@@ -439,7 +445,10 @@ ElementPlans plan_elements(const Header& h, const Element* vertex, const Element
       int found[3] = {-1, -1, -1};
       for (size_t j = 0; j < e.props.size(); ++j) {
         const Property& p = e.props[j];
-        if (p.is_list) continue;
+        if (p.is_list) {
+          out.unread.push_back("vertex list property '" + p.name + "'");
+          continue;
+        }
         int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
         if (axis >= 0 && found[axis] < 0) {
           found[axis] = static_cast<int>(j);
@@ -470,9 +479,13 @@ ElementPlans plan_elements(const Header& h, const Element* vertex, const Element
         }
       if (!face_list_found)
         throw Error(name + ": the face element has no vertex_indices list");
+      for (size_t j = 0; j < e.props.size(); ++j)
+        if (plan.roles[j] != Indices) out.unread.push_back("face property '" + e.props[j].name + "'");
       // As many triangles as the body can hold, not as the header claims: a face needs a
       // count and 3 indices (a header of 1-byte faces must not reserve 12 bytes for each).
       mesh.triangles.reserve(std::min<uint64_t>(e.count, body_size / min_face_bytes) * 3);
+    } else {
+      out.unread.push_back("element '" + e.name + "'");
     }
   }
   return out;
@@ -527,7 +540,7 @@ void check_nothing_after(std::string_view bytes, size_t end, bool ascii, const s
 }  // namespace
 
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                    bool attributes) {
+                    bool attributes, std::vector<std::string>* unread) {
   const Header h = parse_header(bytes, name);
   const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
   check_counts_fit(h, body_size, name);
@@ -551,6 +564,7 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   Reader reader{bytes, name, mesh};
   const size_t end = read_body(reader, h, plan.plans, vertex);
   check_nothing_after(bytes, end, h.format == Format::Ascii, name);
+  if (unread) *unread = std::move(plan.unread);
   for (size_t i = 0; i < plan.extras.size(); ++i) {
     if (attributes) mesh.attributes.push_back({plan.extra_names[i], plan.extras[i]});
     if (properties) (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);

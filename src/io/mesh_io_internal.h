@@ -17,8 +17,9 @@ namespace meshsal {
 Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false);
 Mesh load_off_text(std::string_view text, const std::string& name);
 // `attributes`: the extra scalar vertex properties also go to Mesh::attributes, in file order.
+// `unread` (may be null) gets what no option keeps (LoadReport::unread).
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                    bool attributes = false);
+                    bool attributes = false, std::vector<std::string>* unread = nullptr);
 // STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
@@ -30,6 +31,20 @@ inline uint32_t position_bits(float x) {
   uint32_t b;
   std::memcpy(&b, &x, 4);
   return b;
+}
+
+// The most corners one polygon may have, in every format: a fan of n corners is n - 2
+// triangles, so one face line must not be able to ask for gigabytes (a 25M-corner OBJ
+// face became 2.7 GB). Real polygons (a cylinder's cap) stay far below it.
+constexpr uint64_t kMaxPolygonCorners = 65536;
+
+// "" for a polygon of 3..kMaxPolygonCorners corners, else "face with ... vertices (...)".
+inline std::string polygon_size_problem(uint64_t n) {
+  if (n < 3) return "face with " + std::to_string(n) + " vertices (needs at least 3)";
+  if (n > kMaxPolygonCorners)
+    return "face with more than " + std::to_string(kMaxPolygonCorners) + " vertices (" +
+           std::to_string(kMaxPolygonCorners) + " is the most a polygon may have)";
+  return "";
 }
 
 // The fan triangulation of one polygon (n >= 3 indices, already checked): (p0, pi, pi+1).

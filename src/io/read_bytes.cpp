@@ -35,6 +35,7 @@ const char* file_kind(mode_t mode) {
   if (S_ISCHR(mode)) return "a character device";
   if (S_ISBLK(mode)) return "a block device";
   if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISFIFO(mode)) return "a named pipe (FIFO)";
   return "not a regular file";
 }
 
@@ -44,16 +45,18 @@ std::string mib(uint64_t bytes) {
 
 }  // namespace
 
-Bytes read_file(const std::string& path, uint64_t max_pipe_bytes) {
+Bytes read_file(const std::string& path, uint64_t max_pipe_bytes, bool regular_only) {
   // A device (/dev/zero, /dev/urandom, a terminal) never ends or may block: look before
   // opening, then check again on what was opened. stat follows symlinks.
   struct stat st;
   auto refuse_kind = [&] {
-    if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+    if (!S_ISREG(st.st_mode) && (regular_only || !S_ISFIFO(st.st_mode)))
       fail(path, std::string("is ") + file_kind(st.st_mode) + ", not a mesh file");
   };
   if (::stat(path.c_str(), &st) == 0) refuse_kind();
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);  // a FIFO: waits for a writer
+  // A FIFO waits for a writer, unless only regular files are wanted: then O_NONBLOCK
+  // opens it at once and fstat below refuses it (a regular file ignores the flag).
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (regular_only ? O_NONBLOCK : 0));
   if (fd < 0) fail(path, std::string("cannot open: ") + std::strerror(errno));
   if (::fstat(fd, &st) != 0) {
     int e = errno;

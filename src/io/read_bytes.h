@@ -20,8 +20,9 @@ struct Bytes {
 // Reads the file's raw bytes. Regular files are read whole; a FIFO (named pipe) is read
 // up to `max_pipe_bytes`; anything else (a character or block device such as /dev/zero,
 // a socket, a folder; symlinks are followed) is refused before reading.
+// With `regular_only`, FIFOs are refused too (opened without waiting for a writer).
 // Throws Error "PATH: problem".
-Bytes read_file(const std::string& path, uint64_t max_pipe_bytes);
+Bytes read_file(const std::string& path, uint64_t max_pipe_bytes, bool regular_only = false);
 
 bool has_gzip_magic(std::string_view data);
 

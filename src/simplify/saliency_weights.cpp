@@ -75,9 +75,13 @@ std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh)
                       mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
         throw Error("saliency file '" + path + "' belongs to another mesh: " + buf);
       }
-  for (size_t v = 0; v < n; ++v)
+  for (size_t v = 0; v < n; ++v) {
     if (!std::isfinite(it->second[v]))
       throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is not finite");
+    if (it->second[v] < 0)  // every command reads S through here: one rule for all of them
+      throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is " +
+                  std::to_string(it->second[v]) + ", but a saliency is >= 0 (not a file `meshsal saliency` wrote?)");
+  }
   return std::vector<double>(it->second.begin(), it->second.end());
 }
 
@@ -89,7 +93,7 @@ Weighting parse_weighting(const std::string& name) {
 }
 
 SaliencyWeightOptions weight_preset(Weighting weighting) {
-  SaliencyWeightOptions o;  // Saliency and None: the paper's recipe
+  SaliencyWeightOptions o;  // Saliency and None: the paper's recipe (with the default floor)
   if (weighting == Weighting::Balanced) {
     // Measured (tools/sweep_weights.sh; docs/method.md, "Weightings"): the paper's curve
     // with the threshold at the 50th percentile and lambda 3 instead of 30 and 100. W stays
@@ -177,7 +181,9 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i]) sum += w[i], ++n;
   if (options.floor > 0 && n > 0) {
-    const double lo = options.floor * sum / double(n);
+    // Sm 0 everywhere (nothing salient at any scale): the mean gives no floor, and plain
+    // quadrics (W = 1) are what is left to go by.
+    const double lo = sum > 0 ? options.floor * sum / double(n) : 1.0;
     for (size_t i = 0; i < w.size(); ++i)
       if (is_point[i]) w[i] = std::max(w[i], lo);
   }

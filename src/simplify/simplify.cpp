@@ -13,6 +13,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/cancel.h"
 #include "core/parallel.h"
 #include "simplify/edge_queue.h"
 #include "simplify/quadric.h"
@@ -229,22 +230,41 @@ struct State {
   bool both_locked(uint32_t a, uint32_t b) const {
     return has_locks && locked[a] && locked[b] && !seam_edge(a, b);
   }
-  // The collapse's error squared (see SimplifyOptions::target_error).
-  double error2(uint32_t a, uint32_t b, double cost) const {
-    double w = vert[a].plane_weight + vert[b].plane_weight;
-    if (seam_edge(a, b)) w += vert[partner[a]].plane_weight + vert[partner[b]].plane_weight;
-    return w > 0 ? cost / w : 0;
+  // With vertex weights: each vertex's unweighted quadric and plane weight, for error2.
+  struct Plain {
+    Quadric q;
+    double plane_weight;
+    Plain& operator+=(const Plain& o) {
+      q += o.q;
+      plane_weight += o.plane_weight;
+      return *this;
+    }
+  };
+  std::vector<Plain> plain;
+  // The collapse's error squared (see SimplifyOptions::target_error): a distance, so with
+  // vertex weights it is taken from the unweighted quadrics (a weight near 0 would hide
+  // what a collapse costs: a flat region's border cut away read as error 0).
+  double error2(uint32_t a, uint32_t b, const double np[3], double cost) const {
+    if (plain.empty()) {
+      double w = vert[a].plane_weight + vert[b].plane_weight;
+      if (seam_edge(a, b)) w += vert[partner[a]].plane_weight + vert[partner[b]].plane_weight;
+      return w > 0 ? cost / w : 0;
+    }
+    Plain sum = plain[a];
+    sum += plain[b];
+    if (seam_edge(a, b)) sum += plain[partner[a]], sum += plain[partner[b]];
+    return sum.plane_weight > 0 ? std::max(0.0, sum.q.error(np)) / sum.plane_weight : 0;
   }
   // Refuses a collapse over the error bound (before the costlier check()).
-  bool over_error(uint32_t a, uint32_t b, double cost) {
-    if (!(error2(a, b, cost) > max_error2)) return false;
+  bool over_error(uint32_t a, uint32_t b, const double np[3], double cost) {
+    if (!(error2(a, b, np, cost) > max_error2)) return false;
     ++error_refused;
     return true;
   }
   // check() passed: collapses the edge onto its locked end if it has one, else onto a.
   // Returns how many collapses it made (2 along a seam); kept[i] took removed[i].
   int apply(uint32_t a, uint32_t b, const double np[3], double cost, uint32_t kept[2], uint32_t removed[2]) {
-    reached_error2 = std::max(reached_error2, error2(a, b, cost));
+    reached_error2 = std::max(reached_error2, error2(a, b, np, cost));
     if (seam_edge(a, b)) {
       const double* pb = p(b);
       if (np[0] == pb[0] && np[1] == pb[1] && np[2] == pb[2]) std::swap(a, b);  // b's end stays
@@ -292,6 +312,10 @@ void State::init(const Mesh& mesh, const SimplifyOptions& options, const std::ve
   build_triangle_runs();
   std::vector<uint32_t> unique_edges_a, unique_edges_b;
   build_edges(options.border_weight, &unique_edges_a, &unique_edges_b);
+  if (w) {
+    plain.resize(nv);
+    for (size_t v = 0; v < nv; ++v) plain[v] = {vert[v].q, vert[v].plane_weight};
+  }
   if (w)
     for (size_t v = 0; v < nv; ++v) {
       vert[v].q *= (*w)[order[v]];
@@ -762,6 +786,7 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   for (int k = 0; k < 3; ++k) vert[a].p[k] = np[k];
   vert[a].q += vert[b].q;
   vert[a].plane_weight += vert[b].plane_weight;
+  if (!plain.empty()) plain[a] += plain[b];
   if (border[a] && border[b]) --border_vertices;
   border[a] = border[a] | border[b];
   compact(a);
@@ -865,6 +890,7 @@ Mesh State::output(SimplifyReport* report) const {
     report->output_vertices = out.vertex_count();
     report->reached = report->output_faces == target;
     report->note.clear();
+    report->warning = precision_warning(*mesh_in);
     if (!report->reached) {
       bool any_border = false;
       for (size_t v = 0; v < nv && !any_border; ++v) any_border = alive[v] && border[v];
@@ -872,6 +898,10 @@ Mesh State::output(SimplifyReport* report) const {
         report->note = "target of " + std::to_string(target) +
                        " faces is not reachable: a closed manifold mesh has an even face "
                        "count; stopped at " + std::to_string(faces);
+      else if (!report->warning.empty())  // rounding noise folds triangles: not the surface's fault
+        report->note = "target of " + std::to_string(target) +
+                       " faces is not reachable: the positions are too coarse at float precision (see the "
+                       "warning); stopped at " + std::to_string(faces);
       else
         report->note = "target of " + std::to_string(target) +
                        " faces is not reachable: no further collapse keeps the mesh manifold "
@@ -899,6 +929,7 @@ Mesh State::output(SimplifyReport* report) const {
 // of them; then its entry goes back into the heap.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  const CancelScope cancel(options.cancel);
   const Timer t0;
   State s;
   std::vector<Entry> initial;
@@ -970,7 +1001,9 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
       heap.push(make_entry(s.cost(lo, hi, tmp), lo, hi, now));
     }
   };
+  size_t polls = 0;
   while (s.faces > s.target) {
+    if ((++polls & 4095) == 0) throw_if_cancelled();
     // One face short on a closed manifold surface: every collapse removes two faces and
     // would overshoot, so the scan below would refuse every edge left. Stop now instead
     // (same result; the report's note says why).
@@ -994,7 +1027,7 @@ Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
     }
     if (!s.current(e)) continue;
     const double exact = s.cost(e.a, e.b, np);
-    const Check c = s.over_error(e.a, e.b, exact) ? Check::Refused : s.check_edge(e.a, e.b, np);
+    const Check c = s.over_error(e.a, e.b, np, exact) ? Check::Refused : s.check_edge(e.a, e.b, np);
     if (c != Check::Ok) {
       ++s.refused;
       refused[e.a].push_back(e);
@@ -1062,7 +1095,7 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
     for (const Entry& e : cand) {
       double np[3];
       const double exact = s.cost(e.a, e.b, np);
-      if (s.over_error(e.a, e.b, exact) || s.check_edge(e.a, e.b, np) != Check::Ok) {
+      if (s.over_error(e.a, e.b, np, exact) || s.check_edge(e.a, e.b, np) != Check::Ok) {
         ++s.refused;
         continue;
       }

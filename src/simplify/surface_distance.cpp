@@ -9,6 +9,7 @@
 
 #include "meshsal/meshsal.h"
 #include "core/parallel.h"
+#include "core/cancel.h"
 
 namespace meshsal {
 
@@ -297,6 +298,7 @@ double salient_region_error(const Mesh& mesh, const std::vector<double>& salienc
 SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified,
                                    const std::vector<double>* saliency,
                                    const CompareOptions& options) {
+  const CancelScope cancel(options.cancel);
   check_mesh(original, "the original mesh");
   check_mesh(simplified, "the simplified mesh");
   if (saliency && saliency->size() != original.vertex_count())

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/cancel.h"
 
 namespace meshsal {
 
@@ -68,6 +69,7 @@ struct Restart {
 }  // namespace
 
 OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& o) {
+  const CancelScope cancel(o.cancel);
   if (o.restarts < 1) throw Error("restarts must be at least 1");
   if (!(o.probe > 0) || !(o.initial_step > 0) || !(o.min_step > 0))
     throw Error("optimiser probe and step sizes must be positive");
@@ -98,6 +100,7 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
     o.progress("best view", reported);
   };
   auto evaluate = [&](const std::vector<ViewAngles>& views) {
+    throw_if_cancelled();
     std::vector<double> u = scorer(views);
     if (u.size() != views.size()) throw Error("internal: view scorer returned a wrong count");
     res.views_evaluated += views.size();
@@ -182,6 +185,14 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
   }
   res.best = rs[best].at;
   res.U = rs[best].U;
+  if (!(res.U > 0)) {
+    // Every view tried sees nothing (a score of 0 everywhere: one triangle, a small fan):
+    // any start would "win", so say so and give the front view instead of a random one.
+    res.best = ViewAngles{};
+    res.U = evaluate({res.best})[0];
+    res.note = "no view sees any score (U = 0 from every direction tried; is the score 0 everywhere?): "
+               "the front view (theta 0, phi 0) is returned";
+  }
   return res;
 }
 

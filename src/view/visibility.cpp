@@ -27,6 +27,10 @@ std::vector<float> visibility_weights(const Mesh& mesh, const std::vector<double
   std::vector<float> w(score.size(), 0.0f);
   for (size_t i = 0; i < score.size(); ++i) {
     if (!std::isfinite(score[i])) throw Error("score of vertex " + std::to_string(i) + " is not finite");
+    // U sums the score over visible points: a negative one would make hiding a point pay.
+    if (is_point[i] && score[i] < 0)
+      throw Error("score of vertex " + std::to_string(i) + " is " + std::to_string(score[i]) +
+                  ": a view score (a saliency, |curvature|) is >= 0");
     if (is_point[i]) w[i] = float(score[i]);
   }
   return w;

@@ -27,7 +27,8 @@ namespace meshsal {
 void check_visibility_options(const VisibilityOptions& options);
 
 // Per-vertex score for visibility sums: the given values on mesh points, 0 elsewhere.
-// Throws Error when the size differs from the vertex count or a value is not finite.
+// Throws Error when the size differs from the vertex count, a value is not finite, or a
+// mesh point's is negative.
 std::vector<float> visibility_weights(const Mesh& mesh, const std::vector<double>& score);
 
 // The z-buffer of one view (res*res floats, +inf where empty), the CPU reference rasteriser.
