@@ -20,6 +20,13 @@ struct CliRun {
 
 inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
+// The meshsal executable the tests run: this build's, or MESHSAL_TEST_CLI when set (to run
+// the CLI tests against another build, e.g. to see which fail on an older one).
+inline std::string cli_path() {
+  const char* other = std::getenv("MESHSAL_TEST_CLI");
+  return other && *other ? other : MESHSAL_CLI;
+}
+
 // An empty folder meshsal_NAME_PID under the temporary directory (emptied if it exists), for
 // a test's inputs and outputs; ctest runs each test case in a process of its own.
 inline std::filesystem::path scratch_dir(const std::string& name) {
@@ -35,10 +42,15 @@ inline int exit_status(int system_status) {
 }
 
 // `meshsal ARGS`, stdout and stderr apart, through stdout.txt and stderr.txt in `dir`.
-inline CliRun run_cli(const std::string& args, const std::filesystem::path& dir) {
+// `timeout_s` > 0: a run that hangs is killed after that many seconds (rc 124 or -1), so a
+// test of a hang fails instead of waiting forever. `stdin_path`: what it reads (default
+// /dev/null).
+inline CliRun run_cli(const std::string& args, const std::filesystem::path& dir, int timeout_s = 0,
+                      const std::string& stdin_path = "/dev/null") {
   const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const std::string cmd = quoted(MESHSAL_CLI) + " " + args + " > " + quoted(out) + " 2> " +
-                          quoted(err) + " < /dev/null";
+  const std::string cmd = (timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string()) +
+                          quoted(cli_path()) + " " + args + " > " + quoted(out) + " 2> " + quoted(err) + " < " +
+                          quoted(stdin_path);
   CliRun r;
   r.rc = exit_status(std::system(cmd.c_str()));
   r.out = read_file(out);
@@ -50,7 +62,7 @@ inline CliRun run_cli(const std::string& args) { return run_cli(args, TempDir())
 
 // `meshsal ARGS` with stderr merged into stdout, as a terminal shows them.
 inline CliRun run_cli_merged(const std::string& args) {
-  const std::string cmd = quoted(MESHSAL_CLI) + " " + args + " 2>&1 < /dev/null";
+  const std::string cmd = quoted(cli_path()) + " " + args + " 2>&1 < /dev/null";
   CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;

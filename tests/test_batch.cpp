@@ -22,11 +22,12 @@ double max_saliency(const Mesh& mesh) {
   return mx;
 }
 
+// The latest line of the log for `file` (runs append theirs after the earlier runs').
 const std::string* line_for(const std::vector<std::string>& lines, const std::string& file) {
-  for (const std::string& l : lines)
-    if (json_text(l, "mesh").size() >= file.size() &&
-        json_text(l, "mesh").compare(json_text(l, "mesh").size() - file.size(), file.size(), file) == 0)
-      return &l;
+  for (auto it = lines.rbegin(); it != lines.rend(); ++it) {
+    const std::string mesh = json_text(*it, "mesh");
+    if (mesh.size() >= file.size() && mesh.compare(mesh.size() - file.size(), file.size(), file) == 0) return &*it;
+  }
   return nullptr;
 }
 
@@ -75,7 +76,7 @@ TEST_CASE("batch: one JSON line per model, the broken one with its error, exit 1
   CHECK_FALSE(fs::exists(out / "broken_saliency.ply"));
 }
 
-TEST_CASE("batch: a second run skips every model; --force and a newer input redo them", "[batch]") {
+TEST_CASE("batch: a second run skips every model, --force and a newer input redo them", "[batch]") {
   const fs::path dir = batch_scratch("resume");
   const fs::path in = make_batch_inputs(dir), out = dir / "out";
   const std::string args = "batch " + in.string() + " -o " + out.string() + " --backend cpu --simplify 0.5";
@@ -88,10 +89,11 @@ TEST_CASE("batch: a second run skips every model; --force and a newer input redo
   CHECK(again.exit_code == 1);  // broken.obj fails again: it has no outputs
   CHECK(again.out.find("0 computed, 3 skipped, 1 failed") != std::string::npos);
   std::vector<std::string> lines = log_lines(out / "batch.jsonl");
-  REQUIRE(lines.size() == 4);
+  REQUIRE(lines.size() == 8);  // the first run's 4 lines, then this run's
   for (const char* name : {"ball.obj", "bumpy.ply", "cube.off"}) {
     INFO(name);
     CHECK(json_text(*line_for(lines, name), "status") == "skipped");
+    CHECK(line_for(lines, name)->find("\"vertices\": ") != std::string::npos);  // with its numbers
   }
   CHECK(json_text(*line_for(lines, "broken.obj"), "status") == "failed");
   CHECK(mtime_ns(ply) == first);

@@ -190,7 +190,7 @@ TEST_CASE("cli --json: every command that prints a summary follows one conventio
   CHECK(c.out.find("\"saliency_source\": \"" + sal + "\"") != std::string::npos);
 }
 
-TEST_CASE("cli --json: render --json gives the view, U and the picture; bench one object with rows", "[cli][json]") {
+TEST_CASE("cli --json: render --json gives the view, U and the picture, bench one object with rows", "[cli][json]") {
   meshsal_test::TempDir dir;
   // A sphere whose saliency is max(0, x): seen from +x (theta 90, y up) U is most of the total.
   const meshsal::Mesh s = meshsal::make_sphere(1.0, 3);

@@ -166,7 +166,7 @@ TEST_CASE("gpu fast matches the cpu fast path on real meshes", "[gpu][fast]") {
   }
 }
 
-TEST_CASE("backend gpu takes --method fast; auto picks the device as for exact", "[gpu][fast]") {
+TEST_CASE("backend gpu takes --method fast, auto picks the device as for exact", "[gpu][fast]") {
   const uint64_t before = vk::validation_message_count();
   const Mesh m = make_bumpy_sphere(3);
   SaliencyOptions opt = fast_options();

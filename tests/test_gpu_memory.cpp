@@ -68,7 +68,7 @@ TEST_CASE("unified memory is mapped, with no staging copies", "[gpu]") {
   CHECK(!ctx.staging);
 }
 
-TEST_CASE("lavapipe reports unified memory; the environment switch forces staging", "[gpu]") {
+TEST_CASE("lavapipe reports unified memory, the environment switch forces staging", "[gpu]") {
   auto devices = vk::list_devices();
   for (const auto& d : devices) {
     INFO(d.name);

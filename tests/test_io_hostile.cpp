@@ -9,6 +9,7 @@
 #include <zlib.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <thread>
 
@@ -349,4 +350,52 @@ TEST_CASE("hostile input: every command honours MESHSAL_MAX_INPUT and --help say
     help = meshsal_test::read_file(out_path);
   }
   CHECK(help.find("MESHSAL_MAX_INPUT=BYTES") != std::string::npos);
+}
+
+// Issue 21 (10): one face line with 25M corners became 26M fan triangles (2.7 GB, 31 s): a
+// polygon's corner count is bounded in every format.
+TEST_CASE("loaders: a polygon with more than 65536 corners is refused, the largest allowed is read", "[io]") {
+  TempDir dir;
+  const auto face = [](size_t corners, const char* prefix) {
+    std::string s = prefix;
+    for (size_t i = 1; i <= corners; ++i) s += " " + std::to_string(i);
+    return s + "\n";
+  };
+  const auto vertices = [](size_t n, const char* v) {
+    std::string s;
+    for (size_t i = 0; i < n; ++i) {
+      const double a = 6.283185307179586 * double(i) / double(n);
+      s += std::string(v) + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    return s;
+  };
+  const size_t big = 70000;
+  const std::string obj = dir.write("big.obj", vertices(big, "v ") + face(big, "f"));
+  CHECK(meshsal_test::load_error(obj) == obj + ": line " + std::to_string(big + 1) +
+                               ": face with more than 65536 vertices (65536 is the most a polygon may have)");
+  const std::string obj_attr = obj;
+  meshsal::LoadOptions with_attributes;
+  with_attributes.attributes = true;
+  CHECK_THROWS_WITH(meshsal::load_mesh(obj_attr, nullptr, with_attributes),
+                    Catch::Contains("face with more than 65536 vertices"));
+  const std::string off = dir.write("big.off", "OFF\n" + std::to_string(big) + " 1 0\n" + vertices(big, "") +
+                                                   std::to_string(big) + face(big, "").substr(0));
+  CHECK(meshsal_test::load_error(off).find("face with more than 65536 vertices") != std::string::npos);
+  // Binary PLY with an int list count.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(big) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                    "property list int int vertex_indices\nend_header\n";
+  for (size_t i = 0; i < big; ++i) {
+    const float a = float(6.283185307179586 * double(i) / double(big));
+    meshsal_test::put_bin(ply, std::cos(a));
+    meshsal_test::put_bin(ply, std::sin(a));
+    meshsal_test::put_bin(ply, 0.0f);
+  }
+  meshsal_test::put_bin(ply, int32_t(big));
+  for (size_t i = 0; i < big; ++i) meshsal_test::put_bin(ply, int32_t(i));
+  const std::string ply_path = dir.write("big.ply", ply);
+  CHECK(meshsal_test::load_error(ply_path).find("face 0 has 70000 vertices (65536 is the most a polygon may have)") != std::string::npos);
+  // 65536 corners: read, as 65534 triangles.
+  const std::string ok = dir.write("ok.obj", vertices(65536, "v ") + face(65536, "f"));
+  CHECK(meshsal::load_mesh(ok).triangle_count() == 65534);
 }

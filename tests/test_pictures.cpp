@@ -89,7 +89,7 @@ Mesh z_up_pyramid() {
 }
 }  // namespace
 
-TEST_CASE("pictures: the colour scale runs from a clear blue to dark red; --color-range values and percentiles", "[view]") {
+TEST_CASE("pictures: the colour scale runs from a clear blue to dark red, --color-range values and percentiles", "[view]") {
   uint8_t c[3];
   colormap_rgb(0, c);
   CHECK(int(c[2]) > 200);  // blue, not Turbo's near-black end

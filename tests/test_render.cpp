@@ -178,7 +178,7 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   CHECK(read_png(files[2]).width == 3 * 256 + 8);
 }
 
-TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures; render draws any view", "[view]") {
+TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws any view", "[view]") {
   PictureDir tmp;
   const std::string& dir = tmp.path;
   // A sphere whose saliency (PLY quality) is max(0, x): the best view looks from +x.

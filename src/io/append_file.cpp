@@ -34,7 +34,10 @@ AppendFile::AppendFile(const std::string& path) : path_(path) {
   if (fifo) ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
   if (::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
     char last = '\n';
-    if (::pread(fd_, &last, 1, st.st_size - 1) == 1 && last != '\n') {
+    const int reader = ::open(t.path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);  // fd_ is write-only
+    const bool cut = reader >= 0 && ::pread(reader, &last, 1, st.st_size - 1) == 1 && last != '\n';
+    if (reader >= 0) ::close(reader);
+    if (cut) {
       try {
         append("");  // ends the cut line; what was cut stays recognisably broken
       } catch (...) {
