@@ -12,6 +12,7 @@
 #include "core/synthetic.h"
 #include "test_io_util.h"
 
+using meshsal_test::error_of;
 using meshsal_test::TempDir;
 namespace fs = std::filesystem;
 
@@ -45,15 +46,6 @@ struct FileSizeLimit {
     ::signal(SIGXFSZ, old_handler);
   }
 };
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const meshsal::Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

@@ -197,14 +197,21 @@ TEST_CASE("batch: a log that cannot be written is reported, the models still run
   const fs::path dir = scratch_dir("batch_log_full");
   const fs::path in = make_batch_inputs(dir);
   fs::remove(in / "broken.obj");
-  // /dev/full: every write fails with ENOSPC, as on a full disk.
-  const CliRun r = run_cli("batch " + quoted(in.string()) + " -o " + quoted((dir / "out").string()) + " --log /dev/full", dir, 120);
+  // /dev/full: every write fails with ENOSPC, as on a full disk. Through a link of our own:
+  // a batch that regressed to replacing its log would replace the link, not the device.
+  const fs::path full = dir / "full.jsonl";
+  fs::create_symlink("/dev/full", full);
+  const CliRun r = run_cli("batch " + quoted(in.string()) + " -o " + quoted((dir / "out").string()) + " --log " +
+                               quoted(full.string()), dir, 120);
   CHECK(r.rc == 1);
   CHECK(fs::exists(dir / "out" / "ball_saliency.ply"));
   CHECK(fs::exists(dir / "out" / "bumpy_saliency.ply"));
   CHECK(fs::exists(dir / "out" / "cube_saliency.ply"));
   CHECK(r.out.find("batch: 3 models: 3 computed, 0 skipped, 0 failed") != std::string::npos);
-  CHECK(r.err.find("error: /dev/full: write failed: No space left on device: the log misses this model's line; "
-                   "the run goes on\n") != std::string::npos);
-  CHECK(r.err.find("error: the log /dev/full misses 3 lines (the write error is above)\n") != std::string::npos);
+  CHECK(r.err.find("error: " + full.string() + ": write failed: No space left on device: the log misses this "
+                   "model's line; the run goes on\n") != std::string::npos);
+  CHECK(r.err.find("error: the log " + full.string() + " misses 3 lines (the write error is above)\n") !=
+        std::string::npos);
+  struct stat st;
+  CHECK((::stat("/dev/full", &st) == 0 && S_ISCHR(st.st_mode)));
 }

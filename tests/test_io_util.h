@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <unistd.h>
 
@@ -66,6 +67,16 @@ inline std::string read_file(const std::string& path) {
 }
 
 // The message load_mesh throws for PATH, or "" when it loads fine.
+// The message of the meshsal::Error that f throws, or "" when it throws none.
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const meshsal::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 inline std::string load_error(const std::string& path) {
   try {
     meshsal::load_mesh(path);

@@ -23,6 +23,7 @@
 #include "io/atomic_write.h"
 #include "test_io_util.h"
 
+using meshsal_test::error_of;
 using meshsal_test::TempDir;
 namespace fs = std::filesystem;
 
@@ -35,15 +36,6 @@ bool is_char_device(const std::string& p) {
 bool is_fifo(const std::string& p) {
   struct stat st;
   return ::lstat(p.c_str(), &st) == 0 && S_ISFIFO(st.st_mode);
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const meshsal::Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -123,10 +115,14 @@ TEST_CASE("writers: a named pipe is written in place, or refused at once when no
 
 TEST_CASE("writers: a character device is written in place, disks and sockets are refused", "[io]") {
   TempDir dir;
-  // /dev/full: writes fail there, as on a full disk; it stays a device.
-  CHECK(error_of([&] { write_text("/dev/full", std::string(100000, 'x')); }) ==
-        "/dev/full: write failed: No space left on device");
+  // /dev/full: writes fail there, as on a full disk; it stays a device. Reached through a
+  // link of our own, never named directly: a writer that regressed to the rename would
+  // replace the link, not the machine's device (as root, the old one replaced the device).
+  const std::string full = dir.file("full.txt");
+  fs::create_symlink("/dev/full", full);
+  CHECK(error_of([&] { write_text(full, std::string(100000, 'x')); }) == full + ": write failed: No space left on device");
   CHECK(is_char_device("/dev/full"));
+  CHECK(fs::is_symlink(full));
   // A link to /dev/null is followed to the device, which is written, not replaced.
   fs::create_symlink("/dev/null", dir.file("null.png"));
   meshsal::write_png(dir.file("null.png"), meshsal::Image(4, 4));
@@ -249,6 +245,9 @@ TEST_CASE("AppendFile: lines go to the end, earlier ones stay, a cut last line i
     f.sync();
   }
   CHECK(meshsal_test::read_file(p) == "{\"a\": 1}\n{\"cut\n{\"b\": 2}\n");
-  meshsal::AppendFile full("/dev/full");
-  CHECK_THROWS_WITH(full.append("x"), "/dev/full: write failed: No space left on device");
+  const std::string link = dir.file("full.jsonl");  // a link, never /dev/full itself (above)
+  fs::create_symlink("/dev/full", link);
+  meshsal::AppendFile full(link);
+  CHECK_THROWS_WITH(full.append("x"), link + ": write failed: No space left on device");
+  CHECK(is_char_device("/dev/full"));
 }

@@ -234,7 +234,7 @@ std::vector<uint64_t> output_sizes(const ModelOutputs& out) {
 }
 
 // The log line of a model skipped as up to date: the record of the run that made its
-// outputs, with its status "skipped", the reason and when it was made (its numbers stay).
+// outputs (its numbers stay), with the status "skipped" and the reason.
 std::string skipped_line(const std::string& record) {
   std::string line = record;
   const std::string done = "\"status\": \"done\"";
