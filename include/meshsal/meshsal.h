@@ -315,7 +315,10 @@ struct SimplifyReport {
   size_t output_faces = 0;
   size_t output_vertices = 0;
   bool reached = false;       // output_faces == target_faces
-  std::string note;           // why the target was not reached (empty when it was)
+  // The target was at or above the mesh's face count (simplify_keeps_mesh): the mesh came
+  // back as it was, every vertex and triangle, and `note` says so.
+  bool unchanged = false;
+  std::string note;           // why the target was not reached, or that the mesh is unchanged
   std::string warning;        // precision_warning(mesh): the input is too coarse to trust
   size_t collapses = 0;
   size_t refused = 0;         // collapses refused (link condition, flips, non-manifold edges)
@@ -324,6 +327,13 @@ struct SimplifyReport {
   std::vector<Collapse> sequence;      // when options.record_collapses
   std::vector<uint32_t> vertex_origin; // output vertex -> the input vertex it survived as
 };
+
+// True when `options` ask for at least `face_count` faces (target_faces >= face_count, or
+// no target_faces and ratio 1): simplify_mesh and simplify_with_saliency then return the
+// mesh unchanged (SimplifyReport::unchanged, as meshoptimizer does), so that a script over
+// meshes of every size does not stop on the small ones. Front ends ask it to skip the
+// saliency such a call would not use.
+bool simplify_keeps_mesh(const SimplifyOptions& options, size_t face_count);
 
 // Garland-Heckbert edge collapses with area-weighted plane quadrics, border quadrics and
 // optimal placement. Mesh::attributes are carried along: the vertex kept by a collapse
@@ -337,7 +347,8 @@ struct SimplifyReport {
 // vertex quadric is multiplied by W once before any collapse (the paper's section 4; build
 // W with saliency_weights()). The output is manifold and oriented where the input is, never
 // has fewer faces than the target, and has exactly the target when reachable (otherwise
-// report->note says why). Output vertices follow the input order of the survivors.
+// report->note says why). Output vertices follow the input order of the survivors. A
+// target at or above the face count returns the mesh as it is (simplify_keeps_mesh).
 // Throws Error on a bad target or weights.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights = nullptr,
@@ -390,13 +401,23 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
                                      const SaliencyWeightOptions& options,
                                      double* alpha_out = nullptr);
 
-// Smoothed saliency Sm = G(S, 3 eps) over the mesh points, eps = eps_frac * bbox diagonal.
+// Smoothed saliency Sm = G(S, 3 eps) over the mesh points, eps = eps_frac * bbox diagonal,
+// with the exact averages.
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     double eps_frac = 0.003, unsigned threads = 0);
 
+// The same with the averages of the method the saliency was computed with, as
+// compute_saliency's own Sm (SaliencyOptions::smoothed): options.method (Exact, Fast, or
+// Auto decided as compute_saliency decides it), eps_frac, threads and cancel. On the CPU,
+// whatever options.backend says: the fast CPU filter takes seconds where the exact one took
+// most of a simplification's time (igea_loop2: 35.5 s against 7.1 s).
+std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
+                                    const SaliencyOptions& options);
+
 // The per-vertex weights W of saliency-guided simplification: saliency (computed with
 // `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
-// smoothed to Sm = G(S, 3 eps), then saliency_weights(). `alpha_out` receives alpha,
+// smoothed to Sm = G(S, 3 eps) with saliency_options.method (smooth_saliency), then
+// saliency_weights(). `alpha_out` receives alpha,
 // `saliency_out` S. A mesh split at seams (Mesh::position_vertex) is weighed welded.
 // `device_out` receives the name of the device that computed S (SaliencyResult::backend_name:
 // "cpu" or the Vulkan device's name), seams or not; when S is taken from `saliency` no device

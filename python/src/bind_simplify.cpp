@@ -99,26 +99,17 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   {
     const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
     options.cancel = so.cancel = call.flag();
-    // A target at or above the face count keeps the mesh as it is, as the CLI does.
-    if (options.target_faces ? options.target_faces >= mesh.triangle_count() : options.ratio >= 1) {
-      out.unchanged = true;
-      report.input_faces = report.output_faces = report.target_faces = mesh.triangle_count();
-      report.output_vertices = mesh.vertex_count();
-      report.reached = true;
-      report.vertex_origin.resize(n);
-      for (size_t v = 0; v < n; ++v) report.vertex_origin[v] = uint32_t(v);
-      result = std::move(mesh);
-    } else {
-      if (mode == "saliency") {
-        meshsal::SaliencyWeightOptions wo;
-        wo.lambda = lambda;
-        wo.alpha_percentile = alpha_percentile;
-        wo.floor = weight_floor;
-        w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, nullptr,
-                                            &out.device);
-      }
-      result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
+    // A target at or above the face count keeps the mesh as it is (the library's rule),
+    // with no saliency computed for it.
+    if (mode == "saliency" && !meshsal::simplify_keeps_mesh(options, mesh.triangle_count())) {
+      meshsal::SaliencyWeightOptions wo;
+      wo.lambda = lambda;
+      wo.alpha_percentile = alpha_percentile;
+      wo.floor = weight_floor;
+      w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, nullptr,
+                                          &out.device);
     }
+    result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
   }
   const py::ssize_t nv = py::ssize_t(result.vertex_count()), nf = py::ssize_t(result.triangle_count());
   out.vertices = to_numpy(std::move(result.positions), {nv, 3});
@@ -131,9 +122,8 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   out.output_faces = report.output_faces;
   out.collapses = report.collapses;
   out.reached = report.reached;
-  out.note = out.unchanged ? "the target is at or above the mesh's " + std::to_string(report.input_faces) +
-                                 " faces: the mesh is returned unchanged"
-                           : report.note;
+  out.unchanged = report.unchanged;
+  out.note = report.note;
   out.weights = out.unchanged ? "none" : mode;
   out.seconds = report.seconds;
   out.error = report.error * diagonal;

@@ -6,6 +6,8 @@
 #include "core/mesh_points.h"
 #include "core/welded_view.h"
 #include "meshsal/meshsal.h"
+#include "saliency/gaussian_filter_fast.h"
+#include "saliency/saliency.h"
 
 namespace meshsal {
 
@@ -30,7 +32,7 @@ std::vector<double> simplification_weights(const Mesh& mesh,
     if (saliency->size() != mesh.vertex_count())
       throw Error("saliency has " + std::to_string(saliency->size()) + " values, the mesh has " +
                   std::to_string(mesh.vertex_count()) + " vertices");
-    smoothed = smooth_saliency(mesh, *saliency, saliency_options.eps_frac, saliency_options.threads);
+    smoothed = smooth_saliency(mesh, *saliency, saliency_options);
     if (saliency_out) *saliency_out = *saliency;
   } else {
     SaliencyOptions so = saliency_options;
@@ -43,11 +45,27 @@ std::vector<double> simplification_weights(const Mesh& mesh,
   return saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);
 }
 
+std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
+                                    const SaliencyOptions& options) {
+  const CancelScope cancel(options.cancel);
+  check_saliency_options(options);
+  if (resolve_method(mesh, options) != Method::Fast)
+    return smooth_saliency(mesh, saliency, options.eps_frac, options.threads);
+  if (saliency.size() != mesh.vertex_count())
+    throw Error("saliency has " + std::to_string(saliency.size()) + " values for a mesh of " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  const double eps = scale_unit(mesh, is_point, options.eps_frac);
+  return gaussian_filter_fast(mesh, is_point, saliency, {3 * eps}, options.threads)[0];
+}
+
 Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
                             const SaliencyWeightOptions& weight_options,
                             const SaliencyOptions& saliency_options,
                             const std::vector<double>* saliency, SimplifyReport* report,
                             double* alpha_out) {
+  // The whole mesh asked for: no saliency to compute.
+  if (simplify_keeps_mesh(options, mesh.triangle_count())) return simplify_mesh(mesh, options, nullptr, report);
   const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
   const std::vector<double> weights =
       simplification_weights(mesh, weight_options, saliency_options, saliency, alpha_out);

@@ -149,7 +149,8 @@ JsonObject simplified(const Plan& p, const Mesh& mesh, const SaliencyResult& r, 
   write_obj(out, m);
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
-      .count("target_faces", rep.target_faces).flag("reached", rep.reached).number("seconds", t.seconds());
+      .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
+      .number("seconds", t.seconds());
   if (!rep.note.empty()) j.text("note", rep.note);
   return j;
 }

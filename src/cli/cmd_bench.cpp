@@ -66,6 +66,9 @@ struct Row {
   // --method fast: the exact reference (time, pairs) and the error against it.
   bool has_reference = false;
   double exact_total = 0, exact_pairs = 0;  // pairs estimated when there is no reference
+  // --method fast: Sm = G(S, 3 eps) from a given S (simplify --saliency-from), with the fast
+  // method's averages (smooth_saliency follows the method) and, with the reference, exact.
+  double smooth_fast = 0, smooth_exact = 0;
   meshsal::MethodError error;
   double peak_rss = 0;  // bytes, after this row
 };
@@ -137,6 +140,11 @@ Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read,
   opt.method = meshsal::Method::Fast;
   Row row = bench_one(model, mesh, read, opt, a.repeat);
   opt.backend = meshsal::Backend::Cpu;  // the exact reference runs on the CPU path
+  {
+    const meshsal::Timer t;
+    meshsal::smooth_saliency(mesh, row.best.saliency, opt);
+    row.smooth_fast = t.seconds();
+  }
   const std::vector<uint8_t> is_point = meshsal::referenced_vertices(mesh);
   const double eps = meshsal::scale_unit(mesh, is_point, opt.eps_frac);
   const double largest = *std::max_element(opt.scales.begin(), opt.scales.end());
@@ -149,6 +157,11 @@ Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read,
   Row exact = bench_one(model, mesh, read, opt, 1);
   row.has_reference = true;
   row.exact_total = exact.total;
+  {
+    const meshsal::Timer t;
+    meshsal::smooth_saliency(mesh, row.best.saliency, opt);  // opt.method is Exact now
+    row.smooth_exact = t.seconds();
+  }
   row.exact_pairs = double(exact.best.pairs);
   row.error = meshsal::method_error(exact.best, row.best);
   return row;
@@ -175,27 +188,30 @@ void print_table(const std::vector<Row>& rows) {
   bool any_fast = false;
   for (const Row& r : rows) any_fast |= r.method == "fast";
   if (any_fast) {
-    std::printf("\n%-24s %9s %10s %10s %8s %10s %9s %9s %9s %9s %8s\n", "model", "vertices", "fast",
-                "exact", "speed-up", "exact pairs", "corr", "top30", "raw mean", "raw max", "peak B/v");
+    std::printf("\n%-24s %9s %10s %10s %8s %10s %9s %9s %9s %9s %8s %9s %9s\n", "model", "vertices", "fast",
+                "exact", "speed-up", "exact pairs", "corr", "top30", "raw mean", "raw max", "peak B/v", "Sm fast",
+                "Sm exact");
     for (const Row& r : rows) {
       if (r.method != "fast") continue;
       double mean = 0, worst = 0;
       for (double x : r.error.raw_mean) mean = std::max(mean, x);
       for (double x : r.error.raw_max) worst = std::max(worst, x);
       if (r.has_reference)
-        std::printf("%-24s %9zu %9.3fs %9.3fs %8.1f %10.3g %9.6f %9.4f %9.2e %9.2e %8.0f\n", r.model.c_str(),
-                    r.vertices, r.total, r.exact_total, r.exact_total / r.total, r.exact_pairs,
-                    r.error.correlation, r.error.top30_overlap, mean, worst, r.peak_rss / r.vertices);
+        std::printf("%-24s %9zu %9.3fs %9.3fs %8.1f %10.3g %9.6f %9.4f %9.2e %9.2e %8.0f %8.3fs %8.3fs\n",
+                    r.model.c_str(), r.vertices, r.total, r.exact_total, r.exact_total / r.total, r.exact_pairs,
+                    r.error.correlation, r.error.top30_overlap, mean, worst, r.peak_rss / r.vertices, r.smooth_fast,
+                    r.smooth_exact);
       else
-        std::printf("%-24s %9zu %9.3fs %8.0fs* %8.0f %10.3g %9s %9s %9s %9s %8.0f\n", r.model.c_str(),
+        std::printf("%-24s %9zu %9.3fs %8.0fs* %8.0f %10.3g %9s %9s %9s %9s %8.0f %8.3fs %9s\n", r.model.c_str(),
                     r.vertices, r.total, r.exact_total, r.exact_total / r.total, r.exact_pairs, "-", "-",
-                    "-", "-", r.peak_rss / r.vertices);
+                    "-", "-", r.peak_rss / r.vertices, r.smooth_fast, "-");
     }
     std::printf("(fast against exact on the same mesh, exact on the CPU path: corr = Pearson correlation of the final\n"
                 " saliency, top30 = share of the exact top-30%% vertices in the fast top 30%%, raw mean/max =\n"
                 " the worst map's mean and max |fast - exact| / map maximum (per map in --json); * = exact\n"
                 " not run, time estimated from its pair count at %.2g pairs/s; peak B/v = peak resident\n"
-                " memory of the process so far per vertex)\n", kExactPairsPerSecond);
+                " memory of the process so far per vertex; Sm = smoothing a given S, as simplify\n"
+                " --saliency-from does, with each method's averages)\n", kExactPairsPerSecond);
   }
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
               " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
@@ -218,6 +234,8 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
         .count("rechecked", r.best.rechecked).count("peak_rss_bytes", uint64_t(r.peak_rss));
     if (r.method == "fast") {
       j.flag("exact_measured", r.has_reference).number("exact_seconds", r.exact_total).number("exact_pairs", r.exact_pairs);
+      j.number("smooth_fast_seconds", r.smooth_fast);
+      if (r.has_reference) j.number("smooth_exact_seconds", r.smooth_exact);
       if (r.has_reference)
         j.number("correlation", r.error.correlation).number("top30_overlap", r.error.top30_overlap)
             .numbers("raw_mean_rel", r.error.raw_mean).numbers("raw_max_rel", r.error.raw_max);

@@ -95,9 +95,9 @@ int run(const Args& a) {
   else opt.ratio = a.ratio;
   opt.target_error = a.target_error / 100;
   opt.lock_border = a.lock_border;
-  // A target at or above the face count keeps the mesh as it is (as meshoptimizer does),
-  // so that batch scripts over meshes of any size do not stop on the small ones.
-  if (a.has_target ? size_t(a.target_faces) >= mesh.triangle_count() : a.has_ratio && a.ratio >= 1) {
+  // A target at or above the face count keeps the mesh as it is (the library's rule), with
+  // no saliency computed for it.
+  if ((a.has_target || a.has_ratio) && simplify_keeps_mesh(opt, mesh.triangle_count())) {
     progress.update("writing", 0.0);
     if (obj) write_obj(a.output, mesh);
     else write_ply(a.output, mesh, {});

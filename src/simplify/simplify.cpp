@@ -889,6 +889,7 @@ Mesh State::output(SimplifyReport* report) const {
     report->output_faces = out.triangle_count();
     report->output_vertices = out.vertex_count();
     report->reached = report->output_faces == target;
+    report->unchanged = false;
     report->note.clear();
     report->warning = precision_warning(*mesh_in);
     if (!report->reached) {
@@ -927,8 +928,32 @@ Mesh State::output(SimplifyReport* report) const {
 // So the first current entry popped is the edge that a full scan would pick. A refused
 // edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
 // of them; then its entry goes back into the heap.
+bool simplify_keeps_mesh(const SimplifyOptions& options, size_t face_count) {
+  return options.target_faces > 0 ? options.target_faces >= face_count : options.ratio == 1;
+}
+
+namespace {
+
+// What simplify_mesh gives when the target asks for the whole mesh.
+Mesh unchanged_mesh(const Mesh& mesh, SimplifyReport* report) {
+  if (report) {
+    *report = SimplifyReport{};
+    report->input_faces = report->output_faces = report->target_faces = mesh.triangle_count();
+    report->output_vertices = mesh.vertex_count();
+    report->reached = report->unchanged = true;
+    report->note = "the target is at or above the mesh's " + std::to_string(mesh.triangle_count()) +
+                   " faces: the mesh is returned unchanged";
+    report->vertex_origin.resize(mesh.vertex_count());
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) report->vertex_origin[v] = uint32_t(v);
+  }
+  return mesh;
+}
+
+}  // namespace
+
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  if (simplify_keeps_mesh(options, mesh.triangle_count())) return unchanged_mesh(mesh, report);
   const CancelScope cancel(options.cancel);
   const Timer t0;
   State s;
