@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs every Debian package meshsal needs and builds it in Release into build/ (the
-# Python module too: build/python/meshsal, see README, Python).
+# Installs every Debian package meshsal needs, builds it in Release into build/ (the
+# Python module too: build/python/meshsal, see README, Python) and installs the `meshsal`
+# command on PATH (cmake --install: /usr/local).
 # Run as root on Debian 12 (or with sudo available). Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,3 +26,6 @@ fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMESHSAL_BUILD_PYTHON=ON >/dev/null
 cmake --build build -j"$(nproc)"
+# `meshsal` on PATH (/usr/local/bin; the library, header and CMake package beside it).
+SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+$SUDO cmake --install build >/dev/null

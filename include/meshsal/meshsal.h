@@ -30,7 +30,9 @@
 #include <string_view>
 #include <vector>
 
-#define MESHSAL_VERSION 200  // 0.2.0
+// The version: CMake's project(VERSION) is the one source; the build checks that these agree.
+#define MESHSAL_VERSION 200  // major * 10000 + minor * 100 + patch
+#define MESHSAL_VERSION_STRING "0.2.0"
 
 namespace meshsal {
 

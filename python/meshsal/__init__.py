@@ -25,9 +25,11 @@ from ._meshsal import (  # noqa: F401
     saliency,
     simplify,
     version,
+    __version__,
 )
 
 __all__ = ["Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
-           "devices", "keep_freed_memory", "load", "render", "saliency", "simplify", "version"]
+           "devices", "keep_freed_memory", "load", "render", "saliency", "simplify", "version",
+           "__version__"]
 
 keep_freed_memory(True)

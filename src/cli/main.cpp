@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
       "Run `meshsal COMMAND --help` for the options of a command."};
   app.footer("Environment: MESHSAL_MAX_INPUT=BYTES (K/M/G suffix allowed) caps what a .gz file may inflate to and a pipe may deliver, for every command (default: see README, Input).");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "meshsal 0.1");
+  app.set_version_flag("--version", "meshsal " MESHSAL_VERSION_STRING);
 
   std::vector<Command> commands = registry();
   std::sort(commands.begin(), commands.end(),
