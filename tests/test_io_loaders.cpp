@@ -27,7 +27,7 @@ const std::vector<float> kPos = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0.5f, 0.
 const std::vector<uint32_t> kTri = {0, 1, 2, 0, 2, 3, 1, 4, 2};
 
 void check_small(const Mesh& m) {
-  CHECK(m.positions == kPos);
+  CHECK(meshsal_test::world_floats(m) == kPos);
   CHECK(m.triangles == kTri);
 }
 
@@ -57,9 +57,9 @@ TEST_CASE("load bun_zipper_res3.ply: values and extra properties", "[io]") {
   REQUIRE(m.vertex_count() == 1889);
   REQUIRE(m.triangle_count() == 3851);
   // First data line: -0.0369122 0.127512 0.00276757 0.850855 0.5
-  CHECK(m.positions[0] == -0.0369122f);
-  CHECK(m.positions[1] == 0.127512f);
-  CHECK(m.positions[2] == 0.00276757f);
+  CHECK(meshsal_test::world_floats(m)[0] == -0.0369122f);
+  CHECK(meshsal_test::world_floats(m)[1] == 0.127512f);
+  CHECK(meshsal_test::world_floats(m)[2] == 0.00276757f);
   REQUIRE(props.size() == 2);
   REQUIRE(props["confidence"].size() == 1889);
   REQUIRE(props["intensity"].size() == 1889);
@@ -93,8 +93,8 @@ TEST_CASE("load spot_3k.obj (f v/vt) and suzanne.obj (f v//vn, quads)", "[io]") 
 TEST_CASE("load OFF first vertex", "[io]") {
   MESHSAL_REQUIRE_MESH(p, "bunny_3k.off");
   Mesh m = meshsal::load_mesh(p);
-  CHECK(m.positions[0] == -0.0260146f);
-  CHECK(m.positions[5] == -0.00263321f);
+  CHECK(meshsal_test::world_floats(m)[0] == -0.0260146f);
+  CHECK(meshsal_test::world_floats(m)[5] == -0.00263321f);
 }
 
 // --- generated files -------------------------------------------------------------

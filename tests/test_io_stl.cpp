@@ -9,6 +9,7 @@
 
 #include "core/synthetic.h"
 #include "meshsal/meshsal.h"
+#include "test_util.h"
 #include "test_io_util.h"
 
 using meshsal::Mesh;
@@ -97,7 +98,7 @@ TEST_CASE("STL ASCII: welded, first-appearance order, gz, CRLF, BOM, several sol
   TempDir dir;
   meshsal::LoadReport report;
   Mesh m = meshsal::load_mesh(dir.write("square.stl", kTwoFacets), nullptr, {}, &report);
-  CHECK(m.positions == std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  CHECK(meshsal_test::world_floats(m) == std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
   CHECK(m.triangles == std::vector<uint32_t>{0, 1, 2, 1, 3, 2});
   CHECK(report.welded_corners == 2);
 

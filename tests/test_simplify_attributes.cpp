@@ -7,6 +7,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "test_util.h"
 #include "core/synthetic.h"
 #include "core/welded_view.h"
 #include "simplify/simplify.h"
@@ -45,8 +46,8 @@ TEST_CASE("obj attributes: v/vt/vn corners become vertices, split where vt diffe
   REQUIRE(m.vertex_count() == 5);  // 4 positions + the twin of v 3 (vt 5)
   CHECK(m.triangles == std::vector<uint32_t>{0, 1, 2, 0, 4, 3});
   CHECK(m.position_vertex == std::vector<uint32_t>{0, 1, 2, 3, 2});
-  CHECK(m.positions[12] == 1.f);
-  CHECK(m.positions[13] == 1.f);
+  CHECK(meshsal_test::world_floats(m)[12] == 1.f);
+  CHECK(meshsal_test::world_floats(m)[13] == 1.f);
   REQUIRE(m.attributes.size() == 5);
   CHECK(m.attributes[0].name == "u");
   CHECK(m.attributes[1].name == "v");
@@ -322,7 +323,8 @@ TEST_CASE("obj attributes survive write_obj and load_mesh, seams included", "[si
   std::multiset<std::vector<float>> a, b;
   for (const Mesh* m : {&out, &back})
     for (size_t i = 0; i < m->vertex_count(); ++i) {
-      std::vector<float> row(m->positions.begin() + 3 * i, m->positions.begin() + 3 * i + 3);
+      const std::vector<float> world = meshsal_test::world_floats(*m);
+      std::vector<float> row(world.begin() + 3 * i, world.begin() + 3 * i + 3);
       for (const VertexAttribute& at : m->attributes) row.push_back(at.values[i]);
       (m == &out ? a : b).insert(row);
     }

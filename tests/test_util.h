@@ -12,6 +12,13 @@
 
 namespace meshsal_test {
 
+// A mesh's vertices in its own coordinates (meshsal::model_positions), rounded to float: what
+// a file said, whatever origin loading chose for the local positions.
+inline std::vector<float> world_floats(const meshsal::Mesh& mesh) {
+  const std::vector<double> xyz = meshsal::model_positions(mesh);
+  return std::vector<float>(xyz.begin(), xyz.end());
+}
+
 inline std::string data_dir() { return MESHSAL_DATA_DIR; }
 
 inline bool file_exists(const std::string& path) {

@@ -60,8 +60,26 @@ struct VertexAttribute {
 };
 
 struct Mesh {
-  std::vector<float> positions;     // x,y,z per vertex, in input order
+  // x,y,z per vertex, in input order, in local coordinates: relative to `origin`. Every
+  // computation (saliency, simplification, views, distances) works on these floats.
+  std::vector<float> positions;
   std::vector<uint32_t> triangles;  // 3 vertex indices per triangle
+
+  // Local coordinates (SPEC section 6). The model's own coordinates of vertex v are
+  // origin + positions[3v..3v+2], added in double. Loaders and make_mesh set the origin to
+  // the centre of the mesh points' bounding box, computed in double from the values as read,
+  // and round only the difference to float: a scan at survey coordinates (x ~ 5e5,
+  // y ~ 4e6 m) keeps its millimetres, and every result is invariant to translation. A Mesh
+  // filled by hand may leave the origin at 0 (positions are then the model's coordinates).
+  double origin[3] = {0, 0, 0};
+  // Optional: the model's coordinates as read (3 doubles per vertex), kept where
+  // origin + positions would not give them back exactly. A writer writes vertex v from
+  // here while positions[v] is still float(source - origin) (no computation moved it), so
+  // an unmoved vertex is written as it was read; a moved one is written as origin +
+  // positions. Empty, or 3 per vertex.
+  std::vector<double> source_positions;
+  // The file stored double coordinates (a PLY with double x, y, z): write_ply writes double.
+  bool double_positions = false;
 
   // Optional (empty unless LoadOptions::attributes asked for them; saliency ignores them).
   // From OBJ: "u", "v" (vt) and "nx", "ny", "nz" (vn). From PLY: every scalar vertex
@@ -90,6 +108,28 @@ struct Mesh {
 // 3 * vertex_count floats, `indices` index_count uint32 (a multiple of 3).
 Mesh make_mesh(const float* positions, size_t vertex_count, const uint32_t* indices,
                size_t index_count);
+
+// The same from coordinates in double (the model's own frame): origin, local floats and the
+// source as make_mesh does for floats (set_model_positions).
+Mesh make_mesh(const double* positions, size_t vertex_count, const uint32_t* indices,
+               size_t index_count);
+
+// Sets mesh.positions, origin and source_positions from the model's own coordinates `xyz`
+// (3 per vertex, vertex_count vertices): origin = the centre of the bounding box of the
+// mesh points (the vertices mesh.triangles uses; all vertices when none is usable), computed
+// in double; positions = float(xyz - origin); source_positions = xyz where that loses bits,
+// else empty. Non-finite values stay non-finite (validate_mesh refuses them).
+void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count);
+
+// The model's own coordinates of every vertex, 3 doubles per vertex: what the writers write
+// (the source for an unmoved vertex, else origin + positions, in double).
+std::vector<double> model_positions(const Mesh& mesh);
+
+// True when float coordinates would not do for writing `mesh`: its file had double ones
+// (double_positions), or rounding some vertex's model coordinates to float would move it by
+// more than 1e-7 of the bounding-box diagonal of the mesh points. write_ply then writes
+// double x, y, z; write_obj the digits of a double.
+bool positions_need_double(const Mesh& mesh);
 
 // Throws Error when the mesh is empty, an index is out of range, a coordinate is NaN/Inf
 // or no triangle has non-zero area.

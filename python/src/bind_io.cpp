@@ -36,7 +36,7 @@ py::object load(const py::object& path_obj, bool properties, unsigned long long 
     mesh = meshsal::load_mesh(path, properties ? &props : nullptr, options);
   }
   const py::ssize_t n = py::ssize_t(mesh.vertex_count()), m = py::ssize_t(mesh.triangle_count());
-  py::array vertices = to_numpy(std::move(mesh.positions), {n, 3});
+  py::array vertices = model_vertices(mesh, true);
   py::array faces = to_numpy(std::move(mesh.triangles), {m, 3});
   if (!properties) return py::make_tuple(vertices, faces);
   py::dict d;
@@ -67,8 +67,9 @@ void bind_io(py::module_& m) {
         R"(load(path, *, properties=False, max_input_bytes=0) -> (V, F) or (V, F, props)
 
 Reads a mesh file (path: str, bytes or pathlib.Path) as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
-optionally .gz; polygons fan-triangulated, STL corners welded. Returns the vertices V,
-float32 (n, 3) (the library's own precision, so no conversion), and the faces F, uint32
+optionally .gz; polygons fan-triangulated, STL corners welded. Returns the vertices V
+(n, 3) as the file has them: float32 when every coordinate is a float32 value (binary float
+PLY, STL), else float64 (text files' decimals, double PLYs, survey coordinates), and the faces F, uint32
 (m, 3), both owned by numpy without a copy. With properties=True also a dict of the PLY's
 scalar vertex properties (e.g. 'quality', the saliency `meshsal saliency` writes) as
 float32 arrays. max_input_bytes bounds a gzipped file's inflated size (0: the default

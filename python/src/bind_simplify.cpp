@@ -112,7 +112,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
   }
   const py::ssize_t nv = py::ssize_t(result.vertex_count()), nf = py::ssize_t(result.triangle_count());
-  out.vertices = to_numpy(std::move(result.positions), {nv, 3});
+  out.vertices = model_vertices(result);
   out.faces = to_numpy(std::move(result.triangles), {nf, 3});
   out.vertex_origin = to_numpy(std::move(report.vertex_origin));
   if (!report.warning.empty()) notices.push_back("warning: " + report.warning);
@@ -134,7 +134,8 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
 
 void bind_simplify(py::module_& m) {
   py::class_<SimplifyOut>(m, "SimplifyResult", "The result of simplify(): the mesh and its report.")
-      .def_readonly("vertices", &SimplifyOut::vertices, "float32 (k, 3): surviving vertices, in input order")
+      .def_readonly("vertices", &SimplifyOut::vertices, "(k, 3): surviving vertices, in input order; float64 for float64 input (or where float32 "
+                    "would move a vertex by over 1e-7 of the diagonal), else float32")
       .def_readonly("faces", &SimplifyOut::faces, "uint32 (f, 3)")
       .def_readonly("vertex_origin", &SimplifyOut::vertex_origin,
                     "uint32 (k,): the input vertex each output vertex survived as")

@@ -44,7 +44,7 @@ void check_rows_of_3(const py::array& a, const char* name) {
 }
 
 template <class T>
-void read_vertices(const py::array& a, std::vector<float>& out) {
+void read_vertices(const py::array& a, std::vector<double>& out) {
   auto v = a.unchecked<T, 2>();  // strided access: views need no copy
   const py::ssize_t n = v.shape(0);
   out.resize(size_t(n) * 3);
@@ -58,7 +58,7 @@ void read_vertices(const py::array& a, std::vector<float>& out) {
       if (!std::isfinite(f))  // a float64 beyond float32's range (the library's precision)
         throw py::value_error("vertices: vertex " + std::to_string(i) + " has a coordinate beyond float32's range (" +
                               std::to_string(double(x)) + ")");
-      out[size_t(i) * 3 + size_t(k)] = f;
+      out[size_t(i) * 3 + size_t(k)] = double(x);
     }
 }
 
@@ -114,13 +114,17 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
     throw py::value_error("faces: more than 2^32 - 1 faces");
   // The shape can claim more than memory holds (a broadcast array's rows cost nothing):
   // say so before asking for it, instead of a bad_alloc after a long wait.
-  check_fits_memory(12.0 * double(vertices.shape(0)) + 12.0 * double(faces.shape(0)),
+  check_fits_memory(36.0 * double(vertices.shape(0)) + 12.0 * double(faces.shape(0)),
                     std::to_string(vertices.shape(0)) + " vertices and " + std::to_string(faces.shape(0)) + " faces");
 
   meshsal::Mesh mesh;
-  if (vertices.itemsize() == 4) read_vertices<float>(vertices, mesh.positions);
-  else read_vertices<double>(vertices, mesh.positions);
-  const size_t n = mesh.vertex_count();
+  // Read in double, localized once the faces are known (the origin is the centre of the
+  // mesh points): meshsal::make_mesh's rule, so Python and the loaders agree.
+  std::vector<double> xyz;
+  if (vertices.itemsize() == 4) read_vertices<float>(vertices, xyz);
+  else read_vertices<double>(vertices, xyz);
+  mesh.double_positions = vertices.itemsize() == 8;
+  const size_t n = xyz.size() / 3;
   const bool is_signed = kind_f == 'i';
   switch (faces.itemsize()) {
     case 1: is_signed ? read_faces<int8_t>(faces, n, mesh.triangles) : read_faces<uint8_t>(faces, n, mesh.triangles); break;
@@ -129,6 +133,7 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
     case 8: is_signed ? read_faces<int64_t>(faces, n, mesh.triangles) : read_faces<uint64_t>(faces, n, mesh.triangles); break;
     default: throw py::type_error("faces: unsupported integer dtype " + dtype_name(faces));
   }
+  meshsal::set_model_positions(mesh, xyz.data(), n);
   meshsal::validate_mesh(mesh);  // empty mesh, only zero-area triangles: meshsal.Error
   return mesh;
 }

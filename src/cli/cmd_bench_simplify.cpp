@@ -131,6 +131,7 @@ Mesh meshopt(const Mesh& in, size_t target_faces) {
                                     3 * target_faces, 1.0f, 0, &err);
   dst.resize(n);
   Mesh out;
+  for (int k = 0; k < 3; ++k) out.origin[k] = in.origin[k];  // the same local frame as `in`
   std::vector<uint32_t> remap(in.vertex_count(), UINT32_MAX);
   for (unsigned int& v : dst) {
     if (remap[v] == UINT32_MAX) {

@@ -55,6 +55,9 @@ std::vector<double> load_saliency_of_positions(const std::string& path, const me
   while (positions < pv.size() && pv[positions] == positions) ++positions;
   meshsal::Mesh own;
   own.positions.assign(mesh.positions.begin(), mesh.positions.begin() + 3 * positions);
+  for (int k = 0; k < 3; ++k) own.origin[k] = mesh.origin[k];
+  if (!mesh.source_positions.empty())
+    own.source_positions.assign(mesh.source_positions.begin(), mesh.source_positions.begin() + 3 * positions);
   own.triangles = mesh.triangles;
   for (uint32_t& v : own.triangles) v = pv[v];
   std::vector<double> s = meshsal::load_saliency_ply(path, own);

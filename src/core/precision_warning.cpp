@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/mesh_points.h"
+#include "core/model_frame.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -46,12 +47,14 @@ std::string precision_warning(const Mesh& mesh) {
   const double float_step = largest * std::ldexp(1.0, -24);
   if (median_edge >= kMinEdgeSteps * float_step) return "";
   const BoundingBox box = mesh_points_bbox(mesh, is_point);
+  double at[3];
+  model_position(mesh, where, at);  // named in the file's coordinates
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "float precision: coordinates reach %.3g (vertex %zu at %.6g, %.6g, %.6g; the mesh spans "
                 "%.3g) while the median edge is %.3g, under %g float steps at that size: results on this mesh are "
                 "unreliable (a vertex far from the rest? coordinates far from the origin?)",
-                largest, where, mesh.positions[3 * where], mesh.positions[3 * where + 1], mesh.positions[3 * where + 2],
+                largest, where, at[0], at[1], at[2],
                 box.diagonal(), median_edge, kMinEdgeSteps);
   return buf;
 }

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/model_frame.h"
+
 namespace meshsal {
 
 Mesh subdivide_midpoint(const Mesh& mesh) {
@@ -40,6 +42,9 @@ Mesh subdivide_midpoint(const Mesh& mesh) {
     const uint32_t tri[12] = {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca};
     std::copy(tri, tri + 12, &out.triangles[12 * t]);
   }
+  std::vector<uint32_t> from(out.vertex_count(), UINT32_MAX);  // the old vertices keep their source
+  for (size_t v = 0; v < nv; ++v) from[v] = uint32_t(v);
+  carry_model_frame(mesh, from, out);
   return out;
 }
 

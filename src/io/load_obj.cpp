@@ -72,7 +72,7 @@ std::string take_floats(std::string_view& line, int need, int n, std::vector<flo
 // others become twins appended after the file's vertices (position_vertex = v).
 void split_corners(Mesh& mesh, const std::vector<Corner>& corners, const std::vector<float>& texcoords,
                    const std::vector<float>& normals, bool any_vt, bool any_vn, const std::string& name) {
-  const size_t nv = mesh.vertex_count(), nvt = texcoords.size() / 2, nvn = normals.size() / 3;
+  const size_t nv = mesh.source_positions.size() / 3, nvt = texcoords.size() / 2, nvn = normals.size() / 3;
   for (size_t i = 0; i < corners.size(); ++i) {
     const Corner& c = corners[i];
     if (c.vt != kNone && c.vt >= nvt)
@@ -106,7 +106,7 @@ void split_corners(Mesh& mesh, const std::vector<Corner>& corners, const std::ve
     if (fresh) {
       if (source.size() >= 0xFFFFFFFEu) throw Error(name + ": too many split vertices");
       source.push_back(c);
-      for (int k = 0; k < 3; ++k) mesh.positions.push_back(mesh.positions[3 * size_t(c.v) + k]);
+      for (int k = 0; k < 3; ++k) mesh.source_positions.push_back(mesh.source_positions[3 * size_t(c.v) + k]);
     }
     mesh.triangles[i] = it->second;
   }
@@ -154,7 +154,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
     line = strip_comment(line);
     const std::string_view key = next_token(line);
     if (key == "v") {
-      const std::string problem = take_xyz(line, mesh.positions);
+      const std::string problem = take_xyz(line, mesh.source_positions);
       if (!problem.empty()) throw fail(problem);
       // Optional w or r g b columns follow; they are not needed.
     } else if (attributes && key == "vt") {
@@ -165,7 +165,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
       if (!problem.empty()) throw fail("normal " + problem);
     } else if (key == "f" && attributes) {
       face.clear();
-      const int64_t defined[3] = {int64_t(mesh.vertex_count()), int64_t(texcoords.size() / 2),
+      const int64_t defined[3] = {int64_t(mesh.source_positions.size() / 3), int64_t(texcoords.size() / 2),
                                   int64_t(normals.size() / 3)};
       for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
         Corner c;
@@ -184,7 +184,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         }
     } else if (key == "f") {
       poly.clear();
-      const int64_t defined = static_cast<int64_t>(mesh.vertex_count());
+      const int64_t defined = static_cast<int64_t>(mesh.source_positions.size() / 3);
       for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
         int64_t idx;
         if (!parse_int_prefix(tok, idx)) throw fail("bad face index " + quoted(tok));
@@ -202,6 +202,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
     }
   }
   if (any_vt || any_vn) split_corners(mesh, corners, texcoords, normals, any_vt, any_vn, name);
+  localize_read_positions(mesh);
   return mesh;
 }
 

@@ -75,13 +75,13 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
                std::to_string(counts[1]) + " faces) are larger than the file can hold");
 
   Mesh mesh;
-  mesh.positions.reserve(counts[0] * 3);
+  mesh.source_positions.reserve(counts[0] * 3);
   mesh.triangles.reserve(counts[1] * 3);
   for (uint64_t v = 0; v < counts[0]; ++v) {
     if (!content_line(scan, line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[0]) +
                   " vertices but the file ends after " + std::to_string(v));
-    const std::string problem = take_xyz(line, mesh.positions);
+    const std::string problem = take_xyz(line, mesh.source_positions);
     if (!problem.empty()) throw fail(problem);
   }
   std::vector<uint32_t> poly;
@@ -110,6 +110,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
   if (content_line(scan, line))
     throw fail("more data after the " + std::to_string(counts[1]) +
                " faces the header announces");
+  localize_read_positions(mesh);
   return mesh;
 }
 

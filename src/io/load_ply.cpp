@@ -228,7 +228,7 @@ struct Reader {
           size_t n = type_size(p.type);
           if (end - pos < n) truncated(e, k);
           if (role >= X && role <= Z) {
-            mesh.positions.push_back(static_cast<float>(read_value<Swap>(data + pos, p.type)));
+            mesh.source_positions.push_back(read_value<Swap>(data + pos, p.type));
           } else if (role == Extra) {
             *plan.extra_out[j]++ = static_cast<float>(read_value<Swap>(data + pos, p.type));
           }
@@ -315,16 +315,20 @@ struct Reader {
                             plan.roles[2] == Z && e.props[0].type == PlyType::Float32 &&
                             e.props[1].type == PlyType::Float32 && e.props[2].type == PlyType::Float32;
     const size_t first = packed_xyz ? 3 : 0;
-    const size_t old = mesh.positions.size();
-    mesh.positions.resize(old + 3 * e.count);
-    float* out = mesh.positions.data() + old;
+    const size_t old = mesh.source_positions.size();
+    mesh.source_positions.resize(old + 3 * e.count);
+    double* out = mesh.source_positions.data() + old;
     for (uint64_t k = 0; k < e.count; ++k, base += stride, out += 3) {
-      if (packed_xyz) std::memcpy(out, base, 12);
+      if (packed_xyz) {
+        float xyz[3];
+        std::memcpy(xyz, base, 12);
+        for (int c = 0; c < 3; ++c) out[c] = xyz[c];
+      }
       for (size_t j = first; j < e.props.size(); ++j) {
         const Role role = plan.roles[j];
         if (role == Skip) continue;
-        const float v = static_cast<float>(read_value<Swap>(base + offset[j], e.props[j].type));
-        if (role == Extra) *plan.extra_out[j]++ = v;
+        const double v = read_value<Swap>(base + offset[j], e.props[j].type);
+        if (role == Extra) *plan.extra_out[j]++ = static_cast<float>(v);
         else out[role] = v;
       }
     }
@@ -358,11 +362,14 @@ struct Reader {
         if (tok.empty())
           fail_line(e.name + " " + std::to_string(k) + " has fewer values than the header declares");
         if (!p.is_list) {
-          if (role >= X && role <= Extra) {
+          if (role == Extra) {
             float v;
             if (!parse_coord(tok, v)) fail_line("bad number " + quoted(tok));
-            if (role == Extra) *plan.extra_out[j]++ = v;
-            else mesh.positions.push_back(v);
+            *plan.extra_out[j]++ = v;
+          } else if (role >= X && role <= Z) {
+            double v;
+            if (!parse_coord(tok, v)) fail_line("bad number " + quoted(tok));
+            mesh.source_positions.push_back(v);
           }
           continue;
         }
@@ -453,6 +460,7 @@ ElementPlans plan_elements(const Header& h, const Element* vertex, const Element
         if (axis >= 0 && found[axis] < 0) {
           found[axis] = static_cast<int>(j);
           plan.roles[j] = static_cast<Role>(axis);
+          mesh.double_positions |= p.type == PlyType::Float64;  // written back as double
         } else if (want_properties) {
           plan.roles[j] = Extra;
           out.extras.emplace_back(e.count);
@@ -467,7 +475,7 @@ ElementPlans plan_elements(const Header& h, const Element* vertex, const Element
       size_t n = 0;
       for (size_t j = 0; j < e.props.size(); ++j)
         if (plan.roles[j] == Extra) plan.extra_out[j] = out.extras[n++].data();
-      mesh.positions.reserve(e.count * 3);
+      mesh.source_positions.reserve(e.count * 3);
     } else if (&e == face) {
       uint64_t min_face_bytes = 8;  // ascii "3 0 1 2\n"
       for (size_t j = 0; j < e.props.size(); ++j)
@@ -571,6 +579,7 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   }
   // A PLY stores a UV seam as vertices split at one position: found here, so that saliency
   // and simplification see one surface, as for an OBJ's v/vt corners.
+  localize_read_positions(mesh);
   if (attributes) find_seam_twins(mesh);
   return mesh;
 }

@@ -64,11 +64,12 @@ Mesh weld(const std::vector<float>& corners, uint64_t* welded) {
   for (size_t c = 0; c < n; ++c) {
     Key key;
     for (int k = 0; k < 3; ++k) key.b[k] = position_bits(corners[3 * c + k]);
-    auto [it, fresh] = index.emplace(key, static_cast<uint32_t>(mesh.positions.size() / 3));
-    if (fresh) mesh.positions.insert(mesh.positions.end(), &corners[3 * c], &corners[3 * c] + 3);
+    auto [it, fresh] = index.emplace(key, static_cast<uint32_t>(mesh.source_positions.size() / 3));
+    if (fresh) mesh.source_positions.insert(mesh.source_positions.end(), &corners[3 * c], &corners[3 * c] + 3);
     mesh.triangles.push_back(it->second);
   }
-  if (welded) *welded = n - mesh.positions.size() / 3;
+  if (welded) *welded = n - mesh.source_positions.size() / 3;
+  localize_read_positions(mesh);
   return mesh;
 }
 

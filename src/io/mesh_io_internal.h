@@ -24,12 +24,24 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
 
+// Every parser reads coordinates in double into mesh.source_positions and ends with this:
+// origin, local float positions, and the source kept where it is needed (set_model_positions).
+inline void localize_read_positions(Mesh& mesh) {
+  set_model_positions(mesh, mesh.source_positions.data(), mesh.source_positions.size() / 3);
+}
+
 // The bits of a coordinate for exact comparison of positions (STL welding, PLY seams):
 // float equality, -0 equal to +0.
 inline uint32_t position_bits(float x) {
   if (x == 0.0f) x = 0.0f;
   uint32_t b;
   std::memcpy(&b, &x, 4);
+  return b;
+}
+inline uint64_t position_bits(double x) {
+  if (x == 0.0) x = 0.0;
+  uint64_t b;
+  std::memcpy(&b, &x, 8);
   return b;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/model_frame.h"
 #include "io/mesh_io_internal.h"
 
 namespace meshsal {
@@ -13,7 +14,7 @@ namespace {
 // A vertex by its position's bits (-0 read as +0): sorting these puts each group of
 // vertices at one exact position together, lowest index first.
 struct Keyed {
-  uint32_t key[3];
+  uint64_t key[3];
   uint32_t v;
   bool same_place(const Keyed& o) const { return key[0] == o.key[0] && key[1] == o.key[1] && key[2] == o.key[2]; }
   bool operator<(const Keyed& o) const {
@@ -38,7 +39,9 @@ void find_seam_twins(Mesh& mesh) {
   std::vector<Keyed> sorted(n);
   for (size_t v = 0; v < n; ++v) {
     sorted[v].v = uint32_t(v);
-    for (int k = 0; k < 3; ++k) sorted[v].key[k] = position_bits(mesh.positions[3 * v + k]);
+    double p[3];
+    model_position(mesh, v, p);  // as read: two values one float apart stay apart
+    for (int k = 0; k < 3; ++k) sorted[v].key[k] = position_bits(p[k]);
   }
   std::sort(sorted.begin(), sorted.end());
   std::vector<uint32_t> pv;

@@ -5,8 +5,8 @@
 
 namespace meshsal {
 
-// Sets mesh.position_vertex (see Mesh) when some vertices share exactly one position (float
-// equality, -0 equal to +0) and differ in at least one attribute value: every vertex of
+// Sets mesh.position_vertex (see Mesh) when some vertices share exactly one position (their
+// model coordinates, model_position, equal in double; -0 equal to +0) and differ in at least one attribute value: every vertex of
 // such a group then points at the group's lowest vertex, every other vertex at itself.
 // Leaves it empty when there is no such group: no attributes, no shared positions, or only
 // duplicates that agree in every attribute (those stay separate vertices, as in the file).

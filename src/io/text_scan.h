@@ -103,7 +103,8 @@ inline bool parse_number(std::string_view tok, T& out) {
 // Coordinates: like parse_number, but a value too large or too small for float becomes
 // +-inf / a (sub)normal or 0 as strtod would round it, instead of failing; validate_mesh
 // then rejects the infinities with a clear message.
-inline bool parse_coord(std::string_view tok, float& out) {
+template <typename Real>
+inline bool parse_coord(std::string_view tok, Real& out) {
   if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
   if (tok.empty()) return false;
   auto r = std::from_chars(tok.data(), tok.data() + tok.size(), out);
@@ -111,7 +112,7 @@ inline bool parse_coord(std::string_view tok, float& out) {
   if (r.ec == std::errc()) return true;
   if (r.ec != std::errc::result_out_of_range) return false;
   std::string copy(tok);
-  out = static_cast<float>(std::strtod(copy.c_str(), nullptr));
+  out = static_cast<Real>(std::strtod(copy.c_str(), nullptr));
   return true;
 }
 
@@ -133,10 +134,12 @@ inline std::string quoted(std::string_view tok) {
 
 // Reads the next three coordinates of `line` (consumed from it) onto `out`. Returns what
 // is wrong, for the caller's "file: line N: ..." message, or "" when all three were read.
-inline std::string take_xyz(std::string_view& line, std::vector<float>& out) {
+// Coordinates are read in double: the loaders round them to float only relative to the
+// mesh's origin (set_model_positions).
+inline std::string take_xyz(std::string_view& line, std::vector<double>& out) {
   for (int k = 0; k < 3; ++k) {
     std::string_view tok = next_token(line);
-    float x;
+    double x;
     if (tok.empty()) return "vertex needs 3 coordinates";
     if (!parse_coord(tok, x)) return "bad vertex coordinate " + quoted(tok);
     out.push_back(x);

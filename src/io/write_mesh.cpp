@@ -1,6 +1,7 @@
 // meshsal: result writers (binary little-endian PLY per SPEC section 4, and OBJ).
 // Both go through write_file_atomically (atomic_write.h): a failure never leaves a
 // half-written or clobbered file.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -9,23 +10,23 @@
 #include <string>
 #include <vector>
 
+#include "core/model_frame.h"
 #include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 namespace {
 
-// Appends the little-endian bytes of a 4-byte value.
+// Appends the little-endian bytes of a 4- or 8-byte value.
 template <typename T>
 void append_le(std::vector<char>& buf, T value) {
-  static_assert(sizeof(T) == 4, "4-byte values only");
-  unsigned char b[4];
-  std::memcpy(b, &value, 4);
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values only");
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &value, sizeof(T));
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  std::swap(b[0], b[3]);
-  std::swap(b[1], b[2]);
+  std::reverse(b, b + sizeof(T));
 #endif
-  buf.insert(buf.end(), b, b + 4);
+  buf.insert(buf.end(), b, b + sizeof(T));
 }
 
 void check_mesh(const std::string& path, const Mesh& mesh) {
@@ -80,9 +81,13 @@ void write_ply(const std::string& path, const Mesh& mesh,
     throw Error(path + ": cannot write: " + std::to_string(rgb->size()) + " colour bytes for " +
                 std::to_string(nv) + " vertices (need 3 each)");
 
+  // Positions in the model's own coordinates (model_position), in double where float would
+  // move them (positions_need_double).
+  const bool wide = positions_need_double(mesh);
   std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by meshsal\n";
   header += "element vertex " + std::to_string(nv) + "\n";
-  header += "property float x\nproperty float y\nproperty float z\n";
+  header += wide ? "property double x\nproperty double y\nproperty double z\n"
+                 : "property float x\nproperty float y\nproperty float z\n";
   for (const VertexAttribute* a : attrs)
     header += (is_colour_channel(a->name) ? "property uchar " : "property float ") + a->name + "\n";
   for (const PlyFloatProperty& p : properties) header += "property float " + p.name + "\n";
@@ -96,7 +101,12 @@ void write_ply(const std::string& path, const Mesh& mesh,
     const size_t chunk = 1 << 16;
     buf.reserve(chunk * (12 + 4 * properties.size() + 3));
     for (size_t v = 0; v < nv; ++v) {
-      for (int k = 0; k < 3; ++k) append_le(buf, mesh.positions[3 * v + k]);
+      double xyz[3];
+      model_position(mesh, v, xyz);
+      for (int k = 0; k < 3; ++k) {
+        if (wide) append_le(buf, xyz[k]);
+        else append_le(buf, static_cast<float>(xyz[k]));
+      }
       for (const VertexAttribute* a : attrs) {
         const float x = a->values[v];
         if (is_colour_channel(a->name))
@@ -181,9 +191,26 @@ void write_obj(const std::string& path, const Mesh& mesh) {
       flush();
     };
     out += "# written by meshsal\n";
-    const float* p = mesh.positions.data();
-    for (size_t v = 0; v < mesh.vertex_count(); ++v)
-      if (!welded || pv[v] == v) add_line("v", {p[3 * v], p[3 * v + 1], p[3 * v + 2]});
+    // A coordinate is written as the shortest text of its float when that float is the value
+    // or float is close enough for the whole file (positions_need_double) and the vertex was
+    // moved; else as the shortest text of the double: a value read from the file is written
+    // as read, and a scan at survey coordinates keeps its digits.
+    const bool wide = positions_need_double(mesh);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      if (welded && pv[v] != v) continue;
+      double xyz[3];
+      model_position(mesh, v, xyz);
+      const bool as_read = !mesh.source_positions.empty() && xyz[0] == mesh.source_positions[3 * v] &&
+                           xyz[1] == mesh.source_positions[3 * v + 1] && xyz[2] == mesh.source_positions[3 * v + 2];
+      out += 'v';
+      for (double x : xyz) {
+        out += ' ';
+        if (double(float(x)) == x || !(wide || as_read)) add_number(float(x));
+        else add_number(x);
+      }
+      out += '\n';
+      flush();
+    }
     if (has_vt)
       for (size_t v = 0; v < mesh.vertex_count(); ++v) add_line("vt", {uv[0]->values[v], uv[1]->values[v]});
     if (has_vn)

@@ -1,5 +1,6 @@
 // meshsal: saliency weights for simplification: the paper's threshold curve, the continuous
 // and rank curves, and the named presets of --weights.
+#include "core/model_frame.h"
 #include "simplify/saliency_weights.h"
 
 #include <algorithm>
@@ -66,15 +67,19 @@ std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh)
   const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
   const double tol = 1e-6 * diag;
-  for (size_t v = 0; v < n; ++v)
+  // In the model's own coordinates: each file has its own origin.
+  for (size_t v = 0; v < n; ++v) {
+    double a[3], b[3];
+    model_position(m, v, a);
+    model_position(mesh, v, b);
     for (int k = 0; k < 3; ++k)
-      if (!(std::fabs(double(m.positions[3 * v + k]) - double(mesh.positions[3 * v + k])) <= tol)) {
+      if (!(std::fabs(a[k] - b[k]) <= tol)) {
         char buf[256];
         std::snprintf(buf, sizeof buf, "vertex %zu is at (%.9g, %.9g, %.9g) there but at (%.9g, %.9g, %.9g) in the mesh",
-                      v, m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2],
-                      mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+                      v, a[0], a[1], a[2], b[0], b[1], b[2]);
         throw Error("saliency file '" + path + "' belongs to another mesh: " + buf);
       }
+  }
   for (size_t v = 0; v < n; ++v) {
     if (!std::isfinite(it->second[v]))
       throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is not finite");

@@ -2,6 +2,7 @@
 // One shared state (positions, quadrics, vertex -> triangle lists) with two ways to pick
 // the next collapse: a lazily invalidated queue of edges (simplify_mesh) and a full scan
 // (simplify_bruteforce, the test oracle). Both use the same cost, check and collapse code.
+#include "core/model_frame.h"
 #include "simplify/simplify.h"
 
 #include <algorithm>
@@ -883,6 +884,7 @@ Mesh State::output(SimplifyReport* report) const {
     if (tri_alive[t])
       for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
   output_attributes(*mesh_in, origin, &out);
+  carry_model_frame(*mesh_in, origin, out);  // an unmoved survivor is written as it was read
   if (report) {
     report->input_faces = tri_alive.size();
     report->target_faces = target;

@@ -1,4 +1,5 @@
 // meshsal: point-to-surface distances over a triangle BVH, Hausdorff / RMS / salient error.
+#include "core/model_frame.h"
 #include "simplify/surface_distance.h"
 
 #include <algorithm>
@@ -295,12 +296,14 @@ double salient_region_error(const Mesh& mesh, const std::vector<double>& salienc
   return idx.empty() ? 0 : sum / double(idx.size());
 }
 
-SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified,
+SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified_in,
                                    const std::vector<double>* saliency,
                                    const CompareOptions& options) {
   const CancelScope cancel(options.cancel);
   check_mesh(original, "the original mesh");
-  check_mesh(simplified, "the simplified mesh");
+  check_mesh(simplified_in, "the simplified mesh");
+  // Two files have two origins: distances are taken in the original's local frame.
+  const Mesh simplified = in_frame(simplified_in, original.origin);
   if (saliency && saliency->size() != original.vertex_count())
     throw Error("saliency has " + std::to_string(saliency->size()) +
                 " values but the original mesh has " + std::to_string(original.vertex_count()) +

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/mesh_points.h"
+#include "core/model_frame.h"
 #include "io/png_image.h"
 #include "simplify/surface_distance.h"
 #include "view/legend.h"
@@ -26,10 +27,12 @@ std::vector<double> distance_to(const Mesh& mesh, const Mesh& original) {
   return d;
 }
 
-Image compare_picture(const Mesh& original, const std::vector<double>* saliency, const Mesh& plain,
-                      const Mesh& salient, const ViewAngles& view, const RenderStyle& style,
+Image compare_picture(const Mesh& original, const std::vector<double>* saliency, const Mesh& plain_in,
+                      const Mesh& salient_in, const ViewAngles& view, const RenderStyle& style,
                       const std::string& title) {
   static const uint8_t kInk[3] = {20, 20, 20};
+  // Meshes read from separate files have their own origins: all three in the original's.
+  const Mesh plain = in_frame(plain_in, original.origin), salient = in_frame(salient_in, original.origin);
   const ViewFrame frame = frame_mesh(original, style.up);
   const PictureFit fit = fit_picture(original, frame, view);
   const double diag_pct = 100.0 / (2 * frame.radius);  // distances in % of the bbox diagonal

@@ -11,7 +11,7 @@ def test_simplify_targets_and_weights(sphere):
     r = meshsal.simplify(V, F, 500, weights="none")
     assert (r.output_faces, r.target_faces, r.reached, r.unchanged) == (500, 500, True, False)
     V2, F2 = r                                   # unpacks as (vertices, faces)
-    assert V2.dtype == np.float32 and F2.dtype == np.uint32 and F2.shape == (500, 3)
+    assert V2.dtype == np.float64 and F2.dtype == np.uint32 and F2.shape == (500, 3)  # as V
     assert int(F2.max()) < len(V2) == len(r.vertex_origin)
     assert (np.diff(r.vertex_origin.astype(np.int64)) > 0).all()  # survivors in input order
 

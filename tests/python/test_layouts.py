@@ -1,5 +1,5 @@
-# Arrays as trimesh and Open3D hold them (float64 vertices, int64 faces), float32/uint32 as
-# meshsal.load returns them, and non-contiguous views all give the same results.
+# Arrays as trimesh and Open3D hold them (float64 vertices, int64 faces), float32/uint32, and
+# non-contiguous views all give the same results (per precision of the coordinates).
 import threading
 import time
 
@@ -17,7 +17,10 @@ def read_only(a):
 
 def test_layouts_give_identical_results(sphere):
     V64, F64 = sphere
-    ref = meshsal.saliency(V64.astype(np.float32), F64.astype(np.uint32), backend="cpu")
+    # float64 coordinates are localized in double (meshsal.h, Mesh::origin), float32 ones
+    # from their float values: one reference for each.
+    ref32 = meshsal.saliency(V64.astype(np.float32), F64.astype(np.uint32), backend="cpu")
+    ref64 = meshsal.saliency(V64, F64.astype(np.uint32), backend="cpu")
     wide = np.zeros((len(V64), 7))
     wide[:, 1:7:2] = V64                     # a strided column view, as from a structured array
     layouts = [
@@ -31,8 +34,9 @@ def test_layouts_give_identical_results(sphere):
         (read_only(V64), read_only(F64)),                  # read-only buffers
     ]
     assert not layouts[3][0].flags.c_contiguous
-    for V, F in layouts:
+    for i, (V, F) in enumerate(layouts):
         r = meshsal.saliency(V, F, backend="cpu")
+        ref = ref32 if i == 1 else ref64
         np.testing.assert_array_equal(r.saliency, ref.saliency)
         np.testing.assert_array_equal(r.curvature, ref.curvature)
 

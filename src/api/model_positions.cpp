@@ -1,0 +1,76 @@
+// meshsal: local coordinates (SPEC section 6): set_model_positions, model_positions,
+// positions_need_double.
+#include <algorithm>
+#include <cmath>
+
+#include "core/model_frame.h"
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
+  // The origin: the centre of the mesh points' bounding box (every vertex when no triangle
+  // is usable yet: validate_mesh refuses such a mesh anyway). Halves added, so 1e308 does
+  // not overflow; non-finite values are left out, for validate_mesh to name.
+  std::vector<uint8_t> used(vertex_count, 0);
+  bool any = false;
+  for (uint32_t i : mesh.triangles)
+    if (i < vertex_count) any = used[i] = 1;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t v = 0; v < vertex_count; ++v)
+    if (used[v] || !any)
+      for (int k = 0; k < 3; ++k) {
+        const double x = xyz[3 * v + k];
+        if (!std::isfinite(x)) continue;
+        lo[k] = std::min(lo[k], x);
+        hi[k] = std::max(hi[k], x);
+      }
+  for (int k = 0; k < 3; ++k) mesh.origin[k] = lo[k] <= hi[k] ? lo[k] / 2 + hi[k] / 2 : 0.0;
+
+  mesh.positions.resize(3 * vertex_count);
+  bool exact = true;
+  for (size_t i = 0; i < 3 * vertex_count; ++i) {
+    const double o = mesh.origin[i % 3];
+    const float local = local_coordinate(xyz[i], o);
+    mesh.positions[i] = local;
+    exact &= double(local) + o == xyz[i] || !std::isfinite(xyz[i]);
+  }
+  if (exact) mesh.source_positions.clear();
+  else if (mesh.source_positions.data() != xyz) mesh.source_positions.assign(xyz, xyz + 3 * vertex_count);
+}
+
+std::vector<double> model_positions(const Mesh& mesh) {
+  std::vector<double> out(mesh.positions.size());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) model_position(mesh, v, &out[3 * v]);
+  return out;
+}
+
+bool positions_need_double(const Mesh& mesh) {
+  if (mesh.double_positions) return true;
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  std::vector<uint8_t> used(mesh.vertex_count(), 0);
+  for (uint32_t i : mesh.triangles)
+    if (i < used.size()) used[i] = 1;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    if (used[v])
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], mesh.positions[3 * v + k]);
+        hi[k] = std::max(hi[k], mesh.positions[3 * v + k]);
+      }
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+    if (lo[k] <= hi[k]) d2 += (double(hi[k]) - lo[k]) * (double(hi[k]) - lo[k]);
+  const double tolerance = 1e-7 * std::sqrt(d2);
+  // Cheap exits: at the origin with no source, model coordinates are the floats themselves.
+  if (mesh.source_positions.empty() && mesh.origin[0] == 0 && mesh.origin[1] == 0 && mesh.origin[2] == 0)
+    return false;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    double p[3];
+    model_position(mesh, v, p);
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(double(float(p[k])) - p[k]) > tolerance) return true;
+  }
+  return false;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,40 @@
+// meshsal: the model's own coordinates of a vertex (Mesh::origin, Mesh::source_positions),
+// and carrying that frame from a mesh to one derived from it (simplified, subdivided).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+// float(x - origin): the one rounding from the model's coordinates to local ones. The
+// loaders, make_mesh and the "was it moved?" test of model_position all use it.
+inline float local_coordinate(double x, double origin) { return static_cast<float>(x - origin); }
+
+// Vertex v's model coordinates: its source position while its local position is still the
+// source's rounding (no computation moved it), else origin + position in double.
+inline void model_position(const Mesh& mesh, size_t v, double out[3]) {
+  const float* p = &mesh.positions[3 * v];
+  if (mesh.source_positions.size() == mesh.positions.size()) {
+    const double* s = &mesh.source_positions[3 * v];
+    if (local_coordinate(s[0], mesh.origin[0]) == p[0] && local_coordinate(s[1], mesh.origin[1]) == p[1] &&
+        local_coordinate(s[2], mesh.origin[2]) == p[2]) {
+      for (int k = 0; k < 3; ++k) out[k] = s[k];
+      return;
+    }
+  }
+  // An origin of 0 is not added: -0 + 0 would be +0, and a hand-made mesh is written as it is.
+  for (int k = 0; k < 3; ++k) out[k] = mesh.origin[k] == 0 ? double(p[k]) : double(p[k]) + mesh.origin[k];
+}
+
+// Gives `out` the frame of `in`: its origin, double_positions and, where `in` keeps source
+// positions, each out vertex i the source of in's vertex from[i] (UINT32_MAX: a vertex of
+// out's own, whose source is its origin + position). out.positions must be set.
+void carry_model_frame(const Mesh& in, const std::vector<uint32_t>& from, Mesh& out);
+
+// `mesh` with its positions re-expressed relative to `origin` (two meshes loaded from
+// separate files have their own origins; distances between them need one frame).
+Mesh in_frame(const Mesh& mesh, const double origin[3]);
+
+}  // namespace meshsal
