@@ -316,6 +316,9 @@ int run(Options o) {
   }
 
   BatchLog log(log_path);
+  if (log.torn_bytes() && !o.quiet)  // its lines follow on a line of their own
+    std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
+                 printable(log_path).c_str(), static_cast<unsigned long long>(log.torn_bytes()));
   BatchProgress progress(!o.quiet && stderr_is_terminal(), inputs.size());
   std::set<std::string> told;  // each notice once per run, not once per model
   std::vector<std::string>* model_notes = nullptr;
