@@ -1,9 +1,10 @@
 // Issue 22 (item 3): meshsal batch run again over its own results: a log a killed run left
-// with a torn last line.
+// with a torn last line, and an input folder that is also the output folder.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "cli_run.h"
@@ -63,4 +64,55 @@ TEST_CASE("batch: a torn last line in the log is noted, and the new lines start 
   lines = log_lines(log);
   REQUIRE(lines.size() == 7);
   for (size_t i : {5, 6}) CHECK(json_valid(lines[i]));
+}
+
+TEST_CASE("batch: the input folder may be the output folder, and what batch wrote there is never an input",
+          "[cli][batch]") {
+  const fs::path dir = scratch_dir("batch_in_out");
+  const fs::path models = dir / "models";
+  fs::create_directories(models);
+  meshsal::write_obj((models / "a.obj").string(), meshsal::make_sphere(1.0, 2));
+  meshsal::write_ply((models / "b.ply").string(), meshsal::make_bumpy_sphere(2), {});
+  const std::string base = "batch " + quoted(models.string()) + " -o " + quoted(models.string()) +
+                           " --backend cpu --size 64 --resolution 32 --restarts 1 --contact-sheet " +
+                           quoted((models / "sheet.png").string());
+  const std::string args = base + " --simplify 0.5";
+  const auto meshes_logged = [&] {
+    std::set<std::string> meshes;
+    for (const std::string& line : log_lines(models / "batch.jsonl")) meshes.insert(json_text(line, "mesh"));
+    return meshes;
+  };
+  const std::set<std::string> two = {(models / "a.obj").string(), (models / "b.ply").string()};
+  CliRun r = run_cli(args, dir, 240);
+  INFO(r.err);
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("batch: 2 models: 2 computed, 0 skipped, 0 failed") != std::string::npos);
+  for (const char* f : {"a_saliency.ply", "a_simplified.obj", "a_view.png", "b_saliency.ply", "b_simplified.obj",
+                        "b_view.png", "sheet.png", "batch.jsonl"})
+    CHECK(fs::exists(models / f));
+  // Again: the same two models, up to date; none of the outputs taken as a model.
+  r = run_cli(args, dir, 240);
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("batch: 2 models: 0 computed, 2 skipped, 0 failed") != std::string::npos);
+  CHECK(r.err.empty());
+  CHECK(meshes_logged() == two);
+  CHECK_FALSE(fs::exists(models / "a_saliency_saliency.ply"));
+  // Without --simplify its simplified meshes are still outputs, not models (the options
+  // changed: both computed again).
+  r = run_cli(base, dir, 240);
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("batch: 2 models: 2 computed, 0 skipped, 0 failed") != std::string::npos);
+  CHECK(meshes_logged() == two);
+  // A run stopped while making a's outputs left its state file as started: they are still
+  // outputs, and a is computed again.
+  std::ofstream(models / ".meshsal-batch" / "a.state", std::ios::trunc) << "meshsal-batch-state 1\nstarted\n";
+  r = run_cli(base, dir, 240);
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("batch: 2 models: 1 computed, 1 skipped, 0 failed") != std::string::npos);
+  CHECK(meshes_logged() == two);
+  // A mesh of the user's with an output's name but no model of that name is a model.
+  meshsal::write_obj((models / "c_simplified.obj").string(), meshsal::make_sphere(1.0, 1));
+  r = run_cli(base, dir, 240);
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("batch: 3 models: 1 computed, 2 skipped, 0 failed") != std::string::npos);
 }

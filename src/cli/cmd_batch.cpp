@@ -274,8 +274,25 @@ int run(Options o) {
   check_render_style(p.style);
 
   // Before any work: the inputs, the output folder, the log and the sheet.
-  const std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
+  std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
   prepare_output_folder(o.out_dir);
+  // An input folder that is also the output folder: what earlier runs wrote there is no input.
+  inputs = without_batch_outputs(inputs, o.out_dir);
+  if (inputs.empty())
+    throw Error("batch: no mesh file found in the inputs given besides the outputs of earlier runs in " + o.out_dir);
+  // Whether an input lives in the output folder: then a model's state file is made before
+  // its outputs, so that they are known for outputs even when the run stops part way.
+  bool inputs_in_output_folder = false;
+  {
+    struct stat ds;
+    if (::stat(o.out_dir.c_str(), &ds) == 0)
+      for (const std::string& in : inputs) {
+        const std::string folder = std::filesystem::path(in).parent_path().string();
+        struct stat fs;
+        if (::stat(folder.empty() ? "." : folder.c_str(), &fs) == 0 && fs.st_dev == ds.st_dev && fs.st_ino == ds.st_ino)
+          inputs_in_output_folder = true;
+      }
+  }
   const std::string log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
   check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}}, inputs);
   std::set<std::pair<dev_t, ino_t>> input_ids;
@@ -373,6 +390,7 @@ int run(Options o) {
     if (error.empty()) {
       try {
         const Timer t;
+        if (inputs_in_output_folder) mark_started(state_path(o.out_dir, names[i]));
         JsonObject j = compute_model(p, m, names[i], outs[i], progress);
         if (!notes.empty()) {
           std::string arr = "[";
