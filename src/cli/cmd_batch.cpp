@@ -347,7 +347,11 @@ int run(Options o) {
       std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
   };
+  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
+  std::vector<std::string> sheet_status(inputs.size()), sheet_message(inputs.size());  // the others'
   const auto report_failure = [&](const std::string& in, size_t i, const std::string& error) {
+    sheet_status[i] = "failed";
+    sheet_message[i] = error;
     progress.clear();
     log.add(failed_line(in, names[i], error));
     std::fprintf(stderr, "error: %s\n", printable(error).c_str());
@@ -356,7 +360,6 @@ int run(Options o) {
   const Timer t_run;
   size_t computed = 0, skipped = 0, failed = 0, left = to_load.size();
   bool interrupted = false;
-  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
   std::unique_ptr<ModelLoader> loader;
   if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load);
   for (size_t i = 0; i < inputs.size(); ++i) {
@@ -372,6 +375,8 @@ int run(Options o) {
       progress.clear();
       log.add(j.str());
       if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
+      sheet_status[i] = "skipped";
+      sheet_message[i] = not_read[i];
       skipped++;
       continue;
     }
@@ -437,18 +442,22 @@ int run(Options o) {
 
   bool sheet_failed = false;
   if (!o.contact_sheet.empty() && !interrupted) {
+    // Every model: its picture, or a marked tile with its error (the input's path shown as
+    // its name, which the label under the tile gives in full).
     std::vector<SheetItem> items;
-    for (size_t i = 0; i < inputs.size(); ++i)
-      if (has_view[i]) items.push_back({file_name(inputs[i]), outs[i].view});
-    if (items.empty()) {
-      std::fprintf(stderr, "note: no contact sheet: no model has a best-view picture\n");
-    } else {
-      try {
-        write_png(o.contact_sheet, contact_sheet(items));
-      } catch (const Error& e) {
-        std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-        sheet_failed = true;
-      }
+    for (size_t i = 0; i < inputs.size(); ++i) {
+      std::string message = sheet_message[i];
+      const std::string name = file_name(inputs[i]);
+      for (size_t at = 0; !inputs[i].empty() && (at = message.find(inputs[i], at)) != std::string::npos;
+           at += name.size())
+        message.replace(at, inputs[i].size(), name);
+      items.push_back({name, has_view[i] ? outs[i].view : "", sheet_status[i], message});
+    }
+    try {
+      write_png(o.contact_sheet, contact_sheet(items));
+    } catch (const Error& e) {
+      std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+      sheet_failed = true;
     }
   }
   if (!o.quiet) {
@@ -507,7 +516,8 @@ RunFn setup(CLI::App& sub) {
                  "weighting's, see simplify --help; 0 = the paper's literal rule)")
       ->check(finite_in(0, 100));
   sub.add_option("--contact-sheet", o->contact_sheet,
-                 "One PNG of every model's best-view picture as a thumbnail with its name (implies --view)");
+                 "One PNG with a tile per model: its best-view picture as a thumbnail, or a failed one "
+                 "marked with its error; the name under it (implies --view)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
