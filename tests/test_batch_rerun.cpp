@@ -1,5 +1,6 @@
 // Issue 22 (item 3): meshsal batch run again over its own results: a log a killed run left
-// with a torn last line, and an input folder that is also the output folder.
+// with a torn last line, an input folder that is also the output folder, and the
+// simplification options of `meshsal simplify` (--target-error, --lock-border, attributes).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "test_batch_util.h"
+#include "test_simplify_attributes_util.h"
 
 using namespace meshsal_test;
 namespace fs = std::filesystem;
@@ -115,4 +117,65 @@ TEST_CASE("batch: the input folder may be the output folder, and what batch wrot
   r = run_cli(base, dir, 240);
   CHECK(r.rc == 0);
   CHECK(r.out.find("batch: 3 models: 1 computed, 2 skipped, 0 failed") != std::string::npos);
+}
+
+TEST_CASE("batch: the simplified mesh is simplify's byte for byte, attributes, --target-error and --lock-border "
+          "included", "[cli][batch]") {
+  const fs::path dir = scratch_dir("batch_simplify_same");
+  const fs::path in = dir / "in";
+  fs::create_directories(in);
+  // A textured sphere (vt with a UV seam, vn), a plain bumpy sphere, a plane with a border.
+  std::ofstream(in / "tex.obj") << attr_test::seamed_sphere_obj(meshsal::make_sphere(1.0, 3));
+  meshsal::write_obj((in / "plain.obj").string(), meshsal::make_bumpy_sphere(3));
+  meshsal::write_ply((in / "plane.ply").string(), meshsal::make_plane_with_bump(2.0, 16, 0.3, 0.3), {});
+  const std::string common = " --backend cpu";
+  struct Case {
+    const char *batch, *simplify;
+  };
+  const Case cases[] = {{"--simplify 0.5 --weights saliency", "--ratio 0.5 --weights saliency"},
+                        {"--simplify 200 --target-error 0.5 --lock-border --weights saliency",
+                         "--target-faces 200 --target-error 0.5 --lock-border --weights saliency"},
+                        {"--target-error 1 --weights balanced", "--target-error 1 --weights balanced"},
+                        {"--simplify 0.3 --weights none", "--ratio 0.3 --weights none"}};
+  int k = 0;
+  for (const Case& c : cases) {
+    ++k;
+    INFO(c.batch);
+    const fs::path out = dir / ("out" + std::to_string(k));
+    CliRun r = run_cli("batch " + quoted(in.string()) + " -o " + quoted(out.string()) + " " + c.batch + common, dir, 240);
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    for (const char* name : {"tex", "plain", "plane"}) {
+      INFO(name);
+      const std::string ext = std::string(name) == "plane" ? ".ply" : ".obj";
+      const fs::path mine = dir / (std::string(name) + "_" + std::to_string(k) + ".obj");
+      r = run_cli("simplify " + quoted((in / (name + ext)).string()) + " -o " + quoted(mine.string()) + " " +
+                      c.simplify + common + " -q",
+                  dir, 240);
+      REQUIRE(r.rc == 0);
+      const std::string batch_file = read_text(out / (std::string(name) + "_simplified.obj"));
+      CHECK(!batch_file.empty());
+      CHECK(batch_file == read_text(mine));
+      if (std::string(name) == "tex") {
+        CHECK(batch_file.find("\nvt ") != std::string::npos);
+        CHECK(batch_file.find("\nvn ") != std::string::npos);
+      }
+    }
+  }
+  // The options are in the state: a change computes the models again.
+  const std::string args = "batch " + quoted((in / "tex.obj").string()) + " -o " + quoted((dir / "out1").string()) +
+                           " --simplify 0.5 --weights saliency" + common;
+  CliRun r = run_cli(args, dir, 240);
+  CHECK(r.out.find("1 models: 0 computed, 1 skipped") != std::string::npos);
+  r = run_cli(args + " --target-error 0.5", dir, 240);
+  CHECK(r.out.find("1 models: 1 computed, 0 skipped") != std::string::npos);
+  CHECK(json_number(log_lines(dir / "out1" / "batch.jsonl").back(), "target_error_percent") == 0.5);
+  r = run_cli(args + " --target-error 0.5", dir, 240);
+  CHECK(r.out.find("1 models: 0 computed, 1 skipped") != std::string::npos);
+  r = run_cli(args + " --target-error 0.5 --lock-border", dir, 240);
+  CHECK(r.out.find("1 models: 1 computed, 0 skipped") != std::string::npos);
+  // --lock-border alone simplifies nothing.
+  r = run_cli("batch " + quoted(in.string()) + " -o " + quoted((dir / "out9").string()) + " --lock-border", dir, 60);
+  CHECK(r.rc == 2);
+  CHECK(r.err.find("--lock-border needs --simplify or --target-error") != std::string::npos);
 }

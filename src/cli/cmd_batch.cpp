@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "api/viewpoint_backend.h"
+#include "core/mesh_points.h"
 #include "batch_inputs.h"
 #include "batch_loader.h"
 #include "batch_log.h"
@@ -55,6 +56,8 @@ struct Options {
   std::vector<std::string> inputs;
   std::string list_file, out_dir, log, contact_sheet;
   double simplify = 0;  // 0: none; (0, 1]: a ratio of the faces; > 1: a face count
+  double target_error = 0;  // --target-error, % of the bounding-box diagonal (0: none)
+  bool lock_border = false;
   bool view = false, force = false, quiet = false;
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
   std::string weights = "saliency";  // --simplify's weighting
@@ -67,6 +70,7 @@ struct Options {
 // What one model's run needs besides its mesh.
 struct Plan {
   const Options* o;
+  bool simplifying = false;  // --simplify or --target-error
   SaliencyOptions saliency;
   SaliencyWeightOptions weights;  // --simplify's
   RenderStyle style;
@@ -134,23 +138,48 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   return j;
 }
 
-JsonObject simplified(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& out) {
+// Whether two meshes are one surface with the same vertices (an OBJ or PLY read with its
+// attributes, when nothing was split or added).
+bool same_vertices(const Mesh& a, const Mesh& b) {
+  return a.positions == b.positions && a.triangles == b.triangles && a.position_vertex == b.position_vertex;
+}
+
+// NAME_simplified.obj as `meshsal simplify IN -o OUT.obj` makes it with the same options:
+// the mesh read with its attributes, the same weights (simplification_weights) and the
+// same simplify_mesh call, so the files are the same byte for byte.
+JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult& r, const std::string& out) {
+  if (!m.attributed_error.empty()) throw Error(m.attributed_error);
+  const Mesh& mesh = m.has_attributed ? m.attributed : m.mesh;
+  const bool has_target = p.o->simplify > 1, has_ratio = p.o->simplify > 0 && p.o->simplify <= 1;
   SimplifyOptions so;
   so.threads = p.o->threads;
   so.cancel = interrupt_flag();
-  if (p.o->simplify <= 1)
-    so.ratio = p.o->simplify;
-  else
-    so.target_faces = size_t(p.o->simplify);
+  if (has_target) so.target_faces = size_t(p.o->simplify);
+  else so.ratio = p.o->simplify;
+  so.target_error = p.o->target_error / 100;
+  so.lock_border = p.o->lock_border;
   SimplifyReport rep;
   const Timer t;
-  const Mesh m = p.o->weights == "none" ? simplify_mesh(mesh, so, nullptr, &rep)
-                                         : simplify_with_saliency(mesh, so, p.weights, p.saliency, &r.saliency, &rep);
-  write_obj(out, m);
+  std::vector<double> weights;
+  if (p.o->weights != "none" && !((has_target || has_ratio) && simplify_keeps_mesh(so, mesh.triangle_count()))) {
+    // The saliency was computed with its Sm (Plan::saliency.smoothed) on this very mesh:
+    // the weights simplification_weights() would compute from it. Else (vertices split at
+    // UV seams, or added) on the mesh as read for simplifying, as `simplify` does.
+    if (same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() && r.smoothed.size() == mesh.vertex_count())
+      weights = saliency_weights(r.smoothed, referenced_vertices(mesh), p.weights);
+    else
+      weights = simplification_weights(mesh, p.weights, p.saliency);
+  }
+  const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
+  write_obj(out, s);
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
-      .number("seconds", t.seconds());
+      .number("error_percent", 100 * rep.error);
+  if (p.o->target_error > 0) j.number("target_error_percent", p.o->target_error);
+  if (p.o->lock_border) j.flag("lock_border", true);
+  if (!s.attributes.empty()) j.count("attributes", s.attributes.size());
+  j.number("seconds", t.seconds());
   if (!rep.note.empty()) j.text("note", rep.note);
   return j;
 }
@@ -171,7 +200,7 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
   if (!out.view.empty()) j.object("view", best_view(p, m.mesh, r, m.path, out.view, progress));
   if (!out.simplified.empty()) {
     progress.stage("simplify", 0);
-    j.object("simplify", simplified(p, m.mesh, r, out.simplified));
+    j.object("simplify", simplified(p, m, r, out.simplified));
   }
   const GpuCounts gpu1 = GpuCounts::now();
   if (built_with_vulkan())
@@ -221,7 +250,15 @@ std::string options_line(const Options& o) {
                 MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
                 o.backend.c_str(), o.device, int(o.view), o.size, o.restarts, o.resolution, o.up.c_str(),
                 o.simplify, o.weights.c_str(), o.weight_floor);
-  return buf;
+  std::string line = buf;
+  // Only where a simplified mesh is made, so that the records of runs without one still
+  // hold (a simplified mesh carries the input's attributes since these options came).
+  if (o.simplify > 0 || o.target_error > 0) {
+    std::snprintf(buf, sizeof buf, " target_error=%.17g lock_border=%d attributes=1", o.target_error,
+                  int(o.lock_border));
+    line += buf;
+  }
+  return line;
 }
 
 // The sizes of the outputs just written, in ModelOutputs::all() order.
@@ -253,10 +290,13 @@ int run(Options o) {
   if (o.simplify > 1 && o.simplify != std::floor(o.simplify))
     throw UsageError("--simplify: a value above 1 is a face count and must be a whole number, got " +
                      std::to_string(o.simplify));
+  if (o.lock_border && o.simplify == 0 && o.target_error == 0)
+    throw UsageError("--lock-border needs --simplify or --target-error");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
   Plan p;
   p.o = &o;
+  p.simplifying = o.simplify > 0 || o.target_error > 0;
   p.backend = parse_backend(o.backend);
   p.saliency.eps_frac = o.eps_frac;
   p.saliency.scales = parse_scales(o.scales);
@@ -266,6 +306,8 @@ int run(Options o) {
   p.saliency.method = parse_method(o.method);
   p.saliency.device = o.device;
   p.saliency.cancel = interrupt_flag();
+  // The smoothed saliency Sm the weights are made of, computed with S as `simplify` does.
+  p.saliency.smoothed = p.simplifying && o.weights != "none";
   check_saliency_options(p.saliency);
   p.weights = weight_preset(parse_weighting(o.weights));
   if (o.weight_floor >= 0) p.weights.floor = o.weight_floor;
@@ -317,7 +359,7 @@ int run(Options o) {
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<std::string> to_load;
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(model_outputs(o.out_dir, names[i], o.view, o.simplify > 0));
+    outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
@@ -361,7 +403,7 @@ int run(Options o) {
   size_t computed = 0, skipped = 0, failed = 0, left = to_load.size();
   bool interrupted = false;
   std::unique_ptr<ModelLoader> loader;
-  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load);
+  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
   for (size_t i = 0; i < inputs.size(); ++i) {
     const std::string& in = inputs[i];
     if (!refused[i].empty()) {
@@ -423,7 +465,8 @@ int run(Options o) {
       }
     }
     model_notes = nullptr;
-    m.mesh = {};  // free it before the next one is read
+    m.mesh = {};  // free them before the next one is read
+    m.attributed = {};
     if (interrupted) {  // Ctrl-C: this model's line says so, then the summary
       JsonObject j;
       j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
@@ -507,7 +550,14 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--view", o->view, "Also write the best-view picture NAME_view.png");
   sub.add_option("--simplify", o->simplify,
                  "Also write NAME_simplified.obj with saliency weights: a ratio of the faces in (0, 1], "
-                 "or a face count above 1")->check(finite_in(0, 1e12, true));
+                 "or a face count above 1 (as simplify --ratio / --target-faces)")->check(finite_in(0, 1e12, true));
+  sub.add_option("--target-error", o->target_error,
+                 "Also (or with --simplify) an error bound E in % of the bounding-box diagonal for "
+                 "NAME_simplified.obj, as simplify --target-error: stop where every further collapse would "
+                 "move the surface more than that (alone: simplify as far as it allows)")
+      ->check(finite_in(0, 100, true));
+  sub.add_flag("--lock-border", o->lock_border,
+               "Simplified mesh: keep the vertices of open borders exactly in place (as simplify --lock-border)");
   sub.add_option("--weights", o->weights,
                  "--simplify's weighting: saliency (the paper's recipe), balanced or none (see simplify --help)")
       ->capture_default_str()->check(CLI::IsMember({"saliency", "balanced", "none"}));
