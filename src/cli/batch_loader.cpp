@@ -8,7 +8,8 @@
 
 namespace meshsal_cli {
 
-ModelLoader::ModelLoader(std::vector<std::string> paths) : paths_(std::move(paths)) {
+ModelLoader::ModelLoader(std::vector<std::string> paths, bool attributes)
+    : paths_(std::move(paths)), attributes_(attributes) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -36,6 +37,19 @@ void ModelLoader::run() {
       m.mesh = load_input_mesh(path, nullptr, false, &report, true);  // as `meshsal saliency` reads it
                                                                         // (but never waits on a pipe)
       m.welded_corners = report.welded_corners;
+      // OFF and STL hold no attributes: the same mesh either way.
+      const std::string ext = mesh_extension(path);
+      if (attributes_ && (ext == ".obj" || ext == ".ply")) {
+        m.has_attributed = true;
+        try {
+          m.attributed = load_input_mesh(path, nullptr, true, nullptr, true);  // as `meshsal simplify`
+        } catch (const std::bad_alloc&) {
+          m.attributed = {};
+          m.attributed_error = path + ": out of memory while reading";
+        } catch (const std::exception& e) {
+          m.attributed_error = e.what();
+        }
+      }
     } catch (const std::bad_alloc&) {
       m.mesh = {};
       m.error = path + ": out of memory while reading";

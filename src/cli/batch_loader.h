@@ -19,12 +19,19 @@ struct LoadedModel {
   std::string error;        // the one-line message when loading failed ("" = loaded)
   double seconds = 0;       // time spent reading and parsing
   uint64_t welded_corners = 0;
+  // With ModelLoader's `attributes`, for an OBJ or PLY: the file read again as `meshsal
+  // simplify` reads it (LoadOptions::attributes: vt/vn, PLY properties, split at UV seams),
+  // for the simplified mesh; `mesh` stays as `meshsal saliency` reads it. Its own message
+  // when that failed.
+  bool has_attributed = false;
+  meshsal::Mesh attributed;
+  std::string attributed_error;
 };
 
 class ModelLoader {
  public:
-  // Starts reading paths[0] at once.
-  explicit ModelLoader(std::vector<std::string> paths);
+  // Starts reading paths[0] at once. `attributes`: also LoadedModel::attributed.
+  ModelLoader(std::vector<std::string> paths, bool attributes);
   ~ModelLoader();  // stops after the model being read, if any
   ModelLoader(const ModelLoader&) = delete;
   ModelLoader& operator=(const ModelLoader&) = delete;
@@ -36,6 +43,7 @@ class ModelLoader {
  private:
   void run();
   std::vector<std::string> paths_;
+  bool attributes_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::optional<LoadedModel> ready_;  // the one slot

@@ -1,9 +1,14 @@
 // meshsal batch: output names (see batch_outputs.h).
 #include "batch_outputs.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cctype>
 #include <map>
 #include <set>
+
+#include "batch_state.h"
 
 namespace meshsal_cli {
 namespace {
@@ -57,6 +62,53 @@ ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool
   if (view) o.view = base + "_view.png";
   if (simplified) o.simplified = base + "_simplified.obj";
   return o;
+}
+
+std::vector<std::string> without_batch_outputs(const std::vector<std::string>& inputs, const std::string& dir) {
+  struct stat ds;
+  if (::stat(dir.c_str(), &ds) != 0) return inputs;  // no output folder yet: nothing written
+  // The inputs that might be outputs: in `dir`, with an output's ending; NAME before it.
+  std::vector<std::string> name(inputs.size());
+  std::vector<size_t> maybe;
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    const std::string file = file_name(inputs[i]);
+    for (const char* end : {"_saliency.ply", "_simplified.obj"}) {
+      const std::string e(end);
+      if (file.size() <= e.size() || file.compare(file.size() - e.size(), e.size(), e) != 0) continue;
+      const size_t slash = inputs[i].find_last_of('/');
+      const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : inputs[i].substr(0, slash);
+      struct stat fs;
+      if (::stat(folder.c_str(), &fs) == 0 && fs.st_dev == ds.st_dev && fs.st_ino == ds.st_ino) {
+        name[i] = file.substr(0, file.size() - e.size());
+        maybe.push_back(i);
+      }
+    }
+  }
+  if (maybe.empty()) return inputs;
+  std::vector<bool> keep(inputs.size(), true);
+  for (size_t i : maybe) keep[i] = false;
+  // Shortest names first: a user's own x_saliency.ply kept is the model whose outputs
+  // x_saliency_saliency.ply are.
+  std::stable_sort(maybe.begin(), maybe.end(),
+                   [&](size_t a, size_t b) { return file_name(inputs[a]).size() < file_name(inputs[b]).size(); });
+  const auto kept_names = [&] {
+    std::vector<std::string> kept;
+    for (size_t i = 0; i < inputs.size(); ++i)
+      if (keep[i]) kept.push_back(inputs[i]);
+    const std::vector<std::string> names = output_names(kept);
+    return std::set<std::string>(names.begin(), names.end());
+  };
+  std::set<std::string> names = kept_names();
+  for (size_t i : maybe) {
+    struct stat ss;
+    if (names.count(name[i]) && ::stat(state_path(dir, name[i]).c_str(), &ss) == 0) continue;  // an output
+    keep[i] = true;
+    names = kept_names();
+  }
+  std::vector<std::string> out;
+  for (size_t i = 0; i < inputs.size(); ++i)
+    if (keep[i]) out.push_back(inputs[i]);
+  return out;
 }
 
 }  // namespace meshsal_cli

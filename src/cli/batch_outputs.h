@@ -19,4 +19,12 @@ std::vector<std::string> output_names(const std::vector<std::string>& inputs);
 
 ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified);
 
+// `inputs` without the files a batch wrote into `dir` (for an input folder that is also the
+// output folder, run again): a file directly in `dir` named NAME_saliency.ply or
+// NAME_simplified.obj (the outputs with a mesh extension) where NAME is the output name of
+// another input (output_names over the inputs kept) and DIR/.meshsal-batch/NAME.state
+// exists (batch_state.h: a batch made, or was making, that model's outputs there). A file
+// with such a name and no state is kept: a user's own mesh (an output never replaces it).
+std::vector<std::string> without_batch_outputs(const std::vector<std::string>& inputs, const std::string& dir);
+
 }  // namespace meshsal_cli

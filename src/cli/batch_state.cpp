@@ -95,6 +95,16 @@ void save_state(const std::string& path, const ModelState& s) {
   meshsal::write_file_atomically(path, [&](std::FILE* f) { meshsal::write_all(f, text.data(), text.size(), path); });
 }
 
+void mark_started(const std::string& path) {
+  struct stat st;
+  if (::lstat(path.c_str(), &st) == 0) return;
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+  if (ec) throw Error(path + ": cannot create the folder: " + ec.message());
+  const std::string text = std::string(kMagic) + "\nstarted\n";
+  meshsal::write_file_atomically(path, [&](std::FILE* f) { meshsal::write_all(f, text.data(), text.size(), path); });
+}
+
 bool load_state(const std::string& path, ModelState* s) {
   std::ifstream in(path, std::ios::binary);
   std::string line;

@@ -37,6 +37,11 @@ std::string state_path(const std::string& dir, const std::string& name);
 // Writes the record atomically (the folder is made if missing). Throws Error.
 void save_state(const std::string& path, const ModelState& state);
 
+// Writes a record that names no outputs yet (load_state: false) where there is none: a
+// batch is making this model's outputs (batch_outputs.h: without_batch_outputs then
+// knows them for outputs, should the run stop before save_state). Throws Error.
+void mark_started(const std::string& path);
+
 // The record at `path`; false when there is none or it cannot be read as one.
 bool load_state(const std::string& path, ModelState* state);
 

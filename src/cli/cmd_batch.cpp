@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "api/viewpoint_backend.h"
+#include "core/mesh_points.h"
 #include "batch_inputs.h"
 #include "batch_loader.h"
 #include "batch_log.h"
@@ -55,6 +56,8 @@ struct Options {
   std::vector<std::string> inputs;
   std::string list_file, out_dir, log, contact_sheet;
   double simplify = 0;  // 0: none; (0, 1]: a ratio of the faces; > 1: a face count
+  double target_error = 0;  // --target-error, % of the bounding-box diagonal (0: none)
+  bool lock_border = false;
   bool view = false, force = false, quiet = false;
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
   std::string weights = "saliency";  // --simplify's weighting
@@ -67,6 +70,7 @@ struct Options {
 // What one model's run needs besides its mesh.
 struct Plan {
   const Options* o;
+  bool simplifying = false;  // --simplify or --target-error
   SaliencyOptions saliency;
   SaliencyWeightOptions weights;  // --simplify's
   RenderStyle style;
@@ -134,23 +138,48 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   return j;
 }
 
-JsonObject simplified(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& out) {
+// Whether two meshes are one surface with the same vertices (an OBJ or PLY read with its
+// attributes, when nothing was split or added).
+bool same_vertices(const Mesh& a, const Mesh& b) {
+  return a.positions == b.positions && a.triangles == b.triangles && a.position_vertex == b.position_vertex;
+}
+
+// NAME_simplified.obj as `meshsal simplify IN -o OUT.obj` makes it with the same options:
+// the mesh read with its attributes, the same weights (simplification_weights) and the
+// same simplify_mesh call, so the files are the same byte for byte.
+JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult& r, const std::string& out) {
+  if (!m.attributed_error.empty()) throw Error(m.attributed_error);
+  const Mesh& mesh = m.has_attributed ? m.attributed : m.mesh;
+  const bool has_target = p.o->simplify > 1, has_ratio = p.o->simplify > 0 && p.o->simplify <= 1;
   SimplifyOptions so;
   so.threads = p.o->threads;
   so.cancel = interrupt_flag();
-  if (p.o->simplify <= 1)
-    so.ratio = p.o->simplify;
-  else
-    so.target_faces = size_t(p.o->simplify);
+  if (has_target) so.target_faces = size_t(p.o->simplify);
+  else so.ratio = p.o->simplify;
+  so.target_error = p.o->target_error / 100;
+  so.lock_border = p.o->lock_border;
   SimplifyReport rep;
   const Timer t;
-  const Mesh m = p.o->weights == "none" ? simplify_mesh(mesh, so, nullptr, &rep)
-                                         : simplify_with_saliency(mesh, so, p.weights, p.saliency, &r.saliency, &rep);
-  write_obj(out, m);
+  std::vector<double> weights;
+  if (p.o->weights != "none" && !((has_target || has_ratio) && simplify_keeps_mesh(so, mesh.triangle_count()))) {
+    // The saliency was computed with its Sm (Plan::saliency.smoothed) on this very mesh:
+    // the weights simplification_weights() would compute from it. Else (vertices split at
+    // UV seams, or added) on the mesh as read for simplifying, as `simplify` does.
+    if (same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() && r.smoothed.size() == mesh.vertex_count())
+      weights = saliency_weights(r.smoothed, referenced_vertices(mesh), p.weights);
+    else
+      weights = simplification_weights(mesh, p.weights, p.saliency);
+  }
+  const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
+  write_obj(out, s);
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
-      .number("seconds", t.seconds());
+      .number("error_percent", 100 * rep.error);
+  if (p.o->target_error > 0) j.number("target_error_percent", p.o->target_error);
+  if (p.o->lock_border) j.flag("lock_border", true);
+  if (!s.attributes.empty()) j.count("attributes", s.attributes.size());
+  j.number("seconds", t.seconds());
   if (!rep.note.empty()) j.text("note", rep.note);
   return j;
 }
@@ -171,7 +200,7 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
   if (!out.view.empty()) j.object("view", best_view(p, m.mesh, r, m.path, out.view, progress));
   if (!out.simplified.empty()) {
     progress.stage("simplify", 0);
-    j.object("simplify", simplified(p, m.mesh, r, out.simplified));
+    j.object("simplify", simplified(p, m, r, out.simplified));
   }
   const GpuCounts gpu1 = GpuCounts::now();
   if (built_with_vulkan())
@@ -221,7 +250,15 @@ std::string options_line(const Options& o) {
                 MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
                 o.backend.c_str(), o.device, int(o.view), o.size, o.restarts, o.resolution, o.up.c_str(),
                 o.simplify, o.weights.c_str(), o.weight_floor);
-  return buf;
+  std::string line = buf;
+  // Only where a simplified mesh is made, so that the records of runs without one still
+  // hold (a simplified mesh carries the input's attributes since these options came).
+  if (o.simplify > 0 || o.target_error > 0) {
+    std::snprintf(buf, sizeof buf, " target_error=%.17g lock_border=%d attributes=1", o.target_error,
+                  int(o.lock_border));
+    line += buf;
+  }
+  return line;
 }
 
 // The sizes of the outputs just written, in ModelOutputs::all() order.
@@ -253,10 +290,13 @@ int run(Options o) {
   if (o.simplify > 1 && o.simplify != std::floor(o.simplify))
     throw UsageError("--simplify: a value above 1 is a face count and must be a whole number, got " +
                      std::to_string(o.simplify));
+  if (o.lock_border && o.simplify == 0 && o.target_error == 0)
+    throw UsageError("--lock-border needs --simplify or --target-error");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
   Plan p;
   p.o = &o;
+  p.simplifying = o.simplify > 0 || o.target_error > 0;
   p.backend = parse_backend(o.backend);
   p.saliency.eps_frac = o.eps_frac;
   p.saliency.scales = parse_scales(o.scales);
@@ -266,6 +306,8 @@ int run(Options o) {
   p.saliency.method = parse_method(o.method);
   p.saliency.device = o.device;
   p.saliency.cancel = interrupt_flag();
+  // The smoothed saliency Sm the weights are made of, computed with S as `simplify` does.
+  p.saliency.smoothed = p.simplifying && o.weights != "none";
   check_saliency_options(p.saliency);
   p.weights = weight_preset(parse_weighting(o.weights));
   if (o.weight_floor >= 0) p.weights.floor = o.weight_floor;
@@ -274,8 +316,25 @@ int run(Options o) {
   check_render_style(p.style);
 
   // Before any work: the inputs, the output folder, the log and the sheet.
-  const std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
+  std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
   prepare_output_folder(o.out_dir);
+  // An input folder that is also the output folder: what earlier runs wrote there is no input.
+  inputs = without_batch_outputs(inputs, o.out_dir);
+  if (inputs.empty())
+    throw Error("batch: no mesh file found in the inputs given besides the outputs of earlier runs in " + o.out_dir);
+  // Whether an input lives in the output folder: then a model's state file is made before
+  // its outputs, so that they are known for outputs even when the run stops part way.
+  bool inputs_in_output_folder = false;
+  {
+    struct stat ds;
+    if (::stat(o.out_dir.c_str(), &ds) == 0)
+      for (const std::string& in : inputs) {
+        const std::string folder = std::filesystem::path(in).parent_path().string();
+        struct stat fs;
+        if (::stat(folder.empty() ? "." : folder.c_str(), &fs) == 0 && fs.st_dev == ds.st_dev && fs.st_ino == ds.st_ino)
+          inputs_in_output_folder = true;
+      }
+  }
   const std::string log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
   check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}}, inputs);
   std::set<std::pair<dev_t, ino_t>> input_ids;
@@ -300,7 +359,7 @@ int run(Options o) {
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<std::string> to_load;
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(model_outputs(o.out_dir, names[i], o.view, o.simplify > 0));
+    outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
@@ -316,6 +375,9 @@ int run(Options o) {
   }
 
   BatchLog log(log_path);
+  if (log.torn_bytes() && !o.quiet)  // its lines follow on a line of their own
+    std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
+                 printable(log_path).c_str(), static_cast<unsigned long long>(log.torn_bytes()));
   BatchProgress progress(!o.quiet && stderr_is_terminal(), inputs.size());
   std::set<std::string> told;  // each notice once per run, not once per model
   std::vector<std::string>* model_notes = nullptr;
@@ -327,7 +389,11 @@ int run(Options o) {
       std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
   };
+  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
+  std::vector<std::string> sheet_status(inputs.size()), sheet_message(inputs.size());  // the others'
   const auto report_failure = [&](const std::string& in, size_t i, const std::string& error) {
+    sheet_status[i] = "failed";
+    sheet_message[i] = error;
     progress.clear();
     log.add(failed_line(in, names[i], error));
     std::fprintf(stderr, "error: %s\n", printable(error).c_str());
@@ -336,9 +402,8 @@ int run(Options o) {
   const Timer t_run;
   size_t computed = 0, skipped = 0, failed = 0, left = to_load.size();
   bool interrupted = false;
-  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
   std::unique_ptr<ModelLoader> loader;
-  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load);
+  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
   for (size_t i = 0; i < inputs.size(); ++i) {
     const std::string& in = inputs[i];
     if (!refused[i].empty()) {
@@ -352,6 +417,8 @@ int run(Options o) {
       progress.clear();
       log.add(j.str());
       if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
+      sheet_status[i] = "skipped";
+      sheet_message[i] = not_read[i];
       skipped++;
       continue;
     }
@@ -370,6 +437,7 @@ int run(Options o) {
     if (error.empty()) {
       try {
         const Timer t;
+        if (inputs_in_output_folder) mark_started(state_path(o.out_dir, names[i]));
         JsonObject j = compute_model(p, m, names[i], outs[i], progress);
         if (!notes.empty()) {
           std::string arr = "[";
@@ -397,7 +465,8 @@ int run(Options o) {
       }
     }
     model_notes = nullptr;
-    m.mesh = {};  // free it before the next one is read
+    m.mesh = {};  // free them before the next one is read
+    m.attributed = {};
     if (interrupted) {  // Ctrl-C: this model's line says so, then the summary
       JsonObject j;
       j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
@@ -416,18 +485,22 @@ int run(Options o) {
 
   bool sheet_failed = false;
   if (!o.contact_sheet.empty() && !interrupted) {
+    // Every model: its picture, or a marked tile with its error (the input's path shown as
+    // its name, which the label under the tile gives in full).
     std::vector<SheetItem> items;
-    for (size_t i = 0; i < inputs.size(); ++i)
-      if (has_view[i]) items.push_back({file_name(inputs[i]), outs[i].view});
-    if (items.empty()) {
-      std::fprintf(stderr, "note: no contact sheet: no model has a best-view picture\n");
-    } else {
-      try {
-        write_png(o.contact_sheet, contact_sheet(items));
-      } catch (const Error& e) {
-        std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-        sheet_failed = true;
-      }
+    for (size_t i = 0; i < inputs.size(); ++i) {
+      std::string message = sheet_message[i];
+      const std::string name = file_name(inputs[i]);
+      for (size_t at = 0; !inputs[i].empty() && (at = message.find(inputs[i], at)) != std::string::npos;
+           at += name.size())
+        message.replace(at, inputs[i].size(), name);
+      items.push_back({name, has_view[i] ? outs[i].view : "", sheet_status[i], message});
+    }
+    try {
+      write_png(o.contact_sheet, contact_sheet(items));
+    } catch (const Error& e) {
+      std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+      sheet_failed = true;
     }
   }
   if (!o.quiet) {
@@ -453,23 +526,31 @@ RunFn setup(CLI::App& sub) {
       "Compute the saliency of many models in one process (one Vulkan device and its compiled\n"
       "pipelines for the whole run; the next model is read while the current one computes).\n"
       "Per model, in DIR: NAME_saliency.ply (as `meshsal saliency`), with --view NAME_view.png\n"
-      "(the best view, as `meshsal viewpoint -o`), with --simplify NAME_simplified.obj. NAME is\n"
-      "the file name without its extension (the whole name, or a _2.. suffix, where two inputs\n"
-      "share it). DIR/batch.jsonl (or --log) gets one JSON object per model, appended as each\n"
-      "ends (earlier runs' lines stay): its input, status (done, skipped, failed), outputs,\n"
-      "counts, seconds per stage, saliency statistics as `saliency --json` prints them, the best\n"
-      "view, the device; or `error` with the message. Names that are not UTF-8 appear with\n"
-      "\\udcXX escapes for their odd bytes (Python: os.fsencode(json.loads(line)['mesh'])).\n"
+      "(the best view, as `meshsal viewpoint -o`), with --simplify and/or --target-error\n"
+      "NAME_simplified.obj: the same file `meshsal simplify IN -o OUT.obj` writes with the same\n"
+      "options (--ratio R or --target-faces N as --simplify, --target-error, --lock-border,\n"
+      "--weights, --weight-floor), texture coordinates and normals (OBJ vt/vn, PLY properties)\n"
+      "carried along and UV seams kept closed. NAME is the file name without its extension (the\n"
+      "whole name, or a _2.. suffix, where two inputs share it). DIR/batch.jsonl (or --log)\n"
+      "gets one JSON object per model, appended as each ends (earlier runs' lines stay): its\n"
+      "input, status (done, skipped, failed), outputs, counts, seconds per stage, saliency\n"
+      "statistics as `saliency --json` prints them, the best view, the device; or `error` with\n"
+      "the message. A last line an interrupted run left torn (not JSON) is noted and stays; the\n"
+      "new lines start on a line of their own. Names that are not UTF-8 appear with \\udcXX\n"
+      "escapes for their odd bytes (Python: os.fsencode(json.loads(line)['mesh'])).\n"
       "Resume: DIR/.meshsal-batch/NAME.state records what made each model's outputs; a model\n"
       "is skipped when its input (size, time and a content hash) and these options are the same\n"
       "and its outputs are in place (its line repeats the earlier numbers); otherwise it is\n"
-      "computed again (--force: always). Only regular files are read: a named pipe or a device\n"
-      "among the inputs is skipped with its reason. A failing model is logged and the others go\n"
-      "on; the exit status is 1 when any failed or a log line could not be written. Inputs:\n"
-      "files, folders (the mesh files inside, sorted by name), quoted globs ('scans/*.ply'),\n"
-      "@LIST or --list LIST (a regular file or - for standard input: one item per line, #\n"
-      "comments, relative items taken from the list's folder; at most 64 MiB, 4096 bytes a\n"
-      "line, 1,000,000 items).");
+      "computed again (--force: always). DIR may be an input folder too: the outputs earlier\n"
+      "runs wrote there (NAME_saliency.ply, NAME_simplified.obj of a model with a state file)\n"
+      "are not taken as inputs. Only regular files are read: a named pipe or a device among the\n"
+      "inputs is skipped with its reason. A failing model is logged and the others go on; the\n"
+      "exit status is 1 when any failed or a log line could not be written. --contact-sheet\n"
+      "shows every model: a thumbnail, or a grey tile with a red cross, \"failed\" and the error\n"
+      "(\"skipped\" and the reason for an input not read). Inputs: files, folders (the mesh files\n"
+      "inside, sorted by name), quoted globs ('scans/*.ply'), @LIST or --list LIST (a regular\n"
+      "file or - for standard input: one item per line, # comments, relative items taken from\n"
+      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).");
   sub.add_option("inputs", o->inputs, "Mesh files, folders, globs or @LIST files");
   sub.add_option("--list", o->list_file, "A file listing the inputs, one per line");
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();
@@ -477,7 +558,14 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--view", o->view, "Also write the best-view picture NAME_view.png");
   sub.add_option("--simplify", o->simplify,
                  "Also write NAME_simplified.obj with saliency weights: a ratio of the faces in (0, 1], "
-                 "or a face count above 1")->check(finite_in(0, 1e12, true));
+                 "or a face count above 1 (as simplify --ratio / --target-faces)")->check(finite_in(0, 1e12, true));
+  sub.add_option("--target-error", o->target_error,
+                 "Also (or with --simplify) an error bound E in % of the bounding-box diagonal for "
+                 "NAME_simplified.obj, as simplify --target-error: stop where every further collapse would "
+                 "move the surface more than that (alone: simplify as far as it allows)")
+      ->check(finite_in(0, 100, true));
+  sub.add_flag("--lock-border", o->lock_border,
+               "Simplified mesh: keep the vertices of open borders exactly in place (as simplify --lock-border)");
   sub.add_option("--weights", o->weights,
                  "--simplify's weighting: saliency (the paper's recipe), balanced or none (see simplify --help)")
       ->capture_default_str()->check(CLI::IsMember({"saliency", "balanced", "none"}));
@@ -486,7 +574,8 @@ RunFn setup(CLI::App& sub) {
                  "weighting's, see simplify --help; 0 = the paper's literal rule)")
       ->check(finite_in(0, 100));
   sub.add_option("--contact-sheet", o->contact_sheet,
-                 "One PNG of every model's best-view picture as a thumbnail with its name (implies --view)");
+                 "One PNG with a tile per model: its best-view picture as a thumbnail, or a failed one "
+                 "marked with its error; the name under it (implies --view)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
 #include "io/png_image.h"
@@ -54,29 +55,125 @@ Image shrink(const Image& src, int side) {
 std::string fitted_label(const std::string& name, double px, int width) {
   if (meshsal::text_width(name, px) <= width) return name;
   std::string s = name;
-  while (!s.empty() && meshsal::text_width(s + "...", px) > width) s.pop_back();
+  while (!s.empty() && meshsal::text_width(s + "...", px) > width) {
+    s.pop_back();
+    while (!s.empty() && (static_cast<unsigned char>(s.back()) & 0xc0) == 0x80) s.pop_back();  // whole characters
+  }
   return s + "...";
+}
+
+// `text` broken into lines of at most `width` pixels at `px`, at spaces (a word wider than
+// a line at any character), at most `max_lines`: the last one shortened with "..." when
+// text is left over.
+std::vector<std::string> wrapped(const std::string& text, double px, int width, size_t max_lines) {
+  std::vector<std::string> lines;
+  std::string line;
+  size_t i = 0;
+  bool more = false;
+  while (i < text.size()) {
+    size_t end = text.find(' ', i);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(i, end - i);
+    i = end + 1;
+    if (word.empty()) continue;
+    const std::string joined = line.empty() ? word : line + " " + word;
+    if (meshsal::text_width(joined, px) <= width) {
+      line = joined;
+      continue;
+    }
+    if (!line.empty()) {  // the word starts the next line
+      lines.push_back(line);
+      line.clear();
+      if (lines.size() == max_lines) {
+        more = true;
+        break;
+      }
+    }
+    // A word alone wider than a line: as many characters as fit, the rest on the next.
+    std::string rest = word;
+    while (meshsal::text_width(rest, px) > width) {
+      size_t cut = rest.size();
+      do {
+        --cut;
+        while (cut > 0 && (static_cast<unsigned char>(rest[cut]) & 0xc0) == 0x80) --cut;
+      } while (cut > 1 && meshsal::text_width(rest.substr(0, cut), px) > width);
+      if (cut == 0) cut = 1;  // not UTF-8: a byte at a time
+      lines.push_back(rest.substr(0, cut));
+      rest = rest.substr(cut);
+      if (lines.size() == max_lines) {
+        more = true;
+        break;
+      }
+    }
+    if (more) break;
+    line = rest;
+  }
+  if (!more && !line.empty()) {
+    if (lines.size() == max_lines) more = true;
+    else lines.push_back(line);
+  }
+  if (more && !lines.empty()) {
+    std::string& last = lines.back();
+    while (!last.empty() && meshsal::text_width(last + "...", px) > width) {
+      last.pop_back();
+      while (!last.empty() && (static_cast<unsigned char>(last.back()) & 0xc0) == 0x80) last.pop_back();
+    }
+    last += "...";
+  }
+  return lines;
+}
+
+// A grey square with a red cross (failed) or without (skipped), the status in large letters
+// and the message under it.
+void draw_marked_tile(meshsal::Image& sheet, int x0, int y0, const SheetItem& item) {
+  for (int y = y0; y < y0 + kSheetThumb; ++y)
+    for (int x = x0; x < x0 + kSheetThumb; ++x)
+      for (int c = 0; c < 3; ++c) sheet.at(x, y)[c] = kSheetTileGrey[c];
+  const bool failed = item.status != "skipped";
+  if (failed) {  // two strokes 9 px wide, 96 px long, centred 76 px from the top
+    const int cx = x0 + kSheetThumb / 2, cy = y0 + 76, half = 48;
+    for (int y = cy - half; y <= cy + half; ++y)
+      for (int x = cx - half; x <= cx + half; ++x) {
+        const int dx = x - cx, dy = y - cy;
+        if (std::abs(dx - dy) <= 4 || std::abs(dx + dy) <= 4)
+          for (int c = 0; c < 3; ++c) sheet.at(x, y)[c] = kSheetCrossRed[c];
+      }
+  }
+  const uint8_t red[3] = {170, 20, 20}, grey[3] = {60, 60, 60};
+  const std::string word = failed ? "failed" : "skipped";
+  const double big = 26, small = 15;
+  meshsal::draw_text(sheet, x0 + (kSheetThumb - meshsal::text_width(word, big)) / 2, y0 + 134, word, big,
+                     failed ? red : grey);
+  int y = y0 + 170;
+  for (const std::string& line : wrapped(item.message, small, kSheetThumb - 16, 5)) {
+    meshsal::draw_text(sheet, x0 + (kSheetThumb - meshsal::text_width(line, small)) / 2, y, line, small, grey);
+    y += 17;
+  }
 }
 
 }  // namespace
 
 meshsal::Image contact_sheet(const std::vector<SheetItem>& items) {
-  if (items.empty()) throw meshsal::Error("contact sheet: no best-view picture to show");
+  if (items.empty()) throw meshsal::Error("contact sheet: no model to show");
   const int n = int(items.size());
   const int cols = int(std::ceil(std::sqrt(double(n))));
   const int rows = (n + cols - 1) / cols;
   const int cell_w = kSheetThumb, cell_h = kSheetThumb + kSheetLabel;
   Image sheet(kSheetGap + cols * (cell_w + kSheetGap), kSheetGap + rows * (cell_h + kSheetGap));
   const uint8_t ink[3] = {20, 20, 20};
-  const double px = 16;
+  const double px = kSheetLabelPx;
   for (int i = 0; i < n; ++i) {
     const int x0 = kSheetGap + (i % cols) * (cell_w + kSheetGap);
     const int y0 = kSheetGap + (i / cols) * (cell_h + kSheetGap);
-    const Image thumb = shrink(read_png(items[i].png), kSheetThumb);
-    meshsal::blit(sheet, thumb, x0 + (cell_w - thumb.width) / 2, y0 + (kSheetThumb - thumb.height) / 2);
+    if (items[i].png.empty()) {
+      draw_marked_tile(sheet, x0, y0, items[i]);
+    } else {
+      const Image thumb = shrink(read_png(items[i].png), kSheetThumb);
+      meshsal::blit(sheet, thumb, x0 + (cell_w - thumb.width) / 2, y0 + (kSheetThumb - thumb.height) / 2);
+    }
     const std::string label = fitted_label(items[i].name, px, cell_w - 4);
     meshsal::draw_text(sheet, x0 + (cell_w - meshsal::text_width(label, px)) / 2,
-                       y0 + kSheetThumb + (kSheetLabel - int(px * 1.25)) / 2, label, px, ink);
+                       y0 + kSheetThumb + (kSheetLabel - int(px)) / 2, label, px, ink);
   }
   return sheet;
 }
