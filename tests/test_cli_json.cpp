@@ -118,7 +118,7 @@ TEST_CASE("cli --json: saliency, simplify, compare and viewpoint print one JSON 
   const meshsal::Mesh simplified = meshsal::load_mesh(small);
   CHECK(json_number(r.out, "output_faces") == double(simplified.triangle_count()));
   CHECK(json_number(r.out, "input_faces") == double(bumpy.triangle_count()));
-  CHECK(r.out.find("\"weights\": \"saliency\"") != std::string::npos);
+  CHECK(r.out.find("\"weights\": \"balanced\"") != std::string::npos);  // the default
 
   r = run_cli("simplify " + q(mesh) + " -o " + q(dir.file("same.obj")) + " --target-faces 100000000 --json", dir);
   REQUIRE(r.rc == 0);

@@ -330,20 +330,24 @@ TEST_CASE("pictures: render --compare labels each panel, colours the simplified 
   const int size = 240, gap = 4;
   REQUIRE(img.width == 3 * size + 2 * gap);
   const double px = text_size_for(size);
-  const int pad = int(std::lround(px * 0.4)), line = int(std::lround(px * 1.25)), top = pad + 3 * line;
+  const int pad = int(std::lround(px * 0.4)), line = int(std::lround(px * 1.25)), top = pad + 4 * line;
   const size_t faces = original.triangle_count();
 
   // The title line, and each panel's label: its name and face count, then what colours it.
   CHECK(text_at(img, pad, pad, "o.ply   theta 0.0°  phi 0.0°  (y up)", px));
   CHECK(text_at(img, pad, pad + line, "original: " + std::to_string(faces) + " faces", px));
   CHECK(text_at(img, pad, pad + 2 * line, "coloured by saliency", px));
-  CHECK(text_at(img, size + gap + pad, pad + line, "plain: " + std::to_string(faces) + " faces", px));
-  CHECK(text_at(img, 2 * (size + gap) + pad, pad + line, "saliency-weighted: " + std::to_string(faces) + " faces", px));
-  // The salient-region error under the simplified panels: the weighted one is the original
-  // itself (0.000%), the plain one is off by a few % on its salient (+x) side.
-  CHECK(text_at(img, 2 * (size + gap) + pad, pad + 2 * line, "salient-region error 0.000%", px));
-  CHECK(dark_pixels(img, size + gap, pad + 2 * line, 2 * size + gap, pad + 3 * line) > 100);
-  CHECK(!text_at(img, size + gap + pad, pad + 2 * line, "salient-region error 0.000%", px));
+  // Each simplified panel is named by its file.
+  CHECK(text_at(img, size + gap + pad, pad + line, "plain.obj: " + std::to_string(faces) + " faces", px));
+  CHECK(text_at(img, 2 * (size + gap) + pad, pad + line, "salient.obj: " + std::to_string(faces) + " faces", px));
+  // RMS and Hausdorff, then the salient-region error under the simplified panels: the
+  // weighted one is the original itself (0%), the plain one is off by a few % on its
+  // salient (+x) side.
+  CHECK(text_at(img, 2 * (size + gap) + pad, pad + 2 * line, "RMS 0%, Hausdorff 0%", px));
+  CHECK(text_at(img, 2 * (size + gap) + pad, pad + 3 * line, "salient-region error 0%", px));
+  CHECK(dark_pixels(img, size + gap, pad + 2 * line, 2 * size + gap, pad + 4 * line) > 100);
+  CHECK(!text_at(img, size + gap + pad, pad + 2 * line, "RMS 0%, Hausdorff 0%", px));
+  CHECK(!text_at(img, size + gap + pad, pad + 3 * line, "salient-region error 0%", px));
 
   // Panel bodies, looking from +z: +x on the right. Colour positions t (0 blue .. 1 red).
   const int cy = top + size / 2;
@@ -370,14 +374,14 @@ TEST_CASE("pictures: render --compare labels each panel, colours the simplified 
   CHECK(x0 >= size + gap);
   CHECK(x0 < size + gap + 20);
   CHECK(x1 > 3 * size - 10);
-  CHECK(text_at(img, size + gap + 2 * pad, top + size + pad,
-                "distance to the original (% of the bounding-box diagonal)", px));
   CHECK(dark_pixels(img, x0, bar + 1, x1 + 1, bar + 4 + line) > 60);  // ticks and their values
   int s0 = 0, s1 = 0;
   const int sal_bar = find_colour_bar(columns(img, 0, size), size / 2, &s0, &s1);
   CHECK(sal_bar == bar);
   CHECK(s1 - s0 > size - 6 * pad);
-  CHECK(text_at(img, 2 * pad, top + size + pad, "saliency", px));
+  CHECK(text_at(img, 2 * pad, top + size + pad, "saliency, square-root scale", px));
+  CHECK(text_at(img, size + gap + 2 * pad, top + size + pad,
+                "distance to the original (% of the diagonal), square-root scale", px));
 }
 
 TEST_CASE("pictures: the view map has its axes' ticks, a colour bar, its markers and their legend", "[view]") {

@@ -127,10 +127,12 @@ TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file",
   // computed S gives: the same output.
   const meshsal_test::CliRun from_file =
       meshsal_test::run_cli("simplify " + in + " --saliency-from " + sal + " --target-faces 300 -o " +
-                                dir.file("a.ply") + " -q", dir);
+                                dir.file("a.ply") + " -q --weights saliency", dir);
   INFO(from_file.err);
   REQUIRE(from_file.rc == 0);
-  REQUIRE(meshsal_test::run_cli("simplify " + in + " --backend cpu --target-faces 300 -o " + dir.file("b.ply") + " -q",
+  // (the paper's weighting, whose threshold the file's float S meets as the computed S does)
+  REQUIRE(meshsal_test::run_cli("simplify " + in + " --backend cpu --target-faces 300 -o " + dir.file("b.ply") +
+                                    " -q --weights saliency",
                                 dir).rc == 0);
   const Mesh a = load_mesh(dir.file("a.ply")), b = load_mesh(dir.file("b.ply"));
   CHECK(a.triangle_count() == 300);

@@ -186,10 +186,14 @@ TEST_CASE("cli simplify --weights balanced and bad names", "[simplify]") {
   REQUIRE(r.rc == 0);
   CHECK(meshsal_test::json_number(r.out, "lambda") == 5);
   CHECK(meshsal_test::json_number(r.out, "alpha_percentile") == 50);
-  // The paper's recipe is still the default.
+  // Balanced is the default (issue 22); the paper's recipe is one flag away.
   r = run_cli("simplify '" + in + "' -o '" + out + "' --ratio 0.2 --json");
   REQUIRE(r.rc == 0);
-  CHECK(r.out.find("\"weights\": \"saliency\"") != std::string::npos);
+  CHECK(r.out.find("\"weights\": \"balanced\"") != std::string::npos);
+  CHECK(meshsal_test::json_number(r.out, "lambda") == 3);
+  CHECK(meshsal_test::json_number(r.out, "alpha_percentile") == 50);
+  r = run_cli("simplify '" + in + "' -o '" + out + "' --ratio 0.2 --weights saliency --json");
+  REQUIRE(r.rc == 0);
   CHECK(meshsal_test::json_number(r.out, "lambda") == 100);
   CHECK(meshsal_test::json_number(r.out, "alpha_percentile") == 30);
 

@@ -424,14 +424,20 @@ struct SaliencyWeightOptions {
 };
 
 // The named weightings of `meshsal simplify --weights`: None (plain quadrics, no weights),
-// Saliency (the paper's recipe: SaliencyWeightOptions{} as declared, the default) and
-// Balanced (parameters chosen by measurement, docs/method.md "Weightings": the salient-region
-// error drops by about a fifth while RMS and Hausdorff error stay within 1.25x of plain's on
-// most models; weight_preset() returns them).
+// Saliency (the paper's recipe: SaliencyWeightOptions{} as declared) and Balanced (parameters
+// chosen by measurement, docs/method.md "Weightings": the salient-region error drops by about
+// a fifth while RMS and Hausdorff error stay within 1.25x of plain's on most models, where the
+// paper's recipe costs 3x on the bunny; weight_preset() returns them).
 enum class Weighting { None, Saliency, Balanced };
+
+// The weighting of every front end (simplify, batch, Python) when none is named.
+constexpr Weighting kDefaultWeighting = Weighting::Balanced;
 
 // "none", "saliency" or "balanced"; throws Error on anything else.
 Weighting parse_weighting(const std::string& name);
+
+// The name parse_weighting reads: "none", "saliency" or "balanced".
+const char* weighting_name(Weighting weighting);
 
 // The SaliencyWeightOptions of a named weighting (None: the options are not used).
 SaliencyWeightOptions weight_preset(Weighting weighting);

@@ -60,7 +60,7 @@ struct Options {
   bool lock_border = false;
   bool view = false, force = false, quiet = false;
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
-  std::string weights = "saliency";  // --simplify's weighting
+  std::string weights = meshsal::weighting_name(meshsal::kDefaultWeighting);  // --simplify's weighting
   double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
   double eps_frac = 0.003;
   unsigned threads = 0;
@@ -567,7 +567,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--lock-border", o->lock_border,
                "Simplified mesh: keep the vertices of open borders exactly in place (as simplify --lock-border)");
   sub.add_option("--weights", o->weights,
-                 "--simplify's weighting: saliency (the paper's recipe), balanced or none (see simplify --help)")
+                 "--simplify's weighting: balanced, saliency (the paper's recipe) or none (see simplify --help)")
       ->capture_default_str()->check(CLI::IsMember({"saliency", "balanced", "none"}));
   sub.add_option("--weight-floor", o->weight_floor,
                  "--simplify: raise every weight W to at least this fraction of the mean W (default: the "

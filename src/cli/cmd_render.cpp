@@ -98,7 +98,10 @@ int run(const Options& o) {
   } else {
     Mesh plain = load_input(o.compare[0], false);
     Mesh salient = load_input(o.compare[1], false);
-    write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name));
+    // Each panel is labelled with its file's name.
+    write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name,
+                                        std::filesystem::path(o.compare[0]).filename().string(),
+                                        std::filesystem::path(o.compare[1]).filename().string()));
     if (shown && o.json) visible = picture_visible_score(mesh, score, view, style.up);
   }
   if (!o.json) return 0;

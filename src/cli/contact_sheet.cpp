@@ -52,15 +52,7 @@ Image shrink(const Image& src, int side) {
   return out;
 }
 
-std::string fitted_label(const std::string& name, double px, int width) {
-  if (meshsal::text_width(name, px) <= width) return name;
-  std::string s = name;
-  while (!s.empty() && meshsal::text_width(s + "...", px) > width) {
-    s.pop_back();
-    while (!s.empty() && (static_cast<unsigned char>(s.back()) & 0xc0) == 0x80) s.pop_back();  // whole characters
-  }
-  return s + "...";
-}
+std::string fitted_label(const std::string& name, double px, int width) { return meshsal::fit_text(name, px, width); }
 
 // `text` broken into lines of at most `width` pixels at `px`, at spaces (a word wider than
 // a line at any character), at most `max_lines`: the last one shortened with "..." when

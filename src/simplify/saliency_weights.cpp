@@ -90,6 +90,10 @@ std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh)
   return std::vector<double>(it->second.begin(), it->second.end());
 }
 
+const char* weighting_name(Weighting weighting) {
+  return weighting == Weighting::None ? "none" : weighting == Weighting::Saliency ? "saliency" : "balanced";
+}
+
 Weighting parse_weighting(const std::string& name) {
   if (name == "none") return Weighting::None;
   if (name == "saliency") return Weighting::Saliency;

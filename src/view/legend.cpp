@@ -26,7 +26,9 @@ int colour_bar_x(int x, int w, const ColorLimits& l, double v) {
 }
 
 void draw_colour_bar(Image& img, int x, int y, int w, const ColorLimits& l, const std::string& label, double px) {
-  draw_text(img, x, y, label, px, kInk);
+  // Every picture places values at sqrt((v - lo) / (hi - lo)) (ColorRange): the bar says so.
+  const std::string scaled = label + (label.empty() ? "" : ", ") + "square-root scale";
+  draw_text(img, x, y, fit_text(text_width(scaled, px) <= w ? scaled : label, px, w), px, kInk);
   const int bar_y = y + int(std::lround(px * 1.2)), bar_h = int(std::lround(px * 0.9));
   for (int c = 0; c < w; ++c) {
     uint8_t rgb[3];

@@ -15,7 +15,8 @@ double text_size_for(int width);
 // Height of the band draw_colour_bar fills at text size px.
 int colour_bar_height(double px);
 
-// Draws in the band [y, y + colour_bar_height(px)) from x to x + w: `label` above a horizontal
+// Draws in the band [y, y + colour_bar_height(px)) from x to x + w: `label` and ", square-root
+// scale" (the label alone where both do not fit) above a horizontal
 // bar running the colour scale from limits.lo (left) to limits.hi (right), five ticks with
 // their values under it. The bar's pixels are the colour map's own (unshaded) colours.
 void draw_colour_bar(Image& img, int x, int y, int w, const ColorLimits& limits,

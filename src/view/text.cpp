@@ -73,6 +73,16 @@ std::string font_path() {
   return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 }
 
+std::string fit_text(const std::string& text, double px, int width) {
+  if (text_width(text, px) <= width) return text;
+  std::string s = text;
+  while (!s.empty() && text_width(s + "...", px) > width) {
+    s.pop_back();
+    while (!s.empty() && (static_cast<unsigned char>(s.back()) & 0xc0) == 0x80) s.pop_back();  // whole characters
+  }
+  return s + "...";
+}
+
 int text_width(const std::string& text, double px) {
   const Font& f = load_font();
   const float scale = stbtt_ScaleForPixelHeight(&f.info, float(px));

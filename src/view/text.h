@@ -19,6 +19,10 @@ std::string font_path();
 // Width in pixels of `text` (UTF-8) at a line height of `px` pixels.
 int text_width(const std::string& text, double px);
 
+// `text` as it is when it fits in `width` pixels at px, else cut (at whole characters) and
+// ended with "...".
+std::string fit_text(const std::string& text, double px, int width);
+
 // Draws `text` (UTF-8) with the top of its line at y and its left end at x (clipped to the image).
 void draw_text(Image& img, int x, int y, const std::string& text, double px, const uint8_t rgb[3]);
 
