@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_run.h"
@@ -54,9 +55,18 @@ TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library
   const Mesh m = load_mesh(mesh);
   SaliencyOptions so;
   const std::vector<double> s = compute_saliency(m, so).saliency;
-  for (const std::string elevation : {"", "0,40"}) {
-    INFO("elevation " << elevation);
-    const std::string el = elevation.empty() ? "" : " --elevation " + elevation;
+  // The defaults, an elevation range, and other search settings: each command takes them all.
+  ViewpointOptions other;
+  other.restarts = 3;
+  other.seed = 5;
+  other.resolution = 256;
+  other.depth_tol_px = 1.5;
+  const std::vector<std::pair<std::string, ViewpointOptions>> settings{
+      {"", ViewpointOptions{}},
+      {" --elevation 0,40", [] { ViewpointOptions o; o.elevation = {0, 40}; return o; }()},
+      {" --restarts 3 --seed 5 --resolution 256 --depth-tol 1.5", other}};
+  for (const auto& [el, vo] : settings) {
+    INFO("settings:" << el);
     const CliRun vp = run_cli("viewpoint " + quoted(mesh) + " --backend cpu --json" + el, dir);
     REQUIRE(vp.rc == 0);
     const CliRun rb = run_cli("render " + quoted(mesh) + " --best --backend cpu --size 64 -o " +
@@ -70,8 +80,6 @@ TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library
     const size_t view_at = log.find("\"view\": {");
     REQUIRE(view_at != std::string::npos);
 
-    ViewpointOptions vo;
-    if (!elevation.empty()) vo.elevation = parse_elevation_range(elevation);
     const Viewpoint v = best_viewpoint(m, s, vo);
     for (const char* key : {"theta_deg", "phi_deg"}) {
       INFO(key);
@@ -87,10 +95,8 @@ TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library
     CHECK(json_text(vp.out, "visible_score") == g9(v.U));
     CHECK(json_text(log, "visible_score", view_at) == g9(v.U));
     CHECK(json_text(vp.out, "visible_fraction") == g9(v.visible_fraction));
-    if (!elevation.empty()) {
-      CHECK(v.view.phi * kDeg >= 0);
-      CHECK(v.view.phi * kDeg <= 40 + 1e-9);
-    }
+    CHECK(v.view.phi * kDeg >= vo.elevation.min);
+    CHECK(v.view.phi * kDeg <= vo.elevation.max + 1e-9);
   }
 }
 

@@ -63,6 +63,8 @@ struct Options {
   unsigned threads = 0;
   int device = -1, size = 512, restarts = 8, resolution = meshsal::kDefaultViewResolution;
   std::string elevation;  // --elevation MIN,MAX of the best view (empty: the whole sphere)
+  uint64_t seed = 1;      // --seed of the best view's random starts
+  double depth_tol = 2.0; // --depth-tol of the best view's visibility
 };
 
 // What one model's run needs besides its mesh.
@@ -103,6 +105,8 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   vo.resolution = p.o->resolution;
   vo.elevation = p.elevation;
   vo.restarts = p.o->restarts;
+  vo.seed = p.o->seed;
+  vo.depth_tol_px = p.o->depth_tol;
   vo.threads = p.o->threads;
   vo.backend = p.backend;
   vo.device = p.o->device;
@@ -211,9 +215,16 @@ std::string options_line(const Options& o) {
                 MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
                 o.backend.c_str(), o.device, int(o.view), o.size, o.restarts, o.resolution, o.up.c_str(),
                 o.simplify, o.weights.c_str(), o.weight_floor);
-  // Only when given, so that the records of earlier runs stay up to date.
-  if (!o.elevation.empty()) return buf + std::string(" elevation=") + o.elevation;
-  return buf;
+  // Only when not the defaults, so that the records of earlier runs stay up to date.
+  std::string line = buf;
+  if (!o.elevation.empty()) line += " elevation=" + o.elevation;
+  if (o.seed != 1) line += " seed=" + std::to_string(o.seed);
+  if (o.depth_tol != 2.0) {
+    char tol[40];
+    std::snprintf(tol, sizeof tol, " depth_tol=%.17g", o.depth_tol);
+    line += tol;
+  }
+  return line;
 }
 
 // The sizes of the outputs just written, in ModelOutputs::all() order.
@@ -496,6 +507,9 @@ RunFn setup(CLI::App& sub) {
       ->capture_default_str()->check(whole_in(16, 8192));
   sub.add_option("--restarts", o->restarts, "best view: gradient-ascent restarts")
       ->capture_default_str()->check(whole_in(1, 1000));
+  sub.add_option("--seed", o->seed, "best view: seed of the random starts")->capture_default_str();
+  sub.add_option("--depth-tol", o->depth_tol, "best view: visibility depth tolerance in pixel widths")
+      ->capture_default_str()->check(finite_in(0, 1000));
   sub.add_option("--resolution", o->resolution, "best view: z-buffer side in pixels")
       ->capture_default_str()->check(whole_in(16, 8192));
   sub.add_option("--up", o->up, "mesh axis that points up in the pictures: x, y, z, -x, -y or -z")

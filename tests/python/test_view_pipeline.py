@@ -15,17 +15,23 @@ def g9(x):
     return float("%.9g" % x)
 
 
-@pytest.mark.parametrize("elevation", [None, (0.0, 40.0)])
-def test_one_view_in_every_front_end(elevation, mesh_path, cli, tmp_path):
+OTHER = {"restarts": 3, "seed": 5, "resolution": 256, "depth_tol": 1.5}
+
+
+@pytest.mark.parametrize("elevation,other", [(None, False), ((0.0, 40.0), False), (None, True)])
+def test_one_view_in_every_front_end(elevation, other, mesh_path, cli, tmp_path):
     path = mesh_path("bunny_3k.off")
     el = [] if elevation is None else ["--elevation", "%g,%g" % elevation]
+    kw = OTHER if other else {}
+    for k, v in kw.items():
+        el += ["--" + k.replace("_", "-"), str(v)]
     vp = cli.json("viewpoint", path, "--backend", "cpu", *el)
     rb = cli.json("render", path, "--best", "--backend", "cpu", "--size", "64", "-o", tmp_path / "r.png", "--json", *el)
     cli("batch", path, "-o", tmp_path / "b", "--view", "--backend", "cpu", "--size", "64", "-q", *el)
     lines = [json.loads(x) for x in (tmp_path / "b" / "batch.jsonl").read_text().splitlines() if x.strip()]
     bv = [x["view"] for x in lines if isinstance(x.get("view"), dict)][0]
     V, F = meshsal.load(str(path))
-    b = meshsal.best_view(V, F, backend="cpu", elevation=elevation)
+    b = meshsal.best_view(V, F, backend="cpu", elevation=elevation, **kw)
     for key in ["theta_deg", "phi_deg"]:
         assert g9(b[key]) == vp[key] == rb[key] == bv[key], key
     for key in ["theta", "phi"]:
@@ -33,7 +39,7 @@ def test_one_view_in_every_front_end(elevation, mesh_path, cli, tmp_path):
     assert [g9(x) for x in b["direction"]] == vp["direction"] == rb["direction"]
     assert g9(b["visible_score"]) == vp["visible_score"] == bv["visible_score"]
     assert g9(b["visible_fraction"]) == vp["visible_fraction"] == bv["visible_fraction"]
-    assert b["resolution"] == vp["resolution"] == 512
+    assert b["resolution"] == vp["resolution"] == (256 if other else 512)
     if elevation is not None:
         assert b["elevation"] == elevation and vp["elevation"] == list(elevation)
         assert 0 <= b["phi_deg"] <= 40
