@@ -538,13 +538,14 @@ struct BestView {
   std::string backend_name;   // where the views were scored
 };
 
-// The view of largest visible score U = sum of score over the visible mesh points
-// (`score`: one value per vertex, e.g. SaliencyResult::saliency; finite and >= 0 on the
-// mesh points, else Error). `views` > 0 also
-// evaluates that many directions exhaustively. backend as in SaliencyOptions.
-// The older form of best_viewpoint(mesh, score, ViewpointOptions) below, kept for its callers:
-// angles in the y-up frame, the visibility options' own resolution (256 by default), no
-// elevation range. It runs the same search (ViewpointOptions with up Y and these settings).
+// The older form of best_viewpoint(mesh, score, ViewpointOptions) below, kept for its
+// callers; new code uses that one. The view of largest visible score U = sum of score over
+// the visible mesh points (`score`: one value per vertex, finite and >= 0 on the mesh
+// points, else Error); `views` > 0 also evaluates that many directions exhaustively;
+// backend as in SaliencyOptions. It runs the same search (ViewpointOptions with up Y and
+// these settings): angles in the y-up frame, as the optimiser returns them (not through
+// the direction round trip), VisibilityOptions' own resolution (256 by default), the whole
+// sphere.
 BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
                         const OptimiserOptions& options = {}, int views = 0,
                         const VisibilityOptions& visibility = {}, Backend backend = Backend::Cpu,
