@@ -187,7 +187,7 @@ TEST_CASE("parse_method", "[fast]") {
   CHECK(parse_method("exact") == Method::Exact);
   CHECK(parse_method("fast") == Method::Fast);
   CHECK(parse_method("auto") == Method::Auto);
-  CHECK_THROWS_WITH(parse_method("quick"), "--method must be exact, fast or auto, got 'quick'");
+  CHECK_THROWS_WITH(parse_method("quick"), "method must be exact, fast or auto, got 'quick'");
 }
 
 TEST_CASE("fast filter: per-cell sums extrapolated to the vertices stay close to exact", "[fast]") {

@@ -135,7 +135,7 @@ TEST_CASE("precision names parse", "[precision]") {
   CHECK(parse_precision("double") == Precision::Double);
   CHECK(parse_precision("auto") == Precision::Auto);
   CHECK_THROWS_WITH(parse_precision("float"),
-                    "--precision must be auto, mixed or double, got 'float'");
+                    "precision must be auto, mixed or double, got 'float'");
 }
 
 TEST_CASE("the near-tie recheck replaces the flagged points' maps by double sweeps", "[gpu][precision]") {

@@ -312,6 +312,9 @@ Precision parse_precision(const std::string& name);
 // "exact", "fast" or "auto"; throws Error on anything else.
 Method parse_method(const std::string& name);
 
+// "auto", "cpu" or "gpu"; throws Error on anything else.
+Backend parse_backend(const std::string& name);
+
 // Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);
 
@@ -520,6 +523,14 @@ SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified,
 // ------------------------------------------------------------------------------------------
 // Viewpoints (the paper's section 5) and pictures
 
+// Which axis of the mesh is up in pictures and in view angles. The angles of ViewAngles are
+// taken in a frame where this axis plays the part of +y: for Z, theta 0 looks from -y (the
+// front of a z-up scan), theta 90 degrees from +x, phi 90 degrees from +z (above).
+enum class UpAxis { Y, MinusY, Z, MinusZ, X, MinusX };
+
+// "x", "y", "z", "-x", "-y" or "-z" (also "+x", "+y", "+z"); throws Error otherwise.
+UpAxis parse_up_axis(const std::string& name);
+
 // Direction d(theta, phi) = (cos phi sin theta, sin phi, cos phi cos theta), y up:
 // (0, 0) looks from +z, theta = pi/2 from +x, phi = pi/2 from above. Radians.
 struct ViewAngles {
@@ -573,14 +584,104 @@ struct BestView {
   std::string backend_name;   // where the views were scored
 };
 
-// The view of largest visible score U = sum of score over the visible mesh points
-// (`score`: one value per vertex, e.g. SaliencyResult::saliency; finite and >= 0 on the
-// mesh points, else Error). `views` > 0 also
-// evaluates that many directions exhaustively. backend as in SaliencyOptions.
+// The older form of best_viewpoint(mesh, score, ViewpointOptions) below, kept for its
+// callers; new code uses that one. The view of largest visible score U = sum of score over
+// the visible mesh points (`score`: one value per vertex, finite and >= 0 on the mesh
+// points, else Error); `views` > 0 also evaluates that many directions exhaustively;
+// backend as in SaliencyOptions. It runs the same search (ViewpointOptions with up Y and
+// these settings): angles in the y-up frame, as the optimiser returns them (not through
+// the direction round trip), VisibilityOptions' own resolution (256 by default), the whole
+// sphere.
 BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
                         const OptimiserOptions& options = {}, int views = 0,
                         const VisibilityOptions& visibility = {}, Backend backend = Backend::Cpu,
                         int device = -1);
+
+// The z-buffer side of the viewpoint search: ViewpointOptions::resolution's default, and so
+// that of every front end (`meshsal viewpoint`, `render --best`, `batch --view`, Python).
+constexpr int kDefaultViewResolution = 512;
+
+// A band of latitudes, in degrees, in the frame of the up axis: -90 <= min <= max <= 90.
+// The default is the whole sphere.
+struct ElevationRange {
+  double min = -90;
+  double max = 90;
+};
+
+// "MIN,MAX" in degrees (e.g. "0,60": from the horizon to 60 degrees above it); throws Error
+// naming the problem (not two numbers, outside [-90, 90], min > max).
+ElevationRange parse_elevation_range(const std::string& text);
+
+// Everything that picks a view. Every front end fills this and calls best_viewpoint, so the
+// same settings give the same view to the last bit (docs/method.md, "One view pipeline").
+struct ViewpointOptions {
+  UpAxis up = UpAxis::Y;                    // the frame of the angles: searched, limited, returned
+  int resolution = kDefaultViewResolution;  // z-buffer side in pixels, 16..8192
+  double depth_tol_px = 2.0;                // depth tolerance in pixel widths, >= 0
+  // The latitudes (phi, in the frame of `up`) the search may look from: the random starts
+  // are uniform on that band of the sphere, every probe and step stays in it, and the
+  // exhaustive map's directions are spread over it. Error when out of range (above).
+  ElevationRange elevation;
+  int restarts = 8;                         // random starts of the gradient ascent, >= 1
+  uint64_t seed = 1;                        // runs with the same seed repeat
+  int views = 0;                            // also score this many directions exhaustively, >= 0
+  unsigned threads = 0;                     // CPU threads (views in parallel), 0 = all cores
+  Backend backend = Backend::Cpu;           // as SaliencyOptions::backend (visibility)
+  int device = -1;                          // Vulkan device index, -1 = choose
+  // The gradient ascent's steps, as in OptimiserOptions.
+  double probe = 0.05;
+  double initial_step = 0.25;
+  double min_step = 0.01;
+  int max_iterations = 60;
+  // As OptimiserOptions::progress ("best view", then "view map" with views > 0).
+  std::function<void(const char* stage, double fraction)> progress;
+  // Called with a one-line notice (e.g. Backend::Auto found no GPU); also kept in
+  // Viewpoint::notices. May be empty.
+  std::function<void(const std::string&)> notice;
+  const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
+};
+
+// The camera of a view: orthographic, looking from `eye` towards `target` (mesh
+// coordinates), `up` the picture's up direction (unit), framing a square of half side
+// `half_extent` model units around `target` (before RenderStyle::margin). view_camera()
+// makes it; render_view(mesh, score, camera, style) renders exactly that picture.
+struct ViewCamera {
+  ViewAngles view;              // the direction, in the frame of up_axis
+  UpAxis up_axis = UpAxis::Y;
+  double eye[3] = {0, 0, 0};     // target + radius * direction (radius: the bounding sphere's)
+  double target[3] = {0, 0, 0};  // the centre of the picture
+  double up[3] = {0, 1, 0};      // unit, the picture's up
+  double direction[3] = {0, 0, 1};  // unit, from the mesh towards the viewer
+  double half_extent = 1;       // half the side of the square shown, model units
+};
+
+// The camera render_view uses for `view` (angles in the frame of `up`) on this mesh: centred
+// on the mesh points' projected extent, which it frames. Throws Error on an empty mesh.
+ViewCamera view_camera(const Mesh& mesh, const ViewAngles& view, UpAxis up = UpAxis::Y);
+
+// The result of the viewpoint search. Angles are in the frame of ViewpointOptions::up.
+struct Viewpoint {
+  ViewAngles view;                   // the best direction found (optimised.best)
+  double U = 0;                      // its visible score
+  double total = 0;                  // the score summed over all mesh points (as U sums it)
+  double visible_fraction = 0;       // U / total (0 when total is 0)
+  UpAxis up = UpAxis::Y;             // the frame of every angle here
+  ViewCamera camera;                 // view_camera(mesh, view, up)
+  OptimiserResult optimised;         // gradient ascent from seeded random starts
+  ViewMap map;                       // the exhaustive map (empty without views)
+  std::string note;                  // optimised.note: why the front view, when nothing was seen
+  std::vector<std::string> notices;  // what options.notice heard
+  std::string backend_name;          // where the views were scored
+};
+
+// The view of largest visible score U = sum of score over the visible mesh points (`score`:
+// one value per vertex, e.g. SaliencyResult::saliency; finite and >= 0 on the mesh points,
+// else Error), searched in the frame of options.up within options.elevation. The search runs
+// on the mesh's coordinates turned into that frame (an exact permutation of the axes), so a
+// mesh turned so that z is up, searched with up Z, gives the angles of the original with up
+// Y. Throws Error for an option out of range.
+Viewpoint best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
+                         const ViewpointOptions& options);
 
 // An 8-bit RGB image, rows top to bottom.
 struct Image {
@@ -592,11 +693,6 @@ struct Image {
   uint8_t* at(int x, int y) { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
   const uint8_t* at(int x, int y) const { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
 };
-
-// Which axis of the mesh is up in pictures and in view angles. The angles of ViewAngles are
-// taken in a frame where this axis plays the part of +y: for Z, theta 0 looks from -y (the
-// front of a z-up scan), theta 90 degrees from +x, phi 90 degrees from +z (above).
-enum class UpAxis { Y, MinusY, Z, MinusZ, X, MinusX };
 
 // The one colour scale of every picture and of the saliency PLY's vertex colours: a value v
 // is placed at t = sqrt((v - lo) / (hi - lo)), clamped to [0, 1], and t runs through Turbo
@@ -633,6 +729,12 @@ struct RenderStyle {
 // may be null: plain grey) on the colour scale of style.range. Only the mesh: the CLI's
 // pictures add a title line and a colour bar. Throws Error for a style out of range.
 Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
+                  const RenderStyle& style = {});
+
+// The same from a camera made by view_camera (or best_viewpoint) for this mesh: the picture
+// of camera.view with camera.up_axis as the up axis (style.up is not read), pixel for pixel
+// that of render_view(mesh, score, camera.view, style with up = camera.up_axis).
+Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
                   const RenderStyle& style = {});
 
 // Writes a PNG (atomically, as write_ply). Throws Error naming the file.

@@ -1,6 +1,5 @@
 #include "saliency_args.h"
 
-#include "choices.h"
 #include "numpy_in.h"
 
 namespace meshsal_py {
@@ -9,9 +8,9 @@ meshsal::SaliencyOptions saliency_options(const SaliencyArgs& a, std::vector<std
   meshsal::SaliencyOptions o;
   if (!a.scales.is_none()) o.scales = scales_from(a.scales);
   o.eps_frac = a.eps_frac;
-  o.method = parse_method(a.method);
-  o.backend = parse_backend(a.backend);
-  o.precision = parse_precision(a.precision);
+  o.method = meshsal::parse_method(a.method);  // the library's parsers (meshsal.Error is a ValueError)
+  o.backend = meshsal::parse_backend(a.backend);
+  o.precision = meshsal::parse_precision(a.precision);
   o.device = a.device;
   o.threads = a.threads;
   if (notices) o.notice = [notices](const std::string& line) { notices->push_back(line); };

@@ -130,14 +130,21 @@ Method parse_method(const std::string& name) {
   if (name == "exact") return Method::Exact;
   if (name == "fast") return Method::Fast;
   if (name == "auto") return Method::Auto;
-  throw Error("--method must be exact, fast or auto, got '" + name + "'");
+  throw Error("method must be exact, fast or auto, got '" + name + "'");
+}
+
+Backend parse_backend(const std::string& name) {
+  if (name == "auto") return Backend::Auto;
+  if (name == "cpu") return Backend::Cpu;
+  if (name == "gpu") return Backend::Gpu;
+  throw Error("backend must be auto, cpu or gpu, got '" + name + "'");
 }
 
 Precision parse_precision(const std::string& name) {
   if (name == "auto") return Precision::Auto;
   if (name == "mixed") return Precision::Mixed;
   if (name == "double") return Precision::Double;
-  throw Error("--precision must be auto, mixed or double, got '" + name + "'");
+  throw Error("precision must be auto, mixed or double, got '" + name + "'");
 }
 
 std::vector<double> parse_scales(const std::string& text) {

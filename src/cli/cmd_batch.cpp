@@ -64,7 +64,10 @@ struct Options {
   double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
   double eps_frac = 0.003;
   unsigned threads = 0;
-  int device = -1, size = 512, restarts = 8, resolution = 512;
+  int device = -1, size = 512, restarts = 8, resolution = meshsal::kDefaultViewResolution;
+  std::string elevation;  // --elevation MIN,MAX of the best view (empty: the whole sphere)
+  uint64_t seed = 1;      // --seed of the best view's random starts
+  double depth_tol = 2.0; // --depth-tol of the best view's visibility
 };
 
 // What one model's run needs besides its mesh.
@@ -75,6 +78,7 @@ struct Plan {
   SaliencyWeightOptions weights;  // --simplify's
   RenderStyle style;
   Backend backend;
+  ElevationRange elevation;  // --elevation (the whole sphere without it)
 };
 
 // GPU reuse as the log shows it: whether this model opened a device, and how many
@@ -99,41 +103,31 @@ std::string file_name(const std::string& path) { return std::filesystem::path(pa
 JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& input,
                      const std::string& png, BatchProgress& progress) {
   const Timer t;
-  VisibilityOptions vopt;
-  vopt.resolution = p.o->resolution;
-  vopt.threads = p.o->threads;
-  OptimiserOptions oopt;
-  oopt.restarts = p.o->restarts;
-  oopt.cancel = interrupt_flag();
-  OptimiserResult best;
-  std::string backend_name;
-  {
-    ViewScorerSetup setup = make_view_scorer(mesh, r.saliency, vopt, p.backend, p.o->device, p.saliency.notice);
-    backend_name = setup.backend_name;
-    double done = 0;
-    const double bound = double(oopt.restarts) * (1 + 5.0 * oopt.max_iterations);
-    const ViewScorer scorer = [&](const std::vector<ViewAngles>& views) {
-      std::vector<double> u = setup.scorer(views);
-      done += double(views.size());
-      progress.stage("best view", std::min(1.0, done / bound));
-      return u;
-    };
-    best = optimise_viewpoint(scorer, oopt);
-  }  // the device goes back to the session here
-  double total = 0;
-  for (float w : visibility_weights(mesh, r.saliency)) total += w;
-  // Searched in y-up angles; shown in the angles of --up (the same direction).
-  const ViewFrame up_frame = frame_mesh(mesh, p.style.up);
-  double d[3];
-  view_direction(best.best, d);
-  const ViewAngles shown = direction_angles(up_frame, d);
+  // The one view pipeline (best_viewpoint), with `meshsal viewpoint`'s settings.
+  ViewpointOptions vo;
+  vo.up = p.style.up;
+  vo.resolution = p.o->resolution;
+  vo.elevation = p.elevation;
+  vo.restarts = p.o->restarts;
+  vo.seed = p.o->seed;
+  vo.depth_tol_px = p.o->depth_tol;
+  vo.threads = p.o->threads;
+  vo.backend = p.backend;
+  vo.device = p.o->device;
+  vo.progress = [&progress](const char* stage, double f) { progress.stage(stage, f); };
+  vo.notice = p.saliency.notice;
+  vo.cancel = interrupt_flag();
+  const Viewpoint best = best_viewpoint(mesh, r.saliency, vo);
+  const ViewAngles shown = best.view;
+  const double* d = best.camera.direction;
   progress.stage("view picture", 0);
   write_png(png, titled_view(mesh, &r.saliency, shown, p.style, file_name(input), "saliency"));
   JsonObject j;
   j.text("output", png).number("theta_deg", shown.theta * kDeg).number("phi_deg", shown.phi * kDeg)
       .raw("direction", "[" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " + std::to_string(d[2]) + "]")
-      .number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0)
-      .text("device", backend_name).count("views_evaluated", best.views_evaluated).number("seconds", t.seconds());
+      .number("visible_score", best.U).number("visible_fraction", best.visible_fraction)
+      .text("device", best.backend_name).count("views_evaluated", best.optimised.views_evaluated)
+      .number("seconds", t.seconds());
   if (!best.note.empty()) j.text("note", best.note);
   return j;
 }
@@ -258,6 +252,14 @@ std::string options_line(const Options& o) {
                   int(o.lock_border));
     line += buf;
   }
+  // Only when not the defaults, so that the records of earlier runs stay up to date.
+  if (!o.elevation.empty()) line += " elevation=" + o.elevation;
+  if (o.seed != 1) line += " seed=" + std::to_string(o.seed);
+  if (o.depth_tol != 2.0) {
+    char tol[40];
+    std::snprintf(tol, sizeof tol, " depth_tol=%.17g", o.depth_tol);
+    line += tol;
+  }
   return line;
 }
 
@@ -313,6 +315,7 @@ int run(Options o) {
   if (o.weight_floor >= 0) p.weights.floor = o.weight_floor;
   p.style.size = o.size;
   p.style.up = parse_up_axis(o.up);
+  if (!o.elevation.empty()) p.elevation = parse_elevation_range(o.elevation);
   check_render_style(p.style);
 
   // Before any work: the inputs, the output folder, the log and the sheet.
@@ -592,10 +595,14 @@ RunFn setup(CLI::App& sub) {
       ->capture_default_str()->check(whole_in(16, 8192));
   sub.add_option("--restarts", o->restarts, "best view: gradient-ascent restarts")
       ->capture_default_str()->check(whole_in(1, 1000));
+  sub.add_option("--seed", o->seed, "best view: seed of the random starts")->capture_default_str();
+  sub.add_option("--depth-tol", o->depth_tol, "best view: visibility depth tolerance in pixel widths")
+      ->capture_default_str()->check(finite_in(0, 1000));
   sub.add_option("--resolution", o->resolution, "best view: z-buffer side in pixels")
       ->capture_default_str()->check(whole_in(16, 8192));
   sub.add_option("--up", o->up, "mesh axis that points up in the pictures: x, y, z, -x, -y or -z")
       ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
+  add_elevation_option(sub, &o->elevation);
   sub.add_flag("-q,--quiet", o->quiet, "Print nothing but errors (no progress, notes or summary)");
   return [o] { return run(*o); };
 }

@@ -30,6 +30,11 @@ struct Options {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
   std::string input, saliency_from, score = "saliency", output, backend = "auto", up = "y", color_range;
+  std::string elevation;  // --elevation MIN,MAX with --best (empty: the whole sphere)
+  // --best's search, as viewpoint's options and defaults
+  int restarts = 8, resolution = meshsal::kDefaultViewResolution;
+  uint64_t seed = 1;
+  double depth_tol = 2.0;
   std::vector<std::string> compare;
   double theta_deg = 0, phi_deg = 0;
   int size = 512;
@@ -76,18 +81,24 @@ int run(const Options& o) {
     progress.finish();
   }
   if (o.best) {
-    // The view of most visible score (best_viewpoint's defaults), found in the up axis's frame.
-    VisibilityOptions vopt;
-    vopt.threads = o.threads;
-    OptimiserOptions oopt;
-    oopt.cancel = interrupt_flag();
-    BestView b = best_viewpoint(mesh, score, oopt, 0, vopt, parse_backend(o.backend));
-    double d[3];
-    view_direction(b.optimised.best, d);  // y-up angles of the search
-    view = direction_angles(frame_mesh(mesh, style.up), d);
+    // The view of most visible score: the one view pipeline (best_viewpoint), with the settings
+    // `meshsal viewpoint` has by default, so both give the same view.
+    ViewpointOptions vo;
+    vo.up = style.up;
+    if (!o.elevation.empty()) vo.elevation = parse_elevation_range(o.elevation);
+    vo.restarts = o.restarts;
+    vo.seed = o.seed;
+    vo.resolution = o.resolution;
+    vo.depth_tol_px = o.depth_tol;
+    vo.threads = o.threads;
+    vo.backend = parse_backend(o.backend);
+    vo.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", printable(m).c_str()); };
+    vo.cancel = interrupt_flag();
+    const Viewpoint b = best_viewpoint(mesh, score, vo);
+    view = b.view;
     device = b.backend_name;
     std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
-    if (!b.optimised.note.empty()) std::fprintf(stderr, "note: %s\n", b.optimised.note.c_str());
+    if (!b.note.empty()) std::fprintf(stderr, "note: %s\n", b.note.c_str());
   }
   const std::vector<double>* shown = o.grey ? nullptr : &score;
   const std::string name = std::filesystem::path(o.input).filename().string();
@@ -129,8 +140,16 @@ RunFn setup(CLI::App& app) {
       ->capture_default_str()->check(finite_in(-360, 360));
   auto* phi = app.add_option("--phi", o->phi_deg, "view latitude in degrees (90 looks from above)")
       ->capture_default_str()->check(finite_in(-90, 90));
-  app.add_flag("--best", o->best, "render the view of most visible saliency (as `meshsal viewpoint` finds it)")
+  auto* best = app.add_flag("--best", o->best, "render the view of most visible saliency (as `meshsal viewpoint` finds it)")
       ->excludes(theta)->excludes(phi);
+  add_elevation_option(app, &o->elevation)->needs(best);
+  app.add_option("--restarts", o->restarts, "--best: gradient-ascent restarts from random directions")
+      ->capture_default_str()->check(whole_in(1, 1000))->needs(best);
+  app.add_option("--seed", o->seed, "--best: seed of the random starts")->capture_default_str()->needs(best);
+  app.add_option("--resolution", o->resolution, "--best: z-buffer side in pixels")
+      ->capture_default_str()->check(whole_in(16, 8192))->needs(best);
+  app.add_option("--depth-tol", o->depth_tol, "--best: visibility depth tolerance in pixel widths")
+      ->capture_default_str()->check(finite_in(0, 1000))->needs(best);
   app.add_option("--up", o->up, "mesh axis that points up: x, y, z, -x, -y or -z (scans are often z up)")
       ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
   app.add_option("--color-range", o->color_range,

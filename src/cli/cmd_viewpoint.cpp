@@ -12,9 +12,8 @@
 #include "view/legend.h"
 #include "view/map_picture.h"
 #include "view/picture.h"
+#include "view/camera.h"
 #include "view/render.h"
-#include "view/viewpoint.h"
-#include "api/viewpoint_backend.h"
 #include "api/viewpoint_score.h"
 #include "json_object.h"
 #include "load_input.h"
@@ -33,7 +32,8 @@ struct Options {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
   std::string input, saliency_from, score = "saliency", backend = "auto", out_png, map_png, up = "y", color_range;
-  int restarts = 8, views = 0, resolution = 512, size = 512, map_width = 720, device = -1;
+  std::string elevation;  // --elevation MIN,MAX (empty: the whole sphere)
+  int restarts = 8, views = 0, resolution = meshsal::kDefaultViewResolution, size = 512, map_width = 720, device = -1;
   uint64_t seed = 1;
   double depth_tol = 2.0;
   unsigned threads = 0;
@@ -70,37 +70,29 @@ int run(const Options& o) {
       mesh, kind, saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency), sopt, &source);
   progress.finish();
 
-  VisibilityOptions vopt;
-  vopt.resolution = o.resolution;
-  vopt.depth_tol_px = o.depth_tol;
-  vopt.threads = o.threads;
-  ViewScorerSetup setup = make_view_scorer(mesh, score, vopt, backend, o.device, sopt.notice);
-
-  OptimiserOptions oopt;
-  oopt.cancel = interrupt_flag();
-  oopt.restarts = o.restarts;
-  oopt.seed = o.seed;
+  // The one view pipeline (best_viewpoint): searched in the frame of --up, angles in it.
+  const int map_views = o.views > 0 ? o.views : (o.map_png.empty() ? 0 : 2000);
+  ViewpointOptions vo;
+  vo.up = style.up;
+  vo.resolution = o.resolution;
+  vo.depth_tol_px = o.depth_tol;
+  if (!o.elevation.empty()) vo.elevation = parse_elevation_range(o.elevation);
+  vo.restarts = o.restarts;
+  vo.seed = o.seed;
+  vo.views = map_views;
+  vo.threads = o.threads;
+  vo.backend = backend;
+  vo.device = o.device;
   // The optimiser reports after every batch of views ("best view"), then the map ("view map").
-  oopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  OptimiserResult best = optimise_viewpoint(setup.scorer, oopt);
-
-  int map_views = o.views > 0 ? o.views : (o.map_png.empty() ? 0 : 2000);
-  ViewMap map;
-  if (map_views > 0) map = exhaustive_map(setup.scorer, map_views, setup.batch, oopt.progress);
+  vo.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+  vo.notice = sopt.notice;
+  vo.cancel = interrupt_flag();
+  const Viewpoint v = best_viewpoint(mesh, score, vo);
   progress.finish();
-
-  double total = 0;
-  for (float w : visibility_weights(mesh, score)) total += w;
-
-  // The search runs in y-up angles; everything shown is in the angles of --up (same directions).
+  const OptimiserResult& best = v.optimised;
+  const ViewMap& map = v.map;
+  const ViewAngles best_view = v.view;
   const ViewFrame up_frame = frame_mesh(mesh, style.up);
-  auto in_up = [&](const ViewAngles& a) {
-    double d[3];
-    view_direction(a, d);
-    return direction_angles(up_frame, d);
-  };
-  const ViewAngles best_view = in_up(best.best);
-  for (ViewAngles& a : map.views) a = in_up(a);
 
   const std::string name = std::filesystem::path(o.input).filename().string();
   const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
@@ -120,19 +112,20 @@ int run(const Options& o) {
   // over the sum over all points.
   JsonObject j;
   j.text("mesh", o.input).count("vertices", mesh.vertex_count()).count("faces", mesh.triangle_count())
-      .text("score", o.score).text("score_source", source).text("device", setup.backend_name)
+      .text("score", o.score).text("score_source", source).text("device", v.backend_name)
       .count("resolution", uint64_t(o.resolution)).number("depth_tol_px", o.depth_tol).text("up", o.up);
-  add_view(j, up_frame, best_view).number("visible_score", best.U).number("visible_fraction", total > 0 ? best.U / total : 0.0);
+  if (!o.elevation.empty()) j.numbers("elevation", {vo.elevation.min, vo.elevation.max});
+  add_view(j, up_frame, best_view).number("visible_score", v.U).number("visible_fraction", v.visible_fraction);
   j.count("restarts", uint64_t(o.restarts)).count("seed", o.seed);
-  if (!best.note.empty()) {
-    j.text("note", best.note);
-    std::fprintf(stderr, "note: %s\n", best.note.c_str());
+  if (!v.note.empty()) {
+    j.text("note", v.note);
+    std::fprintf(stderr, "note: %s\n", v.note.c_str());
   }
   if (map_views > 0) {
     JsonObject ex;
     ex.count("views", uint64_t(map_views));
     add_view(ex, up_frame, map.views[map.best]).number("visible_score", map.U[map.best])
-        .number("visible_fraction", total > 0 ? map.U[map.best] / total : 0.0);
+        .number("visible_fraction", v.total > 0 ? map.U[map.best] / v.total : 0.0);
     j.object("exhaustive", ex);
   } else {
     j.null("exhaustive");
@@ -161,6 +154,7 @@ RunFn setup(CLI::App& app) {
   app.add_option("--views", o->views, "also evaluate N Fibonacci-sphere directions exhaustively (0: only with --map, 2000)")
       ->capture_default_str()->check(whole_in(0, 1000000));
   app.add_option("--resolution", o->resolution, "z-buffer side in pixels")->capture_default_str()->check(whole_in(16, 8192));
+  add_elevation_option(app, &o->elevation);
   app.add_option("--depth-tol", o->depth_tol, "visibility depth tolerance in pixel widths")
       ->capture_default_str()->check(finite_in(0, 1000));
   app.add_option("--backend", o->backend, "visibility (and saliency) backend: auto, gpu or cpu")->capture_default_str();

@@ -47,6 +47,23 @@ CLI::Validator color_range_check() {
       "LO,HI");
 }
 
+CLI::Option* add_elevation_option(CLI::App& app, std::string* text) {
+  return app
+      .add_option("--elevation", *text,
+                  "MIN,MAX latitudes in degrees (in the frame of --up) the best view may look from, "
+                  "e.g. 0,60 (default: all, -90,90)")
+      ->check(CLI::Validator(
+          [](std::string& t) -> std::string {
+            try {
+              meshsal::parse_elevation_range(t);
+            } catch (const meshsal::Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "MIN,MAX"));
+}
+
 CLI::Validator whole_in(long long lo, long long hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   return CLI::Validator(

@@ -23,6 +23,10 @@ CLI::Validator scales_list();
 // --color-range: LO,HI as meshsal::parse_color_range reads it.
 CLI::Validator color_range_check();
 
+// Adds `--elevation MIN,MAX` (degrees, meshsal::parse_elevation_range checks it) bound to
+// `text`, for every command that picks a view.
+CLI::Option* add_elevation_option(CLI::App& app, std::string* text);
+
 // Adds `--threads N` bound to `threads`, 0..kMaxThreadsOption (0 = all cores).
 CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
 

@@ -5,20 +5,20 @@
 #include "view/map_picture.h"
 #include "view/picture.h"
 #include "view/render.h"
-#include "view/viewpoint.h"
-#include "api/viewpoint_backend.h"
-#include "view/visibility.h"
 
 namespace meshsal {
 
 std::vector<std::string> write_demo_pictures(const Mesh& mesh, const std::vector<double>& saliency,
                                              const std::string& dir, const Mesh* plain,
                                              const Mesh* salient, const DemoPictureOptions& options) {
-  VisibilityOptions vopt;
-  vopt.resolution = options.resolution;
-  ViewScorerSetup setup = make_view_scorer(mesh, saliency, vopt, options.backend);
-  OptimiserResult best = optimise_viewpoint(setup.scorer, OptimiserOptions{});
-  ViewMap map = exhaustive_map(setup.scorer, options.map_views, setup.batch);
+  // The one view pipeline (best_viewpoint), at the demo's own z-buffer size.
+  ViewpointOptions vo;
+  vo.resolution = options.resolution;
+  vo.views = options.map_views;
+  vo.backend = options.backend;
+  const Viewpoint v = best_viewpoint(mesh, saliency, vo);
+  const OptimiserResult& best = v.optimised;
+  const ViewMap& map = v.map;
   std::string base = dir.empty() ? std::string(".") : dir;
   if (base.back() != '/') base += '/';
   std::vector<std::string> written;

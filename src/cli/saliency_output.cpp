@@ -109,10 +109,11 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
 }
 
 Backend parse_backend(const std::string& name) {
-  if (name == "auto") return Backend::Auto;
-  if (name == "cpu") return Backend::Cpu;
-  if (name == "gpu") return Backend::Gpu;
-  throw UsageError("--backend must be auto, cpu or gpu, got '" + name + "'");
+  try {
+    return meshsal::parse_backend(name);
+  } catch (const meshsal::Error& e) {
+    throw UsageError(std::string("--") + e.what());  // "--backend must be auto, cpu or gpu, ..."
+  }
 }
 
 void add_precision_option(CLI::App& app, std::string* name) {

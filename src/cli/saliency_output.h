@@ -37,7 +37,7 @@ JsonObject saliency_json(const std::string& input, const std::string& output, co
 void print_saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
                          const meshsal::SaliencyResult& result, double load_seconds);
 
-// Parses "auto" / "cpu" / "gpu".
+// meshsal::parse_backend ("auto" / "cpu" / "gpu"), its error a usage error naming --backend.
 meshsal::Backend parse_backend(const std::string& name);
 
 // --precision auto|mixed|double (the GPU sweep's arithmetic) into *name, for every

@@ -39,7 +39,7 @@ UpAxis parse_up_axis(const std::string& t) {
   if (t == "-z") return UpAxis::MinusZ;
   if (t == "x" || t == "+x") return UpAxis::X;
   if (t == "-x") return UpAxis::MinusX;
-  throw Error("--up must be x, y, z, -x, -y or -z, got '" + t + "'");
+  throw Error("up must be x, y, z, -x, -y or -z, got '" + t + "'");
 }
 
 static void to_mesh(const ViewFrame& f, double v[3]) {

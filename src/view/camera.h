@@ -39,9 +39,6 @@ ViewFrame frame_mesh(const Mesh& mesh, UpAxis up = UpAxis::Y);
 // looks from -y (the front of z-up scans), for -z from +y, x from +z... (see camera.cpp).
 void set_up_axis(ViewFrame& frame, UpAxis up);
 
-// "x", "y", "z", "-x", "-y", "-z"; throws Error otherwise.
-UpAxis parse_up_axis(const std::string& text);
-
 // Direction and basis in the frame's own coordinates (y up).
 void view_direction(const ViewAngles& a, double d[3]);
 ViewAngles direction_angles(const double d[3]);  // d need not be unit length

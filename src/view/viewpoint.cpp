@@ -1,7 +1,10 @@
 #include "view/viewpoint.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -12,22 +15,60 @@ namespace meshsal {
 
 static const double kPi = 3.14159265358979323846;
 
-std::vector<ViewAngles> fibonacci_directions(int n) {
+LatitudeBand latitude_band(const ElevationRange& r) {
+  if (!std::isfinite(r.min) || !std::isfinite(r.max) || r.min < -90 || r.max > 90 || r.min > r.max) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "elevation range must have -90 <= min <= max <= 90 degrees, got min %g, max %g",
+                  r.min, r.max);
+    throw Error(buf);
+  }
+  LatitudeBand b;
+  if (r.min <= -90 && r.max >= 90) return b;  // the whole sphere
+  b.limited = true;
+  b.lo = r.min * (kPi / 180.0);
+  b.hi = r.max * (kPi / 180.0);
+  return b;
+}
+
+ElevationRange parse_elevation_range(const std::string& text) {
+  const std::string what = "elevation range must be MIN,MAX in degrees (e.g. 0,60)";
+  const size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
+    throw Error(what + ", got '" + text + "'");
+  double v[2];
+  const std::string part[2] = {text.substr(0, comma), text.substr(comma + 1)};
+  for (int i = 0; i < 2; ++i) {
+    char* end = nullptr;
+    errno = 0;
+    v[i] = std::strtod(part[i].c_str(), &end);
+    if (part[i].empty() || !end || *end != '\0' || errno == ERANGE || !std::isfinite(v[i]))
+      throw Error(what + ", got '" + text + "'");
+  }
+  ElevationRange r;
+  r.min = v[0];
+  r.max = v[1];
+  latitude_band(r);  // the range check
+  return r;
+}
+
+std::vector<ViewAngles> fibonacci_directions(int n, const LatitudeBand& band) {
   if (n < 1) throw Error("the number of views must be at least 1, got " + std::to_string(n));
   std::vector<ViewAngles> v(static_cast<size_t>(n));
   const double golden = kPi * (3.0 - std::sqrt(5.0));
+  const double sin_lo = std::sin(band.lo), sin_hi = std::sin(band.hi);
   for (int i = 0; i < n; ++i) {
-    double y = 1.0 - (2.0 * i + 1.0) / n;
+    double y = band.limited ? sin_hi - (sin_hi - sin_lo) * (2.0 * i + 1.0) / (2.0 * n) : 1.0 - (2.0 * i + 1.0) / n;
     double t = std::remainder(golden * i, 2 * kPi);  // in [-pi, pi]
-    v[size_t(i)].phi = std::asin(std::clamp(y, -1.0, 1.0));
+    v[size_t(i)].phi = band.clamp(std::asin(std::clamp(y, -1.0, 1.0)));
     v[size_t(i)].theta = t;
   }
   return v;
 }
 
-ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch, const ProgressFn& progress) {
+ViewMap exhaustive_map(const ViewScorer& scorer, int n, int batch, const ProgressFn& progress,
+                       const LatitudeBand& band) {
   ViewMap m;
-  m.views = fibonacci_directions(n);
+  m.views = fibonacci_directions(n, band);
   m.U.reserve(m.views.size());
   batch = std::max(batch, 1);
   for (size_t b = 0; b < m.views.size(); b += size_t(batch)) {
@@ -68,7 +109,7 @@ struct Restart {
 };
 }  // namespace
 
-OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& o) {
+OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOptions& o, const LatitudeBand& band) {
   const CancelScope cancel(o.cancel);
   if (o.restarts < 1) throw Error("restarts must be at least 1");
   if (!(o.probe > 0) || !(o.initial_step > 0) || !(o.min_step > 0))
@@ -78,9 +119,19 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
   auto uniform = [&rng]() { return double(rng() >> 11) * (1.0 / 9007199254740992.0); };
   std::vector<Restart> rs(size_t(o.restarts));
   std::vector<ViewAngles> batch;
+  const double sin_lo = std::sin(band.lo), sin_hi = std::sin(band.hi);
+  // A direction moved by the search, its latitude kept in the band.
+  auto in_band = [&band](ViewAngles a) {
+    a.phi = band.clamp(a.phi);
+    return a;
+  };
   for (Restart& r : rs) {
-    // Uniform on the sphere: y = sin(phi) uniform in [-1, 1], theta uniform.
-    r.at.phi = std::asin(2.0 * uniform() - 1.0);
+    // Uniform on the sphere: y = sin(phi) uniform in [-1, 1], theta uniform (on the band:
+    // y uniform in [sin lo, sin hi]).
+    if (band.limited)
+      r.at.phi = band.clamp(std::asin(std::clamp(sin_lo + (sin_hi - sin_lo) * uniform(), -1.0, 1.0)));
+    else
+      r.at.phi = std::asin(2.0 * uniform() - 1.0);
     r.at.theta = (2.0 * uniform() - 1.0) * kPi;
     r.step = o.initial_step;
     res.starts.push_back(r.at);
@@ -122,9 +173,9 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
       double right[3], up[3], d[3], h = std::min(o.probe, r.step), neg[3];
       view_basis(r.at, right, up, d);
       for (const double* t : {right, up}) {
-        batch.push_back(rotate_towards(r.at, t, h));
+        batch.push_back(in_band(rotate_towards(r.at, t, h)));
         for (int k = 0; k < 3; ++k) neg[k] = -t[k];
-        batch.push_back(rotate_towards(r.at, neg, h));
+        batch.push_back(in_band(rotate_towards(r.at, neg, h)));
       }
     }
     if (active.empty()) break;
@@ -147,7 +198,7 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
           int which = int(bi - 4 * k);
           const double* axis = which < 2 ? right : up;
           for (int q = 0; q < 3; ++q) t[q] = which % 2 == 0 ? axis[q] : -axis[q];
-          r.at = rotate_towards(r.at, t, std::min(o.probe, r.step));
+          r.at = in_band(rotate_towards(r.at, t, std::min(o.probe, r.step)));
         } else {
           r.step *= 0.5;
         }
@@ -155,7 +206,7 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
       }
       double t[3];
       for (int q = 0; q < 3; ++q) t[q] = (gr * right[q] + gu * up[q]) / norm;
-      batch.push_back(rotate_towards(r.at, t, r.step));
+      batch.push_back(in_band(rotate_towards(r.at, t, r.step)));
       moving.push_back(active[k]);
     }
     if (!moving.empty()) {
@@ -189,9 +240,14 @@ OptimiserResult optimise_viewpoint(const ViewScorer& scorer, const OptimiserOpti
     // Every view tried sees nothing (a score of 0 everywhere: one triangle, a small fan):
     // any start would "win", so say so and give the front view instead of a random one.
     res.best = ViewAngles{};
+    res.best.phi = band.clamp(0.0);  // the front view, or the band's latitude nearest it
     res.U = evaluate({res.best})[0];
-    res.note = "no view sees any score (U = 0 from every direction tried; is the score 0 everywhere?): "
-               "the front view (theta 0, phi 0) is returned";
+    if (res.best.phi == 0)
+      res.note = "no view sees any score (U = 0 from every direction tried; is the score 0 everywhere?): "
+                 "the front view (theta 0, phi 0) is returned";
+    else
+      res.note = "no view sees any score (U = 0 from every direction tried; is the score 0 everywhere?): "
+                 "theta 0 at the elevation range's latitude nearest 0 is returned";
   }
   return res;
 }

@@ -65,8 +65,11 @@ def test_best_view_with_given_score(sphere):
     assert b["score_source"] == "given"
     assert b["direction"][0] > 0.9 and abs(b["theta_deg"] - 90) < 15
     assert 0.5 < b["visible_fraction"] <= 1 and b["exhaustive"] is None
+    # up='z' searches in the z-up frame (its random starts are other directions), so it may
+    # end elsewhere on the flat top of U; it still looks from +x, theta 90 in that frame too.
     up_z = meshsal.best_view(V, F, score, restarts=4, resolution=128, backend="cpu", up="z")
-    assert up_z["direction"] == pytest.approx(b["direction"])  # same direction, other angles
+    assert up_z["direction"][0] > 0.9 and abs(up_z["theta_deg"] - 90) < 15
+    assert up_z["visible_score"] == pytest.approx(b["visible_score"], rel=0.05)
 
 
 def test_docstrings_and_devices():
