@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/colormap.h"
+#include "core/mesh_points.h"
 #include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
@@ -121,6 +123,23 @@ void write_ply(const std::string& path, const Mesh& mesh,
     }
     write_all(f, buf.data(), buf.size(), path);
   });
+}
+
+void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                        const std::vector<PlyFloatProperty>& extra, const std::vector<uint8_t>* is_point) {
+  check_mesh(path, mesh);
+  if (saliency.size() != mesh.vertex_count())
+    throw Error(path + ": cannot write: " + std::to_string(saliency.size()) + " saliency values for " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  std::vector<PlyFloatProperty> props{{"quality", &saliency}};
+  props.insert(props.end(), extra.begin(), extra.end());
+  // The pictures' colour scale (ColorRange's default: minimum..maximum, square-root position).
+  if (is_point && is_point->size() != mesh.vertex_count())
+    throw Error(path + ": cannot write: " + std::to_string(is_point->size()) + " mesh-point flags for " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  const std::vector<uint8_t> rgb =
+      colormap_values(saliency, is_point ? *is_point : referenced_vertices(mesh));
+  write_ply(path, mesh, props, &rgb);
 }
 
 void write_obj(const std::string& path, const Mesh& mesh) {

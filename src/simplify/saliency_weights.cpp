@@ -92,6 +92,14 @@ Weighting parse_weighting(const std::string& name) {
   throw Error("weights must be 'saliency', 'balanced' or 'none', got '" + name + "'");
 }
 
+const char* weighting_name(Weighting weighting) {
+  switch (weighting) {
+    case Weighting::None: return "none";
+    case Weighting::Balanced: return "balanced";
+    default: return "saliency";
+  }
+}
+
 SaliencyWeightOptions weight_preset(Weighting weighting) {
   SaliencyWeightOptions o;  // Saliency and None: the paper's recipe (with the default floor)
   if (weighting == Weighting::Balanced) {
