@@ -201,6 +201,61 @@ def test_unreadable_file_raises_permission_error(tmp_path, sphere):
         meshsal.save(folder / "out.ply", V, F)
 
 
+_AS_NOBODY = r"""
+import errno, sys
+import numpy as np
+import meshsal
+folder = sys.argv[1]
+try:
+    meshsal.load(folder + "/locked.obj")
+    print("no error")
+except PermissionError as e:
+    assert isinstance(e, meshsal.Error) and isinstance(e, meshsal.PermissionError)
+    assert e.errno == errno.EACCES and e.filename == folder + "/locked.obj"
+    print("load:", e)
+try:
+    meshsal.save(folder + "/out.ply", np.eye(3), np.array([[0, 1, 2]]))
+    print("no error")
+except PermissionError as e:
+    assert isinstance(e, meshsal.Error) and e.errno == errno.EACCES
+    print("save:", e)
+"""
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="needs root to run a check as nobody")
+def test_unreadable_file_raises_permission_error_as_nobody():
+    # Root reads and writes any file: the check runs in a child process as nobody, on a
+    # file it may not read in a folder it may not write.
+    import shutil
+    import subprocess
+    import sys
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="meshsal_perm_")
+    try:
+        os.chmod(folder, 0o755)
+        locked = Path(folder) / "locked.obj"
+        locked.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        locked.chmod(0)
+
+        def as_nobody():
+            os.setgid(65534)
+            os.setgroups([])
+            os.setuid(65534)
+
+        env = {k: v for k, v in os.environ.items() if k in ("PYTHONPATH", "PATH")}
+        env["PYTHONDONTWRITEBYTECODE"] = "1"
+        r = subprocess.run([sys.executable, "-c", _AS_NOBODY, folder], env=env, preexec_fn=as_nobody,
+                           capture_output=True, text=True, timeout=120)
+        if "No module named" in r.stderr or "Permission denied: '" in r.stderr:
+            pytest.skip("nobody cannot import this build of meshsal: " + r.stderr.strip().splitlines()[-1])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.splitlines() == [
+            f"load: {locked}: cannot open: Permission denied",
+            f"save: {folder}/out.ply: cannot write: folder '{folder}' is not writable (Permission denied)"]
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def test_permission_error_class():
     # The class that an unreadable file raises (root, as the tests run, reads any file).
     assert issubclass(meshsal.PermissionError, PermissionError)
