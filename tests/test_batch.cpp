@@ -40,7 +40,7 @@ TEST_CASE("batch: one JSON line per model, the broken one with its error, exit 1
   INFO(r.err);
   CHECK(r.exit_code == 1);  // one model failed, the others went on
   CHECK(r.out.find("batch: 4 models: 3 computed, 0 skipped, 1 failed") != std::string::npos);
-  CHECK(r.err == "error: " + (in / "broken.obj").string() + ": triangle 0 uses vertex index 6 but the mesh has only 2 vertices\n");
+  CHECK(r.err == "error: " + (in / "broken.obj").string() + ": line 3: face index 7 is beyond the file's 2 vertices (OBJ indices start at 1)\n");
 
   const std::vector<std::string> lines = log_lines(out / "batch.jsonl");
   REQUIRE(lines.size() == 4);
@@ -51,7 +51,7 @@ TEST_CASE("batch: one JSON line per model, the broken one with its error, exit 1
   CHECK(json_text(lines[2], "mesh") == (in / "bumpy.ply").string());
   CHECK(json_text(lines[3], "mesh") == (in / "cube.off").string());
   CHECK(json_text(lines[1], "status") == "failed");
-  CHECK(json_text(lines[1], "error") == (in / "broken.obj").string() + ": triangle 0 uses vertex index 6 but the mesh has only 2 vertices");
+  CHECK(json_text(lines[1], "error") == (in / "broken.obj").string() + ": line 3: face index 7 is beyond the file's 2 vertices (OBJ indices start at 1)");
 
   for (const char* name : {"ball.obj", "bumpy.ply", "cube.off"}) {
     INFO(name);

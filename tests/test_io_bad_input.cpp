@@ -143,7 +143,11 @@ TEST_CASE("bad input: indices out of range", "[io]") {
   expect_error(dir.write("neg.ply", ascii_ply(kPlyV, "3 0 -1 2\n", 3, 1)), "vertex index -1");
   expect_error(dir.write("big_bin.ply", binary_ply({0, 1, 7})), "vertex index 7");
   expect_error(dir.write("neg_bin.ply", binary_ply({0, -5, 1})), "vertex index -5");
-  expect_error(dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"), "vertex index 3");
+  expect_error(dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
+               "line 4: face index 4 is beyond the file's 3 vertices (OBJ indices start at 1)");
+  // A forward reference is legal; one that the file never defines is named as written.
+  expect_error(dir.write("fwd.obj", "v 0 0 0\nf 1 2 5\nv 1 0 0\nv 0 1 0\n"), "line 2: face index 5 is beyond the file's 3");
+  expect_error(dir.write("big_vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 9/1\n"), "line 5: face index 9 is beyond");
   expect_error(dir.write("neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n"), "before the first vertex");
   expect_error(dir.write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), "index 0");
   expect_error(dir.write("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"), "bad face index");
@@ -154,7 +158,7 @@ TEST_CASE("bad input: indices out of range", "[io]") {
 TEST_CASE("bad input: NaN and Inf coordinates", "[io]") {
   TempDir dir;
   expect_error(dir.write("nan.obj", "v 0 nan 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "non-finite");
-  expect_error(dir.write("inf.obj", "v 0 0 0\nv 1 0 -inf\nv 0 1 0\nf 1 2 3\n"), "vertex 1 has a non-finite");
+  expect_error(dir.write("inf.obj", "v 0 0 0\nv 1 0 -inf\nv 0 1 0\nf 1 2 3\n"), "line 2: vertex 2 has a non-finite");
   expect_error(dir.write("overflow.obj", "v 0 0 0\nv 1 0 1e999\nv 0 1 0\nf 1 2 3\n"), "non-finite");
   expect_error(dir.write("nan.ply", ascii_ply("0 0 0\n1 0 0\n0 NaN 0\n", "3 0 1 2\n", 3, 1)), "non-finite");
   expect_error(dir.write("nan_bin.ply", binary_ply({0, 1, 2}, 3, 1, std::numeric_limits<float>::quiet_NaN())),

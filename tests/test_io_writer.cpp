@@ -144,3 +144,29 @@ TEST_CASE("writing into a read-only folder throws and leaves nothing", "[io]") {
   std::filesystem::permissions(dir.path, std::filesystem::perms::owner_all);
   CHECK(dir.entries() == 0);
 }
+
+TEST_CASE("write_saliency_ply: quality = S, the extra properties, and colours over the mesh points", "[io]") {
+  TempDir dir;
+  Mesh m = awkward_mesh();
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 5, 5, 5};  // vertex 4: no triangle uses it
+  m.triangles = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2};
+  const std::vector<double> s{0.5, 1.0, 0.25, 2.0, 100.0}, h{1, 2, 3, 4, 5};
+  const std::string p = dir.file("s.ply");
+  meshsal::write_saliency_ply(p, m, s, {{"curvature", &h}});
+  VertexProperties props;
+  meshsal::load_mesh(p, &props);
+  CHECK(props.count("quality") == 1);
+  CHECK(props.count("curvature") == 1);
+  CHECK(props.count("red") == 1);
+  CHECK(props["quality"] == std::vector<float>{0.5f, 1.0f, 0.25f, 2.0f, 100.0f});
+  // The colour scale runs over the mesh points only: vertex 3 (the largest of them) gets the
+  // top colour although vertex 4 holds 100; the same bytes as the explicit mask.
+  CHECK(props["red"][3] > props["blue"][3]);  // the top: dark red
+  CHECK(props["blue"][4] > props["red"][4]);  // outside the mesh points: the low end's blue
+  const std::string q = dir.file("q.ply");
+  const std::vector<uint8_t> mask{1, 1, 1, 1, 0};
+  meshsal::write_saliency_ply(q, m, s, {{"curvature", &h}}, &mask);
+  CHECK(meshsal_test::read_file(p) == meshsal_test::read_file(q));
+  CHECK_THROWS_WITH(meshsal::write_saliency_ply(p, m, std::vector<double>(3, 1.0)),
+                    Catch::Contains("3 saliency values for 5 vertices"));
+}

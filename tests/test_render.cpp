@@ -222,9 +222,9 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws 
   CHECK(json_number(out, "visible_fraction") < 0.6);
   CHECK(out.find("\"exhaustive\": null") != std::string::npos);
 
-  // Errors are one line, exit code 1.
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 1);
-  CHECK(out.find("error: --score must be saliency or curvature") != std::string::npos);
+  // Errors are one line: a bad choice is a usage error (exit 2), a bad file exit 1.
+  CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 2);
+  CHECK(out.find("error: --score: nonsense not in {saliency,curvature}") != std::string::npos);
   write_ply(dir + "/noq.ply", s, {});
   CHECK(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply", &out) == 1);
   CHECK(out.find("has no per-vertex `quality` property") != std::string::npos);

@@ -80,7 +80,8 @@ TEST_CASE("obj attributes: bad vt/vn references are one-line errors", "[io][simp
   CHECK(error_of("f 1/0 2/1 3/1\n") == "bad.obj: line 5: texture coordinate index 0 (OBJ indices start at 1)");
   CHECK(error_of("vt 0 nan\n") == "bad.obj: line 5: texture coordinate bad number 'nan'");
   CHECK(error_of("vn 0 1\n") == "bad.obj: line 5: normal needs 3 numbers");
-  CHECK(error_of("f 1/1 2/1 9/1\n").find("uses vertex index 8") != std::string::npos);
+  // The vertex as the file numbers it (from 1), not the 0-based index.
+  CHECK(error_of("f 1/1 2/1 9/1\n").find("line 5: face index 9 is beyond the file's") != std::string::npos);
 }
 
 TEST_CASE("saliency of a UV-seamed sphere is the saliency of the same sphere without vt",

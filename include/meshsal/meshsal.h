@@ -215,6 +215,16 @@ void write_ply(const std::string& path, const Mesh& mesh,
 // Writes OBJ (v and f lines), the same atomic way.
 void write_obj(const std::string& path, const Mesh& mesh);
 
+// Writes the saliency PLY of `meshsal saliency` (SPEC section 4): write_ply with the
+// property quality = S, then `extra` (e.g. curvature and the raw maps of --dump-scales), and
+// red/green/blue = the colour scale of S over the mesh points (the pictures' scale:
+// minimum..maximum of S, square-root position). The mesh points are `is_point` when given
+// (SaliencyResult::is_point, one per vertex), else the vertices a triangle uses. The mesh's
+// own attributes come before them, unless one of these replaces them.
+void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                        const std::vector<PlyFloatProperty>& extra = {},
+                        const std::vector<uint8_t>* is_point = nullptr);
+
 // Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
 // property) for `mesh`. Throws Error when the file has no quality property, a quality is
 // not finite or negative (S >= 0: a quality from another program), or the file belongs to
@@ -433,13 +443,14 @@ struct SaliencyWeightOptions {
 // paper's recipe costs 3x on the bunny; weight_preset() returns them).
 enum class Weighting { None, Saliency, Balanced };
 
-// The weighting of every front end (simplify, batch, Python) when none is named.
+// The weighting a front end uses when none is named (`meshsal simplify` and `batch`
+// without --weights, Python's simplify() without weights=): the one place it is decided.
 constexpr Weighting kDefaultWeighting = Weighting::Balanced;
 
 // "none", "saliency" or "balanced"; throws Error on anything else.
 Weighting parse_weighting(const std::string& name);
 
-// The name parse_weighting reads: "none", "saliency" or "balanced".
+// The name parse_weighting() reads: "none", "saliency" or "balanced".
 const char* weighting_name(Weighting weighting);
 
 // The SaliencyWeightOptions of a named weighting (None: the options are not used).

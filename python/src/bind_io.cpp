@@ -1,47 +1,77 @@
 // meshsal Python module: load() and the device list.
+#include <cctype>
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include "bindings.h"
 #include "meshsal/meshsal.h"
+#include "mesh_args.h"
+#include "numpy_in.h"
 #include "numpy_out.h"
+#include "paths.h"
 
 namespace meshsal_py {
 
 namespace {
 
-// A path as the OS takes it: str, bytes or os.PathLike (pathlib.Path), encoded as
-// os.fsencode does. A NUL byte cannot be in a path: refused as open() refuses it, instead
-// of the name being cut at it.
-std::string path_bytes(const py::object& path) {
-  py::object encoded;
-  try {
-    encoded = py::module_::import("os").attr("fsencode")(path);
-  } catch (py::error_already_set&) {
-    throw py::type_error("path must be str, bytes or os.PathLike, got " +
-                         std::string(py::str(path.get_type().attr("__name__"))));
-  }
-  std::string bytes = encoded.cast<std::string>();
-  if (bytes.find('\0') != std::string::npos) throw py::value_error("path: embedded null byte");
-  return bytes;
-}
-
-py::object load(const py::object& path_obj, bool properties, unsigned long long max_input_bytes) {
+py::object load(const py::object& path_obj, bool properties, bool attributes, unsigned long long max_input_bytes) {
   const std::string path = path_bytes(path_obj);
+  if (properties && attributes)
+    throw py::value_error("give properties=True or attributes=True, not both (attributes has the PLY's "
+                          "properties too)");
   meshsal::Mesh mesh;
   meshsal::VertexProperties props;
-  {
+  try {
     py::gil_scoped_release unlocked;
     meshsal::LoadOptions options;
     options.max_input_bytes = max_input_bytes;
+    options.attributes = attributes;
     mesh = meshsal::load_mesh(path, properties ? &props : nullptr, options);
+  } catch (const meshsal::Cancelled&) {
+    throw;
+  } catch (const meshsal::Error& e) {
+    raise_file_error(e, path_obj);
   }
   const py::ssize_t n = py::ssize_t(mesh.vertex_count()), m = py::ssize_t(mesh.triangle_count());
   py::array vertices = model_vertices(mesh, true);
   py::array faces = to_numpy(std::move(mesh.triangles), {m, 3});
+  if (attributes)
+    return py::make_tuple(vertices, faces, attributes_dict(std::move(mesh.attributes)),
+                          position_vertex_array(std::move(mesh.position_vertex)));
   if (!properties) return py::make_tuple(vertices, faces);
   py::dict d;
   for (auto& [name, values] : props) d[py::str(name)] = to_numpy(std::move(values));
   return py::make_tuple(vertices, faces, d);
+}
+
+bool ends_with_ci(const std::string& s, const char* tail) {
+  const size_t n = std::strlen(tail);
+  if (s.size() < n) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != tail[i]) return false;
+  return true;
+}
+
+void save(const py::object& path_obj, const py::object& vertices, const py::object& faces,
+          const py::object& saliency, const py::object& attributes, const py::object& position_vertex) {
+  const std::string path = path_bytes(path_obj);
+  const bool ply = ends_with_ci(path, ".ply"), obj = ends_with_ci(path, ".obj");
+  if (!ply && !obj) throw py::value_error("path must end in .ply or .obj (the formats meshsal writes)");
+  meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
+  std::vector<double> s;
+  if (!saliency.is_none()) {
+    if (obj) throw py::value_error("saliency needs a .ply path (OBJ has no place for per-vertex values)");
+    s = vertex_values(saliency, mesh.vertex_count(), "saliency");
+  }
+  try {
+    py::gil_scoped_release unlocked;
+    if (obj) meshsal::write_obj(path, mesh);
+    else if (!s.empty()) meshsal::write_saliency_ply(path, mesh, s);
+    else meshsal::write_ply(path, mesh, {});
+  } catch (const meshsal::Error& e) {
+    raise_file_error(e, path_obj);
+  }
 }
 
 py::list devices() {
@@ -63,23 +93,57 @@ py::list devices() {
 
 void bind_io(py::module_& m) {
   m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("properties") = false,
-        py::arg("max_input_bytes") = 0ULL,
-        R"(load(path, *, properties=False, max_input_bytes=0) -> (V, F) or (V, F, props)
+        py::arg("attributes") = false, py::arg("max_input_bytes") = 0ULL,
+        R"(load(path, *, properties=False, attributes=False, max_input_bytes=0)
+    -> (V, F), (V, F, props) or (V, F, attributes, position_vertex)
 
-Reads a mesh file (path: str, bytes or pathlib.Path) as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
+Reads a mesh file as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
 optionally .gz; polygons fan-triangulated, STL corners welded. Returns the vertices V
 (n, 3) as the file has them: float32 when every coordinate is a float32 value (binary float
-PLY, STL), else float64 (text files' decimals, double PLYs, survey coordinates), and the faces F, uint32
-(m, 3), both owned by numpy without a copy. With properties=True also a dict of the PLY's
-scalar vertex properties (e.g. 'quality', the saliency `meshsal saliency` writes) as
-float32 arrays. max_input_bytes bounds a gzipped file's inflated size (0: the default
-limits, or MESHSAL_MAX_INPUT). Raises meshsal.Error with the CLI's message on bad input.)");
+PLY, STL), else float64 (text files' decimals, double PLYs, survey coordinates), and the
+faces F, uint32 (m, 3), both owned by numpy without a copy.
+
+  path             str, bytes or os.PathLike (pathlib.Path)
+  properties       also return a dict of the PLY's scalar vertex properties (e.g.
+                   'quality', the saliency `meshsal saliency` writes) as float32 arrays
+  attributes       read the mesh as `meshsal simplify` does: also return its per-vertex
+                   attributes (dict name -> float32 (n,): OBJ vt as 'u', 'v' and vn as
+                   'nx', 'ny', 'nz', PLY vertex properties under their names) and its seam
+                   map position_vertex (uint32 (n,), or None when no vertex is split: an
+                   OBJ v used with different vt/vn becomes one vertex per combination).
+                   simplify() and save() take both back
+  max_input_bytes  bounds a gzipped file's inflated size (0: the default limits, or
+                   MESHSAL_MAX_INPUT)
+
+A file that does not exist raises meshsal.FileNotFoundError, one that may not be read
+meshsal.PermissionError (subclasses of the built-in ones, with errno and filename); a bad
+file meshsal.Error with the CLI's message.)");
+  m.def("save", &save, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("saliency") = py::none(),
+        py::kw_only(), py::arg("attributes") = py::none(), py::arg("position_vertex") = py::none(),
+        (std::string(R"(save(path, vertices, faces, saliency=None, *, attributes=None, position_vertex=None)
+
+Writes a mesh with the library's writers, the bytes the CLI writes for the same mesh:
+
+  path             str, bytes or os.PathLike ending in .ply (binary little-endian PLY) or
+                   .obj (v, vt, vn and f lines); written to a temporary file and renamed,
+                   so a failure never leaves a half-written file
+  vertices, faces  as in saliency()
+  saliency         S per vertex (a .ply only): written as `meshsal saliency -o OUT.ply` writes
+                   it, the property quality = S and red/green/blue its colour scale
+
+With attributes (e.g. a SimplifyResult's .attributes and .position_vertex) a PLY gets
+them as vertex properties (red/green/blue/alpha as uchar) and an OBJ its texture
+coordinates (u v) and normals (nx ny nz): save(p, r.vertices, r.faces,
+attributes=r.attributes, position_vertex=r.position_vertex) writes what `meshsal simplify
+-o p` writes. A missing folder raises meshsal.FileNotFoundError, one that may not be
+written meshsal.PermissionError, other failures meshsal.Error.
+)") + kAttributesDoc).c_str());
   m.def("built_with_vulkan", &meshsal::built_with_vulkan,
         "built_with_vulkan() -> bool\n\nTrue when this module has the Vulkan backend (backend='gpu').");
   m.def("devices", &devices,
         R"(devices() -> list of dict
 
-The Vulkan devices, as `meshsal devices` lists them: index (the `device` argument), name,
+The Vulkan devices, as `meshsal devices --json` lists them (the same keys): index (the `device` argument), name,
 type ('discrete', 'integrated', 'virtual', 'cpu', 'other'), device_local_bytes,
 api_version, has_compute. Raises meshsal.Error without Vulkan.)");
 }

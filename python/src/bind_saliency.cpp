@@ -103,8 +103,11 @@ Mesh saliency of every vertex (`meshsal saliency`): the result's .saliency is th
 `quality`, .curvature and .raw (raw_maps=True) what --dump-scales adds, .smoothed
 (smoothed=True) the smoothed map Sm = G(S, 3 eps) that saliency-guided simplification uses.
 
-vertices: (n, 3) float32 or float64, any strides (trimesh's, Open3D's np.asarray(...)).
-faces: (m, 3) integers (int32, int64, uint32, ...), each in [0, n).
+  vertices    (n, 3) float32 or float64, any strides (trimesh's, Open3D's np.asarray(...))
+  faces       (m, 3) integers (int32, int64, uint32, ...), each in [0, n)
+  raw_maps    also return .curvature's companions .raw, the center-surround maps S_i
+              (--dump-scales); save(path, V, F, r.saliency) writes the PLY of S
+  smoothed    also return .smoothed, Sm = G(S, 3 eps) with the same method
 Wrong types raise TypeError; wrong shapes, NaN/inf, indices out of range ValueError; the
 library's errors meshsal.Error (a ValueError). The GIL is released while it computes.
 )") + kSaliencyArgsDoc).c_str());

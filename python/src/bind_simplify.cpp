@@ -12,6 +12,7 @@
 #include "numpy_out.h"
 #include "saliency_args.h"
 #include "interrupt.h"
+#include "mesh_args.h"
 
 namespace meshsal_py {
 
@@ -31,25 +32,51 @@ double mesh_diagonal(const meshsal::Mesh& mesh) {
 
 // What simplify() returns: the mesh and the report `meshsal simplify --json` prints.
 struct SimplifyOut {
-  py::object vertices, faces, vertex_origin, notices;
+  py::object vertices, faces, vertex_origin, notices, attributes, position_vertex;
   size_t input_faces = 0, target_faces = 0, output_faces = 0, collapses = 0;
   bool reached = false, unchanged = false;
   std::string note, weights;
   std::string device = "cpu";  // what computed S; the CLI's JSON `device`
-  double alpha = 0, seconds = 0, error = 0;
+  double alpha = 0, seconds = 0, error = 0, error_percent = 0, lambda = 0, alpha_percentile = 0,
+         weight_floor = 0;
 };
 
+// A number argument that may be None: the value, or `fallback` for None.
+double number_or(const py::object& value, double fallback, const char* name) {
+  if (value.is_none()) return fallback;
+  const std::string type = py::str(value.get_type().attr("__name__"));
+  if (py::isinstance<py::bool_>(value) || !PyNumber_Check(value.ptr()) || py::isinstance<py::str>(value))
+    throw py::type_error(std::string(name) + " must be a number, got " + type);
+  if (py::hasattr(value, "shape") && py::len(value.attr("shape")) != 0)  // an array, not its values
+    throw py::type_error(std::string(name) + " must be a single number, got " + type);
+  return py::float_(value).cast<double>();
+}
+
+}  // namespace
+
+namespace {
+
 SimplifyOut simplify(const py::object& vertices, const py::object& faces, const py::object& target_faces,
-                     const py::object& ratio, const py::object& weights, const py::object& saliency,
-                     double lambda, double alpha_percentile, double weight_floor, const py::object& scales,
-                     double eps_frac, const std::string& method, const std::string& backend,
-                     const std::string& precision, int device, unsigned threads) {
-  meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
+                     const py::object& ratio, const py::object& target_error, bool lock_border,
+                     const py::object& weights, const py::object& saliency, const py::object& lambda_arg,
+                     const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
+                     const py::object& position_vertex, const py::object& scales, double eps_frac,
+                     const std::string& method, const std::string& backend, const std::string& precision,
+                     int device, unsigned threads) {
+  meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   const size_t n = mesh.vertex_count();
-  if (target_faces.is_none() == ratio.is_none())
-    throw py::value_error("give exactly one of target_faces and ratio");
+  // The CLI's rule: one of target_faces and ratio, or target_error alone.
+  const double error_percent = number_or(target_error, 0, "target_error");
+  if (!(error_percent >= 0 && error_percent <= 100))
+    throw py::value_error("target_error must be in [0, 100] (% of the bounding-box diagonal), got " +
+                          std::string(py::str(target_error)));
+  if (!target_faces.is_none() && !ratio.is_none()) throw py::value_error("give only one of target_faces and ratio");
+  if (target_faces.is_none() && ratio.is_none() && error_percent == 0)
+    throw py::value_error("give target_faces, ratio or target_error");
   meshsal::SimplifyOptions options;
   options.threads = threads;
+  options.target_error = error_percent / 100;
+  options.lock_border = lock_border;
   if (!target_faces.is_none()) {
     // Any integer (numpy's too), as Python's operator.index takes it.
     PyObject* index = PyNumber_Index(target_faces.ptr());
@@ -64,26 +91,32 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     if (overflow || t < 1 || t > 4000000000LL)
       throw py::value_error("target_faces must be in [1, 4000000000], got " + given);
     options.target_faces = size_t(t);
-  } else {
-    if (!py::isinstance<py::float_>(ratio) && !py::isinstance<py::int_>(ratio) &&
-        !PyNumber_Check(ratio.ptr()))
-      throw py::type_error("ratio must be a number");
-    const double r = py::float_(ratio).cast<double>();
+  } else if (!ratio.is_none()) {
+    const double r = number_or(ratio, 0, "ratio");
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1], got " + std::string(py::str(ratio)));
     options.ratio = r;
   }
-  // What the CLI checks: W's parameters, and weights given one way only.
-  if (!(lambda >= 0 && lambda <= 1e6)) throw py::value_error("lambda_ must be in [0, 1e6]");
-  if (!(alpha_percentile >= 0 && alpha_percentile <= 100)) throw py::value_error("alpha_percentile must be in [0, 100]");
-  if (!(weight_floor >= 0 && weight_floor <= 100)) throw py::value_error("weight_floor must be in [0, 100]");
+  // The weighting: a name (the library's presets, as --weights) or W per vertex.
   std::string mode = "array";
-  if (py::isinstance<py::str>(weights)) {
+  if (weights.is_none()) {
+    mode = meshsal::weighting_name(meshsal::kDefaultWeighting);
+  } else if (py::isinstance<py::str>(weights)) {
     mode = weights.cast<std::string>();
-    if (mode != "saliency" && mode != "none")
-      throw py::value_error("weights must be 'saliency', 'none' or an array of one weight per vertex, got '" + mode + "'");
+    if (mode != "saliency" && mode != "balanced" && mode != "none")
+      throw py::value_error("weights must be 'saliency', 'balanced', 'none' or an array of one weight per vertex, got '" +
+                            mode + "'");
   }
-  if (mode != "saliency" && !saliency.is_none())
-    throw py::value_error("saliency (S per vertex) needs weights='saliency'");
+  const bool computed = mode == "saliency" || mode == "balanced";
+  // W's parameters: the preset's unless given (the CLI's --lambda, --alpha-percentile).
+  meshsal::SaliencyWeightOptions wo = weight_preset(computed ? meshsal::parse_weighting(mode) : meshsal::kDefaultWeighting);
+  wo.lambda = number_or(lambda_arg, wo.lambda, "lambda_");
+  wo.alpha_percentile = number_or(alpha_arg, wo.alpha_percentile, "alpha_percentile");
+  wo.floor = number_or(floor_arg, wo.floor, "weight_floor");
+  if (!(wo.lambda >= 0 && wo.lambda <= 1e6)) throw py::value_error("lambda_ must be in [0, 1e6]");
+  if (!(wo.alpha_percentile >= 0 && wo.alpha_percentile <= 100)) throw py::value_error("alpha_percentile must be in [0, 100]");
+  if (!(wo.floor >= 0 && wo.floor <= 100)) throw py::value_error("weight_floor must be in [0, 100]");
+  if (!computed && !saliency.is_none())
+    throw py::value_error("saliency (S per vertex) needs weights='saliency' or 'balanced'");
 
   std::vector<double> w, s;
   if (mode == "array") w = vertex_values(weights, n, "weights");
@@ -101,20 +134,26 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     options.cancel = so.cancel = call.flag();
     // A target at or above the face count keeps the mesh as it is (the library's rule),
     // with no saliency computed for it.
-    if (mode == "saliency" && !meshsal::simplify_keeps_mesh(options, mesh.triangle_count())) {
-      meshsal::SaliencyWeightOptions wo;
-      wo.lambda = lambda;
-      wo.alpha_percentile = alpha_percentile;
-      wo.floor = weight_floor;
-      w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, nullptr,
+    if (computed && !meshsal::simplify_keeps_mesh(options, mesh.triangle_count())) {
+      std::vector<double> used;
+      w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, &used,
                                           &out.device);
+      // S goes on the mesh as its `quality` attribute, as `meshsal simplify` puts it in its
+      // PLY output (replacing one the input had), and is carried like the others.
+      std::vector<float> q(used.begin(), used.end());
+      bool replaced = false;
+      for (meshsal::VertexAttribute& at : mesh.attributes)
+        if (at.name == "quality") at.values = q, replaced = true;
+      if (!replaced && q.size() == n) mesh.attributes.push_back({"quality", std::move(q)});
     }
     result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
   }
   const py::ssize_t nv = py::ssize_t(result.vertex_count()), nf = py::ssize_t(result.triangle_count());
-  out.vertices = model_vertices(result);
+  out.vertices = model_vertices(result, false, !float32_vertices(vertices));  // float64 in, float64 out
   out.faces = to_numpy(std::move(result.triangles), {nf, 3});
   out.vertex_origin = to_numpy(std::move(report.vertex_origin));
+  out.attributes = attributes_dict(std::move(result.attributes));
+  out.position_vertex = position_vertex_array(std::move(result.position_vertex));
   if (!report.warning.empty()) notices.push_back("warning: " + report.warning);
   out.notices = py::cast(notices);
   out.input_faces = report.input_faces;
@@ -127,6 +166,12 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   out.weights = out.unchanged ? "none" : mode;
   out.seconds = report.seconds;
   out.error = report.error * diagonal;
+  out.error_percent = 100 * report.error;
+  if (computed && !out.unchanged) {
+    out.lambda = wo.lambda;
+    out.alpha_percentile = wo.alpha_percentile;
+    out.weight_floor = wo.floor;
+  }
   return out;
 }
 
@@ -139,6 +184,12 @@ void bind_simplify(py::module_& m) {
       .def_readonly("faces", &SimplifyOut::faces, "uint32 (f, 3)")
       .def_readonly("vertex_origin", &SimplifyOut::vertex_origin,
                     "uint32 (k,): the input vertex each output vertex survived as")
+      .def_readonly("attributes", &SimplifyOut::attributes,
+                    "dict name -> float32 (k,): the attributes given, carried along the collapses (as the "
+                    "CLI carries OBJ vt/vn and PLY properties), and with computed weights 'quality' = the "
+                    "saliency S, as the CLI's PLY output has it")
+      .def_readonly("position_vertex", &SimplifyOut::position_vertex,
+                    "uint32 (k,) or None: the seam map of the result (see position_vertex=)")
       .def_readonly("input_faces", &SimplifyOut::input_faces, "non-degenerate input triangles")
       .def_readonly("target_faces", &SimplifyOut::target_faces, "the target actually used")
       .def_readonly("output_faces", &SimplifyOut::output_faces, "faces of the result")
@@ -146,11 +197,17 @@ void bind_simplify(py::module_& m) {
       .def_readonly("reached", &SimplifyOut::reached, "output_faces == target_faces")
       .def_readonly("unchanged", &SimplifyOut::unchanged, "the target was at or above the face count")
       .def_readonly("note", &SimplifyOut::note, "why the target was not reached ('' when it was)")
-      .def_readonly("weights", &SimplifyOut::weights, "'saliency', 'none' or 'array'")
-      .def_readonly("alpha", &SimplifyOut::alpha, "the alpha_percentile of Sm (weights='saliency')")
+      .def_readonly("weights", &SimplifyOut::weights, "'saliency', 'balanced', 'none' or 'array'")
+      .def_readonly("alpha", &SimplifyOut::alpha, "the alpha_percentile of Sm (computed weights)")
+      .def_readonly("lambda_", &SimplifyOut::lambda, "the lambda used (computed weights; else 0)")
+      .def_readonly("alpha_percentile", &SimplifyOut::alpha_percentile,
+                    "the alpha_percentile used (computed weights; else 0)")
+      .def_readonly("weight_floor", &SimplifyOut::weight_floor, "the weight floor used (computed weights; else 0)")
       .def_readonly("seconds", &SimplifyOut::seconds, "wall time of the simplification itself")
       .def_readonly("error", &SimplifyOut::error,
                     "the largest collapse's error in model units (RMS distance to its merged planes, unweighted)")
+      .def_readonly("error_percent", &SimplifyOut::error_percent,
+                    "the same in % of the bounding-box diagonal (the CLI's error_percent)")
       .def_readonly("device", &SimplifyOut::device,
                     "the device that computed the saliency ('cpu (N threads)' or the Vulkan device's "
                     "name); 'cpu' when no saliency was computed (weights 'none' or an array, or "
@@ -161,29 +218,53 @@ void bind_simplify(py::module_& m) {
         return "<meshsal.SimplifyResult: " + std::to_string(py::len(r.vertices)) + " vertices, " +
                std::to_string(r.output_faces) + " faces (target " + std::to_string(r.target_faces) + ")>";
       });
+  const std::string default_weights = meshsal::weighting_name(meshsal::kDefaultWeighting);
   m.def("simplify", &simplify, py::arg("vertices"), py::arg("faces"), py::arg("target_faces") = py::none(),
-        py::kw_only(), py::arg("ratio") = py::none(), py::arg("weights") = "saliency",
-        py::arg("saliency") = py::none(), py::arg("lambda_") = 100.0, py::arg("alpha_percentile") = 30.0,
-        py::arg("weight_floor") = meshsal::kDefaultWeightFloor, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
+        py::kw_only(), py::arg("ratio") = py::none(), py::arg("target_error") = py::none(),
+        py::arg("lock_border") = false, py::arg("weights") = default_weights,
+        py::arg("saliency") = py::none(), py::arg("lambda_") = py::none(), py::arg("alpha_percentile") = py::none(),
+        py::arg("weight_floor") = meshsal::kDefaultWeightFloor, py::arg("attributes") = py::none(),
+        py::arg("position_vertex") = py::none(), py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
         py::arg("device") = -1, py::arg("threads") = 0u,
-        (std::string(R"(simplify(vertices, faces, target_faces=None, *, ratio=None, weights='saliency', saliency=None,
-         lambda_=100, alpha_percentile=30, weight_floor=0.001, scales=None, eps_frac=0.003,
+        ("simplify(vertices, faces, target_faces=None, *, ratio=None, target_error=None, lock_border=False,\n"
+         "         weights='" + default_weights + R"(', saliency=None, lambda_=None, alpha_percentile=None,
+         weight_floor=0.001, attributes=None, position_vertex=None, scales=None, eps_frac=0.003,
          method='exact', backend='auto', precision='auto', device=-1, threads=0) -> SimplifyResult
 
-Garland-Heckbert edge collapses to target_faces, or to ratio times the faces
-(`meshsal simplify`; give exactly one). weights='saliency' (default) multiplies each vertex
-quadric by W = lambda_ * Sm where the smoothed saliency Sm reaches its alpha_percentile,
-else Sm (Lee et al. 2005, section 4), raised to at least weight_floor times the mean W so
-that no collapse is free (0: the paper's literal rule, which erases flat regions); saliency=S (one value per vertex, e.g. a previous
-saliency().saliency) reuses S instead of computing it, as --saliency-from does.
-weights='none' is plain quadric error; an array gives W per vertex directly. A target at
-or above the face count returns the mesh unchanged (.unchanged, .note).
-The result unpacks as V, F = simplify(...); .vertex_origin maps output to input vertices;
-.error is the largest collapse's error (unweighted quadric distance) in model units.
-Arrays as in saliency(); the GIL is released while it computes, and Ctrl-C stops it
-(KeyboardInterrupt).
-)") + kSaliencyArgsDoc).c_str());
+Garland-Heckbert edge collapses (`meshsal simplify`, the same library calls, so the same
+mesh): to target_faces, or to ratio times the faces (give at most one), and/or until
+every further collapse would move the surface by more than target_error.
+
+  target_faces      faces to keep (an integer in [1, 4000000000])
+  ratio             fraction of the faces to keep, in (0, 1]
+  target_error      error bound in % of the bounding-box diagonal, in [0, 100] (--target-error):
+                    stop where every further collapse would move the surface more than
+                    that (RMS distance to its merged planes); alone, or with a target
+                    (whichever comes first). .error / .error_percent give the error reached
+  lock_border       keep the vertices of open borders exactly in place (--lock-border)
+  weights           'saliency' (the paper's recipe), 'balanced' (its curve with alpha at the
+                    50th percentile and lambda 3), 'none' (plain quadric error), or an
+                    array of one weight W >= 0 per vertex. Computed weights multiply each
+                    vertex quadric by W = lambda_ * Sm where the smoothed saliency Sm
+                    reaches its alpha_percentile, else Sm (Lee et al. 2005, section 4)
+  saliency          S per vertex (e.g. a previous saliency().saliency, or the 'quality' of
+                    a saliency PLY) instead of computing it (--saliency-from)
+  lambda_           amplification of the salient vertices, [0, 1e6]; None: the preset's
+                    (100 for 'saliency', 3 for 'balanced')
+  alpha_percentile  percentile of Sm above which vertices are amplified, [0, 100]; None:
+                    the preset's (30 for 'saliency', 50 for 'balanced')
+  weight_floor      raise W to at least this fraction of the mean W, so that no collapse is
+                    free (0: the paper's literal rule, which erases flat regions), [0, 100]
+
+A target at or above the face count returns the mesh unchanged (.unchanged, .note). The
+result unpacks as V, F = simplify(...); .vertex_origin maps output to input vertices;
+.attributes carries the attributes given (interpolated along each collapsed edge; UV seams
+stay closed with position_vertex) plus 'quality' = S with computed weights, so that
+save(path, r.vertices, r.faces, attributes=r.attributes, position_vertex=r.position_vertex)
+writes the CLI's output file. Arrays as in saliency(); the GIL is released while it
+computes, and Ctrl-C stops it (KeyboardInterrupt).
+)" + kAttributesDoc + "\n" + kSaliencyArgsDoc).c_str());
 }
 
 }  // namespace meshsal_py

@@ -6,7 +6,7 @@ namespace meshsal_py {
 
 namespace py = pybind11;
 
-void bind_io(py::module_& m);        // load, devices
+void bind_io(py::module_& m);        // load, save, devices
 void bind_saliency(py::module_& m);  // saliency
 void bind_simplify(py::module_& m);  // simplify
 void bind_view(py::module_& m);      // best_view, render

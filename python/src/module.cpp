@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "interrupt.h"
+#include "paths.h"
 
 namespace py = pybind11;
 
@@ -26,6 +27,7 @@ PYBIND11_MODULE(_meshsal, m) {
   if (!error) throw py::error_already_set();
   error_class = error;
   m.attr("Error") = py::reinterpret_steal<py::object>(error);
+  meshsal_py::add_path_errors(m, m.attr("Error"));  // meshsal.FileNotFoundError, PermissionError
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -123,7 +123,6 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
   std::vector<double> xyz;
   if (vertices.itemsize() == 4) read_vertices<float>(vertices, xyz);
   else read_vertices<double>(vertices, xyz);
-  mesh.double_positions = vertices.itemsize() == 8;
   const size_t n = xyz.size() / 3;
   const bool is_signed = kind_f == 'i';
   switch (faces.itemsize()) {
@@ -136,6 +135,11 @@ meshsal::Mesh mesh_from_arrays(const py::handle& vertices_obj, const py::handle&
   meshsal::set_model_positions(mesh, xyz.data(), n);
   meshsal::validate_mesh(mesh);  // empty mesh, only zero-area triangles: meshsal.Error
   return mesh;
+}
+
+bool float32_vertices(const py::handle& vertices) {
+  return py::isinstance<py::array>(vertices) && py::reinterpret_borrow<py::array>(vertices).dtype().kind() == 'f' &&
+         py::reinterpret_borrow<py::array>(vertices).itemsize() == 4;
 }
 
 std::vector<double> vertex_values(const py::handle& obj, size_t count, const char* name) {

@@ -21,6 +21,10 @@ namespace py = pybind11;
 // library's own checks (no triangle of non-zero area) raise meshsal.Error.
 meshsal::Mesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces);
 
+// True for a float32 numpy array (results then come back in float32 where that holds them);
+// float64 arrays, lists and the rest give float64 results.
+bool float32_vertices(const py::handle& vertices);
+
 // A per-vertex float array (any real dtype, 1-D, `count` values, finite) as doubles.
 // `name` starts the error messages.
 std::vector<double> vertex_values(const py::handle& values, size_t count, const char* name);

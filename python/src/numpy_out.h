@@ -27,10 +27,11 @@ py::array_t<T> to_numpy(std::vector<T>&& values, std::vector<py::ssize_t> shape)
 // saliency() of them equals the CLI's on the file). Otherwise (a result): float64 where
 // float32 would not hold them (meshsal::positions_need_double: float64 input, a double PLY,
 // a scan at survey coordinates), else float32.
-inline py::array model_vertices(const meshsal::Mesh& mesh, bool exact = false) {
+// `wide_input`: the caller's vertices were float64, so are the results.
+inline py::array model_vertices(const meshsal::Mesh& mesh, bool exact = false, bool wide_input = false) {
   const py::ssize_t n = py::ssize_t(mesh.vertex_count());
   std::vector<double> xyz = meshsal::model_positions(mesh);
-  bool wide = meshsal::positions_need_double(mesh);
+  bool wide = wide_input || meshsal::positions_need_double(mesh);
   for (size_t i = 0; exact && !wide && i < xyz.size(); ++i) wide = double(float(xyz[i])) != xyz[i];
   if (wide) return to_numpy(std::move(xyz), {n, 3});
   std::vector<float> narrow(xyz.begin(), xyz.end());

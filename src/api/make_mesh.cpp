@@ -13,7 +13,6 @@ Mesh make_mesh_from(const Real* positions, size_t vertex_count, const uint32_t* 
     throw Error("make_mesh: null array with a non-zero count");
   Mesh mesh;
   mesh.triangles.assign(indices, indices + index_count);
-  mesh.double_positions = sizeof(Real) == sizeof(double);
   const std::vector<double> xyz(positions, positions + 3 * vertex_count);
   set_model_positions(mesh, xyz.data(), vertex_count);
   validate_mesh(mesh);

@@ -5,17 +5,52 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "command.h"
+#include "json_object.h"
+#include "meshsal/meshsal.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/vk_context.h"
 #endif
 
 namespace meshsal_cli {
 
+// --json: one JSON array on one line, an object per device as the library lists them
+// (meshsal::list_devices; Python's meshsal.devices() gives the same keys); [] without any.
+static int print_devices_json() {
+  std::vector<meshsal::DeviceInfo> devices;
+  if (meshsal::built_with_vulkan()) devices = meshsal::list_devices();
+  std::string out = "[";
+  for (const meshsal::DeviceInfo& d : devices) {
+    if (out.size() > 1) out += ",";
+    out += JsonObject()
+               .count("index", uint64_t(d.index))
+               .text("name", d.name)
+               .text("type", d.type)
+               .count("device_local_bytes", d.device_local_bytes)
+               .text("api_version", d.api_version)
+               .flag("has_compute", d.has_compute)
+               .str();
+  }
+  out += "]\n";
+  std::fputs(out.c_str(), stdout);
+  std::fflush(stdout);
+  return 0;
+}
+
+static void add_json_flag(CLI::App& sub, bool& json) {
+  sub.add_flag("--json", json,
+               "Print the devices as one JSON array on stdout: index, name, type, device_local_bytes, "
+               "api_version, has_compute");
+}
+
 #if !MESHSAL_WITH_VULKAN
-static RunFn setup_devices(CLI::App&) {
-  return []() {
+static RunFn setup_devices(CLI::App& sub) {
+  auto json = std::make_shared<bool>(false);
+  add_json_flag(sub, *json);
+  return [json]() {
+    if (*json) return print_devices_json();
     std::printf("this meshsal was built without Vulkan: the CPU path is used\n");
     return 0;
   };
@@ -33,7 +68,10 @@ static std::string size_text(uint64_t bytes) {
 static RunFn setup_devices(CLI::App& sub) {
   auto validation = std::make_shared<bool>(false);
   sub.add_flag("--validation", *validation, "enable the Khronos validation layer");
-  return [validation]() {
+  auto json = std::make_shared<bool>(false);
+  add_json_flag(sub, *json);
+  return [validation, json]() {
+    if (*json) return print_devices_json();
     auto devices = meshsal::vk::list_devices(*validation);
     if (devices.empty()) {
       std::printf("no Vulkan devices (the CPU path is used)\n");

@@ -38,7 +38,7 @@ struct Options {
   std::vector<std::string> compare;
   double theta_deg = 0, phi_deg = 0;
   int size = 512;
-  bool grey = false, flat = false, edges = false, best = false, json = false;
+  bool grey = false, flat = false, edges = false, best = false, json = false, quiet = false;
   unsigned threads = 0;
 };
 
@@ -49,6 +49,7 @@ int run(const Options& o) {
   std::vector<std::string> inputs{o.input, o.saliency_from};
   inputs.insert(inputs.end(), o.compare.begin(), o.compare.end());
   check_outputs({{o.output, "-o", {".png"}}}, inputs);
+  const Backend backend = parse_backend(o.backend);  // a usage error even where unused (--grey)
   RenderStyle style;
   style.size = o.size;
   style.smooth = !o.flat && o.compare.empty();
@@ -62,20 +63,22 @@ int run(const Options& o) {
   ViewAngles view{o.theta_deg * rad, o.phi_deg * rad};
 
   VertexProperties props;
-  Mesh mesh = load_input(o.input, false, &props);
+  Mesh mesh = load_input(o.input, o.quiet, &props);
   const ViewScore kind = parse_view_score(o.score);
   std::vector<double> score;
   std::string source, device = "cpu";  // where the view was scored: the CPU unless --best ran on a GPU
   if (!o.grey || o.best) {
-    Progress progress(stderr_is_terminal());
+    Progress progress(!o.quiet && stderr_is_terminal());
     SaliencyOptions sopt;
     sopt.cancel = interrupt_flag();
     sopt.threads = o.threads;
-    sopt.backend = parse_backend(o.backend);
+    sopt.backend = backend;
     sopt.precision = meshsal::parse_precision(o.precision);
     sopt.method = meshsal::parse_method(o.method);
     sopt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-    sopt.notice = [](const std::string& m) { std::fprintf(stderr, "%s\n", printable(m).c_str()); };
+    sopt.notice = [&o](const std::string& m) {
+      if (!o.quiet) std::fprintf(stderr, "%s\n", printable(m).c_str());
+    };
     const std::string from = saliency_source_file(o.input, props, o.saliency_from, kind == ViewScore::Saliency);
     score = vertex_score(mesh, kind, from, sopt, &source);
     progress.finish();
@@ -97,25 +100,34 @@ int run(const Options& o) {
     const Viewpoint b = best_viewpoint(mesh, score, vo);
     view = b.view;
     device = b.backend_name;
-    std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
-    if (!b.note.empty()) std::fprintf(stderr, "note: %s\n", b.note.c_str());
+    if (!o.quiet) std::fprintf(stderr, "best view: %s\n", view_text(view, style.up).c_str());
+    if (!b.note.empty() && !o.quiet) std::fprintf(stderr, "note: %s\n", b.note.c_str());
   }
   const std::vector<double>* shown = o.grey ? nullptr : &score;
   const std::string name = std::filesystem::path(o.input).filename().string();
   const std::string score_name = kind == ViewScore::Saliency ? "saliency" : "|mean curvature|";
   VisibleScore visible;
+  int width = 0, height = 0;  // of the picture written
   if (o.compare.empty()) {
-    write_png(o.output, titled_view(mesh, shown, view, style, name, score_name, &visible));
+    const Image picture = titled_view(mesh, shown, view, style, name, score_name, &visible);
+    write_png(o.output, picture);
+    width = picture.width, height = picture.height;
   } else {
-    Mesh plain = load_input(o.compare[0], false);
-    Mesh salient = load_input(o.compare[1], false);
+    Mesh plain = load_input(o.compare[0], o.quiet);
+    Mesh salient = load_input(o.compare[1], o.quiet);
     // Each panel is labelled with its file's name.
-    write_png(o.output, compare_picture(mesh, shown, plain, salient, view, style, name,
-                                        std::filesystem::path(o.compare[0]).filename().string(),
-                                        std::filesystem::path(o.compare[1]).filename().string()));
+    const Image picture = compare_picture(mesh, shown, plain, salient, view, style, name,
+                                          std::filesystem::path(o.compare[0]).filename().string(),
+                                          std::filesystem::path(o.compare[1]).filename().string());
+    write_png(o.output, picture);
+    width = picture.width, height = picture.height;
     if (shown && o.json) visible = picture_visible_score(mesh, score, view, style.up);
   }
-  if (!o.json) return 0;
+  if (!o.json) {
+    // One line, as the other commands say what they wrote (stdout; --json replaces it).
+    if (!o.quiet) std::printf("wrote %s (%dx%d)\n", printable(o.output).c_str(), width, height);
+    return 0;
+  }
   // The view in the angles of --up; visible_score = U of the original as the title gives it
   // (CPU visibility at 512 px), null without a score (--grey).
   JsonObject j;
@@ -156,7 +168,8 @@ RunFn setup(CLI::App& app) {
                  "LO,HI ends of the colour scale, values or percentiles (e.g. 0,0.5 or 5%,99%); default minimum,maximum")
       ->check(color_range_check());
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' instead of computing saliency");
-  app.add_option("--score", o->score, "colour by saliency or curvature (|H|)")->capture_default_str();
+  app.add_option("--score", o->score, "colour by saliency or curvature (|H|)")
+      ->capture_default_str()->check(CLI::IsMember({"saliency", "curvature"}));  // a usage error (2)
   app.add_option("--compare", o->compare,
                  "PLAIN SALIENT: two simplified meshes drawn right of IN, same camera, coloured by distance to IN")
       ->expected(2);
@@ -168,6 +181,7 @@ RunFn setup(CLI::App& app) {
   add_precision_option(app, &o->precision);
   add_method_option(app, &o->method);
   add_threads_option(app, o->threads, "CPU threads, 0 = all cores");
+  app.add_flag("-q,--quiet", o->quiet, "Print nothing on success (no notes either)");
   app.add_flag("--json", o->json,
                "Print one JSON object on stdout: mesh, output, device, the view's angles (theta, phi, "
                "theta_deg, phi_deg, direction), visible_score U and visible_fraction, seconds");

@@ -22,8 +22,8 @@ namespace {
 struct Args {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
-  std::string input, output, weights = meshsal::weighting_name(meshsal::kDefaultWeighting);
-  std::string saliency_from, backend = "auto";
+  std::string input, output, saliency_from, backend = "auto";
+  std::string weights = meshsal::weighting_name(meshsal::kDefaultWeighting);  // --weights
   long long target_faces = 0;
   double ratio = 0;
   double lambda = 100, alpha_percentile = 30, weight_floor = meshsal::kDefaultWeightFloor, eps_frac = 0.003;

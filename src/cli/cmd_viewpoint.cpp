@@ -147,7 +147,8 @@ RunFn setup(CLI::App& app) {
       "directions (null without --views or --map).");
   app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
-  app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")->capture_default_str();
+  app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")
+      ->capture_default_str()->check(CLI::IsMember({"saliency", "curvature"}));  // a usage error (2)
   app.add_option("--restarts", o->restarts, "gradient-ascent restarts from random directions")
       ->capture_default_str()->check(whole_in(1, 1000));
   app.add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();

@@ -17,6 +17,20 @@ std::string number_text(double x) {
   return buf;
 }
 
+// CLI11 puts "--OPTION: " in front of a validator's message: a library message that starts
+// with the option's name ("--color-range: ...", "--scales must ...") loses it, so the name
+// is said once.
+std::string without_option_name(std::string message, const std::string& option) {
+  if (message.compare(0, option.size(), option) == 0) {
+    size_t cut = option.size();
+    if (message.compare(cut, 2, ": ") == 0) cut += 2;
+    else if (message.compare(cut, 1, " ") == 0) cut += 1;
+    else return message;
+    message.erase(0, cut);
+  }
+  return message;
+}
+
 }  // namespace
 
 CLI::Validator finite_in(double lo, double hi, bool lo_open) {
@@ -40,7 +54,7 @@ CLI::Validator color_range_check() {
         try {
           meshsal::parse_color_range(text);
         } catch (const meshsal::Error& e) {
-          return e.what();
+          return without_option_name(e.what(), "--color-range");
         }
         return "";
       },
@@ -84,9 +98,7 @@ CLI::Validator scales_list() {
         try {
           meshsal::parse_scales(text);
         } catch (const meshsal::Error& e) {
-          std::string message = e.what();  // CLI11 puts "--scales: " in front already
-          if (message.rfind("--scales ", 0) == 0) message.erase(0, 9);
-          return message;
+          return without_option_name(e.what(), "--scales");
         }
         return "";
       },

@@ -17,16 +17,14 @@ using namespace meshsal;
 
 void write_saliency_ply(const std::string& path, const Mesh& mesh, const SaliencyResult& r,
                         bool dump_scales) {
-  std::vector<PlyFloatProperty> props{{"quality", &r.saliency}};
+  std::vector<PlyFloatProperty> props;  // after quality = S, which the library's writer puts first
   std::vector<std::string> names;
   if (dump_scales) {
     props.push_back({"curvature", &r.curvature});
     for (size_t i = 0; i < r.raw.size(); ++i) names.push_back("saliency_raw_" + std::to_string(i));
     for (size_t i = 0; i < r.raw.size(); ++i) props.push_back({names[i], &r.raw[i]});
   }
-  // The pictures' colour scale (ColorRange's default: minimum..maximum, square-root position).
-  std::vector<uint8_t> rgb = colormap_values(r.saliency, r.is_point);
-  write_ply(path, mesh, props, &rgb);
+  meshsal::write_saliency_ply(path, mesh, r.saliency, props, &r.is_point);
 }
 
 SaliencyStats saliency_stats(const SaliencyResult& r) {

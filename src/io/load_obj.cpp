@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "io/mesh_io_internal.h"
 #include "io/text_scan.h"
@@ -147,6 +149,9 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
   std::vector<Corner> face, corners;  // with attributes: this face's, and every triangle's
   std::vector<float> texcoords, normals;
   bool any_vt = false, any_vn = false;
+  // Face indices beyond the vertices defined so far (forward references, legal) and their
+  // lines: checked against the final count at the end, named as the file writes them.
+  std::vector<std::pair<uint32_t, size_t>> forward;
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
   };
@@ -156,6 +161,11 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
     if (key == "v") {
       const std::string problem = take_xyz(line, mesh.source_positions);
       if (!problem.empty()) throw fail(problem);
+      // Named here, as the file numbers its vertices (from 1), not by validate_mesh.
+      for (size_t k = mesh.source_positions.size() - 3; k < mesh.source_positions.size(); ++k)
+        if (!std::isfinite(mesh.source_positions[k]))
+          throw fail("vertex " + std::to_string(mesh.source_positions.size() / 3) + " has a non-finite coordinate (" +
+                     std::to_string(mesh.source_positions[k]) + ")");
       // Optional w or r g b columns follow; they are not needed.
     } else if (attributes && key == "vt") {
       const std::string problem = take_floats(line, 1, 2, texcoords);  // u [v [w]]
@@ -171,6 +181,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         Corner c;
         const std::string problem = parse_corner(tok, defined, c);
         if (!problem.empty()) throw fail(problem);
+        if (c.v >= defined[0]) forward.emplace_back(c.v, scan.line_no);
         any_vt |= c.vt != kNone;
         any_vn |= c.vn != kNone;
         face.push_back(c);
@@ -194,6 +205,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         int64_t v = idx > 0 ? idx - 1 : defined + idx;
         if (v < 0) throw fail("face index " + std::to_string(idx) + " points before the first vertex");
         if (v > 0xFFFFFFFEll) throw fail("face index " + std::to_string(idx) + " is out of range");
+        if (v >= defined) forward.emplace_back(uint32_t(v), scan.line_no);
         poly.push_back(static_cast<uint32_t>(v));
         if (poly.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
       }
@@ -201,6 +213,11 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
       append_fan(mesh.triangles, poly.data(), poly.size());
     }
   }
+  for (const auto& [v, line_no] : forward)
+    if (v >= mesh.source_positions.size() / 3)
+      throw Error(name + ": line " + std::to_string(line_no) + ": face index " + std::to_string(uint64_t(v) + 1) +
+                  " is beyond the file's " + std::to_string(mesh.source_positions.size() / 3) +
+                  " vertices (OBJ indices start at 1)");
   if (any_vt || any_vn) split_corners(mesh, corners, texcoords, normals, any_vt, any_vn, name);
   localize_read_positions(mesh);
   return mesh;

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/colormap.h"
+#include "core/mesh_points.h"
 #include "core/model_frame.h"
 #include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
@@ -133,6 +135,23 @@ void write_ply(const std::string& path, const Mesh& mesh,
   });
 }
 
+void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                        const std::vector<PlyFloatProperty>& extra, const std::vector<uint8_t>* is_point) {
+  check_mesh(path, mesh);
+  if (saliency.size() != mesh.vertex_count())
+    throw Error(path + ": cannot write: " + std::to_string(saliency.size()) + " saliency values for " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  std::vector<PlyFloatProperty> props{{"quality", &saliency}};
+  props.insert(props.end(), extra.begin(), extra.end());
+  // The pictures' colour scale (ColorRange's default: minimum..maximum, square-root position).
+  if (is_point && is_point->size() != mesh.vertex_count())
+    throw Error(path + ": cannot write: " + std::to_string(is_point->size()) + " mesh-point flags for " +
+                std::to_string(mesh.vertex_count()) + " vertices");
+  const std::vector<uint8_t> rgb =
+      colormap_values(saliency, is_point ? *is_point : referenced_vertices(mesh));
+  write_ply(path, mesh, props, &rgb);
+}
+
 void write_obj(const std::string& path, const Mesh& mesh) {
   check_mesh(path, mesh);
   // vt from the first texture-coordinate pair found, vn from nx ny nz; other attributes
@@ -191,22 +210,31 @@ void write_obj(const std::string& path, const Mesh& mesh) {
       flush();
     };
     out += "# written by meshsal\n";
-    // A coordinate is written as the shortest text of its float when that float is the value
-    // or float is close enough for the whole file (positions_need_double) and the vertex was
-    // moved; else as the shortest text of the double: a value read from the file is written
-    // as read, and a scan at survey coordinates keeps its digits.
+    // A coordinate is written as the shortest text of the double where the file needs double
+    // (positions_need_double) or that text has at most 9 significant digits (a value as a file
+    // had it, e.g. 0.123456789: written as read); else as the shortest text of its float (a
+    // computed position, whose float is within 1e-7 of the diagonal). The value decides, so
+    // every front end writes the same bytes for the same positions.
     const bool wide = positions_need_double(mesh);
+    auto add_coordinate = [&](double x) {
+      char d[64];
+      const auto r = std::to_chars(d, d + sizeof d, x);
+      int digits = 0;
+      bool leading = true;
+      for (const char* c = d; c < r.ptr && *c != 'e'; ++c)
+        if (*c >= '1' && *c <= '9') ++digits, leading = false;
+        else if (*c == '0' && !leading) ++digits;
+      if (double(float(x)) == x || !(wide || digits <= 9)) add_number(float(x));
+      else out.append(d, r.ptr);
+    };
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
       if (welded && pv[v] != v) continue;
       double xyz[3];
       model_position(mesh, v, xyz);
-      const bool as_read = !mesh.source_positions.empty() && xyz[0] == mesh.source_positions[3 * v] &&
-                           xyz[1] == mesh.source_positions[3 * v + 1] && xyz[2] == mesh.source_positions[3 * v + 2];
       out += 'v';
       for (double x : xyz) {
         out += ' ';
-        if (double(float(x)) == x || !(wide || as_read)) add_number(float(x));
-        else add_number(x);
+        add_coordinate(x);
       }
       out += '\n';
       flush();

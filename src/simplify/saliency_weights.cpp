@@ -90,15 +90,19 @@ std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh)
   return std::vector<double>(it->second.begin(), it->second.end());
 }
 
-const char* weighting_name(Weighting weighting) {
-  return weighting == Weighting::None ? "none" : weighting == Weighting::Saliency ? "saliency" : "balanced";
-}
-
 Weighting parse_weighting(const std::string& name) {
   if (name == "none") return Weighting::None;
   if (name == "saliency") return Weighting::Saliency;
   if (name == "balanced") return Weighting::Balanced;
   throw Error("weights must be 'saliency', 'balanced' or 'none', got '" + name + "'");
+}
+
+const char* weighting_name(Weighting weighting) {
+  switch (weighting) {
+    case Weighting::None: return "none";
+    case Weighting::Balanced: return "balanced";
+    default: return "saliency";
+  }
 }
 
 SaliencyWeightOptions weight_preset(Weighting weighting) {
