@@ -18,9 +18,6 @@ namespace meshsal_cli {
 // end are passed over.
 uint64_t torn_last_line(const std::string& path);
 
-// True when `text` is exactly one JSON value (RFC 8259; blanks around it allowed).
-bool is_json(const std::string& text);
-
 class BatchLog {
  public:
   // Opens (creates) the log for appending; a last line without its newline gets one first,

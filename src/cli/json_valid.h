@@ -1,0 +1,12 @@
+// meshsal CLI: is a text one JSON value? (the batch log's torn-line check; the tests'
+// json_valid() uses the same parser).
+#pragma once
+#include <string>
+
+namespace meshsal_cli {
+
+// True when `text` is exactly one JSON value (RFC 8259, no extensions; blanks around it
+// allowed; nesting deeper than 64 is refused).
+bool is_json(const std::string& text);
+
+}  // namespace meshsal_cli
