@@ -28,7 +28,7 @@ TEST_CASE("saliency options out of range throw meshsal::Error", "[saliency]") {
   CHECK_THROWS_WITH(compute_saliency_cpu(mesh, o), Catch::StartsWith("scales and eps-frac: the widest surround sigma"));
   o = {};
   CHECK_NOTHROW(check_saliency_options(o));
-  CHECK_THROWS_WITH(parse_scales("2,1e300"), "--scales must be a comma-separated list of numbers in (0, 100], got '2,1e300'");
+  CHECK_THROWS_WITH(parse_scales("2,1e300"), "scales must be a comma-separated list of numbers in (0, 100], got '2,1e300'");
 
   std::vector<double> s(mesh.vertex_count(), 1.0);
   CHECK_THROWS_WITH(smooth_saliency(mesh, s, 0.0), "eps-frac must be a finite number in (0, 0.1], got 0");

@@ -108,8 +108,8 @@ TEST_CASE("pictures: the colour scale runs from a clear blue to dark red, --colo
   CHECK(r.hi == 0.5);
   CHECK_THROWS_WITH(parse_color_range("1,0.5"), Catch::Contains("LO must be below HI"));
   CHECK_THROWS_WITH(parse_color_range("0,120%"), Catch::Contains("percentile must be in [0, 100]"));
-  CHECK_THROWS_WITH(parse_color_range("nan,1"), Catch::Contains("--color-range must be LO,HI"));
-  CHECK_THROWS_WITH(parse_color_range("1"), Catch::Contains("--color-range must be LO,HI"));
+  CHECK_THROWS_WITH(parse_color_range("nan,1"), Catch::Contains("color range must be LO,HI"));
+  CHECK_THROWS_WITH(parse_color_range("1"), Catch::Contains("color range must be LO,HI"));
 
   std::vector<double> v(101);
   for (int i = 0; i <= 100; ++i) v[size_t(i)] = i * 0.01;

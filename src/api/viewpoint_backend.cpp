@@ -34,7 +34,7 @@ ViewScorerSetup make_view_scorer(const Mesh& mesh, const std::vector<double>& sc
       hw = -1;  // no Vulkan driver at all
     }
     if (hw >= 0) return gpu_backend().view_scorer(mesh, score, options, device >= 0 ? device : hw);
-    if (notice) notice("auto: no hardware GPU, visibility on the CPU twin (--backend gpu uses any Vulkan device)");
+    if (notice) notice("auto: no hardware GPU, visibility on the CPU twin (backend gpu uses any Vulkan device)");
   }
   return cpu_scorer(mesh, score, options);
 }

@@ -12,7 +12,7 @@ namespace meshsal {
 ViewScore parse_view_score(const std::string& text) {
   if (text == "saliency") return ViewScore::Saliency;
   if (text == "curvature") return ViewScore::Curvature;
-  throw Error("--score must be saliency or curvature, got '" + text + "'");
+  throw Error("score must be saliency or curvature, got '" + text + "'");
 }
 
 std::vector<double> vertex_score(const Mesh& mesh, ViewScore kind, const std::string& saliency_from,

@@ -18,11 +18,11 @@ std::string number_text(double x) {
 }
 
 // CLI11 puts "--OPTION: " in front of a validator's message: a library message that starts
-// with the option's name ("--color-range: ...", "--scales must ...") loses it, so the name
-// is said once.
-std::string without_option_name(std::string message, const std::string& option) {
-  if (message.compare(0, option.size(), option) == 0) {
-    size_t cut = option.size();
+// with what it parses ("color range: ...", "scales must ...": the library names no flags)
+// loses that, so the name is said once.
+std::string without_option_name(std::string message, const std::string& subject) {
+  if (message.compare(0, subject.size(), subject) == 0) {
+    size_t cut = subject.size();
     if (message.compare(cut, 2, ": ") == 0) cut += 2;
     else if (message.compare(cut, 1, " ") == 0) cut += 1;
     else return message;
@@ -54,7 +54,7 @@ CLI::Validator color_range_check() {
         try {
           meshsal::parse_color_range(text);
         } catch (const meshsal::Error& e) {
-          return without_option_name(e.what(), "--color-range");
+          return without_option_name(e.what(), "color range");
         }
         return "";
       },
@@ -98,7 +98,7 @@ CLI::Validator scales_list() {
         try {
           meshsal::parse_scales(text);
         } catch (const meshsal::Error& e) {
-          return without_option_name(e.what(), "--scales");
+          return without_option_name(e.what(), "scales");
         }
         return "";
       },

@@ -57,7 +57,7 @@ std::vector<uint8_t> colormap_values(const std::vector<double>& values, const st
 }
 
 ColorRange parse_color_range(const std::string& text) {
-  const std::string what = "--color-range must be LO,HI (numbers, or percentiles such as 5%,99%)";
+  const std::string what = "color range must be LO,HI (numbers, or percentiles such as 5%,99%)";
   size_t comma = text.find(',');
   if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
     throw Error(what + ", got '" + text + "'");
@@ -74,10 +74,10 @@ ColorRange parse_color_range(const std::string& text) {
     if (p.empty() || !end || *end != '\0' || errno == ERANGE || !std::isfinite(v[i]))
       throw Error(what + ", got '" + text + "'");
     if (pct[i] && (v[i] < 0 || v[i] > 100))
-      throw Error("--color-range: a percentile must be in [0, 100], got '" + part[i] + "'");
+      throw Error("color range: a percentile must be in [0, 100], got '" + part[i] + "'");
   }
   if (pct[0] == pct[1] && !(v[0] < v[1]))
-    throw Error("--color-range: LO must be below HI, got '" + text + "'");
+    throw Error("color range: LO must be below HI, got '" + text + "'");
   ColorRange r;
   r.lo = v[0];
   r.hi = v[1];
