@@ -99,9 +99,9 @@ TEST_CASE("weights: the balanced preset on the bumpy sphere", "[simplify]") {
   const Mesh mesh = make_bumpy_sphere(4, &feature);
   SaliencyOptions so;
   so.backend = Backend::Cpu;
-  double alpha = 0;
-  const std::vector<double> w =
-      simplification_weights(mesh, weight_preset(Weighting::Balanced), so, nullptr, &alpha);
+  const SimplificationWeights sw = simplification_weights(mesh, weight_preset(Weighting::Balanced), so);
+  const std::vector<double>& w = sw.weights;
+  const double alpha = sw.alpha;
   SaliencyOptions so2 = so;
   so2.smoothed = true;
   const SaliencyResult s = compute_saliency(mesh, so2);
@@ -125,30 +125,27 @@ TEST_CASE("weights: the balanced preset on the bumpy sphere", "[simplify]") {
   CHECK(double(high - feature_high) <= 0.5 * double(n - feature_n));
 }
 
-TEST_CASE("weights: device_out names the saliency's device, seams or not", "[simplify]") {
+TEST_CASE("weights: the result names the saliency's device, seams or not", "[simplify]") {
   SaliencyOptions so;
   so.backend = Backend::Cpu;
   const SaliencyWeightOptions wo = weight_preset(Weighting::Saliency);
   const Mesh plain = make_bumpy_sphere(3);
-  std::string device = "unset";
-  simplification_weights(plain, wo, so, nullptr, nullptr, nullptr, &device);
-  CHECK(device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
+  CHECK(simplification_weights(plain, wo, so).device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
 
   // Split at a UV seam: weighed on the position-welded mesh, the device still comes back.
   LoadOptions lo;
   lo.attributes = true;
   const Mesh seamed = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 3)), "seamed.obj", nullptr, lo);
   REQUIRE_FALSE(seamed.position_vertex.empty());
-  device = "unset";
-  std::vector<double> s;
-  const std::vector<double> w = simplification_weights(seamed, wo, so, nullptr, nullptr, &s, &device);
-  CHECK(device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
-  CHECK(w.size() == seamed.vertex_count());
+  const SimplificationWeights computed = simplification_weights(seamed, wo, so);
+  CHECK(computed.device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
+  CHECK(computed.weights.size() == seamed.vertex_count());
+  CHECK(computed.saliency.size() == seamed.vertex_count());
 
-  // S given by the caller: no device computed it, the caller's value stays.
-  device = "file";
-  simplification_weights(seamed, wo, so, &s, nullptr, nullptr, &device);
-  CHECK(device == "file");
+  // S given by the caller: no device computed it; the same weights come back.
+  const SimplificationWeights given = simplification_weights(seamed, wo, so, &computed.saliency);
+  CHECK(given.device.empty());
+  CHECK(given.weights == computed.weights);
 }
 
 TEST_CASE("cli simplify --json: the device of a seamed OBJ's saliency", "[simplify]") {

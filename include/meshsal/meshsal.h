@@ -476,21 +476,23 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     const SaliencyOptions& options);
 
+// What simplification_weights() returns.
+struct SimplificationWeights {
+  std::vector<double> weights;   // W per vertex (0 on vertices no triangle uses)
+  double alpha = 0;              // the alpha_percentile of Sm over the mesh points
+  std::vector<double> saliency;  // S per vertex: computed, or the one given
+  std::string device;            // what computed S (SaliencyResult::backend_name: "cpu (N
+                                 // threads)" or the Vulkan device's name); empty when S was given
+};
+
 // The per-vertex weights W of saliency-guided simplification: saliency (computed with
 // `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
 // smoothed to Sm = G(S, 3 eps) with saliency_options.method (smooth_saliency), then
-// saliency_weights(). `alpha_out` receives alpha,
-// `saliency_out` S. A mesh split at seams (Mesh::position_vertex) is weighed welded.
-// `device_out` receives the name of the device that computed S (SaliencyResult::backend_name:
-// "cpu" or the Vulkan device's name), seams or not; when S is taken from `saliency` no device
-// computed it and *device_out is left unchanged (the caller's default).
-std::vector<double> simplification_weights(const Mesh& mesh,
-                                           const SaliencyWeightOptions& weight_options,
-                                           const SaliencyOptions& saliency_options,
-                                           const std::vector<double>* saliency = nullptr,
-                                           double* alpha_out = nullptr,
-                                           std::vector<double>* saliency_out = nullptr,
-                                           std::string* device_out = nullptr);
+// saliency_weights(). A mesh split at seams (Mesh::position_vertex) is weighed welded (the
+// twins get their position's values). Every front end (simplify, batch, Python) calls this.
+SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWeightOptions& weight_options,
+                                             const SaliencyOptions& saliency_options,
+                                             const std::vector<double>* saliency = nullptr);
 
 // Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
 // or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into
@@ -655,7 +657,7 @@ struct ViewpointOptions {
 // The camera of a view: orthographic, looking from `eye` towards `target` (mesh
 // coordinates), `up` the picture's up direction (unit), framing a square of half side
 // `half_extent` model units around `target` (before RenderStyle::margin). view_camera()
-// makes it; render_view(mesh, score, camera, style) renders exactly that picture.
+// makes it; render_camera_view(mesh, score, camera, style) renders exactly that picture.
 struct ViewCamera {
   ViewAngles view;              // the direction, in the frame of up_axis
   UpAxis up_axis = UpAxis::Y;
@@ -744,9 +746,10 @@ Image render_view(const Mesh& mesh, const std::vector<double>* score, const View
 
 // The same from a camera made by view_camera (or best_viewpoint) for this mesh: the picture
 // of camera.view with camera.up_axis as the up axis (style.up is not read), pixel for pixel
-// that of render_view(mesh, score, camera.view, style with up = camera.up_axis).
-Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
-                  const RenderStyle& style = {});
+// that of render_view(mesh, score, camera.view, style with up = camera.up_axis). (Its own
+// name: an overload of render_view would make render_view(mesh, s, {}, style) ambiguous.)
+Image render_camera_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
+                         const RenderStyle& style = {});
 
 // Writes a PNG (atomically, as write_ply). Throws Error naming the file.
 void write_png(const std::string& path, const Image& image);

@@ -135,12 +135,13 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     // A target at or above the face count keeps the mesh as it is (the library's rule),
     // with no saliency computed for it.
     if (computed && !meshsal::simplify_keeps_mesh(options, mesh.triangle_count())) {
-      std::vector<double> used;
-      w = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s, &out.alpha, &used,
-                                          &out.device);
+      meshsal::SimplificationWeights sw = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s);
+      w = std::move(sw.weights);
+      out.alpha = sw.alpha;
+      if (!sw.device.empty()) out.device = sw.device;
       // S goes on the mesh as its `quality` attribute, as `meshsal simplify` puts it in its
       // PLY output (replacing one the input had), and is carried like the others.
-      std::vector<float> q(used.begin(), used.end());
+      std::vector<float> q(sw.saliency.begin(), sw.saliency.end());
       bool replaced = false;
       for (meshsal::VertexAttribute& at : mesh.attributes)
         if (at.name == "quality") at.values = q, replaced = true;

@@ -158,7 +158,7 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       vo.device = device;
       vo.cancel = so.cancel;
       const meshsal::Viewpoint b = meshsal::best_viewpoint(mesh, score, vo);
-      image = meshsal::render_view(mesh, grey ? nullptr : &score, b.camera, style);
+      image = meshsal::render_camera_view(mesh, grey ? nullptr : &score, b.camera, style);
     } else {
       image = meshsal::render_view(mesh, grey ? nullptr : &score, meshsal::ViewAngles{theta / kDeg, phi / kDeg}, style);
     }

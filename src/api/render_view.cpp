@@ -11,8 +11,8 @@ Image render_view(const Mesh& mesh, const std::vector<double>* score, const View
   return render_mesh(mesh, score ? &colours : nullptr, frame_mesh(mesh, style.up), view, style);
 }
 
-Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
-                  const RenderStyle& style) {
+Image render_camera_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
+                         const RenderStyle& style) {
   RenderStyle s = style;
   s.up = camera.up_axis;
   return render_view(mesh, score, camera.view, s);

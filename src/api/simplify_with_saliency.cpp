@@ -11,38 +11,36 @@
 
 namespace meshsal {
 
-std::vector<double> simplification_weights(const Mesh& mesh,
-                                           const SaliencyWeightOptions& weight_options,
-                                           const SaliencyOptions& saliency_options,
-                                           const std::vector<double>* saliency,
-                                           double* alpha_out, std::vector<double>* saliency_out,
-                                           std::string* device_out) {
+SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWeightOptions& weight_options,
+                                             const SaliencyOptions& saliency_options,
+                                             const std::vector<double>* saliency) {
   const CancelScope cancel(saliency_options.cancel);
   // Vertices split at attribute seams: weigh the position-welded surface, then copy.
   if (!mesh.position_vertex.empty()) {
     check_position_vertex(mesh);
-    std::vector<double> w = simplification_weights(position_welded(mesh), weight_options, saliency_options,
-                                                   saliency, alpha_out, saliency_out, device_out);
-    copy_to_twins(mesh, w);
-    if (saliency_out) copy_to_twins(mesh, *saliency_out);
+    SimplificationWeights w = simplification_weights(position_welded(mesh), weight_options, saliency_options, saliency);
+    copy_to_twins(mesh, w.weights);
+    copy_to_twins(mesh, w.saliency);
     return w;
   }
+  SimplificationWeights out;
   std::vector<double> smoothed;
   if (saliency) {
     if (saliency->size() != mesh.vertex_count())
       throw Error("saliency has " + std::to_string(saliency->size()) + " values, the mesh has " +
                   std::to_string(mesh.vertex_count()) + " vertices");
     smoothed = smooth_saliency(mesh, *saliency, saliency_options);
-    if (saliency_out) *saliency_out = *saliency;
+    out.saliency = *saliency;
   } else {
     SaliencyOptions so = saliency_options;
     so.smoothed = true;
     SaliencyResult r = compute_saliency(mesh, so);
     smoothed = std::move(r.smoothed);
-    if (device_out) *device_out = r.backend_name;
-    if (saliency_out) *saliency_out = std::move(r.saliency);
+    out.device = r.backend_name;
+    out.saliency = std::move(r.saliency);
   }
-  return saliency_weights(smoothed, referenced_vertices(mesh), weight_options, alpha_out);
+  out.weights = saliency_weights(smoothed, referenced_vertices(mesh), weight_options, &out.alpha);
+  return out;
 }
 
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
@@ -67,9 +65,9 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
   // The whole mesh asked for: no saliency to compute.
   if (simplify_keeps_mesh(options, mesh.triangle_count())) return simplify_mesh(mesh, options, nullptr, report);
   const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
-  const std::vector<double> weights =
-      simplification_weights(mesh, weight_options, saliency_options, saliency, alpha_out);
-  return simplify_mesh(mesh, options, &weights, report);
+  const SimplificationWeights w = simplification_weights(mesh, weight_options, saliency_options, saliency);
+  if (alpha_out) *alpha_out = w.alpha;
+  return simplify_mesh(mesh, options, &w.weights, report);
 }
 
 }  // namespace meshsal

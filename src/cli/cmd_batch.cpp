@@ -162,7 +162,7 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
     if (same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() && r.smoothed.size() == mesh.vertex_count())
       weights = saliency_weights(r.smoothed, referenced_vertices(mesh), p.weights);
     else
-      weights = simplification_weights(mesh, p.weights, p.saliency);
+      weights = simplification_weights(mesh, p.weights, p.saliency).weights;
   }
   const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
   write_obj(out, s);

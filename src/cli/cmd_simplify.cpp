@@ -147,11 +147,12 @@ int run(const Args& a) {
     }
     // One call for every case; it names the device that computed S (seams too), and leaves
     // `device` at "cpu" when S comes from --saliency-from.
-    std::vector<double> saliency;
-    weights = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file,
-                                     &alpha, obj ? nullptr : &saliency, &device);
+    SimplificationWeights w = simplification_weights(mesh, wo, so, a.saliency_from.empty() ? nullptr : &from_file);
+    weights = std::move(w.weights);
+    alpha = w.alpha;
+    if (!w.device.empty()) device = w.device;
     t_saliency = ts.seconds();
-    if (!obj) set_quality(mesh, saliency);  // S goes to the output PLY as `quality`
+    if (!obj) set_quality(mesh, w.saliency);  // S goes to the output PLY as `quality`
   }
 
   progress.update("simplifying", 0.0);
