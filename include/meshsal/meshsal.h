@@ -100,6 +100,20 @@ struct Mesh {
   // simplifier keeps seams closed (see simplify_mesh).
   std::vector<uint32_t> position_vertex;
 
+  // Optional: an OBJ's materials (read by load_obj always, whatever LoadOptions::attributes
+  // says; other formats leave them empty). material_libraries: the file names of every
+  // mtllib line, in order, as written (relative to the OBJ's folder; the .mtl files and
+  // their textures are not read). materials: the names of the usemtl lines, each once, in
+  // order of first use; "" stands for "no material" (the faces before the first usemtl).
+  // triangle_material: empty = no usemtl in the file; else one index into materials per
+  // triangle (a polygon's fan triangles all take the polygon's). simplify_mesh keeps each
+  // surviving triangle's material (a collapse never changes it); write_obj writes the
+  // mtllib lines after its header and a usemtl line before each run of triangles with
+  // another material than the previous one ("usemtl" with no name for "" after a named run).
+  std::vector<std::string> material_libraries;
+  std::vector<std::string> materials;
+  std::vector<uint32_t> triangle_material;
+
   size_t vertex_count() const { return positions.size() / 3; }
   size_t triangle_count() const { return triangles.size() / 3; }
 };

@@ -166,6 +166,10 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
   }
   const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
   write_obj(out, s);
+  // Once per run (the notice prints each line once), not once per model.
+  if (!material_files_note(m.path, out, s.material_libraries).empty() && p.saliency.notice)
+    p.saliency.notice("note: simplified OBJs name their inputs' material files (mtllib) as the inputs do: "
+                      "copy the .mtl files and textures beside them");
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
@@ -248,7 +252,7 @@ std::string options_line(const Options& o) {
   // Only where a simplified mesh is made, so that the records of runs without one still
   // hold (a simplified mesh carries the input's attributes since these options came).
   if (o.simplify > 0 || o.target_error > 0) {
-    std::snprintf(buf, sizeof buf, " target_error=%.17g lock_border=%d attributes=1", o.target_error,
+    std::snprintf(buf, sizeof buf, " target_error=%.17g lock_border=%d attributes=1 materials=1", o.target_error,
                   int(o.lock_border));
     line += buf;
   }

@@ -1,9 +1,11 @@
-// meshsal: Wavefront OBJ reader (v and f lines; with LoadOptions::attributes also vt, vn and
-// the v/vt/vn corners of faces; everything else is ignored).
+// meshsal: Wavefront OBJ reader (v, f, mtllib and usemtl lines; with LoadOptions::attributes
+// also vt, vn and the v/vt/vn corners of faces; everything else is ignored).
 // A small dedicated parser instead of tinyobjloader: tinyobjloader turns an unparsable
 // coordinate ("nan", "1,5") into 0 and silently drops faces with < 3 vertices, and it
 // reads through iostreams. Here every problem is an Error naming the line.
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -152,13 +154,31 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
   // Face indices beyond the vertices defined so far (forward references, legal) and their
   // lines: checked against the final count at the end, named as the file writes them.
   std::vector<std::pair<uint32_t, size_t>> forward;
+  // The current usemtl's index into mesh.materials (kNone before the first), one per
+  // triangle as the faces are read.
+  uint32_t material = kNone;
+  std::map<std::string, uint32_t, std::less<>> material_index;
   auto fail = [&](const std::string& problem) -> Error {
     return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
   };
   while (scan.next_line(line)) {
     line = strip_comment(line);
     const std::string_view key = next_token(line);
-    if (key == "v") {
+    if (key == "mtllib") {
+      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line))
+        mesh.material_libraries.emplace_back(tok);
+    } else if (key == "usemtl") {
+      // The name is the rest of the line (without surrounding blanks): "usemtl" alone is "".
+      while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
+      while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
+      auto [it, fresh] = material_index.try_emplace(std::string(line), uint32_t(mesh.materials.size()));
+      if (fresh) {
+        // The faces so far have no material; from here on every triangle gets one entry.
+        if (mesh.materials.empty()) mesh.triangle_material.assign(mesh.triangles.size() / 3, kNone);
+        mesh.materials.emplace_back(line);
+      }
+      material = it->second;
+    } else if (key == "v") {
       const std::string problem = take_xyz(line, mesh.source_positions);
       if (!problem.empty()) throw fail(problem);
       // Named here, as the file numbers its vertices (from 1), not by validate_mesh.
@@ -188,11 +208,13 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         if (face.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
       }
       if (const std::string problem = polygon_size_problem(face.size()); !problem.empty()) throw fail(problem);
-      for (size_t i = 1; i + 1 < face.size(); ++i)
+      for (size_t i = 1; i + 1 < face.size(); ++i) {
         for (const Corner& c : {face[0], face[i], face[i + 1]}) {
           corners.push_back(c);
           mesh.triangles.push_back(c.v);
         }
+        if (!mesh.materials.empty()) mesh.triangle_material.push_back(material);
+      }
     } else if (key == "f") {
       poly.clear();
       const int64_t defined = static_cast<int64_t>(mesh.source_positions.size() / 3);
@@ -211,7 +233,18 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
       }
       if (const std::string problem = polygon_size_problem(poly.size()); !problem.empty()) throw fail(problem);
       append_fan(mesh.triangles, poly.data(), poly.size());
+      if (!mesh.materials.empty()) mesh.triangle_material.resize(mesh.triangles.size() / 3, material);
     }
+  }
+  if (mesh.materials.empty()) {
+    mesh.triangle_material.clear();
+  } else if (std::find(mesh.triangle_material.begin(), mesh.triangle_material.end(), kNone) !=
+             mesh.triangle_material.end()) {
+    // Faces before the first usemtl: the material "" (no material).
+    auto [it, fresh] = material_index.try_emplace(std::string(), uint32_t(mesh.materials.size()));
+    if (fresh) mesh.materials.emplace_back();
+    for (uint32_t& m : mesh.triangle_material)
+      if (m == kNone) m = it->second;
   }
   for (const auto& [v, line_no] : forward)
     if (v >= mesh.source_positions.size() / 3)

@@ -28,6 +28,15 @@ void validate_mesh(const Mesh& mesh) {
       throw Error("attribute '" + a.name + "' has " + std::to_string(a.values.size()) +
                   " values for " + std::to_string(nv) + " vertices");
   check_position_vertex(mesh);
+  if (!mesh.triangle_material.empty()) {
+    if (mesh.triangle_material.size() != mesh.triangle_count())
+      throw Error("triangle_material has " + std::to_string(mesh.triangle_material.size()) + " entries for " +
+                  std::to_string(mesh.triangle_count()) + " triangles");
+    for (size_t t = 0; t < mesh.triangle_material.size(); ++t)
+      if (mesh.triangle_material[t] >= mesh.materials.size())
+        throw Error("triangle " + std::to_string(t) + " has material " + std::to_string(mesh.triangle_material[t]) +
+                    " but the mesh has " + std::to_string(mesh.materials.size()) + " materials");
+  }
   const float* p = mesh.positions.data();
   for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
     const float* a = p + 3 * size_t(mesh.triangles[t]);

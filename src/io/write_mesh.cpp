@@ -170,6 +170,16 @@ void write_obj(const std::string& path, const Mesh& mesh) {
     if (a && a->values.size() != mesh.vertex_count())
       throw Error(path + ": cannot write: attribute '" + a->name + "' has " + std::to_string(a->values.size()) +
                   " values for " + std::to_string(mesh.vertex_count()) + " vertices");
+  const std::vector<uint32_t>& tm = mesh.triangle_material;
+  if (!tm.empty()) {
+    if (tm.size() != mesh.triangle_count())
+      throw Error(path + ": cannot write: triangle_material has " + std::to_string(tm.size()) + " entries for " +
+                  std::to_string(mesh.triangle_count()) + " triangles");
+    for (uint32_t m : tm)
+      if (m >= mesh.materials.size())
+        throw Error(path + ": cannot write: a triangle has material " + std::to_string(m) + " but the mesh has " +
+                    std::to_string(mesh.materials.size()) + " materials");
+  }
   // Split twins (position_vertex) share one v line: a seam stays one surface in the file.
   const std::vector<uint32_t>& pv = mesh.position_vertex;
   const bool welded = pv.size() == mesh.vertex_count();
@@ -210,6 +220,7 @@ void write_obj(const std::string& path, const Mesh& mesh) {
       flush();
     };
     out += "# written by meshsal\n";
+    for (const std::string& lib : mesh.material_libraries) out += "mtllib " + lib + "\n";
     // A coordinate is written as the shortest text of the double where the file needs double
     // (positions_need_double) or that text has at most 9 significant digits (a value as a file
     // had it, e.g. 0.123456789: written as read); else as the shortest text of its float (a
@@ -245,7 +256,13 @@ void write_obj(const std::string& path, const Mesh& mesh) {
       for (size_t v = 0; v < mesh.vertex_count(); ++v)
         add_line("vn", {nrm[0]->values[v], nrm[1]->values[v], nrm[2]->values[v]});
     const uint32_t* t = mesh.triangles.data();
+    uint32_t material = UINT32_MAX;  // of the previous triangle; "" needs no usemtl at the start
     for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+      if (i % 3 == 0 && !tm.empty() && tm[i / 3] != material) {
+        const std::string& name = mesh.materials[tm[i / 3]];
+        if (material != UINT32_MAX || !name.empty()) out += name.empty() ? "usemtl\n" : "usemtl " + name + "\n";
+        material = tm[i / 3];
+      }
       out += i % 3 == 0 ? "f " : " ";
       add_number(welded ? v_line[t[i]] : uint64_t(t[i]) + 1);
       if (has_vt || has_vn) {

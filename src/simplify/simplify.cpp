@@ -145,6 +145,7 @@ struct State {
   int normal_at[3] = {-1, -1, -1};
   std::vector<uint32_t> tri;                 // 3 per triangle
   std::vector<uint8_t> tri_alive;
+  std::vector<uint32_t> tri_material;        // per triangle when the input has triangle_material
   // Triangles of each vertex (may hold dead ones): runs in one pool, run_of[v].count
   // entries from run_of[v].start, room for run_of[v].cap; a run that outgrows its room
   // moves to the end.
@@ -359,11 +360,17 @@ void State::take_input(const Mesh& mesh, const SimplifyOptions& options,
         throw Error("simplify: vertex weights must be finite and >= 0");
   }
   // Triangles with a repeated index are not part of the surface: drop them.
+  // Each kept triangle's material goes with it (a collapse never changes it).
+  const bool materials = !mesh.triangle_material.empty();
+  if (materials && mesh.triangle_material.size() != nt_in)
+    throw Error("simplify: triangle_material has " + std::to_string(mesh.triangle_material.size()) +
+                " entries for " + std::to_string(nt_in) + " triangles");
   tri.reserve(3 * nt_in);
   for (size_t t = 0; t < nt_in; ++t) {
     const uint32_t* v = &mesh.triangles[3 * t];
     if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
     tri.insert(tri.end(), v, v + 3);
+    if (materials) tri_material.push_back(mesh.triangle_material[t]);
   }
   const size_t nt = tri.size() / 3;
   faces = nt;
@@ -883,6 +890,13 @@ Mesh State::output(SimplifyReport* report) const {
   for (size_t t = 0; t < tri_alive.size(); ++t)
     if (tri_alive[t])
       for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
+  out.material_libraries = mesh_in->material_libraries;
+  out.materials = mesh_in->materials;
+  if (!tri_material.empty()) {
+    out.triangle_material.reserve(out.triangle_count());
+    for (size_t t = 0; t < tri_alive.size(); ++t)
+      if (tri_alive[t]) out.triangle_material.push_back(tri_material[t]);
+  }
   output_attributes(*mesh_in, origin, &out);
   carry_model_frame(*mesh_in, origin, out);  // an unmoved survivor is written as it was read
   if (report) {

@@ -1,0 +1,232 @@
+// OBJ materials (mtllib, usemtl): read, written back, and carried through simplify_mesh,
+// `meshsal simplify` and `meshsal batch --simplify`.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.h"
+#include "meshsal/meshsal.h"
+#include "test_io_util.h"
+
+using namespace meshsal;
+using namespace meshsal_test;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kN = 25;  // vertices per side of the grid
+
+// A wavy (kN x kN)-vertex grid over [-1, 1]^2 with vt, two material libraries on one mtllib
+// line and quads: the left half's (x < 0) under `usemtl left side` (a name with a blank),
+// the right half's under `usemtl B`. `lead`: also two triangles before any usemtl.
+std::string grid_obj(bool lead = false) {
+  std::string s = "# test grid\nmtllib grid.mtl extra.mtl\n";
+  auto coord = [](int i) { return -1.0 + 2.0 * i / (kN - 1); };
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i) {
+      const double x = coord(i), y = coord(j), z = 0.15 * std::sin(3 * x) * std::cos(2 * y);
+      s += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+    }
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i) s += "vt " + std::to_string(double(i) / (kN - 1)) + " " + std::to_string(double(j) / (kN - 1)) + "\n";
+  auto id = [](int i, int j) { return std::to_string(j * kN + i + 1); };
+  auto corner = [&](int i, int j) { return " " + id(i, j) + "/" + id(i, j); };
+  if (lead) s += "f" + corner(0, 0) + corner(1, 0) + corner(0, 1) + "\nf" + corner(1, 0) + corner(1, 1) + corner(0, 1) + "\n";
+  for (int half = 0; half < 2; ++half) {
+    s += half == 0 ? "usemtl  left side \n" : "usemtl B\n";
+    for (int j = 0; j + 1 < kN; ++j)
+      for (int i = half == 0 ? 0 : (kN - 1) / 2; i < (half == 0 ? (kN - 1) / 2 : kN - 1); ++i) {
+        if (lead && i == 0 && j == 0) continue;
+        s += "f" + corner(i, j) + corner(i + 1, j) + corner(i + 1, j + 1) + corner(i, j + 1) + "\n";
+      }
+  }
+  return s;
+}
+
+// Each triangle's centroid x in the model's coordinates.
+std::vector<double> centroid_x(const Mesh& m) {
+  std::vector<double> cx;
+  const std::vector<double> p = model_positions(m);
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    cx.push_back((p[3 * m.triangles[3 * t]] + p[3 * m.triangles[3 * t + 1]] + p[3 * m.triangles[3 * t + 2]]) / 3);
+  return cx;
+}
+
+// Every triangle of `m` (simplified from grid_obj) has the material of the half it lies in;
+// a triangle at the middle line may lean over it by a collapse, never by much.
+void check_halves(const Mesh& m) {
+  REQUIRE(m.materials == std::vector<std::string>{"left side", "B"});
+  REQUIRE(m.triangle_material.size() == m.triangle_count());
+  const std::vector<double> cx = centroid_x(m);
+  size_t left = 0, right = 0, leaning = 0;
+  for (size_t t = 0; t < cx.size(); ++t) {
+    INFO("triangle " << t << " centroid x " << cx[t] << " material " << m.triangle_material[t]);
+    if (m.triangle_material[t] == 0) {
+      ++left;
+      CHECK(cx[t] < 0.2);
+      leaning += cx[t] > 0;
+    } else {
+      ++right;
+      CHECK(cx[t] > -0.2);
+      leaning += cx[t] < 0;
+    }
+  }
+  CHECK(left > 10);
+  CHECK(right > 10);
+  CHECK(leaning * 10 < cx.size());
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("OBJ materials: mtllib and usemtl are read, with or without attributes", "[materials]") {
+  for (bool attributes : {false, true}) {
+    INFO("attributes " << attributes);
+    LoadOptions lo;
+    lo.attributes = attributes;
+    const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+    CHECK(m.material_libraries == std::vector<std::string>{"grid.mtl", "extra.mtl"});
+    CHECK(m.materials == std::vector<std::string>{"left side", "B"});
+    REQUIRE(m.triangle_material.size() == m.triangle_count());
+    REQUIRE(m.triangle_count() == 2 * (kN - 1) * (kN - 1));
+    // Quads: both fan triangles of a polygon take its material; the left half comes first.
+    const size_t half = m.triangle_count() / 2;
+    for (size_t t = 0; t < m.triangle_count(); ++t) CHECK(m.triangle_material[t] == (t < half ? 0u : 1u));
+    const std::vector<double> cx = centroid_x(m);
+    for (size_t t = 0; t < cx.size(); ++t) CHECK((cx[t] < 0) == (m.triangle_material[t] == 0));
+  }
+  // Faces before the first usemtl: the material "", after the named ones.
+  const Mesh lead = load_mesh_bytes(grid_obj(true), "grid.obj");
+  CHECK(lead.materials == std::vector<std::string>{"left side", "B", ""});
+  CHECK(lead.triangle_material[0] == 2);
+  CHECK(lead.triangle_material[1] == 2);
+  CHECK(lead.triangle_material[2] == 0);
+  // No usemtl: no materials (an mtllib alone is still kept).
+  const Mesh plain = load_mesh_bytes("mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "plain.obj");
+  CHECK(plain.material_libraries == std::vector<std::string>{"a.mtl"});
+  CHECK(plain.materials.empty());
+  CHECK(plain.triangle_material.empty());
+}
+
+TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]") {
+  TempDir dir;
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+  write_obj(dir.file("out.obj"), m);
+  const std::string text = read_file(dir.file("out.obj"));
+  CHECK(text.rfind("# written by meshsal\nmtllib grid.mtl\nmtllib extra.mtl\nv ", 0) == 0);
+  CHECK(count(text, "usemtl left side\nf ") == 1);
+  CHECK(count(text, "usemtl B\nf ") == 1);
+  CHECK(count(text, "usemtl") == 2);
+  const Mesh back = load_mesh(dir.file("out.obj"), nullptr, lo);
+  CHECK(back.material_libraries == std::vector<std::string>{"grid.mtl", "extra.mtl"});
+  CHECK(back.materials == m.materials);
+  CHECK(back.triangle_material == m.triangle_material);
+  CHECK(back.triangles == m.triangles);
+
+  // Faces with no material first: no usemtl before them, and they read back as "".
+  const Mesh lead = load_mesh_bytes(grid_obj(true), "grid.obj");
+  write_obj(dir.file("lead.obj"), lead);
+  const std::string lead_text = read_file(dir.file("lead.obj"));
+  CHECK(count(lead_text, "usemtl") == 2);
+  const Mesh lead_back = load_mesh(dir.file("lead.obj"));
+  CHECK(lead_back.triangle_material == lead.triangle_material);
+  CHECK(lead_back.materials == lead.materials);
+
+  // "" after a named material: a bare usemtl, read back as "".
+  Mesh hand = make_mesh(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}.data(), 4,
+                        std::vector<uint32_t>{0, 1, 2, 1, 3, 2}.data(), 6);
+  hand.materials = {"A", ""};
+  hand.triangle_material = {0, 1};
+  write_obj(dir.file("hand.obj"), hand);
+  CHECK(read_file(dir.file("hand.obj")).find("usemtl A\nf 1 2 3\nusemtl\nf 2 4 3\n") != std::string::npos);
+  const Mesh hand_back = load_mesh(dir.file("hand.obj"));
+  CHECK(hand_back.materials == hand.materials);
+  CHECK(hand_back.triangle_material == hand.triangle_material);
+
+  // A mesh without materials: no mtllib, no usemtl.
+  Mesh none = hand;
+  none.materials.clear();
+  none.triangle_material.clear();
+  write_obj(dir.file("none.obj"), none);
+  CHECK(read_file(dir.file("none.obj")).find("mtl") == std::string::npos);
+
+  // Wrong sizes or indices are refused by validate_mesh and write_obj.
+  Mesh bad = hand;
+  bad.triangle_material = {0, 2};
+  CHECK_THROWS_AS(validate_mesh(bad), Error);
+  CHECK_THROWS_AS(write_obj(dir.file("bad.obj"), bad), Error);
+  bad.triangle_material = {0};
+  CHECK_THROWS_AS(validate_mesh(bad), Error);
+  CHECK_THROWS_AS(write_obj(dir.file("bad.obj"), bad), Error);
+  CHECK_NOTHROW(validate_mesh(hand));
+}
+
+TEST_CASE("OBJ materials: simplify_mesh keeps each surviving triangle's material", "[materials]") {
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+  SimplifyOptions so;
+  so.ratio = 0.2;
+  const Mesh out = simplify_mesh(m, so);
+  CHECK(out.triangle_count() < m.triangle_count() / 3);
+  CHECK(out.material_libraries == m.material_libraries);
+  check_halves(out);
+  CHECK_NOTHROW(validate_mesh(out));
+}
+
+TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep mtllib and usemtl", "[materials][cli]") {
+  const fs::path dir = scratch_dir("materials");
+  fs::create_directories(dir / "in");
+  const fs::path in = dir / "in" / "grid.obj";
+  {
+    std::ofstream f(in, std::ios::binary);
+    f << grid_obj();
+  }
+  LoadOptions lo;
+  lo.attributes = true;
+
+  // Beside the input: no note.
+  CliRun r = run_cli("simplify " + quoted(in.string()) + " -o " + quoted((dir / "in" / "small.obj").string()) +
+                         " --ratio 0.2 --backend cpu",
+                     dir);
+  REQUIRE(r.rc == 0);
+  CHECK(r.err.find("material") == std::string::npos);
+  std::string text = read_file((dir / "in" / "small.obj").string());
+  CHECK(text.find("\nmtllib grid.mtl\nmtllib extra.mtl\n") != std::string::npos);
+  CHECK(count(text, "usemtl left side\n") == 1);
+  CHECK(count(text, "usemtl B\n") == 1);
+  check_halves(load_mesh((dir / "in" / "small.obj").string(), nullptr, lo));
+
+  // Elsewhere: the same file, and a note to copy the .mtl files.
+  r = run_cli("simplify " + quoted(in.string()) + " -o " + quoted((dir / "small.obj").string()) +
+                  " --ratio 0.2 --backend cpu",
+              dir);
+  REQUIRE(r.rc == 0);
+  CHECK(r.err.find("grid.mtl extra.mtl") != std::string::npos);
+  CHECK(read_file((dir / "small.obj").string()) == text);
+
+  // batch --simplify: the same mesh (simplify's options), the same materials.
+  r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
+                  " --backend cpu --simplify 0.2",
+              dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.rc == 0);
+  CHECK(r.err.find("copy the .mtl files") != std::string::npos);
+  const std::string batch_text = read_file((dir / "out" / "grid_simplified.obj").string());
+  CHECK(count(batch_text, "mtllib grid.mtl\n") == 1);
+  CHECK(count(batch_text, "usemtl left side\n") == 1);
+  CHECK(count(batch_text, "usemtl B\n") == 1);
+  check_halves(load_mesh((dir / "out" / "grid_simplified.obj").string(), nullptr, lo));
+  fs::remove_all(dir);
+}
