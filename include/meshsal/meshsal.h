@@ -145,6 +145,12 @@ std::vector<double> model_positions(const Mesh& mesh);
 // double x, y, z; write_obj the digits of a double.
 bool positions_need_double(const Mesh& mesh);
 
+// Sets the per-vertex attribute `name` of `mesh` to `values` (one per vertex, kept as float),
+// replacing an attribute of that name or adding it last: e.g. S as "quality", which
+// `meshsal simplify` and Python's simplify() put on the mesh they simplify. Error when the
+// count is not the vertex count.
+void set_vertex_attribute(Mesh& mesh, const std::string& name, const std::vector<double>& values);
+
 // Throws Error when the mesh is empty, an index is out of range, a coordinate is NaN/Inf
 // or no triangle has non-zero area.
 void validate_mesh(const Mesh& mesh);

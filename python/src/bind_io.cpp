@@ -33,7 +33,7 @@ py::object load(const py::object& path_obj, bool properties, bool attributes, un
   } catch (const meshsal::Error& e) {
     raise_file_error(e, path_obj);
   }
-  const py::ssize_t n = py::ssize_t(mesh.vertex_count()), m = py::ssize_t(mesh.triangle_count());
+  const py::ssize_t m = py::ssize_t(mesh.triangle_count());
   py::array vertices = model_vertices(mesh, true);
   py::array faces = to_numpy(std::move(mesh.triangles), {m, 3});
   if (attributes)

@@ -141,15 +141,11 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
       if (!sw.device.empty()) out.device = sw.device;
       // S goes on the mesh as its `quality` attribute, as `meshsal simplify` puts it in its
       // PLY output (replacing one the input had), and is carried like the others.
-      std::vector<float> q(sw.saliency.begin(), sw.saliency.end());
-      bool replaced = false;
-      for (meshsal::VertexAttribute& at : mesh.attributes)
-        if (at.name == "quality") at.values = q, replaced = true;
-      if (!replaced && q.size() == n) mesh.attributes.push_back({"quality", std::move(q)});
+      meshsal::set_vertex_attribute(mesh, "quality", sw.saliency);
     }
     result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
   }
-  const py::ssize_t nv = py::ssize_t(result.vertex_count()), nf = py::ssize_t(result.triangle_count());
+  const py::ssize_t nf = py::ssize_t(result.triangle_count());
   out.vertices = model_vertices(result, false, !float32_vertices(vertices));  // float64 in, float64 out
   out.faces = to_numpy(std::move(result.triangles), {nf, 3});
   out.vertex_origin = to_numpy(std::move(report.vertex_origin));

@@ -33,18 +33,6 @@ struct Args {
   unsigned threads = 0;
 };
 
-// Puts S on the mesh as its `quality` attribute (replacing one the input had).
-void set_quality(meshsal::Mesh& mesh, const std::vector<double>& saliency) {
-  if (saliency.size() != mesh.vertex_count()) return;
-  std::vector<float> q(saliency.begin(), saliency.end());
-  for (meshsal::VertexAttribute& at : mesh.attributes)
-    if (at.name == "quality") {
-      at.values = std::move(q);
-      return;
-    }
-  mesh.attributes.push_back({"quality", std::move(q)});
-}
-
 // S from a saliency PLY, as `meshsal saliency` writes it for the same input. For an OBJ
 // split at UV seams that is the saliency of its positions: the first vertices, the twins
 // after them. A PLY's twins are vertices of the file: one value each.
@@ -155,7 +143,7 @@ int run(const Args& a) {
     alpha = w.alpha;
     if (!w.device.empty()) device = w.device;
     t_saliency = ts.seconds();
-    if (!obj) set_quality(mesh, w.saliency);  // S goes to the output PLY as `quality`
+    if (!obj) set_vertex_attribute(mesh, "quality", w.saliency);  // S goes to the output PLY as `quality`
   }
 
   progress.update("simplifying", 0.0);
