@@ -11,12 +11,12 @@
 #include "batch_state.h"
 
 namespace meshsal_cli {
-namespace {
-
 std::string file_name(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
+
+namespace {
 
 // "bunny.ply.gz" -> "bunny"; a name without a mesh extension stays whole.
 std::string stem(const std::string& name) {

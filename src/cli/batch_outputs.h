@@ -12,6 +12,9 @@ struct ModelOutputs {
   std::vector<std::string> all() const;  // those asked for
 };
 
+// The last component of a path: "models/bunny.ply" -> "bunny.ply".
+std::string file_name(const std::string& path);
+
 // One output name per input, in input order: the file name without its mesh extension
 // (and .gz); where two inputs would share it, the whole file name (bunny.obj, bunny.ply);
 // where they still do (same name in two folders), "_2", "_3".. in input order.

@@ -97,8 +97,6 @@ struct GpuCounts {
 
 const double kDeg = 180.0 / 3.14159265358979323846;
 
-std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
-
 // The best view (as `meshsal viewpoint`), its picture, and its part of the log line.
 JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& input,
                      const std::string& png, BatchProgress& progress) {
