@@ -12,7 +12,7 @@
 #include <catch2/catch.hpp>
 #include <stb/stb_image.h>
 
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal_test {

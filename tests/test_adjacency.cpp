@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include "core/adjacency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

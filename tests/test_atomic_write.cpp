@@ -9,7 +9,7 @@
 
 #include "io/atomic_write.h"
 #include "io/png_image.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_io_util.h"
 
 using meshsal_test::error_of;

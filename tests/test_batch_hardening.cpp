@@ -13,7 +13,7 @@
 #include <string>
 
 #include "cli_run.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_batch_util.h"
 

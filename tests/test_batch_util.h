@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal_test {

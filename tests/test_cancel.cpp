@@ -16,7 +16,7 @@
 #include "cli_run.h"
 #include "core/cancel.h"
 #include "core/parallel.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_batch_util.h"
 

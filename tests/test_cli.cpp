@@ -7,7 +7,7 @@
 
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "cli_run.h"
 #include "test_util.h"
 

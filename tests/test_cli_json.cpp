@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"
 #include "cli_run.h"

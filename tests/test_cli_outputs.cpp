@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "meshsal/meshsal.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "cli_run.h"
 #include "test_util.h"
 

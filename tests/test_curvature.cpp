@@ -3,7 +3,7 @@
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -5,7 +5,7 @@
 
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "saliency/gaussian_filter.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/method_error.h"

@@ -7,7 +7,7 @@
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -8,7 +8,7 @@
 
 #include "gpu/gpu_saliency.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/vk_context.h"
 #include "test_util.h"
 

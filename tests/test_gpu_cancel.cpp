@@ -6,7 +6,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 
 using namespace meshsal;

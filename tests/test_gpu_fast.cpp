@@ -17,7 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/gpu_fast.h"
 #include "gpu/gpu_fast_cells.h"
 #include "gpu/gpu_saliency.h"

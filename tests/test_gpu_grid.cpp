@@ -10,7 +10,7 @@
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "saliency/spatial_grid.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/vk_context.h"
 #include "test_util.h"
 

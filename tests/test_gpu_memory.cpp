@@ -13,7 +13,7 @@
 #include "test_gpu_selftest.h"
 #include "gpu/gpu_visibility.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "view/camera.h"
 #include "view/viewpoint.h"
 #include "view/visibility.h"

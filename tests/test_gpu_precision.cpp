@@ -16,7 +16,7 @@
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "saliency/suppression.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/vk_context.h"
 #include "test_util.h"
 

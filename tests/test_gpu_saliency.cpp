@@ -12,7 +12,7 @@
 #include "gpu/gpu_saliency.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/vk_context.h"
 #include "test_util.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "api/viewpoint_backend.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/gpu_session.h"
 #include "gpu/vk_context.h"

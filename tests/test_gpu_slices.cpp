@@ -10,7 +10,7 @@
 #include "gpu/gpu_slices.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/vk_context.h"
 #include "test_util.h"
 

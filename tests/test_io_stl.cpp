@@ -7,7 +7,7 @@
 #include <set>
 #include <utility>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_util.h"
 #include "test_io_util.h"

@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "cli_run.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "io/append_file.h"
 #include "io/atomic_write.h"
 #include "test_io_util.h"

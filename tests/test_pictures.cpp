@@ -10,8 +10,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "core/colormap.h"
-#include "core/synthetic.h"
+#include "io/colormap.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "view/camera.h"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "meshsal/meshsal.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "core/welded_view.h"
 #include "io/seam_twins.h"
 #include "cli_run.h"

@@ -8,7 +8,7 @@
 #include "view/camera.h"
 #include "meshsal/meshsal.h"
 #include "view/render.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "view/viewpoint.h"
 #include "view/visibility.h"
 #include "test_util.h"

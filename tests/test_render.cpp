@@ -10,13 +10,13 @@
 
 
 #include "view/camera.h"
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 #include "io/png_image.h"
 #include "view/render.h"
 #include "view/legend.h"
 #include "cli/render_demo.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "png_check.h"
 #include "test_util.h"
 

@@ -3,7 +3,7 @@
 
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

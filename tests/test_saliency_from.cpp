@@ -9,7 +9,7 @@
 
 #include "meshsal/meshsal.h"
 #include "simplify/saliency_weights.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;

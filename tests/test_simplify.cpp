@@ -5,7 +5,7 @@
 
 #include "meshsal/meshsal.h"
 #include "simplify/simplify.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_simplify_util.h"
 #include "test_util.h"
 

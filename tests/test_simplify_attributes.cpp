@@ -8,7 +8,7 @@
 
 #include "meshsal/meshsal.h"
 #include "test_util.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "core/welded_view.h"
 #include "simplify/simplify.h"
 #include "test_io_util.h"

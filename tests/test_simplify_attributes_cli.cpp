@@ -7,7 +7,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_io_util.h"
 #include "test_simplify_attributes_util.h"
 #include "cli_run.h"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "cli_run.h"
 #include "test_util.h"
 

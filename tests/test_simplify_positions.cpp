@@ -5,7 +5,7 @@
 #include <set>
 
 #include "simplify/simplify.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -7,7 +7,7 @@
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
 #include "simplify/surface_distance.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

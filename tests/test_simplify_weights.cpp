@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "simplify/saliency_weights.h"

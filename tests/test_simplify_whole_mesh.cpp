@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "cli_run.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "test_batch_util.h"
 

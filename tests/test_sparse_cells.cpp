@@ -2,7 +2,7 @@
 #include <random>
 
 #include "core/mesh_points.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "saliency/sparse_cells.h"
 #include "test_util.h"
 

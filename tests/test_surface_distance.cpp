@@ -5,7 +5,7 @@
 
 #include "meshsal/meshsal.h"
 #include "simplify/surface_distance.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -6,7 +6,7 @@
 #include "gpu/gpu_visibility.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "view/viewpoint.h"
 #include "api/viewpoint_backend.h"
 #include "view/visibility.h"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "json_check.h"
 #include "meshsal/meshsal.h"
 #include "test_util.h"

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "view/viewpoint.h"
 #include "test_util.h"

@@ -2,21 +2,16 @@
 
 namespace meshsal {
 
-namespace {
-const GpuBackend* registered = nullptr;  // constant-initialised: set before main() or never
-}
-
-void register_gpu_backend(const GpuBackend* backend) { registered = backend; }
-
 const GpuBackend& gpu_backend() {
-  if (!registered)
+  const GpuBackend* linked = linked_gpu_backend();
+  if (!linked)
     throw Error(
         "meshsal was built without Vulkan here (meshsal::gpu not linked, or MESHSAL_WITH_VULKAN=OFF): "
         "use the cpu backend");
-  return *registered;
+  return *linked;
 }
 
-bool built_with_vulkan() { return registered != nullptr; }
+bool built_with_vulkan() { return linked_gpu_backend() != nullptr; }
 
 std::vector<DeviceInfo> list_devices() { return gpu_backend().list_devices(); }
 

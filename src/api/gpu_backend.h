@@ -1,6 +1,7 @@
-// meshsal: the Vulkan backend's entry points as the CPU-only library sees them. src/gpu
-// fills them in when meshsal::gpu is linked (gpu/register_backend.cpp); in a build without
-// Vulkan nothing does, and every GPU request is refused with one clear message.
+// meshsal: the Vulkan backend's entry points as the rest of the api layer sees them. The
+// library a program links decides which backend it has: meshsal::gpu brings
+// gpu_backend_vulkan.cpp (the entries call src/gpu), meshsal::core brings
+// gpu_backend_none.cpp (no backend: every GPU request is refused with one clear message).
 #pragma once
 #include <memory>
 #include <string>
@@ -26,10 +27,10 @@ struct GpuBackend {
                                  const VisibilityOptions& options, int device);
 };
 
-// Called once, from a static initialiser of the Vulkan layer.
-void register_gpu_backend(const GpuBackend* backend);
+// The linked backend, or nullptr in a library without Vulkan (gpu_backend_*.cpp).
+const GpuBackend* linked_gpu_backend();
 
-// The registered backend; throws Error when this build has none.
+// The linked backend; throws Error when this library has none.
 const GpuBackend& gpu_backend();
 
 // Index of the device `auto` picks: the first discrete GPU with compute, else the first

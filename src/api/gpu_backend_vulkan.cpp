@@ -1,15 +1,12 @@
-// meshsal: plugs the Vulkan layer into the library's backend switch (api/gpu_backend.h).
-// meshsal::gpu's link interface names meshsal_gpu_backend_anchor as undefined, so the linker
-// always takes this file out of the static library and its initialiser runs.
+// meshsal: the library's backend switch (api/gpu_backend.h) in a build with Vulkan: its
+// entries call the Vulkan layer (src/gpu). This file goes into meshsal::gpu only;
+// meshsal::core gets gpu_backend_none.cpp instead, so which backend a program has is
+// decided by the library it links, with no registration at start-up.
 #include "api/gpu_backend.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/gpu_session.h"
 #include "gpu/gpu_visibility.h"
 #include "gpu/vk_context.h"
-
-extern "C" {
-int meshsal_gpu_backend_anchor = 0;
-}
 
 namespace meshsal {
 namespace {
@@ -63,7 +60,9 @@ ViewScorerSetup view_scorer(const Mesh& mesh, const std::vector<double>& score,
 }
 
 const GpuBackend backend{devices, saliency, view_scorer};
-const bool registered = (register_gpu_backend(&backend), true);
 
 }  // namespace
+
+const GpuBackend* linked_gpu_backend() { return &backend; }
+
 }  // namespace meshsal

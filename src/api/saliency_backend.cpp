@@ -61,26 +61,6 @@ std::string number_text(double x) {
 
 }  // namespace
 
-void check_saliency_options(const SaliencyOptions& options) {
-  if (!(options.eps_frac > 0 && options.eps_frac <= kMaxEpsFrac))
-    throw Error("eps-frac must be a finite number in (0, " + number_text(kMaxEpsFrac) + "], got " +
-                number_text(options.eps_frac));
-  if (options.scales.empty() || options.scales.size() > 16)
-    throw Error("scales: give 1 to 16 scales, got " + std::to_string(options.scales.size()));
-  double largest = 0;
-  for (double k : options.scales) {
-    if (!(k > 0 && k <= kMaxScale))
-      throw Error("scales must be finite numbers in (0, " + number_text(kMaxScale) + "], got " + number_text(k));
-    largest = std::max(largest, k);
-  }
-  // The surround Gaussian 2k eps wider than the whole mesh averages everything alike: the
-  // center-surround maps would be ~0 (what `--scales 1e300` gave).
-  if (2 * largest * options.eps_frac > 1)
-    throw Error("scales and eps-frac: the widest surround sigma, 2 x " + number_text(largest) +
-                " x " + number_text(options.eps_frac) +
-                " of the bounding-box diagonal, must be at most 1 diagonal");
-}
-
 // Method::Auto: fast when the exact sweep would take more pairs than kAutoPairBudget.
 Method resolve_method(const Mesh& mesh, const SaliencyOptions& options) {
   if (options.method != Method::Auto) return options.method;

@@ -15,7 +15,7 @@
 #include "meshsal/meshsal.h"
 #include "number_options.h"
 #include "core/mesh_points.h"
-#include "core/subdivide.h"
+#include "cli/subdivide.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/method_error.h"
 #include "saliency/saliency.h"

@@ -11,7 +11,7 @@
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
 #include "simplify/surface_distance.h"
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "number_options.h"
 #include "output_check.h"
 #include "progress.h"

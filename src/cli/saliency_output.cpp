@@ -8,7 +8,7 @@
 
 #include "command.h"
 #include "json_object.h"
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal_cli {

@@ -1,4 +1,4 @@
-#include "core/subdivide.h"
+#include "cli/subdivide.h"
 
 #include <algorithm>
 #include <cstdint>

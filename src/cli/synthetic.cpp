@@ -1,4 +1,4 @@
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "core/mesh_points.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "meshsal/meshsal.h"
@@ -17,20 +18,37 @@ double BoundingBox::diagonal() const {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-BoundingBox mesh_points_bbox(const Mesh& mesh, const std::vector<uint8_t>& is_point) {
+namespace {
+
+template <typename T>
+BoundingBox bounding_box_of(const T* xyz, size_t vertex_count, const uint8_t* mask) {
   BoundingBox box{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-  bool any = false;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (!is_point[v]) continue;
-    any = true;
+  for (size_t v = 0; v < vertex_count; ++v) {
+    if (mask && !mask[v]) continue;
     for (int a = 0; a < 3; ++a) {
-      double x = mesh.positions[3 * v + a];
+      const double x = xyz[3 * v + a];
+      if (!std::isfinite(x)) continue;
       box.min[a] = std::min(box.min[a], x);
       box.max[a] = std::max(box.max[a], x);
     }
   }
-  if (!any) throw Error("mesh has no vertex referenced by a triangle");
   return box;
+}
+
+}  // namespace
+
+BoundingBox bounding_box(const float* xyz, size_t vertex_count, const uint8_t* mask) {
+  return bounding_box_of(xyz, vertex_count, mask);
+}
+
+BoundingBox bounding_box(const double* xyz, size_t vertex_count, const uint8_t* mask) {
+  return bounding_box_of(xyz, vertex_count, mask);
+}
+
+BoundingBox mesh_points_bbox(const Mesh& mesh, const std::vector<uint8_t>& is_point) {
+  if (std::find(is_point.begin(), is_point.end(), 1) == is_point.end())
+    throw Error("mesh has no vertex referenced by a triangle");
+  return bounding_box(mesh.positions.data(), mesh.vertex_count(), is_point.data());
 }
 
 double scale_unit(const Mesh& mesh, const std::vector<uint8_t>& is_point, double eps_frac) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mesh_points.h"
 #include "core/model_frame.h"
 #include "meshsal/meshsal.h"
 
@@ -16,16 +17,9 @@ void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
   bool any = false;
   for (uint32_t i : mesh.triangles)
     if (i < vertex_count) any = used[i] = 1;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t v = 0; v < vertex_count; ++v)
-    if (used[v] || !any)
-      for (int k = 0; k < 3; ++k) {
-        const double x = xyz[3 * v + k];
-        if (!std::isfinite(x)) continue;
-        lo[k] = std::min(lo[k], x);
-        hi[k] = std::max(hi[k], x);
-      }
-  for (int k = 0; k < 3; ++k) mesh.origin[k] = lo[k] <= hi[k] ? lo[k] / 2 + hi[k] / 2 : 0.0;
+  const BoundingBox box = bounding_box(xyz, vertex_count, any ? used.data() : nullptr);
+  for (int k = 0; k < 3; ++k)
+    mesh.origin[k] = box.min[k] <= box.max[k] ? box.min[k] / 2 + box.max[k] / 2 : 0.0;
 
   mesh.positions.resize(3 * vertex_count);
   bool exact = true;
@@ -47,19 +41,13 @@ std::vector<double> model_positions(const Mesh& mesh) {
 
 bool positions_need_double(const Mesh& mesh) {
   if (mesh.double_positions) return true;
-  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   std::vector<uint8_t> used(mesh.vertex_count(), 0);
   for (uint32_t i : mesh.triangles)
     if (i < used.size()) used[i] = 1;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    if (used[v])
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.positions[3 * v + k]);
-        hi[k] = std::max(hi[k], mesh.positions[3 * v + k]);
-      }
+  const BoundingBox box = bounding_box(mesh.positions.data(), mesh.vertex_count(), used.data());
   double d2 = 0;
   for (int k = 0; k < 3; ++k)
-    if (lo[k] <= hi[k]) d2 += (double(hi[k]) - lo[k]) * (double(hi[k]) - lo[k]);
+    if (box.min[k] <= box.max[k]) d2 += (box.max[k] - box.min[k]) * (box.max[k] - box.min[k]);
   const double tolerance = 1e-7 * std::sqrt(d2);
   // Cheap exits: at the origin with no source, model coordinates are the floats themselves.
   if (mesh.source_positions.empty() && mesh.origin[0] == 0 && mesh.origin[1] == 0 && mesh.origin[2] == 0)

@@ -1,4 +1,4 @@
-#include "core/colormap.h"
+#include "io/colormap.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
 #include "io/atomic_write.h"

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/mesh_points.h"
 #include "core/parallel.h"
 #include "core/cancel.h"
 
@@ -309,16 +310,7 @@ SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified_
                 " values but the original mesh has " + std::to_string(original.vertex_count()) +
                 " vertices");
   SurfaceComparison r;
-  {
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (uint32_t v : original.triangles)
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], double(original.positions[3 * size_t(v) + k]));
-        hi[k] = std::max(hi[k], double(original.positions[3 * size_t(v) + k]));
-      }
-    r.diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  }
+  r.diagonal = mesh_points_bbox(original, referenced_vertices(original)).diagonal();
   const TriangleBvh simp_bvh = build_triangle_bvh(simplified);
   const TriangleBvh orig_bvh = build_triangle_bvh(original);
   const std::vector<double> fwd_pts = sample_surface(original, options.face_samples);

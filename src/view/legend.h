@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {

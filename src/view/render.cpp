@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 

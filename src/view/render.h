@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "view/camera.h"
-#include "core/colormap.h"
+#include "io/colormap.h"
 #include "meshsal/meshsal.h"
 #include "io/png_image.h"
 #include "view/viewpoint.h"

@@ -1,0 +1,42 @@
+// check_saliency_options(): the options every saliency path (CPU, GPU, every front end)
+// checks before it computes; in the saliency layer, whose CPU path calls it itself.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+
+namespace meshsal {
+
+namespace {
+
+std::string number_text(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+}  // namespace
+
+void check_saliency_options(const SaliencyOptions& options) {
+  if (!(options.eps_frac > 0 && options.eps_frac <= kMaxEpsFrac))
+    throw Error("eps-frac must be a finite number in (0, " + number_text(kMaxEpsFrac) + "], got " +
+                number_text(options.eps_frac));
+  if (options.scales.empty() || options.scales.size() > 16)
+    throw Error("scales: give 1 to 16 scales, got " + std::to_string(options.scales.size()));
+  double largest = 0;
+  for (double k : options.scales) {
+    if (!(k > 0 && k <= kMaxScale))
+      throw Error("scales must be finite numbers in (0, " + number_text(kMaxScale) + "], got " + number_text(k));
+    largest = std::max(largest, k);
+  }
+  // The surround Gaussian 2k eps wider than the whole mesh averages everything alike: the
+  // center-surround maps would be ~0 (what `--scales 1e300` gave).
+  if (2 * largest * options.eps_frac > 1)
+    throw Error("scales and eps-frac: the widest surround sigma, 2 x " + number_text(largest) +
+                " x " + number_text(options.eps_frac) +
+                " of the bounding-box diagonal, must be at most 1 diagonal");
+}
+
+}  // namespace meshsal
