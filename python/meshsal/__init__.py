@@ -14,7 +14,8 @@ computes; the library's errors raise meshsal.Error (a ValueError and a RuntimeEr
 missing file meshsal.FileNotFoundError and an unreadable one meshsal.PermissionError
 (subclasses of meshsal.Error and of the built-in ones). A wrong keyword or argument type
 raises a short TypeError that names the argument (never an input array).
-Importing it makes the C heap keep freed memory for reuse (see keep_freed_memory).
+Importing it changes nothing process-wide: keep_freed_memory() (the C heap keeps freed memory
+for the next call, as the meshsal command does) is the program's choice.
 """
 from . import _meshsal
 from ._meshsal import (  # noqa: F401
@@ -46,4 +47,3 @@ __all__ = ["Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with
            "devices", "keep_freed_memory", "load", "render", "saliency", "save", "simplify",
            "version", "__version__"]
 
-keep_freed_memory(True)

@@ -7,10 +7,14 @@
 
 namespace meshsal {
 
-void keep_freed_memory_for_reuse() {
+bool keep_freed_memory_for_reuse(bool on) {
 #if defined(__GLIBC__)
-  mallopt(M_MMAP_MAX, 0);              // large blocks from the heap, not from their own mappings
-  mallopt(M_TRIM_THRESHOLD, INT_MAX);  // and the heap's free top kept, not given back
+  mallopt(M_MMAP_MAX, on ? 0 : 65536);                  // large blocks from the heap, not their own mappings
+  mallopt(M_TRIM_THRESHOLD, on ? INT_MAX : 128 * 1024);  // and the heap's free top kept, not given back
+  return true;
+#else
+  (void)on;
+  return false;
 #endif
 }
 
