@@ -173,10 +173,10 @@ using VertexProperties = std::map<std::string, std::vector<float>>;
 // Bounds on what loading may hold in memory.
 struct LoadOptions {
   // The most bytes a gzipped file may inflate to, and a pipe (FIFO) may deliver. 0 means
-  // the environment variable MESHSAL_MAX_INPUT when it is set (bytes, with an optional
-  // K, M or G suffix), else the default: for a gzipped PLY or OFF, 64 MiB + 64 times the
-  // bytes its header's counts need (a binary STL: its triangle count); for a gzipped OBJ or
-  // ASCII STL (no counts) and for a pipe, 1 GiB.
+  // the default: for a gzipped PLY or OFF, 64 MiB + 64 times the bytes its header's counts
+  // need (a binary STL: its triangle count); for a gzipped OBJ or ASCII STL (no counts)
+  // and for a pipe, 1 GiB. The library reads no environment variable for it (the meshsal
+  // command fills it from MESHSAL_MAX_INPUT).
   uint64_t max_input_bytes = 0;
   // Fill Mesh::attributes (and Mesh::position_vertex): OBJ vt/vn, whose faces' v/vt/vn
   // corners become one vertex per distinct (v, vt, vn) (a v's first combination keeps its
