@@ -19,6 +19,7 @@
 
 #include "cli/synthetic.h"
 #include "gpu/gpu_fast.h"
+#include "gpu/vk_compute.h"
 #include "gpu/gpu_fast_cells.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
@@ -121,15 +122,20 @@ TEST_CASE("gpu fast matches the cpu with other scales and eps", "[gpu][fast]") {
 
 TEST_CASE("gpu fast: candidates split into many windows give the same sums", "[gpu][fast]") {
   // Lavapipe ends an invocation's loops after 65,535 steps, so a query's candidates are
-  // walked in windows of at most fast_window_candidates, one dispatch each; a tiny window
-  // splits every query of a small mesh into many (rows cut mid-way).
+  // walked in windows of at most Context::fast_window_candidates, one dispatch each; a tiny
+  // window splits every query of a small mesh into many (rows cut mid-way).
   const SaliencyOptions opt = fast_options();
   const Mesh mesh = make_bumpy_sphere(4);
+  uint64_t submissions = vk::host_barriers_recorded;  // every submission ends with one
   SaliencyResult one = compute_saliency_gpu(context(), mesh, opt);
-  const uint32_t saved = gpu::fast_window_candidates;
-  gpu::fast_window_candidates = 7;
-  SaliencyResult many = compare(context(), mesh, opt, "windows of 7 candidates");
-  gpu::fast_window_candidates = saved;
+  const uint64_t one_submissions = vk::host_barriers_recorded - submissions;
+  vk::Context small(-1, true);
+  small.fast_window_candidates = 7;
+  submissions = vk::host_barriers_recorded;
+  SaliencyResult many = compare(small, mesh, opt, "windows of 7 candidates");
+  const uint64_t many_submissions = vk::host_barriers_recorded - submissions;
+  CHECK(many_submissions > one_submissions);         // the context's window was used
+  CHECK(context().fast_window_candidates == 32768);  // and the shared context's left alone
   CHECK(many.pairs == one.pairs);
   for (size_t i = 0; i < one.raw.size(); ++i) CHECK(rel_error(one.raw[i], many.raw[i]) <= 1e-12);
 }

@@ -1,8 +1,8 @@
-// The CLI's heap policy: large blocks come from the heap and stay there once freed.
+// The heap policy a program may choose (the CLI does; the library never does): large blocks
+// come from the heap and stay there once freed; off, they are their own mappings again.
 #include <cstdlib>
 #include <cstring>
 
-#include "core/heap_policy.h"
 #include "test_util.h"
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -18,7 +18,7 @@
 
 TEST_CASE("heap policy: a freed 64 MB block stays in the heap for the next one", "[parallel]") {
 #if defined(__GLIBC__) && !defined(MESHSAL_OWN_ALLOCATOR)
-  meshsal::keep_freed_memory_for_reuse();
+  REQUIRE(meshsal::keep_freed_memory_for_reuse());
   const size_t size = size_t(64) << 20;
   const size_t mapped_before = mallinfo2().hblkhd;
   char* block = static_cast<char*>(std::malloc(size));
@@ -31,6 +31,18 @@ TEST_CASE("heap policy: a freed 64 MB block stays in the heap for the next one",
   const struct mallinfo2 after = mallinfo2();
   CHECK(after.fordblks >= size);  // kept as free heap memory, not given back
   CHECK(after.arena >= size);
+
+  // Off: glibc's default values again, so a block this large is a mapping of its own.
+  REQUIRE(meshsal::keep_freed_memory_for_reuse(false));
+  malloc_trim(0);  // the block kept above would serve the next one from the heap
+  const size_t mapped_off = mallinfo2().hblkhd;
+  char* own = static_cast<char*>(std::malloc(size));
+  REQUIRE(own != nullptr);
+  escape = own;
+  CHECK(mallinfo2().hblkhd >= mapped_off + size);
+  std::free(own);
+  CHECK(mallinfo2().hblkhd == mapped_off);  // unmapped when freed
+  meshsal::keep_freed_memory_for_reuse(true);  // as the test run had it
 #else
   WARN("skipped: not glibc's allocator");
 #endif

@@ -25,6 +25,7 @@
 #include <atomic>
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -173,10 +174,10 @@ using VertexProperties = std::map<std::string, std::vector<float>>;
 // Bounds on what loading may hold in memory.
 struct LoadOptions {
   // The most bytes a gzipped file may inflate to, and a pipe (FIFO) may deliver. 0 means
-  // the environment variable MESHSAL_MAX_INPUT when it is set (bytes, with an optional
-  // K, M or G suffix), else the default: for a gzipped PLY or OFF, 64 MiB + 64 times the
-  // bytes its header's counts need (a binary STL: its triangle count); for a gzipped OBJ or
-  // ASCII STL (no counts) and for a pipe, 1 GiB.
+  // the default: for a gzipped PLY or OFF, 64 MiB + 64 times the bytes its header's counts
+  // need (a binary STL: its triangle count); for a gzipped OBJ or ASCII STL (no counts)
+  // and for a pipe, 1 GiB. The library reads no environment variable for it (the meshsal
+  // command fills it from MESHSAL_MAX_INPUT).
   uint64_t max_input_bytes = 0;
   // Fill Mesh::attributes (and Mesh::position_vertex): OBJ vt/vn, whose faces' v/vt/vn
   // corners become one vertex per distinct (v, vt, vn) (a v's first combination keeps its
@@ -283,6 +284,8 @@ enum class Precision { Auto, Mixed, Double };
 enum class Method { Exact, Fast, Auto };
 constexpr double kAutoPairBudget = 2e9;  // ~6 s of exact sweep on 2 CPU cores
 
+class Device;  // an open Vulkan device, kept across calls (see "Devices" below)
+
 struct SaliencyOptions {
   // Limits (Error otherwise): eps_frac in (0, 0.1], 1..16 scales each in (0, 100], and
   // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bbox diagonal).
@@ -291,6 +294,11 @@ struct SaliencyOptions {
   unsigned threads = 0;                       // CPU threads, 0 = all cores (at most 1024)
   Backend backend = Backend::Cpu;
   int device = -1;                            // Vulkan device index (list_devices), -1 = choose
+  // An open Device to run on (may be null; not owned, must outlive the call). With it,
+  // Backend::Gpu runs there and Backend::Auto too (falling back to the CPU on failure, as
+  // Auto does); `device` is not read and the process's device cache is not used.
+  // Backend::Cpu with a session is an Error (the two contradict each other).
+  Device* session = nullptr;
   bool smoothed = false;                      // also compute Sm = G(S, 3 eps) (simplification)
   Precision precision = Precision::Auto;      // the GPU sweep's arithmetic
   Method method = Method::Exact;              // exact or approximate averages (see Method)
@@ -488,11 +496,13 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     double eps_frac = 0.003, unsigned threads = 0);
 
-// The same with the averages of the method the saliency was computed with, as
-// compute_saliency's own Sm (SaliencyOptions::smoothed): options.method (Exact, Fast, or
-// Auto decided as compute_saliency decides it), eps_frac, threads and cancel. On the CPU,
-// whatever options.backend says: the fast CPU filter takes seconds where the exact one took
-// most of a simplification's time (igea_loop2: 35.5 s against 7.1 s).
+// The same with the averages of options.method (Exact, Fast, or Auto decided as
+// compute_saliency decides it on this mesh), eps_frac, threads and cancel: the method these
+// options name, not necessarily the one that computed `saliency` (nothing records that).
+// Given the options that computed S, the result is compute_saliency's own Sm
+// (SaliencyOptions::smoothed) up to the backend's rounding. On the CPU, whatever
+// options.backend says: the fast CPU filter takes seconds where the exact one took most of
+// a simplification's time (igea_loop2: 35.5 s against 7.1 s).
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     const SaliencyOptions& options);
 
@@ -661,6 +671,7 @@ struct ViewpointOptions {
   unsigned threads = 0;                     // CPU threads (views in parallel), 0 = all cores
   Backend backend = Backend::Cpu;           // as SaliencyOptions::backend (visibility)
   int device = -1;                          // Vulkan device index, -1 = choose
+  Device* session = nullptr;                // as SaliencyOptions::session (visibility)
   // The gradient ascent's steps, as in OptimiserOptions.
   double probe = 0.05;
   double initial_step = 0.25;
@@ -791,5 +802,64 @@ bool built_with_vulkan();
 
 // The Vulkan devices. Throws Error when built without Vulkan or no driver is installed.
 std::vector<DeviceInfo> list_devices();
+
+// An open Vulkan device (instance, logical device, compute queue and, as calls use them,
+// its compiled kernels and staging area), held by the caller: pass it as
+// SaliencyOptions::session or ViewpointOptions::session and every call runs on it without
+// opening the device or compiling its kernels again. The device is released when the
+// Device is destroyed or closed (a call still running on it, or a view search's scorer,
+// keeps it until that call returns). Calls given one Device from several threads run on it
+// one at a time (each waits for the previous); calls of one thread must not nest on it (a
+// progress callback calling compute_saliency with the same Device waits forever).
+//
+// Without a session, Backend::Gpu and Backend::Auto use a process-wide cache instead (one
+// open device per index, kept until release_cached_devices() or the end of the process):
+// the command-line tool relies on it; library callers who want control use a Device.
+class Device {
+ public:
+  // Opens device `index` of list_devices(); -1 picks as Backend::Gpu does (the best
+  // device: discrete, integrated, virtual, then a CPU device such as lavapipe). Throws Error
+  // when built without Vulkan, the index does not exist or the device cannot be opened.
+  explicit Device(int index = -1);
+  ~Device();
+  Device(Device&& other) noexcept;
+  Device& operator=(Device&& other) noexcept;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  // What was opened (its `index` is the list_devices() index). Still readable after close().
+  const DeviceInfo& info() const { return info_; }
+  // Releases the device now (when the calls running on it return). A closed Device given
+  // to a call is an Error. Idempotent.
+  void close();
+  bool is_open() const;
+
+  // The open device, for the library's backend (opaque here); null once closed.
+  std::shared_ptr<void> handle() const;
+
+ private:
+  std::shared_ptr<void> handle_;
+  DeviceInfo info_;
+};
+
+// Closes the devices the process-wide cache holds (calls without a session opened them);
+// one a call is using now closes when that call ends. The next such call opens its device
+// again. Does nothing in a build without Vulkan. The cache is also closed at exit.
+void release_cached_devices();
+
+// ---------------------------------------------------------------------------------------
+// The C heap: a choice for programs, never made by the library itself (it is process-wide).
+// ---------------------------------------------------------------------------------------
+
+// A saliency run allocates and frees arrays of tens of MB stage after stage. glibc maps
+// each large block afresh and gives it back when freed, so every stage pays the page
+// faults again (igea_loop2 --method fast: 310,000 faults, 2.6 s of system time). on = true
+// keeps freed blocks in the heap for the next stage (110,000 faults, 1.0 s; peak memory
+// about 4% higher): large blocks come from the heap (M_MMAP_MAX 0) and its free top is not
+// given back (M_TRIM_THRESHOLD INT_MAX). on = false sets glibc's documented default values
+// back (M_MMAP_MAX 65536, M_TRIM_THRESHOLD 128 KiB; glibc's dynamic mmap threshold stays
+// off once either was set). Returns false, changing nothing, on other C libraries. The
+// meshsal command calls it at start-up; Python programs call meshsal.keep_freed_memory().
+bool keep_freed_memory_for_reuse(bool on = true);
 
 }  // namespace meshsal

@@ -14,10 +14,12 @@ computes; the library's errors raise meshsal.Error (a ValueError and a RuntimeEr
 missing file meshsal.FileNotFoundError and an unreadable one meshsal.PermissionError
 (subclasses of meshsal.Error and of the built-in ones). A wrong keyword or argument type
 raises a short TypeError that names the argument (never an input array).
-Importing it makes the C heap keep freed memory for reuse (see keep_freed_memory).
+Importing it changes nothing process-wide: keep_freed_memory() (the C heap keeps freed memory
+for the next call, as the meshsal command does) is the program's choice.
 """
 from . import _meshsal
 from ._meshsal import (  # noqa: F401
+    Device,
     Error,
     FileNotFoundError,
     PermissionError,
@@ -35,6 +37,7 @@ built_with_vulkan = _short_type_errors(_meshsal.built_with_vulkan)
 devices = _short_type_errors(_meshsal.devices)
 keep_freed_memory = _short_type_errors(_meshsal.keep_freed_memory)
 load = _short_type_errors(_meshsal.load)
+release_cached_devices = _short_type_errors(_meshsal.release_cached_devices)
 render = _short_type_errors(_meshsal.render)
 saliency = _short_type_errors(_meshsal.saliency)
 save = _short_type_errors(_meshsal.save)
@@ -42,8 +45,7 @@ simplify = _short_type_errors(_meshsal.simplify)
 
 # FileNotFoundError and PermissionError are left out: `from meshsal import *` would hide
 # the built-in ones (which they subclass).
-__all__ = ["Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
-           "devices", "keep_freed_memory", "load", "render", "saliency", "save", "simplify",
-           "version", "__version__"]
+__all__ = ["Device", "Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
+           "devices", "keep_freed_memory", "load", "release_cached_devices", "render", "saliency",
+           "save", "simplify", "version", "__version__"]
 
-keep_freed_memory(True)

@@ -112,8 +112,9 @@ faces F, uint32 (m, 3), both owned by numpy without a copy.
                    map position_vertex (uint32 (n,), or None when no vertex is split: an
                    OBJ v used with different vt/vn becomes one vertex per combination).
                    simplify() and save() take both back
-  max_input_bytes  bounds a gzipped file's inflated size (0: the default limits, or
-                   MESHSAL_MAX_INPUT)
+  max_input_bytes  bounds a gzipped file's inflated size and what a pipe may deliver (0:
+                   the library's default limits; the environment variable
+                   MESHSAL_MAX_INPUT is the meshsal command's and is not read here)
 
 A file that does not exist raises meshsal.FileNotFoundError, one that may not be read
 meshsal.PermissionError (subclasses of the built-in ones, with errno and filename); a bad

@@ -26,7 +26,7 @@ struct SaliencyOut {
 
 SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool raw_maps, bool smoothed,
                      const py::object& scales, double eps_frac, const std::string& method,
-                     const std::string& backend, const std::string& precision, int device, unsigned threads) {
+                     const std::string& backend, const std::string& precision, const py::object& device, unsigned threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   std::vector<std::string> notices;
   meshsal::SaliencyOptions options =

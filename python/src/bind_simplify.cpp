@@ -62,7 +62,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
                      const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
                      const py::object& position_vertex, const py::object& scales, double eps_frac,
                      const std::string& method, const std::string& backend, const std::string& precision,
-                     int device, unsigned threads) {
+                     const py::object& device, unsigned threads) {
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   const size_t n = mesh.vertex_count();
   // The CLI's rule: one of target_faces and ratio, or target_error alone.

@@ -54,7 +54,7 @@ meshsal::ElevationRange elevation_range(const py::object& elevation) {
 py::dict best_view(const py::object& vertices, const py::object& faces, const py::object& score, int restarts,
                    unsigned long long seed, int views, int resolution, double depth_tol, const std::string& up,
                    const py::object& elevation, const py::object& scales, double eps_frac, const std::string& method,
-                   const std::string& backend, const std::string& precision, int device, unsigned threads) {
+                   const std::string& backend, const std::string& precision, const py::object& device, unsigned threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   // The CLI's ranges (the library checks resolution and depth_tol itself).
   if (restarts < 1 || restarts > 1000) throw py::value_error("restarts must be in [1, 1000], got " + std::to_string(restarts));
@@ -77,9 +77,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   vo.resolution = resolution;
   vo.depth_tol_px = depth_tol;
   vo.threads = threads;
-  vo.backend = so.backend;
-  vo.device = device;
-  vo.notice = so.notice;
+  use_saliency_device(vo, so);
   meshsal::Viewpoint b;
   meshsal::ViewCamera map_best;
   {
@@ -115,7 +113,7 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
                  double phi, bool best, const std::string& up, const py::object& elevation, int size, const py::object& color_range,
                  bool grey, bool flat, bool edges, int supersample, const py::object& scales, double eps_frac,
                  const std::string& method, const std::string& backend, const std::string& precision,
-                 int device, unsigned threads) {
+                 const py::object& device, unsigned threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   if (!(theta >= -360 && theta <= 360)) throw py::value_error("theta must be in [-360, 360] degrees");
   if (!(phi >= -90 && phi <= 90)) throw py::value_error("phi must be in [-90, 90] degrees");
@@ -154,8 +152,7 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       vo.up = style.up;
       vo.elevation = band;
       vo.threads = threads;
-      vo.backend = so.backend;
-      vo.device = device;
+      use_saliency_device(vo, so);
       vo.cancel = so.cancel;
       const meshsal::Viewpoint b = meshsal::best_viewpoint(mesh, score, vo);
       image = meshsal::render_camera_view(mesh, grey ? nullptr : &score, b.camera, style);

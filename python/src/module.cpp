@@ -46,4 +46,5 @@ PYBIND11_MODULE(_meshsal, m) {
   meshsal_py::bind_simplify(m);
   meshsal_py::bind_view(m);
   meshsal_py::bind_heap(m);
+  meshsal_py::bind_device(m);
 }

@@ -20,11 +20,17 @@ struct SaliencyArgs {
   std::string method = "exact";
   std::string backend = "auto";
   std::string precision = "auto";
-  int device = -1;
+  py::object device;             // an int (a devices() index, -1 = choose) or a meshsal.Device
   unsigned threads = 0;
 };
 
+// SaliencyOptions from the arguments: device= goes to options.device (an int) or
+// options.session (a meshsal.Device, which the caller's argument keeps alive for the call).
 meshsal::SaliencyOptions saliency_options(const SaliencyArgs& args, std::vector<std::string>* notices);
+
+// The ViewpointOptions fields the saliency arguments decide (backend, device or session,
+// notices), as for saliency: best_view and render share them.
+void use_saliency_device(meshsal::ViewpointOptions& vo, const meshsal::SaliencyOptions& so);
 
 // The docstring lines that describe these arguments (appended to each function's).
 extern const char* const kSaliencyArgsDoc;

@@ -75,7 +75,7 @@ Viewpoint search(const Mesh& mesh, const std::vector<double>& score, const Viewp
   Mesh turned;
   if (o.up != UpAxis::Y) turned = in_frame(mesh, o.up);
   const Mesh& searched = o.up != UpAxis::Y ? turned : mesh;
-  const ViewScorerSetup setup = make_view_scorer(searched, score, vopt, o.backend, o.device, notice);
+  const ViewScorerSetup setup = make_view_scorer(searched, score, vopt, o.backend, o.device, notice, o.session);
   out.backend_name = setup.backend_name;
   out.optimised = optimise_viewpoint(setup.scorer, oopt, band);
   if (o.views > 0) out.map = exhaustive_map(setup.scorer, o.views, setup.batch, o.progress, band);

@@ -25,10 +25,23 @@ struct GpuBackend {
   SaliencyResult (*saliency)(const Mesh& mesh, const SaliencyOptions& options);
   ViewScorerSetup (*view_scorer)(const Mesh& mesh, const std::vector<double>& score,
                                  const VisibilityOptions& options, int device);
+  // meshsal::Device: opens device `index` (-1: the best) outside the cache and returns its
+  // opaque handle (gpu::HeldDevice), filling `info`.
+  std::shared_ptr<void> (*open_device)(int index, DeviceInfo* info);
+  // The same as saliency and view_scorer, on a handle open_device made.
+  SaliencyResult (*saliency_on)(const std::shared_ptr<void>& device, const Mesh& mesh,
+                                const SaliencyOptions& options);
+  ViewScorerSetup (*view_scorer_on)(const std::shared_ptr<void>& device, const Mesh& mesh,
+                                    const std::vector<double>& score, const VisibilityOptions& options);
+  // Closes the process-wide cache's devices (gpu::release_cached_devices).
+  void (*release_cached_devices)();
 };
 
 // The linked backend, or nullptr in a library without Vulkan (gpu_backend_*.cpp).
 const GpuBackend* linked_gpu_backend();
+
+// The open handle of `session` (throws Error when it was closed).
+std::shared_ptr<void> session_handle(const Device& session);
 
 // The linked backend; throws Error when this library has none.
 const GpuBackend& gpu_backend();

@@ -11,18 +11,20 @@
 namespace meshsal {
 namespace {
 
+DeviceInfo public_info(const vk::DeviceInfo& d) {
+  DeviceInfo p;
+  p.index = d.index;
+  p.name = d.name;
+  p.type = d.type;
+  p.device_local_bytes = d.device_local_bytes;
+  p.api_version = d.api_version;
+  p.has_compute = d.has_compute;
+  return p;
+}
+
 std::vector<DeviceInfo> devices() {
   std::vector<DeviceInfo> out;
-  for (const vk::DeviceInfo& d : vk::list_devices()) {
-    DeviceInfo p;
-    p.index = d.index;
-    p.name = d.name;
-    p.type = d.type;
-    p.device_local_bytes = d.device_local_bytes;
-    p.api_version = d.api_version;
-    p.has_compute = d.has_compute;
-    out.push_back(p);
-  }
+  for (const vk::DeviceInfo& d : vk::list_devices()) out.push_back(public_info(d));
   return out;
 }
 
@@ -59,7 +61,42 @@ ViewScorerSetup view_scorer(const Mesh& mesh, const std::vector<double>& score,
   return s;
 }
 
-const GpuBackend backend{devices, saliency, view_scorer};
+std::shared_ptr<void> open_device(int index, DeviceInfo* info) {
+  auto held = std::make_shared<gpu::HeldDevice>(index);
+  *info = public_info(held->ctx.info);
+  return held;
+}
+
+SaliencyResult saliency_on(const std::shared_ptr<void>& device, const Mesh& mesh, const SaliencyOptions& options) {
+  auto* held = static_cast<gpu::HeldDevice*>(device.get());
+  std::lock_guard<std::mutex> busy(held->busy);
+  return compute_saliency_gpu(held->ctx, mesh, options);
+}
+
+ViewScorerSetup view_scorer_on(const std::shared_ptr<void>& device, const Mesh& mesh,
+                               const std::vector<double>& score, const VisibilityOptions& options) {
+  // The scorer holds the caller's device (and its lock) for as long as it lives.
+  struct Gpu {
+    std::shared_ptr<gpu::HeldDevice> held;
+    std::unique_lock<std::mutex> busy;
+    std::unique_ptr<GpuVisibility> vis;  // destroyed before the lock and the device
+  };
+  auto g = std::make_shared<Gpu>();
+  g->held = std::static_pointer_cast<gpu::HeldDevice>(device);
+  g->busy = std::unique_lock<std::mutex>(g->held->busy);
+  vk::Context& ctx = g->held->ctx;
+  g->vis = std::make_unique<GpuVisibility>(ctx, mesh, visibility_weights(mesh, score), frame_mesh(mesh), options);
+  ViewScorerSetup s;
+  Gpu* raw = g.get();  // kept alive by s.keep_alive
+  s.scorer = [raw](const std::vector<ViewAngles>& views) { return raw->vis->score(views); };
+  s.backend_name = "vulkan: " + ctx.info.name;
+  s.batch = raw->vis->batch();
+  s.keep_alive = g;
+  return s;
+}
+
+const GpuBackend backend{devices,     saliency,       view_scorer, open_device,
+                         saliency_on, view_scorer_on, gpu::release_cached_devices};
 
 }  // namespace
 

@@ -25,6 +25,18 @@ void tell(const SaliencyOptions& options, const std::string& line) {
 // CPU; no Vulkan at all, or any failure on the GPU, falls back to the CPU with a one-line
 // notice.
 SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
+  // A device the caller opened: that one (whatever its type), the CPU only on failure.
+  if (options.session) {
+    const std::shared_ptr<void> device = session_handle(*options.session);  // closed: an Error, no fallback
+    try {
+      return gpu_backend().saliency_on(device, mesh, options);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      tell(options, std::string("auto: the GPU path failed (") + e.what() + "), using the CPU path");
+      return compute_saliency_cpu(mesh, options);
+    }
+  }
   // A build without Vulkan has only the CPU path: the plain choice, not a fallback.
   if (!built_with_vulkan()) return compute_saliency_cpu(mesh, options);
   SaliencyOptions gpu = options;
@@ -97,10 +109,13 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
   // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
   switch (options.backend) {
     case Backend::Cpu:
+      if (options.session)
+        throw Error("a Vulkan device session was given with the cpu backend: use backend gpu or auto, or no session");
       return compute_saliency_cpu(mesh, options);
     case Backend::Auto:
       return compute_auto(mesh, options);
     case Backend::Gpu:
+      if (options.session) return gpu_backend().saliency_on(session_handle(*options.session), mesh, options);
       return gpu_backend().saliency(mesh, options);
   }
   throw Error("unknown backend");

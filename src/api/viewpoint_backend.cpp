@@ -23,8 +23,13 @@ static ViewScorerSetup cpu_scorer(const Mesh& mesh, const std::vector<double>& s
 
 ViewScorerSetup make_view_scorer(const Mesh& mesh, const std::vector<double>& score,
                                  const VisibilityOptions& options, Backend backend, int device,
-                                 const std::function<void(const std::string&)>& notice) {
+                                 const std::function<void(const std::string&)>& notice, Device* session) {
   check_visibility_options(options);
+  if (session) {
+    if (backend == Backend::Cpu)
+      throw Error("a Vulkan device session was given with the cpu backend: use backend gpu or auto, or no session");
+    return gpu_backend().view_scorer_on(session_handle(*session), mesh, score, options);
+  }
   if (backend == Backend::Gpu) return gpu_backend().view_scorer(mesh, score, options, device);
   if (backend == Backend::Auto) {
     int hw = -1;

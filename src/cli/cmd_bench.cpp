@@ -8,6 +8,7 @@
 
 #include "cmd_bench_simplify.h"
 #include "command.h"
+#include "load_input.h"
 #include "json_string.h"
 #include "core/timer.h"
 #include "json_object.h"
@@ -269,7 +270,7 @@ int run(const Args& a) {
   const meshsal::Timer wall;
   for (const std::string& p : paths) {
     const meshsal::Timer t0;
-    meshsal::Mesh mesh = meshsal::load_mesh(p);
+    meshsal::Mesh mesh = meshsal::load_mesh(p, nullptr, load_options());
     std::string model = std::filesystem::path(p).filename().string();
     for (int k = 0; k < a.subdivide; ++k) mesh = meshsal::subdivide_midpoint(mesh);
     if (a.subdivide) model += " /" + std::to_string(a.subdivide);

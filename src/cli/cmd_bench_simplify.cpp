@@ -15,6 +15,7 @@
 
 #include "cli/data_dir.h"
 #include "command.h"
+#include "load_input.h"
 #include "core/timer.h"
 #include "json_string.h"
 #include "meshsal/meshsal.h"
@@ -354,7 +355,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
   std::vector<std::pair<std::string, double>> sal_times;
   for (const std::string& path : paths) {
     const std::string model = std::filesystem::path(path).filename().string();
-    const Mesh mesh = load_mesh(path);
+    const Mesh mesh = load_mesh(path, nullptr, meshsal_cli::load_options());
     SaliencyOptions so;
     so.cancel = interrupt_flag();
     so.backend = Backend::Cpu;

@@ -3,7 +3,12 @@
 #include "json_string.h"
 
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+#include "io/text_scan.h"
 
 namespace meshsal_cli {
 
@@ -15,9 +20,28 @@ std::string mesh_extension(const std::string& path) {
   return dot == std::string::npos ? std::string() : name.substr(dot);
 }
 
+meshsal::LoadOptions load_options() {
+  meshsal::LoadOptions options;
+  const char* env = std::getenv("MESHSAL_MAX_INPUT");
+  if (!env || !*env) return options;
+  std::string_view s(env);
+  uint64_t scale = 1;
+  const char unit = static_cast<char>(std::toupper(static_cast<unsigned char>(s.back())));
+  if (unit == 'K' || unit == 'M' || unit == 'G') {
+    scale = uint64_t(1) << (unit == 'K' ? 10 : unit == 'M' ? 20 : 30);
+    s.remove_suffix(1);
+  }
+  uint64_t n = 0;
+  if (!meshsal::parse_number(s, n) || n == 0 || n > UINT64_MAX / scale)
+    throw meshsal::Error("MESHSAL_MAX_INPUT: '" + std::string(env) +
+                         "' is not a byte count (a positive whole number, optionally followed by K, M or G)");
+  options.max_input_bytes = n * scale;
+  return options;
+}
+
 meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
                               bool attributes, meshsal::LoadReport* report, bool regular_only) {
-  meshsal::LoadOptions options;
+  meshsal::LoadOptions options = load_options();
   options.regular_files_only = regular_only;
   options.attributes = attributes || mesh_extension(path) == ".ply";
   meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, report);

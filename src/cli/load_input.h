@@ -11,6 +11,12 @@ namespace meshsal_cli {
 // (".ply" for "Scan.PLY.gz"); "" when it has none.
 std::string mesh_extension(const std::string& path);
 
+// The LoadOptions every command starts from: max_input_bytes from the environment variable
+// MESHSAL_MAX_INPUT when it is set (bytes, with an optional K, M or G suffix; the library
+// itself reads no environment), else 0 (the library's default rules). Throws Error when
+// the variable is not a byte count.
+meshsal::LoadOptions load_options();
+
 // load_mesh with LoadOptions::attributes = `attributes` (OBJ vt/vn, PLY properties into
 // Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain
 // duplicates by their properties: Mesh::position_vertex) are found either way, so that

@@ -8,7 +8,6 @@
 
 #include "command.h"
 #include "json_string.h"
-#include "core/heap_policy.h"
 #include "meshsal/meshsal.h"
 #include "interrupt.h"
 
@@ -56,6 +55,8 @@ static std::string suggestion(const std::string& given, const std::vector<std::s
 
 int main(int argc, char** argv) {
   using namespace meshsal_cli;
+  // Process-wide, so the program's choice, not the library's (which never sets it): the
+  // command's stages reuse each other's freed memory instead of page-faulting it in again.
   meshsal::keep_freed_memory_for_reuse();
   install_interrupt_handler();
   CLI::App app{

@@ -20,8 +20,6 @@
 
 namespace meshsal::gpu {
 
-uint32_t fast_window_candidates = 32768;
-
 namespace {
 
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
@@ -123,6 +121,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
   const GridPlan qg = build_gpu_grid(ctx, {&fc.cell_pos, &ones, &qstarts, &qsorted, &qcell}, m, m,
                                      job.extent, 0.5 * s, &starts);
   const double radius = 2 * s;
+  const uint32_t fast_window_candidates = std::max<uint32_t>(1, ctx.fast_window_candidates);
   const uint64_t most = m <= fast_window_candidates ? m : most_candidates(qg, starts, radius);
   const uint32_t windows = uint32_t(std::max<uint64_t>(1, (most + fast_window_candidates - 1) / fast_window_candidates));
 

@@ -27,6 +27,7 @@ struct FastFilterPlan {
 // doubles, 0 on vertices that are not mesh points). np = the mesh points. Returns the
 // (query, cell) pairs inside the cutoffs, as FilterStats::pairs counts them on the CPU.
 // Throws Error (naming the CPU path) when a scale needs more cells than 32-bit keys hold.
+// A query's candidates are walked in windows of ctx.fast_window_candidates, one dispatch each.
 uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
                      const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
                      const FastFilterPlan& plan, vk::Buffer& result,
@@ -34,9 +35,5 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
 
 // Device bytes fast_filter() needs at its peak besides pos, flags and result.
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig);
-
-// Candidates a query visits per dispatch (lavapipe ends an invocation's loops after
-// 65,535 steps); tests lower it to split every query into many windows.
-extern uint32_t fast_window_candidates;
 
 }  // namespace meshsal::gpu

@@ -1,8 +1,11 @@
-// meshsal: the process-wide cache of open Vulkan devices. Opening a device (instance,
+// meshsal: the process-wide cache of open Vulkan devices, and the devices a caller holds
+// itself (meshsal::Device, HeldDevice below), which bypass it. Opening a device (instance,
 // driver load, logical device) and compiling the compute pipelines cost far more than a
 // small mesh's saliency on lavapipe; a cached vk::Context keeps its compiled kernels
 // (kernel_cache), so every GPU call after the first on a device pays neither. Batch runs,
-// the Python module and any library user of Backend::Gpu share it.
+// the Python module and any library user of Backend::Gpu share it, unless the call names
+// a meshsal::Device (SaliencyOptions::session): that one runs on the caller's own device,
+// and release_cached_devices() (public as meshsal::release_cached_devices) closes the cache.
 //
 // Thread safety: a context's queue, kernel cache and per-call fields are not thread-safe,
 // so a call holds its cached context exclusively (a lease). A call that finds it busy (another
@@ -58,6 +61,15 @@ class DeviceLease {
 // Khronos layer (also on with MESHSAL_VALIDATION=1). Throws Error when the device cannot
 // be opened.
 DeviceLease lease_device(int device_index, bool validation);
+
+// The device a meshsal::Device holds (its opaque handle): opened once, never cached, closed
+// when the last holder (the Device, a running call, a view scorer) lets go. A call holds
+// `busy` while it uses the context (calls on one device from several threads take turns).
+struct HeldDevice {
+  explicit HeldDevice(int device_index) : ctx(device_index, vk::validation_requested_by_env()) {}
+  std::mutex busy;
+  vk::Context ctx;
+};
 
 // Process-wide counts, for tests and batch logs.
 struct SessionCounters {

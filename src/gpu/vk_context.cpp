@@ -232,6 +232,17 @@ static void describe_memory(VkPhysicalDevice pd, const VkPhysicalDevicePropertie
                        p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
 }
 
+// The subgroup properties of a Vulkan 1.1 device (the caller checks the version).
+static VkPhysicalDeviceSubgroupProperties subgroup_properties(VkPhysicalDevice pd) {
+  VkPhysicalDeviceSubgroupProperties sub{};
+  sub.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+  VkPhysicalDeviceProperties2 p2{};
+  p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+  p2.pNext = &sub;
+  vkGetPhysicalDeviceProperties2(pd, &p2);
+  return sub;
+}
+
 static DeviceInfo describe(VkPhysicalDevice pd, int index) {
   VkPhysicalDeviceProperties p;
   vkGetPhysicalDeviceProperties(pd, &p);
@@ -248,15 +259,7 @@ static DeviceInfo describe(VkPhysicalDevice pd, int index) {
   }
   describe_memory(pd, p, &d);
   d.max_storage_buffer = p.limits.maxStorageBufferRange;
-  if (p.apiVersion >= VK_API_VERSION_1_1) {
-    VkPhysicalDeviceSubgroupProperties sub{};
-    sub.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
-    VkPhysicalDeviceProperties2 p2{};
-    p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-    p2.pNext = &sub;
-    vkGetPhysicalDeviceProperties2(pd, &p2);
-    d.subgroup_size = sub.subgroupSize;
-  }
+  if (p.apiVersion >= VK_API_VERSION_1_1) d.subgroup_size = subgroup_properties(pd).subgroupSize;
   VkPhysicalDeviceFeatures features{};
   vkGetPhysicalDeviceFeatures(pd, &features);
   d.has_float64 = features.shaderFloat64 == VK_TRUE;
@@ -340,12 +343,7 @@ Context::Context(int device_index, bool want_validation) {
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
     if (properties.apiVersion >= VK_API_VERSION_1_1) {
-      VkPhysicalDeviceSubgroupProperties sub{};
-      sub.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
-      VkPhysicalDeviceProperties2 p2{};
-      p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-      p2.pNext = &sub;
-      vkGetPhysicalDeviceProperties2(physical, &p2);
+      const VkPhysicalDeviceSubgroupProperties sub = subgroup_properties(physical);
       subgroup_size = sub.subgroupSize;
       subgroup_arithmetic = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                             (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);

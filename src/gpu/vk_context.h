@@ -98,6 +98,10 @@ class Context {
   // Candidate pairs per sweep submission; 0: sized by time (submission_target_s, see
   // gpu_slices.h). Tests set it small to split a small mesh.
   double sweep_pairs_per_submission = 0;
+  // Candidates a fast-method query visits per dispatch (gpu_fast.h): lavapipe ends an
+  // invocation's loops after 65,535 steps. Tests lower it to split every query into many
+  // windows.
+  uint32_t fast_window_candidates = 32768;
   double fence_timeout_s = 300;  // a submission that takes longer is an Error (no hang)
   // Buffers live in device-local memory and transfers go through the staging area: on
   // devices without unified memory, or when forced (MESHSAL_FORCE_STAGING=1, or set

@@ -34,25 +34,6 @@ std::string check_extension(const std::string& name, bool& gz) {
   return ext;
 }
 
-// The limit set by the options or MESHSAL_MAX_INPUT; 0 when neither sets one.
-uint64_t explicit_limit(const LoadOptions& options) {
-  if (options.max_input_bytes) return options.max_input_bytes;
-  const char* env = std::getenv("MESHSAL_MAX_INPUT");
-  if (!env || !*env) return 0;
-  std::string_view s(env);
-  uint64_t scale = 1;
-  const char unit = static_cast<char>(std::toupper(static_cast<unsigned char>(s.back())));
-  if (unit == 'K' || unit == 'M' || unit == 'G') {
-    scale = uint64_t(1) << (unit == 'K' ? 10 : unit == 'M' ? 20 : 30);
-    s.remove_suffix(1);
-  }
-  uint64_t n = 0;
-  if (!parse_number(s, n) || n == 0 || n > UINT64_MAX / scale)
-    throw Error("MESHSAL_MAX_INPUT: '" + std::string(env) +
-                "' is not a byte count (a positive whole number, optionally followed by K, M or G)");
-  return n * scale;
-}
-
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
            VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes) {
   Bytes inflated;
@@ -109,7 +90,7 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   bool gz = false;
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
-    const uint64_t limit = explicit_limit(options);
+    const uint64_t limit = options.max_input_bytes;  // 0: the default rules
     const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
     return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes);
   });
@@ -122,7 +103,7 @@ Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProp
   const std::string ext = check_extension(name, gz);
   return load_named(name, properties,
                     [&] {
-    return parse(bytes, name, ext, gz, properties, explicit_limit(options), report, options.attributes);
+    return parse(bytes, name, ext, gz, properties, options.max_input_bytes, report, options.attributes);
   });
 }
 
