@@ -1,10 +1,11 @@
 // meshsal Python module: keep_freed_memory(). The library allocates its work buffers afresh
 // in every call; where the C heap hands freed memory back to the system (glibc's default
 // for large blocks), each call page-faults all of it in again. The meshsal command keeps
-// its heap (src/cli/main.cpp calls keep_freed_memory_for_reuse, meshsal.h, at start-up); the module does not
-// change the interpreter's heap on import, since that is the whole process's allocator:
-// a Python program opts in with this call.
+// its heap (src/cli/main.cpp calls keep_freed_memory_for_reuse, meshsal.h, at start-up);
+// the module does not change the interpreter's heap on import, since that is the whole
+// process's allocator: a Python program opts in with this call.
 #include "bindings.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal_py {
 
