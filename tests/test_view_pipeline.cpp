@@ -48,8 +48,7 @@ std::vector<double> top_score(const Mesh& m) {
 }  // namespace
 
 TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library give one view", "[view][cli]") {
-  const std::string mesh = shared_mesh("bunny_3k.off");
-  if (mesh.empty()) return;  // shared_mesh warned
+  MESHSAL_REQUIRE_MESH(mesh, "bunny_3k.off");
   TempDir dir;
   const std::string dp = dir.path.string();
   const Mesh m = load_mesh(mesh);
