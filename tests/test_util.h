@@ -74,6 +74,27 @@ inline double rel_error(const std::vector<double>& a, const std::vector<double>&
   return mx > 0 ? err / mx : err;
 }
 
+// The (v, x) mesh-point pairs with |x - v| < radius, v itself included, counted one by one
+// (quadratic: for small meshes). The exact sweep's FilterStats::pairs counts these for the
+// largest cutoff, 2 max(sigma).
+inline uint64_t pairs_within(const meshsal::Mesh& mesh, const std::vector<uint8_t>& is_point, double radius) {
+  uint64_t n = 0;
+  const double r2 = radius * radius;
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (!is_point[v]) continue;
+    for (size_t x = 0; x < mesh.vertex_count(); ++x) {
+      if (!is_point[x]) continue;
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double d = double(mesh.positions[3 * x + a]) - double(mesh.positions[3 * v + a]);
+        d2 += d * d;
+      }
+      n += d2 < r2;
+    }
+  }
+  return n;
+}
+
 // A GPU twin's saliency against the CPU path's on the same options: as many raw maps, S
 // positive somewhere, and every raw map, S and Sm within `tol` (rel_error) of the CPU's.
 inline void check_maps_match(const meshsal::SaliencyResult& cpu, const meshsal::SaliencyResult& gpu,
