@@ -229,8 +229,9 @@ TEST_CASE("parse_method", "[fast]") {
 }
 
 TEST_CASE("fast filter: per-cell sums extrapolated to the vertices stay close to exact", "[fast]") {
-  // Forces the per-cell path (used where cells hold >= 4 points, i.e. on dense scans) on a
-  // small mesh, and compares both paths with the exact sweep.
+  // Forces the per-cell path (which gaussian_filter_fast takes, per sigma, where that sigma's
+  // non-empty cells hold at least FastFilterParams::points_per_query_cell = 2 points on
+  // average, i.e. on dense scans) on a small mesh, and compares both paths with the exact sweep.
   // eps_frac 0.01 makes the cells hold ~10 points each.
   Mesh m = make_bumpy_sphere(5);
   std::vector<uint8_t> is_point = referenced_vertices(m);
