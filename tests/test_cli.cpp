@@ -14,10 +14,7 @@
 using namespace meshsal;
 namespace fs = std::filesystem;
 
-using meshsal_test::CliRun;
-using meshsal_test::read_file;
-using meshsal_test::scratch_dir;
-using meshsal_test::run_cli;
+using namespace meshsal_test;  // cli_run.h: run_cli, scratch_dir, read_file
 
 namespace {
 

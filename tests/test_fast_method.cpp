@@ -16,6 +16,8 @@
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::check_sphere_raw_maps;
+using meshsal_test::mean_over;
 
 namespace {
 
@@ -24,15 +26,6 @@ SaliencyOptions fast_options() {
   o.backend = Backend::Cpu;
   o.method = Method::Fast;
   return o;
-}
-
-double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t v = 0; v < values.size(); ++v)
-    if (mask[v]) sum += values[v], count++;
-  REQUIRE(count > 0);
-  return sum / double(count);
 }
 
 // Fast against exact on a shared scan: the targets of SPEC 5.
@@ -123,14 +116,7 @@ TEST_CASE("fast filter: close to the brute-force averages on a bumpy sphere", "[
 
 TEST_CASE("fast: sphere raw maps stay near zero", "[fast]") {
   const double r = 3.0;
-  SaliencyResult s = compute_saliency(make_sphere(r, 5), fast_options());
-  REQUIRE(s.raw.size() == 5);
-  for (size_t i = 0; i < s.raw.size(); ++i) {
-    double worst = 0;
-    for (double x : s.raw[i]) worst = std::max(worst, x);
-    INFO("scale " << i << ": max raw " << worst);
-    CHECK(worst < 0.01 / r);
-  }
+  check_sphere_raw_maps(compute_saliency(make_sphere(r, 5), fast_options()), r);
 }
 
 TEST_CASE("fast: the bump plane's saliency maximum is on the bump", "[fast]") {

@@ -8,7 +8,6 @@
 #include <string>
 #include <unistd.h>
 
-
 #include "view/camera.h"
 #include "core/colormap.h"
 #include "meshsal/meshsal.h"
@@ -17,12 +16,17 @@
 #include "view/legend.h"
 #include "cli/render_demo.h"
 #include "core/synthetic.h"
+#include "cli_run.h"
+#include "json_check.h"
 #include "png_check.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::CliRun;
 using meshsal_test::colormap_position;
+using meshsal_test::json_number;
 using meshsal_test::PictureDir;
+using meshsal_test::run_cli_merged;
 using meshsal_test::read_png;
 
 namespace {
@@ -30,22 +34,6 @@ const double kPi = 3.14159265358979323846;
 
 bool is_background(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
-int run_cli(const std::string& args, std::string* out = nullptr) {
-  std::string file = "/tmp/meshsal_render_cli_" + std::to_string(getpid()) + ".txt";
-  int rc = std::system((std::string(MESHSAL_CLI) + " " + args + " > " + file + " 2>&1").c_str());
-  std::ifstream in(file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (out) *out = ss.str();
-  std::remove(file.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-double json_number(const std::string& text, const std::string& key) {
-  size_t at = text.find("\"" + key + "\": ");
-  REQUIRE(at != std::string::npos);
-  return std::strtod(text.c_str() + at + key.size() + 4, nullptr);
-}
 }  // namespace
 
 TEST_CASE("render: a sphere fills the picture (framed by its projected extent), centred", "[view]") {
@@ -186,61 +174,60 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws 
   std::vector<double> q(s.vertex_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
   write_ply(dir + "/s.ply", s, {{"quality", &q}});
-  std::string out;
-  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/s.ply --backend cpu --resolution 64 "
-                  "--restarts 3 --views 150 -o " + dir + "/best.png --map " + dir + "/map.png --size 128",
-                  &out) == 0);
-  INFO(out);
+  CliRun cr;
+  REQUIRE((cr = run_cli_merged("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/s.ply --backend cpu --resolution 64 "
+                  "--restarts 3 --views 150 -o " + dir + "/best.png --map " + dir + "/map.png --size 128")).rc == 0);
+  INFO(cr.out);
   double d0 = 0;
   {
-    size_t at = out.find("\"direction\": [");
+    size_t at = cr.out.find("\"direction\": [");
     REQUIRE(at != std::string::npos);
-    d0 = std::strtod(out.c_str() + at + 14, nullptr);
+    d0 = std::strtod(cr.out.c_str() + at + 14, nullptr);
   }
   CHECK(d0 > 0.9);
-  CHECK(json_number(out, "views_evaluated") > 150);
-  CHECK(json_number(out, "visible_score") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "visible_score"));
-  CHECK(json_number(out, "visible_fraction") > 0.5);
+  CHECK(json_number(cr.out, "views_evaluated") > 150);
+  CHECK(json_number(cr.out, "visible_score") >= 0.98 * json_number(cr.out.substr(cr.out.find("\"exhaustive\"")), "visible_score"));
+  CHECK(json_number(cr.out, "visible_fraction") > 0.5);
   CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
   CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
 
-  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
-                  dir + "/r.png", &out) == 0);
+  REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
+                  dir + "/r.png")).rc == 0);
   Image r = read_png(dir + "/r.png");
   CHECK(r.width == 320);
   const int top = title_height(text_size_for(320), 2);
   const uint8_t* centre = r.at(160, top + 160);  // looking from +x at the most salient side: red
   CHECK(colormap_position(centre) > 0.8);
-  REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
-                  dir + "/c.png", &out) == 0);
+  REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
+                  dir + "/c.png")).rc == 0);
   CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
 
   // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
-  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
-  CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
-  CHECK(json_number(out, "visible_fraction") > 0.4);
-  CHECK(json_number(out, "visible_fraction") < 0.6);
-  CHECK(out.find("\"exhaustive\": null") != std::string::npos);
+  REQUIRE((cr = run_cli_merged("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2")).rc == 0);
+  CHECK(cr.out.find("\"score\": \"curvature\"") != std::string::npos);
+  CHECK(json_number(cr.out, "visible_fraction") > 0.4);
+  CHECK(json_number(cr.out, "visible_fraction") < 0.6);
+  CHECK(cr.out.find("\"exhaustive\": null") != std::string::npos);
 
   // Errors are one line: a bad choice is a usage error (exit 2), a bad file exit 1.
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 2);
-  CHECK(out.find("error: --score: nonsense not in {saliency,curvature}") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --score nonsense")).rc == 2);
+  CHECK(cr.out.find("error: --score: nonsense not in {saliency,curvature}") != std::string::npos);
   write_ply(dir + "/noq.ply", s, {});
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply", &out) == 1);
-  CHECK(out.find("has no per-vertex `quality` property") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply")).rc == 1);
+  CHECK(cr.out.find("has no per-vertex `quality` property") != std::string::npos);
   // Numbers out of range are usage errors: exit code 2, the option and its range named.
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu", &out) == 2);
-  CHECK(out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
-  CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 2);
-  CHECK(out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu")).rc == 2);
+  CHECK(cr.out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
+  CHECK((cr = run_cli_merged("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png")).rc == 2);
+  CHECK(cr.out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
 }
 
 TEST_CASE("cli: render and viewpoint --help name every input format, STL included", "[view][cli]") {
   for (const char* cmd : {"render", "viewpoint"}) {
-    std::string out;
-    REQUIRE(run_cli(std::string(cmd) + " --help", &out) == 0);
-    INFO(out);
-    CHECK(out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
-    CHECK(out.find("--json") != std::string::npos);
+    CliRun cr;
+    REQUIRE((cr = run_cli_merged(std::string(cmd) + " --help")).rc == 0);
+    INFO(cr.out);
+    CHECK(cr.out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
+    CHECK(cr.out.find("--json") != std::string::npos);
   }
 }

@@ -74,6 +74,30 @@ inline double rel_error(const std::vector<double>& a, const std::vector<double>&
   return mx > 0 ? err / mx : err;
 }
 
+// The mean of VALUES (of |VALUES| with `absolute`) over the vertices MASK marks (at least one).
+inline double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask, bool absolute = false) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t v = 0; v < values.size(); ++v)
+    if (mask[v]) {
+      sum += absolute ? std::fabs(values[v]) : values[v];
+      count++;
+    }
+  REQUIRE(count > 0);
+  return sum / double(count);
+}
+
+// A sphere of radius R has the same curvature everywhere, so each of its five raw
+// center-surround maps (the default scales) stays below 1% of |H| = 1/R.
+inline void check_sphere_raw_maps(const meshsal::SaliencyResult& s, double r) {
+  REQUIRE(s.raw.size() == 5);
+  for (size_t i = 0; i < s.raw.size(); ++i) {
+    const double worst = *std::max_element(s.raw[i].begin(), s.raw[i].end());
+    INFO("scale " << i << ": max raw " << worst);
+    CHECK(worst < 0.01 / r);
+  }
+}
+
 // The (v, x) mesh-point pairs with |x - v| < radius, v itself included, counted one by one
 // (quadratic: for small meshes). The exact sweep's FilterStats::pairs counts these for the
 // largest cutoff, 2 max(sigma).
