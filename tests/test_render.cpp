@@ -24,6 +24,9 @@
 using namespace meshsal;
 using meshsal_test::CliRun;
 using meshsal_test::colormap_position;
+using meshsal_test::colour_in_range;
+using meshsal_test::pixel_counts;
+using meshsal_test::PixelCounts;
 using meshsal_test::json_number;
 using meshsal_test::PictureDir;
 using meshsal_test::run_cli_merged;
@@ -160,10 +163,32 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   opt.map_views = 400;
   std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh, opt);
   REQUIRE(files.size() == 3);
-  CHECK(read_png(files[0]).width >= 256);  // the picture, or its title if wider
-  CHECK(read_png(files[0]).height > 256);  // title and colour bar
-  CHECK(read_png(files[1]).width > 720);   // the plot and its axes
-  CHECK(read_png(files[2]).width == 3 * 256 + 8);
+  // The best view: the model fills the middle of the picture in saliency colours, cold there
+  // (all but the feature's one or two vertices have saliency 0.05 of the maximum).
+  const Image best = read_png(files[0]);
+  CHECK(best.width >= 256);  // the picture, or its title if wider
+  CHECK(best.height > 256);  // title and colour bar
+  const int cx = best.width / 2, cy = best.height / 2;
+  const PixelCounts middle = pixel_counts(best, cx - 64, cy - 64, cx + 64, cy + 64);
+  const int cold = colour_in_range(best, cx - 64, cy - 64, cx + 64, cy + 64, 0.0, 0.2);
+  INFO("best: middle coloured " << middle.coloured << " of " << 128 * 128 << ", cold " << cold);
+  CHECK(middle.coloured > 128 * 128 * 9 / 10);
+  CHECK(cold > 128 * 128 * 3 / 4);
+  // The view map: a plot in saliency colours with its axes (dark text and lines).
+  const Image map = read_png(files[1]);
+  CHECK(map.width > 720);
+  const PixelCounts plot = pixel_counts(map);
+  INFO("map: " << map.width << "x" << map.height << " coloured " << plot.coloured << " dark " << plot.dark);
+  CHECK(plot.coloured > map.width * map.height / 3);
+  CHECK(plot.dark > 500);
+  // The comparison: three panels, each the model in saliency colours.
+  const Image sbs = read_png(files[2]);
+  CHECK(sbs.width == 3 * 256 + 8);
+  for (int panel = 0; panel < 3; ++panel) {
+    const PixelCounts c = pixel_counts(sbs, panel * 260, 0, panel * 260 + 256, sbs.height);
+    INFO("panel " << panel << ": coloured " << c.coloured << ", not white " << c.not_white);
+    CHECK(c.coloured > 256 * 256 / 4);
+  }
 }
 
 TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws any view", "[view]") {
@@ -188,8 +213,19 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws 
   CHECK(json_number(cr.out, "views_evaluated") > 150);
   CHECK(json_number(cr.out, "visible_score") >= 0.98 * json_number(cr.out.substr(cr.out.find("\"exhaustive\"")), "visible_score"));
   CHECK(json_number(cr.out, "visible_fraction") > 0.5);
-  CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
-  CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
+  // The best view looks from +x at the hot side: the middle of the picture is the model, hot.
+  const Image best = read_png(dir + "/best.png");
+  CHECK(best.width >= 128);  // at least the picture; the title may be wider
+  {
+    const int cx = best.width / 2, cy = best.height / 2;
+    const int hot = colour_in_range(best, cx - 24, cy - 24, cx + 24, cy + 24, 0.75, 1.0);
+    INFO("best.png " << best.width << "x" << best.height << ": hot " << hot << " of " << 48 * 48);
+    CHECK(hot > 48 * 48 / 2);
+  }
+  const Image map = read_png(dir + "/map.png");
+  CHECK(map.width > 720);  // the plot with its axes
+  INFO("map.png coloured " << pixel_counts(map).coloured << " of " << map.width * map.height);
+  CHECK(pixel_counts(map).coloured > map.width * map.height / 3);
 
   REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
                   dir + "/r.png")).rc == 0);
@@ -200,7 +236,22 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws 
   CHECK(colormap_position(centre) > 0.8);
   REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
                   dir + "/c.png")).rc == 0);
-  CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
+  {
+    // --grey: the original drawn in grey (shaded, not white), no colour; the two "simplified"
+    // panels (the same mesh) coloured by their distance to it, 0: the scale's low end.
+    const Image c = read_png(dir + "/c.png");
+    CHECK(c.width == 3 * 64 + 8);
+    for (int panel = 0; panel < 3; ++panel) {
+      const PixelCounts p = pixel_counts(c, panel * 68, 0, panel * 68 + 64, c.height);
+      const int low = colour_in_range(c, panel * 68, 0, panel * 68 + 64, c.height, 0.0, 0.1);
+      INFO("panel " << panel << ": coloured " << p.coloured << ", low end " << low << ", not white " << p.not_white);
+      CHECK(p.not_white > 64 * 64 / 2);
+      if (panel == 0)
+        CHECK(p.coloured == 0);
+      else
+        CHECK(low > 64 * 64 / 3);
+    }
+  }
 
   // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
   REQUIRE((cr = run_cli_merged("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2")).rc == 0);
