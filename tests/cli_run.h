@@ -73,4 +73,18 @@ inline CliRun run_cli_merged(const std::string& args) {
   return r;
 }
 
+// `meshsal ARGS`, run in DIR, must be a usage error: exit status 2, stderr naming `option`,
+// and nothing written into DIR (beside run_cli's stdout.txt and stderr.txt).
+inline void check_usage_error(const std::string& args, const std::string& option, const std::filesystem::path& dir) {
+  const CliRun r = run_cli(args, dir);
+  INFO("meshsal " << args << "\nstderr: " << r.err);
+  CHECK(r.rc == 2);
+  CHECK(r.err.find("error: " + option) != std::string::npos);
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    INFO("written: " << name);
+    CHECK((name == "stdout.txt" || name == "stderr.txt"));
+  }
+}
+
 }  // namespace meshsal_test

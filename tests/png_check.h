@@ -4,6 +4,7 @@
 #pragma once
 #include <stdlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -44,6 +45,25 @@ inline meshsal::Image read_png(const std::string& path) {
   return img;
 }
 
+// Pixels in [x0, x1) x [y0, y1) that are saturated colour (the saliency colours: max - min
+// channel > 80), dark (text, dark shading: every channel < 100) and not white.
+struct PixelCounts {
+  int coloured = 0, dark = 0, not_white = 0;
+};
+inline PixelCounts pixel_counts(const meshsal::Image& img, int x0, int y0, int x1, int y1) {
+  PixelCounts c;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const uint8_t* p = img.at(x, y);
+      const int mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
+      c.coloured += mx - mn > 80;
+      c.dark += mx < 100;
+      c.not_white += mn < 255;
+    }
+  return c;
+}
+inline PixelCounts pixel_counts(const meshsal::Image& img) { return pixel_counts(img, 0, 0, img.width, img.height); }
+
 // The colour-map position t of a (possibly shaded) colour: the t whose colour has the nearest
 // chromaticity (shading scales r, g, b alike).
 inline double colormap_position(const uint8_t* p) {
@@ -59,6 +79,20 @@ inline double colormap_position(const uint8_t* p) {
     }
   }
   return best_t;
+}
+
+// The saturated-colour pixels (as pixel_counts) in [x0, x1) x [y0, y1) whose colour-map
+// position is in [lo, hi]: where the saliency scale's low or high end is drawn.
+inline int colour_in_range(const meshsal::Image& img, int x0, int y0, int x1, int y1, double lo, double hi) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const uint8_t* p = img.at(x, y);
+      if (std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) <= 80) continue;
+      const double t = colormap_position(p);
+      n += t >= lo && t <= hi;
+    }
+  return n;
 }
 
 }  // namespace meshsal_test

@@ -10,29 +10,11 @@ using namespace meshsal_test;
 
 namespace {
 
-// Pixels in [x0, x1) x [y0, y1) that are saturated colour (the saliency colours), dark
-// (text) and not white.
-struct Counts {
-  int coloured = 0, dark = 0, not_white = 0;
-};
-Counts count(const meshsal::Image& img, int x0, int y0, int x1, int y1) {
-  Counts c;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
-      const uint8_t* p = img.at(x, y);
-      const int mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
-      c.coloured += mx - mn > 80;
-      c.dark += mx < 100;
-      c.not_white += mn < 255;
-    }
-  return c;
-}
-
 // The rows [first, last] of the band that hold dark (text) pixels: the label's height.
 int ink_height(const meshsal::Image& img, int x0, int y0, int x1, int y1) {
   int first = -1, last = -1;
   for (int y = y0; y < y1; ++y)
-    if (count(img, x0, y, x1, y + 1).dark > 0) {
+    if (pixel_counts(img, x0, y, x1, y + 1).dark > 0) {
       if (first < 0) first = y;
       last = y;
     }
@@ -67,8 +49,8 @@ TEST_CASE("batch: the contact sheet has a tile per model, a failed one marked, w
   for (int cell = 0; cell < 4; ++cell) {
     INFO("cell " << cell);
     const int x0 = 8 + (cell % 2) * cw, y0 = 8 + (cell / 2) * ch;
-    const Counts thumb = count(img, x0, y0, x0 + 256, y0 + 256);
-    const Counts label = count(img, x0, y0 + 256, x0 + 256, y0 + 290);
+    const PixelCounts thumb = pixel_counts(img, x0, y0, x0 + 256, y0 + 256);
+    const PixelCounts label = pixel_counts(img, x0, y0 + 256, x0 + 256, y0 + 290);
     CHECK(label.dark > 60);  // its name
     // Readable at 100%: capitals and ascenders at least 12 px tall (they were 5).
     CHECK(ink_height(img, x0, y0 + 256, x0 + 256, y0 + 290) >= 12);
@@ -88,6 +70,6 @@ TEST_CASE("batch: the contact sheet has a tile per model, a failed one marked, w
   CHECK(r.out.find("0 computed, 3 skipped, 1 failed") != std::string::npos);
   img = read_png(sheet.string());
   CHECK(img.width == 8 + 2 * cw);
-  CHECK(count(img, 8 + cw, 8 + ch, 8 + cw + 256, 8 + ch + 256).coloured > 500);  // cube
+  CHECK(pixel_counts(img, 8 + cw, 8 + ch, 8 + cw + 256, 8 + ch + 256).coloured > 500);  // cube
   CHECK(exact(img, 8 + cw, 8, 8 + cw + 256, 8 + 256, red) > 800);
 }

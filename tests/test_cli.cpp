@@ -2,7 +2,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include "meshsal/meshsal.h"
@@ -14,10 +17,7 @@
 using namespace meshsal;
 namespace fs = std::filesystem;
 
-using meshsal_test::CliRun;
-using meshsal_test::read_file;
-using meshsal_test::scratch_dir;
-using meshsal_test::run_cli;
+using namespace meshsal_test;  // cli_run.h: run_cli, scratch_dir, read_file
 
 namespace {
 
@@ -114,15 +114,97 @@ TEST_CASE("cli: a failed run leaves an earlier output untouched", "[cli]") {
   fs::remove_all(dir);
 }
 
+namespace {
+
+// The entries of a CLI11 help section (the lines after the line that starts with `title`, up
+// to a blank line): the first word of each entry -> the rest of its text (its continuation
+// lines, indented further, joined with single spaces).
+std::map<std::string, std::string> help_entries(const std::string& help, const std::string& title) {
+  std::map<std::string, std::string> entries;
+  std::istringstream lines(help);
+  std::string line, current;
+  bool in = false;
+  while (std::getline(lines, line)) {
+    if (!in) {
+      in = line.rfind(title, 0) == 0;
+      continue;
+    }
+    if (line.empty()) break;
+    const size_t text = line.find_first_not_of(' ');
+    if (text == 2) {  // a new entry: "  NAME  description"
+      const size_t end = line.find(' ', text);
+      current = line.substr(text, end - text);
+      const size_t desc = end == std::string::npos ? std::string::npos : line.find_first_not_of(' ', end);
+      entries[current] = desc == std::string::npos ? "" : line.substr(desc);
+    } else if (!current.empty() && text != std::string::npos) {
+      std::string& e = entries[current];
+      e += (e.empty() ? "" : " ") + line.substr(text);
+    }
+  }
+  return entries;
+}
+
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+template <class T>
+std::string text_of(const T& value) {
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
+}  // namespace
+
 TEST_CASE("cli: help explains every command and option", "[cli]") {
   fs::path dir = scratch_dir("cli_help");
+  // The top level lists every command with the one-line summary its own --help opens with.
   CliRun top = run_cli("--help", dir);
   CHECK(top.rc == 0);
-  for (const char* cmd : {"saliency", "demo", "bench"}) CHECK(top.out.find(cmd) != std::string::npos);
+  const auto commands = help_entries(top.out, "Subcommands:");
+  std::vector<std::string> names;
+  for (const auto& [name, summary] : commands) names.push_back(name);
+  CHECK(names == std::vector<std::string>{"batch", "bench", "compare", "demo", "devices", "render", "saliency",
+                                          "simplify", "viewpoint"});
+  for (const auto& [name, summary] : commands) {
+    const CliRun own = run_cli(name + " --help", dir);
+    INFO("meshsal " << name << " --help:\n" << own.out);
+    CHECK(own.rc == 0);
+    CHECK(summary.size() > 20);
+    CHECK(first_line(own.out) == summary);
+  }
+  // saliency --help: every option, with its type, range and default where it has one; the
+  // library's defaults where the CLI takes them (only --backend and --precision have their own).
   CliRun sal = run_cli("saliency --help", dir);
   CHECK(sal.rc == 0);
-  for (const char* opt : {"--backend", "--scales", "--eps-frac", "--dump-scales", "--threads", "--output"})
-    CHECK(sal.out.find(opt) != std::string::npos);
+  const SaliencyOptions lib;
+  std::string scales;
+  for (double k : lib.scales) scales += (scales.empty() ? "" : ",") + text_of(k);
+  const std::map<std::string, std::string> expected{
+      {"-h,--help", "Print this"},
+      {"-o,--output", "TEXT REQUIRED"},
+      {"--backend", "TEXT=auto"},
+      {"--precision", "TEXT:{auto,mixed,double}=auto"},
+      {"--method", "TEXT:{exact,fast,auto}=" + std::string(lib.method == Method::Exact ? "exact" : "?")},
+      {"--device", "INT:in [-1, 255]"},
+      {"--scales", "TEXT:list=" + scales},
+      {"--eps-frac", "FLOAT:in (0, 0.1]=" + text_of(lib.eps_frac)},
+      {"--dump-scales", "Also write `curvature`"},
+      {"--threads", "UINT:in [0, 1024]=" + text_of(lib.threads)},
+      {"-q,--quiet", "Print nothing on success"},
+      {"--json", "Print the summary as one JSON object"}};
+  const auto options = help_entries(sal.out, "Options:");
+  INFO("meshsal saliency --help:\n" << sal.out);
+  std::vector<std::string> listed, known;
+  for (const auto& entry : options) listed.push_back(entry.first);
+  for (const auto& entry : expected) known.push_back(entry.first);
+  CHECK(listed == known);  // no option missing, none undocumented here
+  for (const auto& [name, start] : expected) {
+    INFO(name);
+    const auto it = options.find(name);
+    if (it == options.end()) continue;  // reported above
+    CHECK(it->second.rfind(start, 0) == 0);
+    CHECK(it->second.size() > start.size() + 10);  // and a description
+  }
   CliRun none = run_cli("", dir);
   CHECK(none.rc != 0);
   CHECK(none.rc != -1);

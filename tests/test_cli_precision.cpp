@@ -17,10 +17,7 @@
 using namespace meshsal;
 namespace fs = std::filesystem;
 
-using meshsal_test::CliRun;
-using meshsal_test::read_file;
-using meshsal_test::scratch_dir;
-using meshsal_test::run_cli;
+using namespace meshsal_test;  // cli_run.h: run_cli, scratch_dir, check_usage_error
 
 namespace {
 
@@ -58,11 +55,8 @@ TEST_CASE("cli: saliency --precision mixed and double agree on the gpu", "[cli][
 }
 
 TEST_CASE("cli: a bad --precision is a usage error", "[cli][precision]") {
-  fs::path dir = scratch_dir("cli_precision");
-  CliRun r = run_cli("saliency in.obj -o out.ply --precision single", dir);
-  CHECK(r.rc == 2);
-  CHECK(r.err.find("--precision") != std::string::npos);
-  CHECK(!fs::exists(dir / "out.ply"));
+  const fs::path dir = scratch_dir("cli_precision");
+  check_usage_error("saliency in.obj -o out.ply --precision single", "--precision", dir);
   fs::remove_all(dir);
 }
 

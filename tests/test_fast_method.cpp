@@ -2,6 +2,8 @@
 // synthetic meshes and two shared scans, and method auto's pair budget.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
@@ -10,9 +12,12 @@
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/method_error.h"
 #include "saliency/saliency.h"
+#include "saliency/sparse_cells.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::check_sphere_raw_maps;
+using meshsal_test::mean_over;
 
 namespace {
 
@@ -21,15 +26,6 @@ SaliencyOptions fast_options() {
   o.backend = Backend::Cpu;
   o.method = Method::Fast;
   return o;
-}
-
-double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t v = 0; v < values.size(); ++v)
-    if (mask[v]) sum += values[v], count++;
-  REQUIRE(count > 0);
-  return sum / double(count);
 }
 
 // Fast against exact on a shared scan: the targets of SPEC 5.
@@ -76,23 +72,51 @@ TEST_CASE("fast filter: close to the brute-force averages on a bumpy sphere", "[
     CHECK(sum / m.vertex_count() < 0.01);
     CHECK(worst < 0.05);
   }
-  // Cells, not points: fewer (vertex, cell) pairs than the exact sweep's (vertex, point).
-  FilterStats exact_stats;
-  gaussian_filter(m, is_point, s.curvature, sigmas, 0, &exact_stats);
-  CHECK(stats.pairs > 0);
-  CHECK(stats.pairs < sigmas.size() * exact_stats.pairs);
+  // The pairs it counts are (query, cell) pairs with the cell's centroid within 2 sigma of
+  // the query. A cell holds at least one point, all within its diagonal d = sqrt(3) h of the
+  // centroid (h: usable_cell(box, sigma / 6)), and distinct cells hold distinct points. So a
+  // query at vertex v counts at most the points within 2 sigma + d of v, and at least its own
+  // cell (d < 2 sigma). Per cell (a query at its centroid, within d of any vertex of the
+  // cell), at most the points within 2 sigma + 2d of one of its vertices. Where every cell
+  // holds one point the centroids are the points: the exact count at 2 sigma, to the pair.
+  const BoundingBox box = mesh_points_bbox(m, is_point);
+  const std::vector<uint32_t> point_list = mesh_point_list(is_point);
+  const double cells_per_sigma = FastFilterParams{}.cells_per_sigma;
+  bool one_point_per_cell = true;
+  for (double sigma : sigmas) {
+    const SparseCells cells = sort_into_cells(m, point_list, box, usable_cell(box, sigma / cells_per_sigma), 0);
+    for (size_t c = 0; c + 1 < cells.start.size(); ++c) one_point_per_cell &= cells.start[c + 1] - cells.start[c] == 1;
+  }
+  auto pair_bound = [&](double diagonals) {
+    uint64_t n = 0;
+    for (double sigma : sigmas) {
+      const double d = std::sqrt(3.0) * usable_cell(box, sigma / cells_per_sigma);
+      n += meshsal_test::pairs_within(m, is_point, 2 * sigma + diagonals * d);
+    }
+    return n;
+  };
+  const uint64_t points = point_list.size(), exact_pairs = pair_bound(0);
+  FastFilterParams per_vertex;
+  per_vertex.points_per_query_cell = INFINITY;
+  FilterStats vertex_stats;
+  gaussian_filter_fast(m, is_point, s.curvature, sigmas, 0, &vertex_stats, {}, per_vertex);
+  INFO("pairs: default " << stats.pairs << ", per vertex " << vertex_stats.pairs << ", exact at 2 sigma "
+                         << exact_pairs << ", bounds " << pair_bound(1) << " (per vertex), " << pair_bound(2));
+  CHECK(vertex_stats.pairs >= sigmas.size() * points);
+  CHECK(vertex_stats.pairs <= pair_bound(1));
+  CHECK(stats.pairs >= sigmas.size());
+  CHECK(stats.pairs <= pair_bound(2));
+  // This mesh's cells (h <= 2 eps) are finer than its vertex spacing (~6 eps): one point each.
+  CHECK(one_point_per_cell);
+  if (one_point_per_cell) {
+    CHECK(std::llabs(int64_t(vertex_stats.pairs) - int64_t(exact_pairs)) <= int64_t(exact_pairs / 1000000));
+    CHECK(stats.pairs == vertex_stats.pairs);
+  }
 }
 
 TEST_CASE("fast: sphere raw maps stay near zero", "[fast]") {
   const double r = 3.0;
-  SaliencyResult s = compute_saliency(make_sphere(r, 5), fast_options());
-  REQUIRE(s.raw.size() == 5);
-  for (size_t i = 0; i < s.raw.size(); ++i) {
-    double worst = 0;
-    for (double x : s.raw[i]) worst = std::max(worst, x);
-    INFO("scale " << i << ": max raw " << worst);
-    CHECK(worst < 0.01 / r);
-  }
+  check_sphere_raw_maps(compute_saliency(make_sphere(r, 5), fast_options()), r);
 }
 
 TEST_CASE("fast: the bump plane's saliency maximum is on the bump", "[fast]") {
@@ -191,8 +215,9 @@ TEST_CASE("parse_method", "[fast]") {
 }
 
 TEST_CASE("fast filter: per-cell sums extrapolated to the vertices stay close to exact", "[fast]") {
-  // Forces the per-cell path (used where cells hold >= 4 points, i.e. on dense scans) on a
-  // small mesh, and compares both paths with the exact sweep.
+  // Forces the per-cell path (which gaussian_filter_fast takes, per sigma, where that sigma's
+  // non-empty cells hold at least FastFilterParams::points_per_query_cell = 2 points on
+  // average, i.e. on dense scans) on a small mesh, and compares both paths with the exact sweep.
   // eps_frac 0.01 makes the cells hold ~10 points each.
   Mesh m = make_bumpy_sphere(5);
   std::vector<uint8_t> is_point = referenced_vertices(m);

@@ -67,11 +67,8 @@ TEST_CASE("without any Vulkan driver: gpu is a clear error, auto falls back with
   const std::string cli = MESHSAL_CLI;
   const std::string out = "/tmp/meshsal_gpu_test_" + std::to_string(::getpid()) + ".ply";
   const std::string no_driver = "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json ";
-  const std::string args = " saliency --threads 2 " + std::string(MESHSAL_DATA_DIR) + "/spot_3k.obj -o " + out;
-  if (!meshsal_test::file_exists(std::string(MESHSAL_DATA_DIR) + "/spot_3k.obj")) {
-    WARN("skipped: spot_3k.obj is absent");
-    return;
-  }
+  MESHSAL_REQUIRE_MESH(spot, "spot_3k.obj");
+  const std::string args = " saliency --threads 2 " + spot + " -o " + out;
   Run gpu = run(no_driver + cli + args + " --backend gpu");
   CHECK(gpu.rc == 1);
   CHECK(gpu.out.find("error: no Vulkan driver found") != std::string::npos);

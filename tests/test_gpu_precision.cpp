@@ -97,7 +97,7 @@ TEST_CASE("mixed-precision gpu sweep matches the cpu on synthetic meshes", "[gpu
 TEST_CASE("mixed-precision gpu sweep matches the cpu on real meshes", "[gpu][precision]") {
   for (const char* name : {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj",
                            "dinosaur_14k.obj"}) {
-    MESHSAL_REQUIRE_MESH(path, name);
+    MESHSAL_MESH_OR_CONTINUE(path, name);
     const uint64_t rechecked = hold_to_cpu(load_mesh(path), name, Precision::Mixed);
     WARN(name << ": " << rechecked << " points rechecked in double (both layouts)");
   }

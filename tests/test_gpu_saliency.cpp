@@ -118,7 +118,7 @@ TEST_CASE("gpu saliency keeps unreferenced vertices at zero", "[gpu]") {
 TEST_CASE("gpu saliency matches the cpu on real meshes", "[gpu]") {
   for (const char* name :
        {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj", "bunny_36k.obj"}) {
-    MESHSAL_REQUIRE_MESH(path, name);
+    MESHSAL_MESH_OR_CONTINUE(path, name);
     compare(load_mesh(path), SaliencyOptions{}, name);
   }
 }

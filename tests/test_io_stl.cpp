@@ -15,6 +15,7 @@
 using meshsal::Mesh;
 using meshsal_test::put_bin;
 using meshsal_test::TempDir;
+using meshsal_test::expect_error;
 
 namespace {
 
@@ -51,15 +52,6 @@ const std::string kTwoFacets =
     "      vertex 0 1 0\n    endloop\n  endfacet\n"
     "endsolid square\n";
 
-void expect_error(const std::string& path, const std::string& problem) {
-  INFO("file: " << path);
-  const std::string msg = meshsal_test::load_error(path);
-  INFO("message: " << msg);
-  REQUIRE(!msg.empty());
-  CHECK(msg.find('\n') == std::string::npos);
-  CHECK(msg.rfind(path + ": ", 0) == 0);
-  CHECK(msg.find(problem) != std::string::npos);
-}
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -84,6 +85,28 @@ inline std::string load_error(const std::string& path) {
     return e.what();
   }
   return "";
+}
+
+// Loads PATH expecting a meshsal::Error whose message is one line that starts with the file
+// ("PATH: ...") and says `problem`.
+inline void expect_error(const std::string& path, const std::string& problem) {
+  INFO("file: " << path);
+  const std::string msg = load_error(path);
+  INFO("message: " << msg);
+  REQUIRE(!msg.empty());
+  CHECK(msg.find('\n') == std::string::npos);
+  CHECK(msg.rfind(path + ": ", 0) == 0);
+  CHECK(msg.find(problem) != std::string::npos);
+}
+
+// A file to write and the problem its loading must report (expect_errors).
+struct BadFile {
+  std::string name, bytes, problem;
+};
+
+// Writes each file into DIR and expects its load to fail as expect_error says.
+inline void expect_errors(const TempDir& dir, const std::vector<BadFile>& files) {
+  for (const BadFile& f : files) expect_error(dir.write(f.name, f.bytes), f.problem);
 }
 
 // Binary PLY body helpers: append raw values in the given byte order.

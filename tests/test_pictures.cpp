@@ -21,29 +21,21 @@
 #include "view/render.h"
 #include "view/text.h"
 #include "view/viewpoint.h"
+#include "cli_run.h"
 #include "png_check.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::CliRun;
 using meshsal_test::colormap_position;
 using meshsal_test::PictureDir;
+using meshsal_test::run_cli_merged;
 using meshsal_test::read_png;
 
 namespace {
 const double kPi = 3.14159265358979323846;
 
 bool same_rgb(const uint8_t* a, const uint8_t* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
-
-int cli(const std::string& args, std::string* out = nullptr) {
-  std::string file = "/tmp/meshsal_pictures_cli_" + std::to_string(getpid()) + ".txt";
-  int rc = std::system((std::string(MESHSAL_CLI) + " " + args + " > " + file + " 2>&1").c_str());
-  std::ifstream in(file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (out) *out = ss.str();
-  std::remove(file.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
 
 // The row of a colour bar: a run of at least `min_len` pixels starting with the scale's low
 // end and ending with its high end, t never falling. Returns the row or -1.
@@ -194,9 +186,9 @@ TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best v
   write_obj(dir.path + "/pyr.obj", pyr);
   // Shape in the picture body (below the two title lines) of `render --grey`.
   auto shape = [&](const std::string& up, double* aspect, double* top_over_bottom) {
-    std::string out;
-    REQUIRE(cli("render " + dir.path + "/pyr.obj --grey --size 300 --theta 20 --phi 5 --up " + up + " -o " +
-                    dir.path + "/p.png", &out) == 0);
+    CliRun r;
+    REQUIRE((r = run_cli_merged("render " + dir.path + "/pyr.obj --grey --size 300 --theta 20 --phi 5 --up " + up + " -o " +
+                    dir.path + "/p.png")).rc == 0);
     Image img = read_png(dir.path + "/p.png");
     const int top = title_height(text_size_for(300), 1);
     int x0, y0, x1, y1;
@@ -225,13 +217,13 @@ TEST_CASE("pictures: --up z turns a z-up mesh upright, --best renders the best v
   std::vector<double> q(s.vertex_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
   write_ply(dir.path + "/s.ply", s, {{"quality", &q}});
-  std::string out;
-  REQUIRE(cli("render " + dir.path + "/s.ply --best --backend cpu --size 64 -o " + dir.path + "/b.png", &out) == 0);
-  INFO(out);
-  size_t at = out.find("best view: theta ");
+  CliRun r;
+  REQUIRE((r = run_cli_merged("render " + dir.path + "/s.ply --best --backend cpu --size 64 -o " + dir.path + "/b.png")).rc == 0);
+  INFO(r.out);
+  size_t at = r.out.find("best view: theta ");
   REQUIRE(at != std::string::npos);
-  CHECK(std::fabs(std::strtod(out.c_str() + at + 17, nullptr) - 90) < 15);
-  CHECK(cli("render " + dir.path + "/s.ply --best --theta 10 -o " + dir.path + "/b.png", &out) == 2);
+  CHECK(std::fabs(std::strtod(r.out.c_str() + at + 17, nullptr) - 90) < 15);
+  CHECK((r = run_cli_merged("render " + dir.path + "/s.ply --best --theta 10 -o " + dir.path + "/b.png")).rc == 2);
 }
 
 TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and says so", "[view]") {
@@ -240,25 +232,24 @@ TEST_CASE("pictures: a saliency PLY given as input reuses its own saliency and s
   std::vector<double> q(s.vertex_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
   write_ply(dir.path + "/s.ply", s, {{"quality", &q}});
-  std::string out;
-  REQUIRE(cli("render " + dir.path + "/s.ply --theta 90 --size 320 -o " + dir.path + "/r.png", &out) == 0);
-  CHECK(out.find("s.ply: using its own saliency") != std::string::npos);
+  CliRun r;
+  REQUIRE((r = run_cli_merged("render " + dir.path + "/s.ply --theta 90 --size 320 -o " + dir.path + "/r.png")).rc == 0);
+  CHECK(r.out.find("s.ply: using its own saliency") != std::string::npos);
   Image img = read_png(dir.path + "/r.png");
   const int top = title_height(text_size_for(320), 2);
   CHECK(colormap_position(img.at(160, top + 160)) > 0.8);  // max(0, x) faces the viewer: hot
-  REQUIRE(cli("viewpoint " + dir.path + "/s.ply --backend cpu --resolution 64 --restarts 2", &out) == 0);
-  CHECK(out.find("\"score_source\": \"" + dir.path + "/s.ply\"") != std::string::npos);
-  CHECK(out.find("using its own saliency") != std::string::npos);
+  REQUIRE((r = run_cli_merged("viewpoint " + dir.path + "/s.ply --backend cpu --resolution 64 --restarts 2")).rc == 0);
+  CHECK(r.out.find("\"score_source\": \"" + dir.path + "/s.ply\"") != std::string::npos);
+  CHECK(r.out.find("using its own saliency") != std::string::npos);
 
   // --color-range 0,0.25: everything above 0.25 is the top colour; bad ranges are usage errors.
-  REQUIRE(cli("render " + dir.path + "/s.ply --theta 90 --size 320 --color-range 0,0.25 -o " + dir.path + "/c.png",
-              &out) == 0);
+  REQUIRE((r = run_cli_merged("render " + dir.path + "/s.ply --theta 90 --size 320 --color-range 0,0.25 -o " + dir.path + "/c.png")).rc == 0);
   img = read_png(dir.path + "/c.png");
   CHECK(colormap_position(img.at(160 - 70, top + 160)) > 0.9);  // x about 0.9 there: clipped at the top
-  CHECK(cli("render " + dir.path + "/s.ply --color-range 2,1 -o " + dir.path + "/c.png", &out) == 2);
-  CHECK(out.find("--color-range: LO must be below HI") != std::string::npos);
+  CHECK((r = run_cli_merged("render " + dir.path + "/s.ply --color-range 2,1 -o " + dir.path + "/c.png")).rc == 2);
+  CHECK(r.out.find("--color-range: LO must be below HI") != std::string::npos);
   // A missing font is a one-line error naming it, and no picture.
-  CHECK(cli("render " + dir.path + "/s.ply -o " + dir.path + "/f.png", &out) == 0);
+  CHECK((r = run_cli_merged("render " + dir.path + "/s.ply -o " + dir.path + "/f.png")).rc == 0);
   CHECK(std::system(("MESHSAL_FONT=/nonexistent/font.ttf " + std::string(MESHSAL_CLI) + " render " + dir.path +
                      "/s.ply -o " + dir.path + "/g.png > /dev/null 2>&1").c_str()) != 0);
   CHECK(!std::filesystem::exists(dir.path + "/g.png"));
@@ -322,10 +313,10 @@ TEST_CASE("pictures: render --compare labels each panel, colours the simplified 
   write_ply(dir.path + "/o.ply", original, {{"quality", &q}});
   write_obj(dir.path + "/plain.obj", plain);
   write_obj(dir.path + "/salient.obj", original);
-  std::string out;
-  REQUIRE(cli("render " + dir.path + "/o.ply --compare " + dir.path + "/plain.obj " + dir.path +
-                  "/salient.obj --size 240 --theta 0 --phi 0 -o " + dir.path + "/c.png", &out) == 0);
-  INFO(out);
+  CliRun r;
+  REQUIRE((r = run_cli_merged("render " + dir.path + "/o.ply --compare " + dir.path + "/plain.obj " + dir.path +
+                  "/salient.obj --size 240 --theta 0 --phi 0 -o " + dir.path + "/c.png")).rc == 0);
+  INFO(r.out);
   const Image img = read_png(dir.path + "/c.png");
   const int size = 240, gap = 4;
   REQUIRE(img.width == 3 * size + 2 * gap);

@@ -8,7 +8,6 @@
 #include <string>
 #include <unistd.h>
 
-
 #include "view/camera.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
@@ -17,12 +16,20 @@
 #include "view/legend.h"
 #include "cli/render_demo.h"
 #include "cli/synthetic.h"
+#include "cli_run.h"
+#include "json_check.h"
 #include "png_check.h"
 #include "test_util.h"
 
 using namespace meshsal;
+using meshsal_test::CliRun;
 using meshsal_test::colormap_position;
+using meshsal_test::colour_in_range;
+using meshsal_test::pixel_counts;
+using meshsal_test::PixelCounts;
+using meshsal_test::json_number;
 using meshsal_test::PictureDir;
+using meshsal_test::run_cli_merged;
 using meshsal_test::read_png;
 
 namespace {
@@ -30,22 +37,6 @@ const double kPi = 3.14159265358979323846;
 
 bool is_background(const uint8_t* p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
-int run_cli(const std::string& args, std::string* out = nullptr) {
-  std::string file = "/tmp/meshsal_render_cli_" + std::to_string(getpid()) + ".txt";
-  int rc = std::system((std::string(MESHSAL_CLI) + " " + args + " > " + file + " 2>&1").c_str());
-  std::ifstream in(file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (out) *out = ss.str();
-  std::remove(file.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-double json_number(const std::string& text, const std::string& key) {
-  size_t at = text.find("\"" + key + "\": ");
-  REQUIRE(at != std::string::npos);
-  return std::strtod(text.c_str() + at + key.size() + 4, nullptr);
-}
 }  // namespace
 
 TEST_CASE("render: a sphere fills the picture (framed by its projected extent), centred", "[view]") {
@@ -172,10 +163,32 @@ TEST_CASE("render: demo pictures are written", "[view]") {
   opt.map_views = 400;
   std::vector<std::string> files = write_demo_pictures(mesh, sal, dir, &mesh, &mesh, opt);
   REQUIRE(files.size() == 3);
-  CHECK(read_png(files[0]).width >= 256);  // the picture, or its title if wider
-  CHECK(read_png(files[0]).height > 256);  // title and colour bar
-  CHECK(read_png(files[1]).width > 720);   // the plot and its axes
-  CHECK(read_png(files[2]).width == 3 * 256 + 8);
+  // The best view: the model fills the middle of the picture in saliency colours, cold there
+  // (all but the feature's one or two vertices have saliency 0.05 of the maximum).
+  const Image best = read_png(files[0]);
+  CHECK(best.width >= 256);  // the picture, or its title if wider
+  CHECK(best.height > 256);  // title and colour bar
+  const int cx = best.width / 2, cy = best.height / 2;
+  const PixelCounts middle = pixel_counts(best, cx - 64, cy - 64, cx + 64, cy + 64);
+  const int cold = colour_in_range(best, cx - 64, cy - 64, cx + 64, cy + 64, 0.0, 0.2);
+  INFO("best: middle coloured " << middle.coloured << " of " << 128 * 128 << ", cold " << cold);
+  CHECK(middle.coloured > 128 * 128 * 9 / 10);
+  CHECK(cold > 128 * 128 * 3 / 4);
+  // The view map: a plot in saliency colours with its axes (dark text and lines).
+  const Image map = read_png(files[1]);
+  CHECK(map.width > 720);
+  const PixelCounts plot = pixel_counts(map);
+  INFO("map: " << map.width << "x" << map.height << " coloured " << plot.coloured << " dark " << plot.dark);
+  CHECK(plot.coloured > map.width * map.height / 3);
+  CHECK(plot.dark > 500);
+  // The comparison: three panels, each the model in saliency colours.
+  const Image sbs = read_png(files[2]);
+  CHECK(sbs.width == 3 * 256 + 8);
+  for (int panel = 0; panel < 3; ++panel) {
+    const PixelCounts c = pixel_counts(sbs, panel * 260, 0, panel * 260 + 256, sbs.height);
+    INFO("panel " << panel << ": coloured " << c.coloured << ", not white " << c.not_white);
+    CHECK(c.coloured > 256 * 256 / 4);
+  }
 }
 
 TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws any view", "[view]") {
@@ -186,61 +199,86 @@ TEST_CASE("cli: meshsal viewpoint prints JSON and writes pictures, render draws 
   std::vector<double> q(s.vertex_count());
   for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(0.0, double(s.positions[3 * i]));
   write_ply(dir + "/s.ply", s, {{"quality", &q}});
-  std::string out;
-  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/s.ply --backend cpu --resolution 64 "
-                  "--restarts 3 --views 150 -o " + dir + "/best.png --map " + dir + "/map.png --size 128",
-                  &out) == 0);
-  INFO(out);
+  CliRun cr;
+  REQUIRE((cr = run_cli_merged("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/s.ply --backend cpu --resolution 64 "
+                  "--restarts 3 --views 150 -o " + dir + "/best.png --map " + dir + "/map.png --size 128")).rc == 0);
+  INFO(cr.out);
   double d0 = 0;
   {
-    size_t at = out.find("\"direction\": [");
+    size_t at = cr.out.find("\"direction\": [");
     REQUIRE(at != std::string::npos);
-    d0 = std::strtod(out.c_str() + at + 14, nullptr);
+    d0 = std::strtod(cr.out.c_str() + at + 14, nullptr);
   }
   CHECK(d0 > 0.9);
-  CHECK(json_number(out, "views_evaluated") > 150);
-  CHECK(json_number(out, "visible_score") >= 0.98 * json_number(out.substr(out.find("\"exhaustive\"")), "visible_score"));
-  CHECK(json_number(out, "visible_fraction") > 0.5);
-  CHECK(read_png(dir + "/best.png").width >= 128);  // at least the picture; the title may be wider
-  CHECK(read_png(dir + "/map.png").width > 720);    // the plot with its axes
+  CHECK(json_number(cr.out, "views_evaluated") > 150);
+  CHECK(json_number(cr.out, "visible_score") >= 0.98 * json_number(cr.out.substr(cr.out.find("\"exhaustive\"")), "visible_score"));
+  CHECK(json_number(cr.out, "visible_fraction") > 0.5);
+  // The best view looks from +x at the hot side: the middle of the picture is the model, hot.
+  const Image best = read_png(dir + "/best.png");
+  CHECK(best.width >= 128);  // at least the picture; the title may be wider
+  {
+    const int cx = best.width / 2, cy = best.height / 2;
+    const int hot = colour_in_range(best, cx - 24, cy - 24, cx + 24, cy + 24, 0.75, 1.0);
+    INFO("best.png " << best.width << "x" << best.height << ": hot " << hot << " of " << 48 * 48);
+    CHECK(hot > 48 * 48 / 2);
+  }
+  const Image map = read_png(dir + "/map.png");
+  CHECK(map.width > 720);  // the plot with its axes
+  INFO("map.png coloured " << pixel_counts(map).coloured << " of " << map.width * map.height);
+  CHECK(pixel_counts(map).coloured > map.width * map.height / 3);
 
-  REQUIRE(run_cli("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
-                  dir + "/r.png", &out) == 0);
+  REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --saliency-from " + dir + "/s.ply --theta 90 --phi 0 --size 320 -o " +
+                  dir + "/r.png")).rc == 0);
   Image r = read_png(dir + "/r.png");
   CHECK(r.width == 320);
   const int top = title_height(text_size_for(320), 2);
   const uint8_t* centre = r.at(160, top + 160);  // looking from +x at the most salient side: red
   CHECK(colormap_position(centre) > 0.8);
-  REQUIRE(run_cli("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
-                  dir + "/c.png", &out) == 0);
-  CHECK(read_png(dir + "/c.png").width == 3 * 64 + 8);
+  REQUIRE((cr = run_cli_merged("render " + dir + "/s.ply --grey --compare " + dir + "/s.ply " + dir + "/s.ply --size 64 -o " +
+                  dir + "/c.png")).rc == 0);
+  {
+    // --grey: the original drawn in grey (shaded, not white), no colour; the two "simplified"
+    // panels (the same mesh) coloured by their distance to it, 0: the scale's low end.
+    const Image c = read_png(dir + "/c.png");
+    CHECK(c.width == 3 * 64 + 8);
+    for (int panel = 0; panel < 3; ++panel) {
+      const PixelCounts p = pixel_counts(c, panel * 68, 0, panel * 68 + 64, c.height);
+      const int low = colour_in_range(c, panel * 68, 0, panel * 68 + 64, c.height, 0.0, 0.1);
+      INFO("panel " << panel << ": coloured " << p.coloured << ", low end " << low << ", not white " << p.not_white);
+      CHECK(p.not_white > 64 * 64 / 2);
+      if (panel == 0)
+        CHECK(p.coloured == 0);
+      else
+        CHECK(low > 64 * 64 / 3);
+    }
+  }
 
   // Curvature baseline: |H| is nearly uniform on a sphere, so any view sees about half of it.
-  REQUIRE(run_cli("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2", &out) == 0);
-  CHECK(out.find("\"score\": \"curvature\"") != std::string::npos);
-  CHECK(json_number(out, "visible_fraction") > 0.4);
-  CHECK(json_number(out, "visible_fraction") < 0.6);
-  CHECK(out.find("\"exhaustive\": null") != std::string::npos);
+  REQUIRE((cr = run_cli_merged("viewpoint " + dir + "/s.ply --score curvature --backend cpu --resolution 64 --restarts 2")).rc == 0);
+  CHECK(cr.out.find("\"score\": \"curvature\"") != std::string::npos);
+  CHECK(json_number(cr.out, "visible_fraction") > 0.4);
+  CHECK(json_number(cr.out, "visible_fraction") < 0.6);
+  CHECK(cr.out.find("\"exhaustive\": null") != std::string::npos);
 
   // Errors are one line: a bad choice is a usage error (exit 2), a bad file exit 1.
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --score nonsense", &out) == 2);
-  CHECK(out.find("error: --score: nonsense not in {saliency,curvature}") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --score nonsense")).rc == 2);
+  CHECK(cr.out.find("error: --score: nonsense not in {saliency,curvature}") != std::string::npos);
   write_ply(dir + "/noq.ply", s, {});
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply", &out) == 1);
-  CHECK(out.find("has no per-vertex `quality` property") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --saliency-from " + dir + "/noq.ply")).rc == 1);
+  CHECK(cr.out.find("has no per-vertex `quality` property") != std::string::npos);
   // Numbers out of range are usage errors: exit code 2, the option and its range named.
-  CHECK(run_cli("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu", &out) == 2);
-  CHECK(out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
-  CHECK(run_cli("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png", &out) == 2);
-  CHECK(out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
+  CHECK((cr = run_cli_merged("viewpoint " + dir + "/s.ply --resolution 2 --backend cpu")).rc == 2);
+  CHECK(cr.out.find("error: --resolution: must be a whole number in [16, 8192], got '2'") != std::string::npos);
+  CHECK((cr = run_cli_merged("render " + dir + "/s.ply --phi 100 -o " + dir + "/x.png")).rc == 2);
+  CHECK(cr.out.find("error: --phi: must be a finite number in [-90, 90], got '100'") != std::string::npos);
 }
 
 TEST_CASE("cli: render and viewpoint --help name every input format, STL included", "[view][cli]") {
   for (const char* cmd : {"render", "viewpoint"}) {
-    std::string out;
-    REQUIRE(run_cli(std::string(cmd) + " --help", &out) == 0);
-    INFO(out);
-    CHECK(out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
-    CHECK(out.find("--json") != std::string::npos);
+    CliRun cr;
+    REQUIRE((cr = run_cli_merged(std::string(cmd) + " --help")).rc == 0);
+    INFO(cr.out);
+    CHECK(cr.out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
+    CHECK(cr.out.find("--json") != std::string::npos);
   }
 }

@@ -7,30 +7,12 @@
 #include "test_util.h"
 
 using namespace meshsal;
-
-static double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& mask,
-                        bool absolute = false) {
-  double sum = 0;
-  size_t count = 0;
-  for (size_t v = 0; v < values.size(); ++v)
-    if (mask[v]) {
-      sum += absolute ? std::fabs(values[v]) : values[v];
-      count++;
-    }
-  REQUIRE(count > 0);
-  return sum / double(count);
-}
+using meshsal_test::check_sphere_raw_maps;
+using meshsal_test::mean_over;
 
 TEST_CASE("sphere: raw center-surround maps are below 1% of |H|", "[saliency]") {
   const double r = 3.0;
-  SaliencyResult s = compute_saliency_cpu(make_sphere(r, 5), {});
-  REQUIRE(s.raw.size() == 5);
-  for (size_t i = 0; i < s.raw.size(); ++i) {
-    double worst = 0;
-    for (double x : s.raw[i]) worst = std::max(worst, x);
-    INFO("scale " << i << ": max raw " << worst);
-    CHECK(worst < 0.01 / r);
-  }
+  check_sphere_raw_maps(compute_saliency_cpu(make_sphere(r, 5), {}), r);
 }
 
 TEST_CASE("plane: curvature and saliency are zero", "[saliency]") {

@@ -37,6 +37,22 @@ std::string json_text(const std::string& text, const std::string& key, size_t fr
   return text.substr(b, e - b);
 }
 
+// Search options of the library tests: a visibility RESOLUTION, RESTARTS, and VIEWS directions
+// also scored exhaustively (0: none, ViewpointOptions' default).
+ViewpointOptions search_options(int resolution, int restarts, int views = 0) {
+  ViewpointOptions o;
+  o.resolution = resolution;
+  o.restarts = restarts;
+  o.views = views;
+  return o;
+}
+
+// Two searches that must find the same best view, to the bit.
+void check_same_view(const Viewpoint& a, const Viewpoint& b) {
+  CHECK(a.view.theta == b.view.theta);
+  CHECK(a.view.phi == b.view.phi);
+}
+
 // A bumpy sphere whose score is max(0, y + 0.3 x): best seen from above, a little to +x.
 std::vector<double> top_score(const Mesh& m) {
   std::vector<double> s(m.vertex_count());
@@ -48,8 +64,7 @@ std::vector<double> top_score(const Mesh& m) {
 }  // namespace
 
 TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library give one view", "[view][cli]") {
-  const std::string mesh = shared_mesh("bunny_3k.off");
-  if (mesh.empty()) return;  // shared_mesh warned
+  MESHSAL_REQUIRE_MESH(mesh, "bunny_3k.off");
   TempDir dir;
   const std::string dp = dir.path.string();
   const Mesh m = load_mesh(mesh);
@@ -112,15 +127,11 @@ TEST_CASE("view pipeline: a mesh turned z-up, searched with up z, gives the y-up
     z_up.positions[3 * i + 1] = -z;
     z_up.positions[3 * i + 2] = y;
   }
-  ViewpointOptions o;
-  o.resolution = 96;
-  o.restarts = 3;
-  o.views = 60;
+  ViewpointOptions o = search_options(96, 3, 60);
   const Viewpoint a = best_viewpoint(y_up, score, o);
   o.up = UpAxis::Z;
   const Viewpoint b = best_viewpoint(z_up, score, o);
-  CHECK(a.view.theta == b.view.theta);
-  CHECK(a.view.phi == b.view.phi);
+  check_same_view(a, b);
   CHECK(a.U == b.U);
   CHECK(a.map.best == b.map.best);
   CHECK(a.map.U == b.map.U);
@@ -136,17 +147,13 @@ TEST_CASE("view pipeline: a mesh turned z-up, searched with up z, gives the y-up
   const Viewpoint c = best_viewpoint(z_up, score, o);
   o.up = UpAxis::Y;
   const Viewpoint d = best_viewpoint(y_up, score, o);
-  CHECK(c.view.theta == d.view.theta);
-  CHECK(c.view.phi == d.view.phi);
+  check_same_view(c, d);
 }
 
 TEST_CASE("view pipeline: the elevation range bounds the search", "[view]") {
   const Mesh s = make_bumpy_sphere(3);
   const std::vector<double> score = top_score(s);
-  ViewpointOptions o;
-  o.resolution = 96;
-  o.restarts = 4;
-  o.views = 200;
+  ViewpointOptions o = search_options(96, 4, 200);
   const Viewpoint free = best_viewpoint(s, score, o);
   REQUIRE(free.view.phi * kDeg > 40);  // the optimum is high above the horizon
   o.elevation = {-30, 20};
@@ -173,16 +180,13 @@ TEST_CASE("view pipeline: the elevation range bounds the search", "[view]") {
   // The whole sphere, given explicitly, is the default search.
   o.elevation = {-90, 90};
   const Viewpoint whole = best_viewpoint(s, score, o);
-  CHECK(whole.view.theta == free.view.theta);
-  CHECK(whole.view.phi == free.view.phi);
+  check_same_view(whole, free);
 }
 
 TEST_CASE("view pipeline: bad elevation ranges and names are refused with Error", "[view]") {
   const Mesh s = make_bumpy_sphere(2);
   const std::vector<double> score = top_score(s);
-  ViewpointOptions o;
-  o.resolution = 32;
-  o.restarts = 1;
+  ViewpointOptions o = search_options(32, 1);
   for (const ElevationRange r : {ElevationRange{30, 10}, ElevationRange{-91, 0}, ElevationRange{0, 90.5},
                                  ElevationRange{std::nan(""), 10}, ElevationRange{-100, 100}}) {
     o.elevation = r;

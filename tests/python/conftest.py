@@ -17,13 +17,21 @@ def _data_dir():
     return Path(os.environ.get("MESHSAL_DATA_DIR", ROOT.parent / "shared" / "data" / "meshes"))
 
 
+def _data_required():
+    """MESHSAL_REQUIRE_DATA=1 (set by .ci/run): a missing shared mesh fails instead of skipping."""
+    return os.environ.get("MESHSAL_REQUIRE_DATA", "") not in ("", "0")
+
+
 @pytest.fixture
 def mesh_path():
-    """mesh_path('bunny_3k.off') -> Path, or skips when the scan is absent."""
+    """mesh_path('bunny_3k.off') -> Path; skips when the scan is absent (fails under
+    MESHSAL_REQUIRE_DATA=1)."""
     def find(name):
         p = _data_dir() / name
         if not p.exists():
-            pytest.skip(f"{p} is absent")
+            if _data_required():
+                pytest.fail(f"missing shared data {p} (MESHSAL_REQUIRE_DATA=1 makes this a failure)")
+            pytest.skip(f"missing shared data {p}")
         return p
     return find
 
