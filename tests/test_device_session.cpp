@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "gpu/gpu_session.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
