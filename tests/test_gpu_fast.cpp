@@ -167,7 +167,7 @@ TEST_CASE("gpu fast: each sigma's averages fit a buffer of their own", "[gpu][fa
 TEST_CASE("gpu fast matches the cpu fast path on real meshes", "[gpu][fast]") {
   const SaliencyOptions opt = fast_options();
   for (const char* name : {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj"}) {
-    MESHSAL_REQUIRE_MESH(path, name);
+    MESHSAL_MESH_OR_CONTINUE(path, name);
     compare(context(), load_mesh(path), opt, name);
   }
 }
