@@ -14,7 +14,9 @@ namespace meshsal {
 // every remaining edge and takes the minimum. Both order edges by (cost rounded to float,
 // then the internal ids of the two ends: vertices are renumbered along a Morton curve for
 // memory locality, identically in both), so with the same input both produce the same
-// collapse sequence. O(steps * edges).
+// collapse sequence. O(steps * edges). It shares the cost, check and collapse code with
+// simplify_mesh, so it only catches ordering bugs; the collapse check has its own oracle
+// (tests/test_simplify_check_oracle.cpp).
 Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                          const std::vector<double>* vertex_weights = nullptr,
                          SimplifyReport* report = nullptr);
