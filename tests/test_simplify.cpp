@@ -94,7 +94,7 @@ static void check_closed_result(const Mesh& in, const Mesh& out, double volume_t
 
 TEST_CASE("simplify: closed manifold inputs stay closed, manifold and oriented", "[simplify]") {
   for (const char* name : {"bunny_3k.off", "spot_3k.obj"}) {
-    MESHSAL_REQUIRE_MESH(path, name);
+    MESHSAL_MESH_OR_CONTINUE(path, name);
     const Mesh in = load_mesh(path);
     REQUIRE(topology(in).border_edges == 0);
     for (double ratio : {0.5, 0.1, 0.02}) {

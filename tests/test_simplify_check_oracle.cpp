@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "simplify/simplify_state.h"
 

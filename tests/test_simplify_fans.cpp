@@ -7,7 +7,7 @@
 #include <set>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "simplify/triangle_fans.h"
 
 using namespace meshsal;

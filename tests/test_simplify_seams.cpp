@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "simplify/seam_groups.h"
 #include "simplify/triangle_fans.h"
 
