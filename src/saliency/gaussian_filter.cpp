@@ -7,6 +7,7 @@
 
 #include "meshsal/meshsal.h"
 #include "core/parallel.h"
+#include "core/exp_poly7.h"
 #include "core/simd_exp.h"
 #include "saliency/spatial_grid.h"
 
@@ -119,17 +120,9 @@ bool is_default_plan(const KernelPlan& plan) {
   return true;
 }
 
-// exp(-x) for 0 <= x <= 0.02 (Taylor, truncation < 1e-18).
-inline v4d exp_neg_small(v4d x) {
-  v4d p = v4d_splat(-1.0 / 5040.0);
-  p = p * x + v4d_splat(1.0 / 720.0);
-  p = p * x + v4d_splat(-1.0 / 120.0);
-  p = p * x + v4d_splat(1.0 / 24.0);
-  p = p * x + v4d_splat(-1.0 / 6.0);
-  p = p * x + v4d_splat(0.5);
-  p = p * x + v4d_splat(-1.0);
-  return p * x + v4d_splat(1.0);
-}
+// exp(-x) for 0 <= x <= 0.02: the degree-7 Taylor polynomial of core/exp_poly7.h
+// (truncation < 1e-18).
+inline v4d exp_neg_small(v4d x) { return exp_neg_poly7(x); }
 
 void sweep_point_default(const SpatialGrid& g, const double* values, const KernelPlan& plan,
                          size_t i, double* num, double* den, uint64_t* pairs) {

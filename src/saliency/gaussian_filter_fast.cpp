@@ -8,6 +8,7 @@
 
 #include "core/mesh_points.h"
 #include "core/parallel.h"
+#include "core/exp_poly7.h"
 #include "core/simd_exp.h"
 #include "saliency/sparse_cells.h"
 #include "saliency/spatial_grid.h"
@@ -59,21 +60,9 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
 
 inline double hsum(v4d v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
-// exp(-x) for 0 <= x < 2 (a weight inside the 2-sigma cutoff): (exp(-x/4))^4 with a degree-7
-// Taylor polynomial for exp(-x/4), relative error < 1e-7, far below the cells' own error.
-inline v4d exp_neg_cutoff(v4d x) {
-  const v4d y = x * v4d_splat(0.25);
-  v4d p = v4d_splat(-1.0 / 5040.0);
-  p = p * y + v4d_splat(1.0 / 720.0);
-  p = p * y + v4d_splat(-1.0 / 120.0);
-  p = p * y + v4d_splat(1.0 / 24.0);
-  p = p * y + v4d_splat(-1.0 / 6.0);
-  p = p * y + v4d_splat(0.5);
-  p = p * y + v4d_splat(-1.0);
-  p = p * y + v4d_splat(1.0);
-  p = p * p;
-  return p * p;
-}
+// The weights inside the cutoff: exp_neg_cutoff() of core/exp_poly7.h, exp(-x) on
+// 0 <= x < 2 as (exp(-x/4))^4 with the degree-7 Taylor polynomial for exp(-x/4) (relative
+// error at most 6.05e-7, far below the cells' own error).
 
 // The weighted sums at a query point q, and (Grad) their gradients in q, for extrapolating
 // from a cell's centroid to the vertices in that cell.
