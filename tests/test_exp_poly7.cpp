@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <ios>
 #include <map>
 #include <sstream>
 #include <string>
@@ -75,7 +76,8 @@ TEST_CASE("exp_poly7: the GLSL include's coefficients equal the C++ ones bit for
   }
   REQUIRE(found.size() == 8);
   for (int k = 0; k < 8; ++k) {
-    INFO("coefficient of x^" << k << ": GLSL " << found[k] << ", C++ " << kExpPoly7[k]);
+    INFO("coefficient of x^" << k << ": GLSL " << std::hexfloat << found[k] << ", C++ "
+                              << kExpPoly7[k]);
     REQUIRE(found.count(k) == 1);
     CHECK(same_bits(found[k], kExpPoly7[k]));
   }
