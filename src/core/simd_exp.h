@@ -4,7 +4,18 @@
 #include <cstdint>
 #include <cstring>
 
+// The CPU hot loops are compiled for two instruction sets (saliency/sweep_kernels.h), and
+// these inline helpers with them: an inline namespace per instruction set gives each its
+// own symbols, so that an out-of-line copy compiled for AVX2 is never the one the linker
+// keeps for a baseline caller.
+#if defined(__AVX2__)
+#define MESHSAL_SIMD_ISA isa_avx2
+#else
+#define MESHSAL_SIMD_ISA isa_baseline
+#endif
+
 namespace meshsal {
+inline namespace MESHSAL_SIMD_ISA {
 
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4i __attribute__((vector_size(32)));
@@ -52,4 +63,5 @@ inline v4d exp_neg(v4d x) {
   return p;
 }
 
+}  // namespace MESHSAL_SIMD_ISA
 }  // namespace meshsal

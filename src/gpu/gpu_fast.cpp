@@ -12,6 +12,7 @@
 #include "gpu/gpu_sweep.h"
 #include "gpu/vk_compute.h"
 #include "saliency/gaussian_filter_fast.h"
+#include "saliency/sparse_cells.h"  // usable_cell(): the CPU path's cells, the same here
 
 #include "fast_center_surround_comp.h"
 #include "fast_finish_comp.h"
@@ -29,16 +30,6 @@ struct QueryPush {
 };
 struct FinishPush { uint32_t base, n, dense, offset; double s2; };
 struct CenterSurroundPush { uint32_t base, n, map, has_b; };
-
-// Cell edge of at least `cell`, grown until every axis has fewer than 2^21 cells: a copy of
-// usable_cell() in gaussian_filter_fast.cpp (file-local there), so that both paths take
-// the same cells.
-double usable_cell(const BoundingBox& box, double cell) {
-  constexpr int kAxisBits = 21;
-  for (int a = 0; a < 3; ++a)
-    while ((box.max[a] - box.min[a]) / cell >= double((1 << kAxisBits) - 2)) cell *= 2;
-  return cell;
-}
 
 // The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
 // cell of the query grid, r = ceil(radius / h) + 3 (fast_query.comp walks the rows of the

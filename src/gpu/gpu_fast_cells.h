@@ -1,8 +1,9 @@
 // meshsal: --method fast on the device, first stage per sigma: the GPU twin of
-// sort_into_cells() and aggregate() in gaussian_filter_fast.cpp. The mesh points are sorted
-// by the cell of edge `cell` they fall in (a stable radix sort of dense cell indices, so
-// that inside a cell they stay in vertex order, as on the CPU) and each occupied cell gets
-// its point count, value sum and centroid (rounded to float, as the CPU rounds it).
+// sort_into_cells() (src/saliency/sparse_cells.cpp) and aggregate() (gaussian_filter_fast.cpp).
+// The mesh points are sorted by the cell of edge `cell` they fall in (a stable radix sort
+// of the dense cell indices of fast_cell_key.comp, the CPU's cell_key() values, so that
+// inside a cell they stay in vertex order, as on the CPU) and each occupied cell gets its
+// point count, value sum and centroid (rounded to float, as the CPU rounds it).
 #pragma once
 #include <cstdint>
 

@@ -8,21 +8,15 @@
 
 #include "core/mesh_points.h"
 #include "core/parallel.h"
-#include "core/simd_exp.h"
 #include "saliency/sparse_cells.h"
 #include "saliency/spatial_grid.h"
+#include "saliency/sweep_kernels.h"
 
 namespace meshsal {
 
 namespace {
 
-// One sigma's aggregates, in the query grid's slot order: centroid (relative to the grid
-// origin), point count and value sum, padded by 4 empty far-away cells for 4-wide loads.
-struct Aggregates {
-  SpatialGrid grid;  // over the centroids; grid.x/y/z are the centroids
-  std::vector<double> count, sum;
-  std::vector<float> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
-};
+using sweep::Aggregates;
 
 Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* values,
                      double query_radius, unsigned threads) {
@@ -55,68 +49,6 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
     ag.sum[s] = sum[ag.grid.order[s]];
   }
   return ag;
-}
-
-inline double hsum(v4d v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-// exp(-x) for 0 <= x < 2 (a weight inside the 2-sigma cutoff): (exp(-x/4))^4 with a degree-7
-// Taylor polynomial for exp(-x/4), relative error < 1e-7, far below the cells' own error.
-inline v4d exp_neg_cutoff(v4d x) {
-  const v4d y = x * v4d_splat(0.25);
-  v4d p = v4d_splat(-1.0 / 5040.0);
-  p = p * y + v4d_splat(1.0 / 720.0);
-  p = p * y + v4d_splat(-1.0 / 120.0);
-  p = p * y + v4d_splat(1.0 / 24.0);
-  p = p * y + v4d_splat(-1.0 / 6.0);
-  p = p * y + v4d_splat(0.5);
-  p = p * y + v4d_splat(-1.0);
-  p = p * y + v4d_splat(1.0);
-  p = p * p;
-  return p * p;
-}
-
-// The weighted sums at a query point q, and (Grad) their gradients in q, for extrapolating
-// from a cell's centroid to the vertices in that cell.
-struct CellSums {
-  double num = 0, den = 0;
-  double gnum[3] = {0, 0, 0}, gden[3] = {0, 0, 0};  // times sigma^2
-};
-
-// sum count*w and sum sum*w over the aggregates with |centroid - q| < 2 sigma.
-template <bool Grad>
-CellSums sweep_cells(const Aggregates& ag, const double q[3], double coef, double cutoff2,
-                     uint64_t* pairs) {
-  const SpatialGrid& g = ag.grid;
-  const double xi = q[0] - g.origin[0], yi = q[1] - g.origin[1], zi = q[2] - g.origin[2];
-  const v4d lane = {0, 1, 2, 3}, zero = v4d_splat(0.0), one = v4d_splat(1.0);
-  const v4d vx = v4d_splat(xi), vy = v4d_splat(yi), vz = v4d_splat(zi);
-  const v4d vcoef = v4d_splat(coef), vcut = v4d_splat(cutoff2);
-  v4d n = zero, d = zero, np = zero;
-  v4d gn[3] = {zero, zero, zero}, gd[3] = {zero, zero, zero};
-  for_each_row_in_ball(g, xi, yi, zi, cutoff2, [&](size_t jb, size_t je) {
-    for (size_t j = jb; j < je; j += 4) {
-      v4d ex = v4d_load(&g.x[j]) - vx, ey = v4d_load(&g.y[j]) - vy, ez = v4d_load(&g.z[j]) - vz;
-      v4d d2 = ex * ex + ey * ey + ez * ez;
-      v4i in = (lane < v4d_splat(double(je - j))) & (d2 < vcut);
-      v4d w = in ? exp_neg_cutoff(d2 * vcoef) : zero;
-      v4d wn = w * v4d_load(&ag.sum[j]), wd = w * v4d_load(&ag.count[j]);
-      n += wn;
-      d += wd;
-      np += in ? one : zero;
-      if (Grad) {
-        // d/dq w(|x - q|) = w (x - q) / sigma^2; the 1/sigma^2 is applied by the caller.
-        gn[0] += wn * ex, gn[1] += wn * ey, gn[2] += wn * ez;
-        gd[0] += wd * ex, gd[1] += wd * ey, gd[2] += wd * ez;
-      }
-    }
-  });
-  CellSums r;
-  r.num = hsum(n);
-  r.den = hsum(d);
-  if (Grad)
-    for (int a = 0; a < 3; ++a) r.gnum[a] = hsum(gn[a]), r.gden[a] = hsum(gd[a]);
-  *pairs += uint64_t(hsum(np));
-  return r;
 }
 
 void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
@@ -161,27 +93,15 @@ std::vector<std::vector<double>> gaussian_filter_fast(
         progress((k + double(finished) / points) / sigmas.size());
     };
     const size_t m = ag.count.size() - 4;
+    // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
+    const sweep::Kernels& kernels = sweep::kernels();
+    sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, values.data(), s, coef, cutoff2, o.data()};
     if (double(points) >= params.points_per_query_cell * double(m)) {
       // Dense cells: the sums and their gradients once at each centroid, extrapolated
       // linearly to the cell's vertices (cost per cell, not per vertex).
       parallel_for(m, threads, 64, [&](size_t begin, size_t end) {
         uint64_t pairs = 0;
-        size_t visited = 0;
-        for (size_t c = begin; c < end; ++c) {
-          const double q[3] = {ag.centroid[3 * c], ag.centroid[3 * c + 1], ag.centroid[3 * c + 2]};
-          const CellSums cs = sweep_cells<true>(ag, q, coef, cutoff2, &pairs);
-          for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
-            const uint32_t v = cells.order[i];
-            double num = cs.num, den = cs.den;
-            for (int a = 0; a < 3; ++a) {
-              const double dv = (double(mesh.positions[3 * v + a]) - q[a]) / (s * s);
-              num += cs.gnum[a] * dv, den += cs.gden[a] * dv;
-            }
-            // den > 0 unless the extrapolation overshoots; then the centroid's average.
-            o[v] = den > 0 ? num / den : cs.num / cs.den;
-          }
-          visited += cells.start[c + 1] - cells.start[c];
-        }
+        const size_t visited = kernels.query_cells(args, begin, end, &pairs);
         total_pairs += pairs;
         tick(visited);
       });
@@ -190,16 +110,10 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     if (visit.empty())
       visit = sort_into_cells(mesh, point_list, box,
                               usable_cell(box, finest / params.cells_per_sigma), threads).order;
+    args.visit = visit.data();
     parallel_for(points, threads, 512, [&](size_t begin, size_t end) {
       uint64_t pairs = 0;
-      for (size_t i = begin; i < end; ++i) {
-        const uint32_t v = visit[i];
-        const double q[3] = {mesh.positions[3 * v], mesh.positions[3 * v + 1],
-                             mesh.positions[3 * v + 2]};
-        const CellSums cs = sweep_cells<false>(ag, q, coef, cutoff2, &pairs);
-        // den > 0: the vertex's own cell's centroid is within sqrt(3)/6 sigma of it.
-        o[v] = cs.den > 0 ? cs.num / cs.den : values[v];
-      }
+      kernels.query_vertices(args, begin, end, &pairs);
       total_pairs += pairs;
       tick(end - begin);
     });

@@ -18,7 +18,8 @@ struct SparseCells {
 };
 
 // Cell edge of at least `cell`, grown until every axis has fewer than 2^21 cells (so that
-// a key fits in 63 bits).
+// a key fits in 63 bits). The GPU fast method (gpu/gpu_fast.cpp) calls it too, so that
+// both paths take the same cells.
 double usable_cell(const BoundingBox& box, double cell);
 
 // The cell of p as one number, z slowest: (z * dims[1] + y) * dims[0] + x, so that keys

@@ -1,7 +1,9 @@
-// meshsal: --method fast, GPU twin of cell_key() in gaussian_filter_fast.cpp: the cell of
-// edge `cell` that each mesh point falls in, as the dense index x + nx (y + ny z) (the CPU's
-// key x | y << 21 | z << 42 sorts the same way), from the same doubles (position - bbox
-// min) divided the same way. A vertex that is not a mesh point gets nx*ny*nz, past every
+// meshsal: --method fast, GPU twin of cell_key() in src/saliency/sparse_cells.cpp: the cell
+// of edge `cell` that each mesh point falls in, as the dense index x + nx (y + ny z) with
+// nx, ny, nz the cells per axis (plan_fast_grid() counts them as cell_dims() does), the
+// same number as the CPU's key (z * dims[1] + y) * dims[0] + x, computed from the same
+// doubles (position - bbox min) divided the same way; here it must fit 32 bits
+// (plan_fast_grid() checks). A vertex that is not a mesh point gets nx*ny*nz, past every
 // cell, so the radix sort puts it after all mesh points.
 #version 450
 layout(local_size_x = 64) in;

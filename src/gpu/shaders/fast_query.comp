@@ -16,6 +16,7 @@
 // whole cells in or out of a sum, and the sums of the two scales of a raw map are close.
 #version 450
 #extension GL_KHR_shader_subgroup_basic : require
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Sorted { dvec4 sorted_pos[]; };  // centroid - min, sum
 layout(std430, binding = 1) readonly buffer SortedCell { uint sorted_cell[]; };
@@ -36,21 +37,8 @@ layout(push_constant) uniform Push {
   double coef;                // 1 / (2 sigma^2)
 } pc;
 
-// exp(-x) for 0 <= x < 2: exp_neg_cutoff() in gaussian_filter_fast.cpp, (exp(-x/4))^4 with
-// a degree-7 Taylor polynomial.
-double exp_neg_cutoff(double x) {
-  precise double y = x * 0.25LF;
-  precise double p = -1.0LF / 5040.0LF;
-  p = p * y + 1.0LF / 720.0LF;
-  p = p * y + -1.0LF / 120.0LF;
-  p = p * y + 1.0LF / 24.0LF;
-  p = p * y + -1.0LF / 6.0LF;
-  p = p * y + 0.5LF;
-  p = p * y + -1.0LF;
-  p = p * y + 1.0LF;
-  p = p * p;
-  return p * p;
-}
+// exp_neg_cutoff(): exp(-x) for 0 <= x < 2, as exp_neg_cutoff() in src/core/exp_poly7.h.
+#include "exp_poly7.glsl"
 
 void main() {
   const uint gid = gl_GlobalInvocationID.x;

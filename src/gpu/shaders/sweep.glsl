@@ -128,26 +128,11 @@ double exp_neg(double x) {
 
 #ifdef FAST8
 // exp(-x) for 0 <= x <= 0.02 (Taylor, truncation < 1e-18): exp_neg_small() in
-// gaussian_filter.cpp.
-double exp_neg_small(double x) {
-  // The CPU build contracts p * x + c to an fma (x86-64-v3, GCC's -ffp-contract=fast); so
-  // does the GPU variant. Not sweep8_rows: lavapipe runs a double fma() far slower than
-  // a * b + c (its igea_134k sweep went from 2.0 s to 2.8 s).
-#ifdef UNIFORM_ROWS
-#define MAD(a, b, c) ((a) * (b) + (c))
-#else
-#define MAD(a, b, c) fma(a, b, c)
-#endif
-  double p = -1.0LF / 5040.0LF;
-  p = MAD(p, x, 1.0LF / 720.0LF);
-  p = MAD(p, x, -1.0LF / 120.0LF);
-  p = MAD(p, x, 1.0LF / 24.0LF);
-  p = MAD(p, x, -1.0LF / 6.0LF);
-  p = MAD(p, x, 0.5LF);
-  p = MAD(p, x, -1.0LF);
-  return MAD(p, x, 1.0LF);
-#undef MAD
-}
+// gaussian_filter.cpp, the shared degree-7 polynomial (exp_poly7.glsl). A multiply and an
+// add per step on every device: the CPU build no longer contracts them into an fma
+// (-ffp-contract=off), and lavapipe runs a double fma() far slower than a * b + c.
+#include "exp_poly7.glsl"
+double exp_neg_small(double x) { return exp_neg_poly7(x); }
 #endif
 
 // The weights of a candidate at squared distance d2 for every sigma, before the cutoffs

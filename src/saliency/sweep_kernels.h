@@ -1,0 +1,80 @@
+// meshsal: the CPU hot loops of the Gaussian averages, the exact sweep's (gaussian_filter.cpp)
+// and the fast method's queries (gaussian_filter_fast.cpp): written once, in sweep_kernels.inc,
+// and compiled twice, by sweep_kernels_baseline.cpp for baseline x86-64 and by
+// sweep_kernels_avx2.cpp with -mavx2 -mfma (CMakeLists.txt, next to MESHSAL_ARCH);
+// kernels() hands out the set that cpu_path() (cpu_dispatch.h) picks. Both sets run the same
+// IEEE operations in the same order (-ffp-contract=off everywhere, no fma intrinsic), so
+// they give the same bits.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+#include "saliency/sparse_cells.h"
+#include "saliency/spatial_grid.h"
+
+namespace meshsal::sweep {
+
+constexpr int kMaxSigmas = 32;
+
+// How each sigma's weight is obtained: a sigma that is half of another one has weight
+// w(s) = w(2s)^4, so only the "base" sigmas need an exp (default scales: 12, 10, 8 eps).
+struct KernelPlan {
+  int count = 0;
+  int parent[kMaxSigmas];  // -1: exp(-d2 * coef), else w[parent]^4; parents come first
+  double coef[kMaxSigmas];  // 1 / (2 s^2)
+  double cutoff2[kMaxSigmas];  // (2 s)^2: strict cutoff |x - v| < 2 s
+  int slot[kMaxSigmas];  // output index of plan entry
+  double radius2 = 0;  // largest cutoff
+};
+
+// What the exact sweep of a range of sorted slots reads and writes.
+struct SweepArgs {
+  const SpatialGrid* grid;
+  const double* values;  // sorted, padded by 4
+  const KernelPlan* plan;
+  double* const* out;    // out[plan slot] -> the per-vertex averages of that sigma
+};
+
+// One sigma's aggregates, in the query grid's slot order: centroid (relative to the grid
+// origin), point count and value sum, padded by 4 empty far-away cells for 4-wide loads.
+struct Aggregates {
+  SpatialGrid grid;  // over the centroids; grid.x/y/z are the centroids
+  std::vector<double> count, sum;
+  std::vector<float> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
+};
+
+// What the fast method's queries of one sigma read and write.
+struct QueryArgs {
+  const Mesh* mesh;
+  const Aggregates* ag;
+  const SparseCells* cells;
+  const uint32_t* visit;  // sparse: the vertices in visiting order
+  const double* values;
+  double s, coef, cutoff2;
+  double* out;            // per vertex
+};
+
+// One set of the hot loops. Each takes a range [begin, end) of the work a parallel_for
+// hands out and adds the pairs it visited to *pairs.
+struct Kernels {
+  // The exact sweep of sorted slots [begin, end): the fixed plan of the default scales
+  // (KernelPlan::is_default) or any plan.
+  void (*sweep_default)(const SweepArgs& a, size_t begin, size_t end, uint64_t* pairs);
+  void (*sweep_generic)(const SweepArgs& a, size_t begin, size_t end, uint64_t* pairs);
+  // The fast method: per cell [begin, end) (dense; returns the vertices written) or per
+  // vertex visit[begin .. end) (sparse; returns end - begin).
+  size_t (*query_cells)(const QueryArgs& a, size_t begin, size_t end, uint64_t* pairs);
+  size_t (*query_vertices)(const QueryArgs& a, size_t begin, size_t end, uint64_t* pairs);
+};
+
+extern const Kernels kBaselineKernels;
+#ifdef MESHSAL_AVX2_KERNELS
+extern const Kernels kAvx2Kernels;
+#endif
+
+// The set of cpu_path().
+const Kernels& kernels();
+
+}  // namespace meshsal::sweep
