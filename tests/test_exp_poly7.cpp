@@ -58,9 +58,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 TEST_CASE("exp_poly7: the GLSL include's coefficients equal the C++ ones bit for bit",
           "[exp_poly7][gpu_shaders]") {
-  // The shaders' folder is src/gpu/shaders (to move to shaders/ at the top: either is read).
-  std::string path = std::string(MESHSAL_SOURCE_DIR) + "/src/gpu/shaders/exp_poly7.glsl";
-  if (!meshsal_test::file_exists(path)) path = std::string(MESHSAL_SOURCE_DIR) + "/shaders/exp_poly7.glsl";
+  const std::string path = std::string(MESHSAL_SOURCE_DIR) + "/shaders/exp_poly7.glsl";
   INFO(path);
   const std::string text = read_text(path);
   std::map<int, double> found;

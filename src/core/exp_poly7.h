@@ -1,5 +1,5 @@
 // meshsal: exp(-x) by its degree-7 Taylor polynomial, the one copy on the CPU side. The
-// GPU side's copy is src/gpu/shaders/exp_poly7.glsl; tests/test_exp_poly7.cpp reads that
+// GPU side's copy is shaders/exp_poly7.glsl; tests/test_exp_poly7.cpp reads that
 // file and holds its coefficients equal to these, bit for bit.
 //   - The exact sweep's default plan (gaussian_filter.cpp, sweep.glsl) uses it as is on
 //     0 <= x <= 0.02: truncation error < x^8/8! < 1e-18 relative, so it is exp(-x) to

@@ -1,0 +1,36 @@
+// CPU twin: suppress() in src/saliency/suppression.cpp (the 1-ring local-maximum test)
+// meshsal: the 1-ring local-maximum test of suppress() (suppression.cpp): a mesh point
+// strictly greater than every neighbour (adjacency as CSR). Each work group writes the sum
+// of its normalised local maxima (the global one left out) and their count, per scale.
+#version 450
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Raw { double raw[]; };
+layout(std430, binding = 1) readonly buffer Flags { uint is_point[]; };
+layout(std430, binding = 2) readonly buffer Max { double map_max[]; };
+layout(std430, binding = 3) readonly buffer Global { uint global_index[]; };
+layout(std430, binding = 4) readonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = 5) readonly buffer Neighbors { uint neighbors[]; };
+layout(std430, binding = 6) writeonly buffer Partial { dvec2 partial[]; };  // [scale][group]
+layout(push_constant) uniform Push { uint base; uint n; uint groups; } pc;
+shared dvec2 red[64];
+void main() {
+  uint v = pc.base + gl_GlobalInvocationID.x;
+  uint i = gl_WorkGroupID.y;
+  uint t = gl_LocalInvocationID.x;
+  double mx = map_max[i];
+  dvec2 mine = dvec2(0.0LF);
+  if (v < pc.n && is_point[v] != 0u && mx > 0.0LF && v != global_index[i]) {
+    double s = raw[i * pc.n + v];
+    bool is_max = true;
+    for (uint e = offsets[v]; e < offsets[v + 1u]; ++e)
+      is_max = is_max && s > raw[i * pc.n + neighbors[e]];
+    if (is_max) mine = dvec2(s / mx, 1.0LF);
+  }
+  red[t] = mine;
+  barrier();
+  for (uint off = 32u; off > 0u; off >>= 1u) {
+    if (t < off) red[t] += red[t + off];
+    barrier();
+  }
+  if (t == 0u) partial[i * pc.groups + pc.base / 64u + gl_WorkGroupID.x] = red[0];
+}

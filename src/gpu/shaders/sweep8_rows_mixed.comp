@@ -1,9 +1,0 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
-// meshsal: sweep8_rows in mixed precision (see sweep.glsl): a lane per point, rows shared
-// by the subgroup (CPU devices).
-#define FAST8
-#define MIXED
-#define UNIFORM_ROWS
-#include "sweep.glsl"
-#include "sweep_layout_rows.glsl"
