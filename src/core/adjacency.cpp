@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/parallel.h"
+#include "core/vec3.h"
 
 namespace meshsal {
 
@@ -14,10 +15,9 @@ static double triangle_area(const float* p, uint32_t a, uint32_t b, uint32_t c) 
     e1[k] = double(p[3 * b + k]) - p[3 * a + k];
     e2[k] = double(p[3 * c + k]) - p[3 * a + k];
   }
-  double nx = e1[1] * e2[2] - e1[2] * e2[1];
-  double ny = e1[2] * e2[0] - e1[0] * e2[2];
-  double nz = e1[0] * e2[1] - e1[1] * e2[0];
-  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+  double n[3];
+  cross3(e1, e2, n);
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/vec3.h"
 #include "core/welded_view.h"
 
 namespace meshsal {
@@ -47,10 +48,9 @@ void validate_mesh(const Mesh& mesh) {
       u[k] = double(b[k]) - a[k];
       v[k] = double(c[k]) - a[k];
     }
-    double cx = u[1] * v[2] - u[2] * v[1];
-    double cy = u[2] * v[0] - u[0] * v[2];
-    double cz = u[0] * v[1] - u[1] * v[0];
-    if (cx != 0 || cy != 0 || cz != 0) return;  // found a triangle with area
+    double n[3];
+    cross3(u, v, n);
+    if (n[0] != 0 || n[1] != 0 || n[2] != 0) return;  // found a triangle with area
   }
   throw Error("every triangle has zero area (degenerate mesh)");
 }

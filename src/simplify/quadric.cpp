@@ -1,5 +1,6 @@
 // meshsal: error quadrics for Garland-Heckbert simplification.
 #include "simplify/quadric.h"
+#include "core/vec3.h"
 
 #include <cmath>
 
@@ -14,17 +15,11 @@ Quadric plane_quadric(const double n[3], double d, double w) {
   return q;
 }
 
-static void cross(const double u[3], const double v[3], double out[3]) {
-  out[0] = u[1] * v[2] - u[2] * v[1];
-  out[1] = u[2] * v[0] - u[0] * v[2];
-  out[2] = u[0] * v[1] - u[1] * v[0];
-}
-
 Quadric triangle_quadric(const double p0[3], const double p1[3], const double p2[3]) {
   const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
   const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
   double n[3];
-  cross(e1, e2, n);
+  cross3(e1, e2, n);
   const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(len > 0)) return Quadric{};
   n[0] /= len; n[1] /= len; n[2] /= len;
@@ -37,8 +32,8 @@ Quadric border_quadric(const double p0[3], const double p1[3], const double p2[3
   const double e[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
   const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
   double fn[3], n[3];
-  cross(e, e2, fn);    // triangle normal
-  cross(e, fn, n);     // in the triangle's plane, perpendicular to the edge
+  cross3(e, e2, fn);    // triangle normal
+  cross3(e, fn, n);    // in the triangle's plane, perpendicular to the edge
   const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(len > 0)) return Quadric{};
   n[0] /= len; n[1] /= len; n[2] /= len;

@@ -11,15 +11,12 @@
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "core/parallel.h"
+#include "core/vec3.h"
 #include "core/cancel.h"
 
 namespace meshsal {
 
 namespace {
-
-inline double dot3(const double u[3], const double v[3]) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
 
 double point_segment_distance_sq(const double p[3], const double a[3], const double b[3]) {
   const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -210,7 +207,8 @@ std::vector<double> sample_surface(const Mesh& mesh, size_t face_samples) {
     corner(mesh, mesh.triangles[3 * t + 2], c);
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    double n[3];
+    cross3(u, w, n);
     area[t] = 0.5 * std::sqrt(dot3(n, n));
     total += area[t];
   }

@@ -4,6 +4,8 @@
 #pragma once
 #include <cstdint>
 
+#include "core/vec3.h"
+
 namespace meshsal {
 namespace simplify_detail {
 
@@ -21,14 +23,6 @@ inline void other_corners(const uint32_t* v, uint32_t c, uint32_t* x, uint32_t* 
   *y = select_u32(v[2] == c, v[1], v[2]);
 }
 
-inline void cross3(const double u[3], const double v[3], double o[3]) {
-  o[0] = u[1] * v[2] - u[2] * v[1];
-  o[1] = u[2] * v[0] - u[0] * v[2];
-  o[2] = u[0] * v[1] - u[1] * v[0];
-}
-inline double dot3(const double u[3], const double v[3]) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
 
 }  // namespace simplify_detail
 }  // namespace meshsal

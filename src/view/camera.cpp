@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/mesh_points.h"
+#include "core/vec3.h"
 
 namespace meshsal {
 
@@ -88,9 +89,7 @@ void view_basis(const ViewAngles& a, double right[3], double up[3], double d[3])
   right[0] = std::cos(a.theta);
   right[1] = 0;
   right[2] = -std::sin(a.theta);
-  up[0] = d[1] * right[2] - d[2] * right[1];
-  up[1] = d[2] * right[0] - d[0] * right[2];
-  up[2] = d[0] * right[1] - d[1] * right[0];
+  cross3(d, right, up);
 }
 
 ViewRows view_rows(const ViewFrame& frame, const ViewAngles& a) {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/vec3.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
@@ -156,9 +157,7 @@ Image render_mesh(const Mesh& mesh, const std::vector<uint8_t>* vertex_rgb, cons
         e1[k] = double(p[3 * b + k]) - p[3 * a + k];
         e2[k] = double(p[3 * c + k]) - p[3 * a + k];
       }
-      fn[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      fn[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      cross3(e1, e2, fn);
       double l = std::sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
       if (l > 0)
         for (double& v : fn) v /= l;
