@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/synthetic.h"
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 #include "saliency/cpu_dispatch.h"
 #include "test_util.h"

@@ -52,7 +52,10 @@ TEST_CASE("weight floor: a plane with one bump keeps its area at 10% with every 
   const Outcome o = simplify_plane(literal);
   INFO("literal rule: Hausdorff " << 100 * o.hausdorff << "%, reported error " << 100 * o.error << "%");
   CHECK(o.hausdorff > 0.1);
-  CHECK(o.error > 0.25 * o.hausdorff);
+  // It used to report 0. How much of the Hausdorff distance it reports depends on which of
+  // the many free collapses went first (measured 24-25% of it, 8.2-8.6% of the diagonal):
+  // it must report several % of the diagonal, where the floored weightings keep < 1%.
+  CHECK(o.error > 0.05);
 }
 
 TEST_CASE("weight floor: saliency 0 everywhere gives plain quadrics, the literal rule 0", "[simplify]") {
