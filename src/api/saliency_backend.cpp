@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshsal/meshsal.h"
+#include "core/number_text.h"
 #include "core/welded_view.h"
 #include "api/gpu_backend.h"
 #include "core/mesh_points.h"
@@ -65,11 +66,6 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
   }
 }
 
-std::string number_text(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
 
 }  // namespace
 

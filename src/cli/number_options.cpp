@@ -6,16 +6,13 @@
 #include <cstdlib>
 
 #include "meshsal/meshsal.h"
+#include "core/number_text.h"
 #include "saliency/saliency.h"
 
 namespace meshsal_cli {
 namespace {
 
-std::string number_text(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
+using meshsal::number_text;
 
 // CLI11 puts "--OPTION: " in front of a validator's message: a library message that starts
 // with what it parses ("color range: ...", "scales must ...": the library names no flags)

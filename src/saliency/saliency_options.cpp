@@ -5,19 +5,10 @@
 #include <string>
 
 #include "meshsal/meshsal.h"
+#include "core/number_text.h"
 #include "saliency/saliency.h"
 
 namespace meshsal {
-
-namespace {
-
-std::string number_text(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
-
-}  // namespace
 
 void check_saliency_options(const SaliencyOptions& options) {
   if (!(options.eps_frac > 0 && options.eps_frac <= kMaxEpsFrac))
