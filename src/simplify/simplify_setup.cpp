@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/mesh_points.h"
 #include "core/parallel.h"
 #include "simplify/simplify.h"
 #include "simplify/simplify_state.h"
@@ -103,18 +104,13 @@ void State::order_vertices(const Mesh& mesh) {
   // the relative tolerances below mean the same on every mesh.
   alive.assign(nv, 0);
   for (uint32_t v : fans.corners) alive[v] = 1;
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (size_t v = 0; v < nv; ++v) {
-    if (!alive[v]) continue;
-    for (int k = 0; k < 3; ++k) {
-      const double x = mesh.positions[3 * v + k];
-      if (!std::isfinite(x)) throw Error("simplify: vertex " + std::to_string(v) + " is not finite");
-      lo[k] = std::min(lo[k], x);
-      hi[k] = std::max(hi[k], x);
-    }
-  }
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  for (size_t i = 0; i < 3 * nv; ++i)
+    if (alive[i / 3] && !std::isfinite(mesh.positions[i]))
+      throw Error("simplify: vertex " + std::to_string(i / 3) + " is not finite");
+  const BoundingBox box = bounding_box(mesh.positions.data(), nv, alive.data());
+  const double* lo = box.min;
+  const double* hi = box.max;
+  const double diag = box.diagonal();
   for (int k = 0; k < 3; ++k) center[k] = 0.5 * (lo[k] + hi[k]);
   scale = diag > 0 ? 1 / diag : 1;
   // Internal vertex ids follow a Morton curve, so that the vertices of one neighbourhood sit
