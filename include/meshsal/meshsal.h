@@ -286,6 +286,22 @@ constexpr double kAutoPairBudget = 2e9;  // ~6 s of exact sweep on 2 CPU cores
 
 class Device;  // an open Vulkan device, kept across calls (see "Devices" below)
 
+// Processes that share one tiled saliency computation (SaliencyOptions::tiles), such as
+// the ranks of an MPI run: process rank() computes the tiles t with t % ranks() == rank()
+// and the processes exchange the few values saliency needs from the whole mesh (each
+// scale's maximum and the local maxima behind mbar) and their results through all_gather.
+// Every process calls compute_saliency with the same mesh and options and gets the whole
+// result. The library holds no MPI: the caller implements this over its transport.
+class TileExchange {
+ public:
+  virtual ~TileExchange() = default;
+  virtual int rank() const = 0;
+  virtual int ranks() const = 0;
+  // Called by every process in the same order; returns every process's bytes, in rank
+  // order (its own included). Throws Error when the transport fails.
+  virtual std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) = 0;
+};
+
 struct SaliencyOptions {
   // Limits (Error otherwise): eps_frac in (0, 0.1], 1..16 scales each in (0, 100], and
   // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bbox diagonal).
@@ -312,6 +328,16 @@ struct SaliencyOptions {
   // of work on every thread, and between GPU submissions). The same in SimplifyOptions,
   // OptimiserOptions and CompareOptions; the flag is only read.
   const std::atomic<bool>* cancel = nullptr;
+  // Tiles (0 or 1: none): the mesh points' bounding box is cut into cubes, `tiles` of them
+  // along its longest axis, and each tile computes its own vertices from a sub-mesh holding
+  // them and a halo (every mesh point within the largest cutoff of its queries, with their
+  // triangles); each scale's maximum and mbar are reduced over all tiles before the
+  // suppression. Exact: the same bits as without tiles; Fast: the same to rounding (the
+  // order of sums over cells). CPU only (Backend::Gpu with tiles is an Error, Auto takes
+  // the CPU). Memory: the mesh plus one tile's work at a time.
+  unsigned tiles = 0;
+  // With tiles: processes sharing the tiles (null: this process computes them all).
+  TileExchange* exchange = nullptr;
 };
 
 struct StageTime {
@@ -333,6 +359,8 @@ struct SaliencyResult {
   uint64_t rechecked = 0;                 // points a mixed sweep swept again in double
   std::vector<StageTime> stages;          // wall time per stage
   std::string backend_name;               // "cpu (N threads)" or the Vulkan device name
+  size_t tiles = 0;                       // tiles of the grid (SaliencyOptions::tiles), 0: untiled
+  int ranks = 1;                          // processes that shared them (TileExchange)
 };
 
 // Saliency of every vertex, on options.backend. Throws Error on an invalid mesh or option,

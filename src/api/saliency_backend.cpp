@@ -12,6 +12,7 @@
 #include "core/mesh_points.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
+#include "saliency/saliency_tiles.h"
 #include "core/cancel.h"
 
 namespace meshsal {
@@ -102,6 +103,13 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
     if (const std::string w = precision_warning(mesh); !w.empty()) options_in.notice("warning: " + w);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);
+  if (options.tiles > 1 || options.exchange) {
+    // Tiles run on the CPU: the GPU path takes the whole mesh.
+    if (options.backend == Backend::Gpu)
+      throw Error("tiles run on the CPU: use backend cpu or auto with tiles");
+    if (options.session) throw Error("a Vulkan device session was given with tiles, which run on the CPU");
+    return compute_saliency_tiled(mesh, options);
+  }
   // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
   switch (options.backend) {
     case Backend::Cpu:

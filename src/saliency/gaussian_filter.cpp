@@ -65,19 +65,44 @@ void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
 
 }  // namespace
 
+double sweep_grid_cell(const std::vector<double>& sigmas, const GridFrame& frame) {
+  const KernelPlan plan = make_plan(sigmas);
+  double extent[3];
+  for (int a = 0; a < 3; ++a) extent[a] = frame.box.max[a] - frame.box.min[a];
+  return grid_cell_size(extent, 0.25 * std::sqrt(plan.radius2), frame.points);
+}
+
 std::vector<std::vector<double>> gaussian_filter(
     const Mesh& mesh, const std::vector<uint8_t>& is_point, const std::vector<double>& values,
     const std::vector<double>& sigmas, unsigned threads, FilterStats* stats,
-    const std::function<void(double)>& progress) {
+    const std::function<void(double)>& progress, const FilterScope* scope) {
   check_inputs(mesh, is_point, values);
   const KernelPlan plan = make_plan(sigmas);
   const double radius = std::sqrt(plan.radius2);
   // Cells of a quarter of the radius: rows clipped to the ball waste ~40% candidates
   // (1.85x pairs with half-radius cells).
-  const SpatialGrid g = build_spatial_grid(mesh, is_point, 0.25 * radius);
+  const SpatialGrid g = build_spatial_grid(mesh, is_point, 0.25 * radius, scope ? &scope->frame : nullptr);
   const size_t points = g.order.size();
   std::vector<double> sorted_values(points + 4, 0.0);
   for (size_t s = 0; s < points; ++s) sorted_values[s] = values[g.order[s]];
+  // The sorted slots to sweep: all, or (a tile) those of the query vertices, as runs of
+  // consecutive slots so the hot loop stays the same.
+  std::vector<std::pair<size_t, size_t>> runs;
+  if (scope && scope->query) {
+    for (size_t s = 0; s < points; ++s) {
+      if (!(*scope->query)[g.order[s]]) continue;
+      if (!runs.empty() && runs.back().second == s)
+        runs.back().second++;
+      else
+        runs.push_back({s, s + 1});
+    }
+  } else if (points > 0) {
+    runs.push_back({0, points});
+  }
+  std::vector<size_t> run_first(runs.size() + 1, 0);  // queries before each run
+  for (size_t r = 0; r < runs.size(); ++r)
+    run_first[r + 1] = run_first[r] + (runs[r].second - runs[r].first);
+  const size_t queries = run_first.back();
 
   std::vector<std::vector<double>> out(sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
   std::atomic<uint64_t> total_pairs{0};
@@ -89,12 +114,19 @@ std::vector<std::vector<double>> gaussian_filter(
   // The hot loop, on the instruction set cpu_path() picks (sweep_kernels.h).
   const auto sweep_range = is_default_plan(plan) ? sweep::kernels().sweep_default
                                                  : sweep::kernels().sweep_generic;
-  parallel_for(points, threads, 256, [&](size_t begin, size_t end) {
+  parallel_for(queries, threads, 256, [&](size_t begin, size_t end) {
     uint64_t pairs = 0;
-    sweep_range(args, begin, end, &pairs);
+    // Queries [begin, end) as pieces of runs.
+    size_t r = size_t(std::upper_bound(run_first.begin(), run_first.end(), begin) - run_first.begin()) - 1;
+    for (size_t q = begin; q < end; ++r) {
+      const size_t take = std::min(end, run_first[r + 1]) - q;
+      const size_t first = runs[r].first + (q - run_first[r]);
+      sweep_range(args, first, first + take, &pairs);
+      q += take;
+    }
     total_pairs += pairs;
     size_t finished = done += end - begin;
-    if (progress && std::this_thread::get_id() == caller) progress(double(finished) / points);
+    if (progress && std::this_thread::get_id() == caller) progress(double(finished) / queries);
   });
   if (stats) stats->pairs = total_pairs;
   return out;

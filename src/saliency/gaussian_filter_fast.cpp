@@ -62,16 +62,42 @@ void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
 
 }  // namespace
 
+double fast_cell_edge(const BoundingBox& box, double sigma, const FastFilterParams& params) {
+  return usable_cell(box, sigma / params.cells_per_sigma);
+}
+
+std::vector<uint64_t> count_fast_cells(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                                       const std::vector<uint8_t>& own, const BoundingBox& box,
+                                       const std::vector<double>& sigmas,
+                                       const FastFilterParams& params) {
+  const std::vector<uint32_t> point_list = mesh_point_list(is_point);
+  std::vector<uint64_t> counts;
+  for (double s : sigmas) {
+    const SparseCells cells = sort_into_cells(mesh, point_list, box, fast_cell_edge(box, s, params));
+    uint64_t owned = 0;
+    // Within a cell the points keep vertex order: the first is the lowest index.
+    for (size_t c = 0; c + 1 < cells.start.size(); ++c) owned += own[cells.order[cells.start[c]]] ? 1 : 0;
+    counts.push_back(owned);
+  }
+  return counts;
+}
+
 std::vector<std::vector<double>> gaussian_filter_fast(
     const Mesh& mesh, const std::vector<uint8_t>& is_point, const std::vector<double>& values,
     const std::vector<double>& sigmas, unsigned threads, FilterStats* stats,
-    const std::function<void(double)>& progress, const FastFilterParams& params) {
+    const std::function<void(double)>& progress, const FastFilterParams& params,
+    const FilterScope* scope) {
   check_inputs(mesh, is_point, values, sigmas);
-  const BoundingBox box = mesh_points_bbox(mesh, is_point);
+  if (scope && scope->occupied_cells.size() != sigmas.size())
+    throw Error("internal: a tile's fast filter needs the whole mesh's cell count per sigma");
   std::vector<std::vector<double>> out(sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
-
   const std::vector<uint32_t> point_list = mesh_point_list(is_point);
   const size_t points = point_list.size();
+  if (points == 0) return out;
+  // The cells are laid over the whole mesh's points (a tile's scope) or this mesh's.
+  const BoundingBox box = scope ? scope->frame.box : mesh_points_bbox(mesh, is_point);
+  const double all_points = scope ? double(scope->frame.points) : double(points);
+  const std::vector<uint8_t>* query = scope ? scope->query : nullptr;
   // The per-vertex path visits vertices in the order of the finest cells, so that
   // neighbours in a thread's chunk share the cells they read (sorted when first needed).
   const double finest = *std::min_element(sigmas.begin(), sigmas.end());
@@ -81,8 +107,7 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   const std::thread::id caller = std::this_thread::get_id();
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
-    const double cell = usable_cell(box, s / params.cells_per_sigma);
-    const SparseCells cells = sort_into_cells(mesh, point_list, box, cell, threads);
+    const SparseCells cells = sort_into_cells(mesh, point_list, box, fast_cell_edge(box, s, params), threads);
     const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, threads);
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     std::atomic<size_t> done{0};
@@ -93,25 +118,45 @@ std::vector<std::vector<double>> gaussian_filter_fast(
         progress((k + double(finished) / points) / sigmas.size());
     };
     const size_t m = ag.count.size() - 4;
+    const double all_cells = scope ? double(scope->occupied_cells[k]) : double(m);
     // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
     const sweep::Kernels& kernels = sweep::kernels();
     sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, values.data(), s, coef, cutoff2, o.data()};
-    if (double(points) >= params.points_per_query_cell * double(m)) {
+    if (all_points >= params.points_per_query_cell * all_cells) {
       // Dense cells: the sums and their gradients once at each centroid, extrapolated
-      // linearly to the cell's vertices (cost per cell, not per vertex).
-      parallel_for(m, threads, 64, [&](size_t begin, size_t end) {
+      // linearly to the cell's vertices (cost per cell, not per vertex); a tile's only at
+      // the cells holding a query vertex.
+      std::vector<uint32_t> wanted;
+      if (query)
+        for (size_t c = 0; c < m; ++c)
+          for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i)
+            if ((*query)[cells.order[i]]) {
+              wanted.push_back(uint32_t(c));
+              break;
+            }
+      const size_t count = query ? wanted.size() : m;
+      parallel_for(count, threads, 64, [&](size_t begin, size_t end) {
         uint64_t pairs = 0;
-        const size_t visited = kernels.query_cells(args, begin, end, &pairs);
+        size_t visited = 0;
+        if (!query) {
+          visited = kernels.query_cells(args, begin, end, &pairs);
+        } else {
+          for (size_t i = begin; i < end; ++i)
+            visited += kernels.query_cells(args, wanted[i], wanted[i] + 1, &pairs);
+        }
         total_pairs += pairs;
         tick(visited);
       });
       continue;
     }
-    if (visit.empty())
-      visit = sort_into_cells(mesh, point_list, box,
-                              usable_cell(box, finest / params.cells_per_sigma), threads).order;
+    if (visit.empty()) {
+      visit = sort_into_cells(mesh, point_list, box, fast_cell_edge(box, finest, params), threads).order;
+      if (query)
+        visit.erase(std::remove_if(visit.begin(), visit.end(), [&](uint32_t v) { return !(*query)[v]; }),
+                    visit.end());
+    }
     args.visit = visit.data();
-    parallel_for(points, threads, 512, [&](size_t begin, size_t end) {
+    parallel_for(visit.size(), threads, 512, [&](size_t begin, size_t end) {
       uint64_t pairs = 0;
       kernels.query_vertices(args, begin, end, &pairs);
       total_pairs += pairs;

@@ -24,10 +24,27 @@ struct FastFilterParams {
 
 // The same contract as gaussian_filter(): out[k][v] approximates G(values, v, sigmas[k]);
 // 0 for vertices that are not mesh points. stats->pairs counts (vertex, cell) pairs.
+// `scope` (may be null; filter_scope.h): the mesh is a tile of a larger one; its cells are
+// the whole mesh's, complete where the tile holds every mesh point within 2 s + one cell of
+// its queries, so each cell's aggregate is the whole mesh's (only the order of the sums
+// over cells may differ: a tile's values agree with the whole mesh's to rounding).
 std::vector<std::vector<double>> gaussian_filter_fast(
     const Mesh& mesh, const std::vector<uint8_t>& is_point, const std::vector<double>& values,
     const std::vector<double>& sigmas, unsigned threads = 0, FilterStats* stats = nullptr,
-    const std::function<void(double)>& progress = {}, const FastFilterParams& params = {});
+    const std::function<void(double)>& progress = {}, const FastFilterParams& params = {},
+    const FilterScope* scope = nullptr);
+
+// The edge of the fast method's cells for sigma over the points of `box`.
+double fast_cell_edge(const BoundingBox& box, double sigma, const FastFilterParams& params = {});
+
+// Per sigma, the occupied cells (of fast_cell_edge over `box`) whose lowest-index mesh
+// point is flagged in `own`: summed over tiles that each own their vertices, the whole
+// mesh's occupied cell count (FilterScope::occupied_cells), where every tile holds the
+// whole cell of each point it owns.
+std::vector<uint64_t> count_fast_cells(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                                       const std::vector<uint8_t>& own, const BoundingBox& box,
+                                       const std::vector<double>& sigmas,
+                                       const FastFilterParams& params = {});
 
 // The number of (v, x) mesh-point pairs with |x - v| < radius (v itself included) that the
 // exact sweep would visit, estimated from up to 256 evenly spread sample points counted

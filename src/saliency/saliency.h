@@ -19,6 +19,7 @@ std::vector<double> filter_sigma_units(const std::vector<double>& scales);
 // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bounding-box diagonal).
 constexpr double kMaxEpsFrac = 0.1;
 constexpr double kMaxScale = 100;
+constexpr unsigned kMaxTiles = 64;  // SaliencyOptions::tiles
 
 // Throws Error when options break the limits above (compute_saliency* call it).
 void check_saliency_options(const SaliencyOptions& options);

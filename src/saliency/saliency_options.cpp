@@ -28,6 +28,10 @@ void check_saliency_options(const SaliencyOptions& options) {
     throw Error("scales and eps-frac: the widest surround sigma, 2 x " + number_text(largest) +
                 " x " + number_text(options.eps_frac) +
                 " of the bounding-box diagonal, must be at most 1 diagonal");
+  // Tiles per axis cube into up to tiles^3 tiles, each a pass over the mesh in memory.
+  if (options.tiles > kMaxTiles)
+    throw Error("tiles must be at most " + std::to_string(kMaxTiles) + " along the longest axis, got " +
+                std::to_string(options.tiles));
 }
 
 }  // namespace meshsal

@@ -22,33 +22,55 @@ double grid_cell_size(const double extent[3], double min_cell, uint64_t points,
 }
 
 SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                               double min_cell) {
+                               double min_cell, const GridFrame* frame) {
   SpatialGrid g;
-  BoundingBox box = mesh_points_bbox(mesh, is_point);
   size_t points = 0;
   for (uint8_t f : is_point) points += f;
   if (points >= UINT32_MAX) throw Error("too many mesh points for the grid (4 billion)");
-
+  // The whole grid's origin, cell and cell count per axis: this mesh's, or the frame's.
+  const BoundingBox box = frame ? frame->box : mesh_points_bbox(mesh, is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
-  const double cell = grid_cell_size(extent, min_cell, points);
+  const double cell = grid_cell_size(extent, min_cell, frame ? frame->points : points);
   g.cell = cell;
+  int whole[3];
   for (int a = 0; a < 3; ++a) {
     g.origin[a] = box.min[a];
-    g.dims[a] = int(std::floor((box.max[a] - box.min[a]) / cell)) + 1;
+    whole[a] = int(std::floor((box.max[a] - box.min[a]) / cell)) + 1;
+  }
+  const size_t n = mesh.vertex_count();
+  auto cell_of = [&](size_t v, int a) {
+    return std::min(whole[a] - 1, int((double(mesh.positions[3 * v + a]) - g.origin[a]) / cell));
+  };
+  // The cells held: all of them, or (a tile) those from the lowest to the highest its
+  // points fall in.
+  for (int a = 0; a < 3; ++a) {
+    g.lo[a] = 0;
+    g.dims[a] = whole[a];
+  }
+  if (frame) {
+    int hi[3] = {-1, -1, -1};
+    for (int a = 0; a < 3; ++a) g.lo[a] = whole[a];
+    for (size_t v = 0; v < n; ++v)
+      if (is_point[v])
+        for (int a = 0; a < 3; ++a) {
+          g.lo[a] = std::min(g.lo[a], cell_of(v, a));
+          hi[a] = std::max(hi[a], cell_of(v, a));
+        }
+    for (int a = 0; a < 3; ++a) {
+      if (hi[a] < g.lo[a]) g.lo[a] = hi[a] = 0;  // no point
+      g.dims[a] = hi[a] - g.lo[a] + 1;
+    }
   }
   const size_t ncells = size_t(g.dims[0]) * g.dims[1] * g.dims[2];
 
   // Counting sort of the points by cell key.
-  const size_t n = mesh.vertex_count();
   std::vector<uint32_t> key(n);
   g.cell_start.assign(ncells + 1, 0);
   for (size_t v = 0; v < n; ++v) {
     if (!is_point[v]) continue;
     int c[3];
-    for (int a = 0; a < 3; ++a)
-      c[a] = std::min(g.dims[a] - 1,
-                      int((double(mesh.positions[3 * v + a]) - g.origin[a]) / cell));
+    for (int a = 0; a < 3; ++a) c[a] = cell_of(v, a) - g.lo[a];
     key[v] = uint32_t((size_t(c[2]) * g.dims[1] + c[1]) * g.dims[0] + c[0]);
     g.cell_start[key[v] + 1]++;
   }

@@ -6,14 +6,18 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/mesh_points.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 
 struct SpatialGrid {
-  double origin[3];                 // bbox minimum of the points
+  double origin[3];                 // bbox minimum of the points (of the whole mesh's, in a tile)
   double cell;                      // cell edge length
   int dims[3];                      // cells per axis
+  // The first cell held, per axis: 0, except on a tile of a larger mesh (GridFrame), whose
+  // grid holds only the cells its points fall in, numbered as in the whole mesh's grid.
+  int lo[3] = {0, 0, 0};
   std::vector<uint32_t> cell_start; // dims[0]*dims[1]*dims[2] + 1 offsets into the sorted arrays
   std::vector<uint32_t> order;      // sorted slot -> vertex index
   // Sorted point data relative to origin, padded by 4 far-away points so 4-wide loads
@@ -35,10 +39,11 @@ template <class Row>
 inline void for_each_row_in_ball(const SpatialGrid& g, double x, double y, double z,
                                  double radius2, Row&& row) {
   const double R = std::sqrt(radius2), c = g.cell;
-  const int zlo = std::max(0, int(std::floor((z - R) / c)));
-  const int zhi = std::min(g.dims[2] - 1, int(std::floor((z + R) / c)));
-  const int ylo = std::max(0, int(std::floor((y - R) / c)));
-  const int yhi = std::min(g.dims[1] - 1, int(std::floor((y + R) / c)));
+  // Cell numbers of the whole grid; [lo, lo + dims) of them are held.
+  const int zlo = std::max(g.lo[2], int(std::floor((z - R) / c)));
+  const int zhi = std::min(g.lo[2] + g.dims[2] - 1, int(std::floor((z + R) / c)));
+  const int ylo = std::max(g.lo[1], int(std::floor((y - R) / c)));
+  const int yhi = std::min(g.lo[1] + g.dims[1] - 1, int(std::floor((y + R) / c)));
   for (int cz = zlo; cz <= zhi; ++cz) {
     const double dz = std::max({0.0, cz * c - z, z - (cz + 1) * c});
     for (int cy = ylo; cy <= yhi; ++cy) {
@@ -46,17 +51,28 @@ inline void for_each_row_in_ball(const SpatialGrid& g, double x, double y, doubl
       const double rest = radius2 - dz * dz - dy * dy;
       if (rest <= 0) continue;
       const double hx = std::sqrt(rest);
-      const int xlo = std::max(0, int(std::floor((x - hx) / c)));
-      const int xhi = std::min(g.dims[0] - 1, int(std::floor((x + hx) / c)));
-      const size_t first = (size_t(cz) * g.dims[1] + cy) * g.dims[0];
-      row(size_t(g.cell_start[first + xlo]), size_t(g.cell_start[first + xhi + 1]));
+      const int xlo = std::max(g.lo[0], int(std::floor((x - hx) / c)));
+      const int xhi = std::min(g.lo[0] + g.dims[0] - 1, int(std::floor((x + hx) / c)));
+      if (xlo > xhi) continue;
+      const size_t first = (size_t(cz - g.lo[2]) * g.dims[1] + (cy - g.lo[1])) * g.dims[0];
+      row(size_t(g.cell_start[first + (xlo - g.lo[0])]),
+          size_t(g.cell_start[first + (xhi - g.lo[0]) + 1]));
     }
   }
 }
 
+// The whole mesh a tile belongs to (saliency_tiles.h): its mesh points' bounding box and
+// count decide the grid's origin and cell, so that a tile's grid is a window of the whole
+// mesh's and its sweeps visit the same points in the same order.
+struct GridFrame {
+  BoundingBox box;
+  uint64_t points = 0;
+};
+
 // Grid over the vertices flagged in is_point, with cells of at least `min_cell` (grown when
-// needed to keep the cell count near the point count, which keeps memory bounded).
+// needed to keep the cell count near the point count, which keeps memory bounded). With a
+// frame: the whole mesh's grid, holding only the cells that these points fall in.
 SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                               double min_cell);
+                               double min_cell, const GridFrame* frame = nullptr);
 
 }  // namespace meshsal

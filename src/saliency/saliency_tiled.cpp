@@ -1,0 +1,194 @@
+// compute_saliency_tiled(): the phases of saliency_tiles.h over a mesh in memory, this
+// process's share of the tiles, the reductions through a TileExchange when one is given.
+#include <cstring>
+
+#include "core/parallel.h"
+#include "core/timer.h"
+#include "saliency/saliency_tiles.h"
+
+namespace meshsal {
+
+namespace {
+
+// Plain little byte streams for the exchange (every process runs this same code).
+struct Bytes {
+  std::vector<uint8_t> data;
+  template <class T>
+  void put(const T& x) {
+    const auto* b = reinterpret_cast<const uint8_t*>(&x);
+    data.insert(data.end(), b, b + sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    put(uint64_t(v.size()));
+    const auto* b = reinterpret_cast<const uint8_t*>(v.data());
+    data.insert(data.end(), b, b + v.size() * sizeof(T));
+  }
+};
+
+struct Reader {
+  const std::vector<uint8_t>& data;
+  size_t at = 0;
+  template <class T>
+  T get() {
+    if (at + sizeof(T) > data.size()) throw Error("tiled saliency: a process sent a short message");
+    T x;
+    std::memcpy(&x, &data[at], sizeof(T));
+    at += sizeof(T);
+    return x;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const uint64_t n = get<uint64_t>();
+    if (n > (data.size() - at) / sizeof(T)) throw Error("tiled saliency: a process sent a short message");
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), &data[at], n * sizeof(T));
+    at += n * sizeof(T);
+    return v;
+  }
+};
+
+// Every process's bytes: through the exchange, or just ours.
+std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const Bytes& mine) {
+  if (!exchange) return {mine.data};
+  return exchange->all_gather(mine.data);
+}
+
+}  // namespace
+
+SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& opt) {
+  if (opt.method != Method::Exact && opt.method != Method::Fast)
+    throw Error("internal: method auto not resolved");
+  TileExchange* exchange = opt.exchange;
+  const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
+  if (ranks < 1 || rank < 0 || rank >= ranks) throw Error("tiled saliency: the exchange's rank is out of range");
+  SaliencyResult r;
+  r.method = opt.method;
+  r.backend_name = "cpu (" + std::to_string(resolve_threads(opt.threads)) + " threads)";
+  r.ranks = ranks;
+  Timer clock;
+  auto lap = [&](const char* name) {
+    r.stages.push_back({name, clock.seconds()});
+    clock.restart();
+  };
+
+  r.is_point = referenced_vertices(mesh);
+  const size_t n = mesh.vertex_count();
+  uint64_t points = 0;
+  for (uint8_t f : r.is_point) points += f;
+  const BoundingBox box = mesh_points_bbox(mesh, r.is_point);
+  TilePlan plan = make_tile_plan(box, points, opt, opt.tiles);
+  r.eps = plan.eps;
+  r.tiles = tile_count(plan);
+  std::vector<uint32_t> tile_of_point(n, UINT32_MAX);
+  for (size_t v = 0; v < n; ++v)
+    if (r.is_point[v]) tile_of_point[v] = uint32_t(tile_of(plan, &mesh.positions[3 * v]));
+  std::vector<size_t> mine;
+  for (size_t t = size_t(rank); t < r.tiles; t += size_t(ranks)) mine.push_back(t);
+  auto report = [&](const char* stage, double f) {
+    if (opt.progress) opt.progress(stage, f);
+  };
+
+  // Phase 0 (fast): the whole mesh's occupied cells, summed over every tile.
+  if (plan.method == Method::Fast) {
+    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
+    for (size_t t : mine) {
+      const std::vector<uint64_t> c = count_tile_cells(extract_tile(mesh, r.is_point, tile_of_point, plan, t), plan);
+      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
+    }
+    Bytes b;
+    b.put(cells);
+    std::fill(cells.begin(), cells.end(), 0);
+    for (const auto& bytes : gather(exchange, b)) {
+      const std::vector<uint64_t> c = Reader{bytes}.get_vector<uint64_t>();
+      if (c.size() != cells.size()) throw Error("tiled saliency: processes disagree on the plan");
+      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
+    }
+    plan.fast_cells = cells;
+    lap("cell counts");
+  }
+
+  // Phase 1: raw maps per tile; each scale's maximum over all tiles.
+  std::vector<TileRaw> raws;
+  std::vector<ScaleMax> max(opt.scales.size());
+  for (size_t i = 0; i < mine.size(); ++i) {
+    report("tiles", double(i) / mine.size());
+    raws.push_back(tile_raw_maps(extract_tile(mesh, r.is_point, tile_of_point, plan, mine[i]), plan));
+    r.pairs += raws.back().pairs;
+    merge_scale_max(max, tile_scale_max(raws.back()));
+  }
+  report("tiles", 1.0);
+  {
+    Bytes b;
+    b.put(max);
+    b.put(r.pairs);
+    max.assign(opt.scales.size(), ScaleMax{});
+    r.pairs = 0;
+    for (const auto& bytes : gather(exchange, b)) {
+      Reader in{bytes};
+      merge_scale_max(max, in.get_vector<ScaleMax>());
+      r.pairs += in.get<uint64_t>();
+    }
+  }
+  lap("tiles: raw maps");
+
+  // Phase 2: mbar from every tile's local maxima, in vertex order.
+  std::vector<double> mbar(opt.scales.size(), 0.0);
+  {
+    std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
+    for (const TileRaw& raw : raws) {
+      std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw, max);
+      for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
+    }
+    Bytes b;
+    for (const auto& m : maxima) b.put(m);
+    for (auto& m : maxima) m.clear();
+    for (const auto& bytes : gather(exchange, b)) {
+      Reader in{bytes};
+      for (auto& m : maxima) {
+        std::vector<LocalMax> part = in.get_vector<LocalMax>();
+        m.insert(m.end(), part.begin(), part.end());
+      }
+    }
+    for (size_t k = 0; k < maxima.size(); ++k) mbar[k] = mbar_of(std::move(maxima[k]), max[k]);
+  }
+  lap("suppression");
+
+  // Phase 3: each tile's own results, shared so that every process holds the whole map.
+  Bytes results;
+  for (TileRaw& raw : raws) {
+    const TileResult t = tile_finish(raw, plan, max, mbar);
+    results.put(t.global);
+    results.put(t.curvature);
+    results.put(t.saliency);
+    results.put(t.smoothed);
+    for (const auto& k : t.raw) results.put(k);
+  }
+  std::vector<TileRaw>().swap(raws);
+  r.curvature.assign(n, 0.0);
+  r.saliency.assign(n, 0.0);
+  if (opt.smoothed) r.smoothed.assign(n, 0.0);
+  r.raw.assign(opt.scales.size(), std::vector<double>(n, 0.0));
+  for (const auto& bytes : gather(exchange, results)) {
+    Reader in{bytes};
+    while (in.at < bytes.size()) {
+      const std::vector<uint32_t> global = in.get_vector<uint32_t>();
+      const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>(),
+                                smoothed = in.get_vector<double>();
+      std::vector<std::vector<double>> raw;
+      for (size_t k = 0; k < opt.scales.size(); ++k) raw.push_back(in.get_vector<double>());
+      for (size_t i = 0; i < global.size(); ++i) {
+        const uint32_t v = global[i];
+        if (v >= n) throw Error("tiled saliency: a process sent a vertex out of range");
+        r.curvature[v] = curvature[i];
+        r.saliency[v] = saliency[i];
+        if (opt.smoothed) r.smoothed[v] = smoothed.at(i);
+        for (size_t k = 0; k < raw.size(); ++k) r.raw[k][v] = raw[k][i];
+      }
+    }
+  }
+  lap(opt.smoothed ? "saliency and smoothing" : "saliency");
+  return r;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,315 @@
+// The phases of a tiled saliency run (saliency_tiles.h), each on one tile.
+#include "saliency/saliency_tiles.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/adjacency.h"
+#include "saliency/curvature.h"
+#include "saliency/gaussian_filter.h"
+#include "saliency/gaussian_filter_fast.h"
+#include "saliency/saliency.h"
+
+namespace meshsal {
+
+namespace {
+
+GridFrame frame_of(const TilePlan& plan) { return GridFrame{plan.box, plan.points}; }
+
+std::vector<double> filter_sigmas(const TilePlan& plan) {
+  std::vector<double> sigmas;
+  for (double u : filter_sigma_units(plan.scales)) sigmas.push_back(u * plan.eps);
+  return sigmas;
+}
+
+// How far beyond a query point the filter of these sigmas reads: the cutoff 2 s plus whole
+// cells, so that every cell a sweep visits is held complete (two cells: the exact sweep's
+// grid rows end on cell boundaries; the fast method queries at a cell's centroid and reads
+// cells whose centroid is within 2 s, each up to a cell wide).
+double reach(const TilePlan& plan, const std::vector<double>& sigmas) {
+  if (plan.method == Method::Exact)
+    return 2 * *std::max_element(sigmas.begin(), sigmas.end()) + 2 * sweep_grid_cell(sigmas, frame_of(plan));
+  double r = 0;
+  for (double s : sigmas) r = std::max(r, 2 * s + 3 * fast_cell_edge(plan.box, s));
+  return r;
+}
+
+bool in_box(const float* p, const BoundingBox& b, double margin) {
+  for (int a = 0; a < 3; ++a)
+    if (!(double(p[a]) >= b.min[a] - margin && double(p[a]) <= b.max[a] + margin)) return false;
+  return true;
+}
+
+void grow(BoundingBox& b, const float* p) {
+  for (int a = 0; a < 3; ++a) {
+    b.min[a] = std::min(b.min[a], double(p[a]));
+    b.max[a] = std::max(b.max[a], double(p[a]));
+  }
+}
+
+BoundingBox empty_box() {
+  BoundingBox b;
+  for (int a = 0; a < 3; ++a) b.min[a] = INFINITY, b.max[a] = -INFINITY;
+  return b;
+}
+
+}  // namespace
+
+TilePlan make_tile_plan(const BoundingBox& box, uint64_t points, const SaliencyOptions& options,
+                        unsigned tiles) {
+  TilePlan plan;
+  plan.method = options.method;
+  if (plan.method != Method::Exact && plan.method != Method::Fast)
+    throw Error("internal: a tile plan needs the method decided");
+  plan.scales = options.scales;
+  plan.smoothed = options.smoothed;
+  plan.threads = options.threads;
+  plan.box = box;
+  plan.points = points;
+  plan.eps = options.eps_frac * box.diagonal();
+  double longest = 0;
+  for (int a = 0; a < 3; ++a) longest = std::max(longest, box.max[a] - box.min[a]);
+  tiles = std::max(1u, tiles);
+  plan.tile_edge = longest > 0 ? longest / tiles : 1.0;
+  for (int a = 0; a < 3; ++a)
+    plan.tiles[a] = std::max(1, int(std::ceil((box.max[a] - box.min[a]) / plan.tile_edge)));
+  plan.source_margin = reach(plan, filter_sigmas(plan));
+  plan.query_margin = plan.smoothed ? reach(plan, {3 * plan.eps}) : 0.0;
+  return plan;
+}
+
+size_t tile_count(const TilePlan& plan) {
+  return size_t(plan.tiles[0]) * plan.tiles[1] * plan.tiles[2];
+}
+
+size_t tile_of(const TilePlan& plan, const float* p) {
+  size_t c[3];
+  for (int a = 0; a < 3; ++a) {
+    const double f = std::floor((double(p[a]) - plan.box.min[a]) / plan.tile_edge);
+    c[a] = size_t(std::clamp(f, 0.0, double(plan.tiles[a] - 1)));
+  }
+  return (c[2] * plan.tiles[1] + c[1]) * plan.tiles[0] + c[0];
+}
+
+std::vector<double> tile_cell_sigmas(const TilePlan& plan) {
+  std::vector<double> sigmas = filter_sigmas(plan);
+  sigmas.push_back(3 * plan.eps);
+  return sigmas;
+}
+
+TileMesh extract_tile(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                      const std::vector<uint32_t>& tile_of_point, const TilePlan& plan, size_t t) {
+  const size_t n = mesh.vertex_count(), nt = mesh.triangle_count();
+  const float* p = mesh.positions.data();
+  const uint32_t* tri = mesh.triangles.data();
+  TileMesh tile;
+  // Own points and the box of them and their 1-rings.
+  BoundingBox own_box = empty_box();
+  for (size_t v = 0; v < n; ++v)
+    if (is_point[v] && tile_of_point[v] == t) grow(own_box, &p[3 * v]);
+  if (own_box.empty()) return tile;
+  BoundingBox query_box = own_box;
+  for (size_t f = 0; f < nt; ++f) {
+    const uint32_t* c = &tri[3 * f];
+    if (tile_of_point[c[0]] != t && tile_of_point[c[1]] != t && tile_of_point[c[2]] != t) continue;
+    for (int k = 0; k < 3; ++k) grow(query_box, &p[3 * size_t(c[k])]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    query_box.min[a] = std::min(query_box.min[a], own_box.min[a] - plan.query_margin);
+    query_box.max[a] = std::max(query_box.max[a], own_box.max[a] + plan.query_margin);
+  }
+  // Every triangle with a corner among the source points, and the vertices they use.
+  std::vector<uint8_t> used(n, 0);
+  std::vector<uint32_t> faces;
+  for (size_t f = 0; f < nt; ++f) {
+    const uint32_t* c = &tri[3 * f];
+    bool take = false;
+    for (int k = 0; k < 3 && !take; ++k) take = in_box(&p[3 * size_t(c[k])], query_box, plan.source_margin);
+    if (!take) continue;
+    faces.push_back(uint32_t(f));
+    for (int k = 0; k < 3; ++k) used[c[k]] = 1;
+  }
+  std::vector<uint32_t> local(n, UINT32_MAX);
+  for (size_t v = 0; v < n; ++v) {
+    if (!used[v]) continue;
+    local[v] = uint32_t(tile.global.size());
+    tile.global.push_back(uint32_t(v));
+    const bool own = tile_of_point[v] == t;
+    tile.own.push_back(own ? 1 : 0);
+    tile.own_count += own ? 1 : 0;
+    tile.query.push_back(in_box(&p[3 * v], query_box, 0.0) ? 1 : 0);
+    tile.mesh.positions.insert(tile.mesh.positions.end(), &p[3 * v], &p[3 * v + 3]);
+  }
+  tile.mesh.triangles.reserve(3 * faces.size());
+  for (uint32_t f : faces)
+    for (int k = 0; k < 3; ++k) tile.mesh.triangles.push_back(local[tri[3 * size_t(f) + k]]);
+  return tile;
+}
+
+std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan) {
+  const std::vector<double> sigmas = tile_cell_sigmas(plan);
+  if (tile.own_count == 0) return std::vector<uint64_t>(sigmas.size(), 0);
+  return count_fast_cells(tile.mesh, referenced_vertices(tile.mesh), tile.own, plan.box, sigmas);
+}
+
+TileRaw tile_raw_maps(const TileMesh& tile, const TilePlan& plan) {
+  TileRaw r;
+  r.raw.resize(plan.scales.size());
+  if (tile.own_count == 0) {
+    r.ring_offsets.push_back(0);
+    return r;
+  }
+  const Mesh& mesh = tile.mesh;
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  // The same stages as compute_saliency_cpu, on the sub-mesh.
+  const Adjacency adj = build_adjacency(mesh, plan.threads);
+  std::vector<double> curvature = mean_curvature(mesh, adj, vertex_normals(mesh), plan.threads);
+  const std::vector<double> units = filter_sigma_units(plan.scales);
+  const std::vector<double> sigmas = filter_sigmas(plan);
+  FilterScope scope;
+  scope.frame = frame_of(plan);
+  scope.query = &tile.query;
+  FilterStats stats;
+  std::vector<std::vector<double>> G;
+  if (plan.method == Method::Fast) {
+    scope.occupied_cells.assign(plan.fast_cells.begin(), plan.fast_cells.begin() + sigmas.size());
+    G = gaussian_filter_fast(mesh, is_point, curvature, sigmas, plan.threads, &stats, {}, {}, &scope);
+  } else {
+    G = gaussian_filter(mesh, is_point, curvature, sigmas, plan.threads, &stats, {}, &scope);
+  }
+  r.pairs = stats.pairs;
+  auto index_of = [&](double unit) {
+    return size_t(std::find(units.begin(), units.end(), unit) - units.begin());
+  };
+  // The query points, in whole-mesh order.
+  std::vector<uint32_t> qi(mesh.vertex_count(), UINT32_MAX);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (!tile.query[v] || !is_point[v]) continue;
+    qi[v] = uint32_t(r.global.size());
+    r.global.push_back(tile.global[v]);
+    r.positions.insert(r.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v + 3]);
+    r.own.push_back(tile.own[v]);
+    r.curvature.push_back(curvature[v]);
+  }
+  for (size_t k = 0; k < plan.scales.size(); ++k) {
+    const std::vector<double>& fine = G[index_of(plan.scales[k])];
+    const std::vector<double>& coarse = G[index_of(2 * plan.scales[k])];
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      if (qi[v] != UINT32_MAX) r.raw[k].push_back(std::fabs(fine[v] - coarse[v]));
+  }
+  // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
+  r.ring_offsets.push_back(0);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (qi[v] == UINT32_MAX || !tile.own[v]) continue;
+    for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1]; ++e) {
+      const uint32_t u = qi[adj.neighbors[e]];
+      if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
+      r.ring.push_back(u);
+    }
+    r.ring_offsets.push_back(uint32_t(r.ring.size()));
+  }
+  return r;
+}
+
+std::vector<ScaleMax> tile_scale_max(const TileRaw& tile) {
+  std::vector<ScaleMax> out(tile.raw.size());
+  // As suppress() picks it: the first maximum in vertex order.
+  for (size_t k = 0; k < tile.raw.size(); ++k) {
+    ScaleMax& m = out[k];
+    for (size_t q = 0; q < tile.global.size(); ++q)
+      if (tile.own[q] && (m.vertex == UINT32_MAX || tile.raw[k][q] > m.max)) {
+        m.max = tile.raw[k][q];
+        m.vertex = tile.global[q];
+      }
+  }
+  return out;
+}
+
+void merge_scale_max(std::vector<ScaleMax>& into, const std::vector<ScaleMax>& from) {
+  if (into.size() < from.size()) into.resize(from.size());
+  for (size_t k = 0; k < from.size(); ++k) {
+    const ScaleMax& f = from[k];
+    ScaleMax& m = into[k];
+    if (f.vertex == UINT32_MAX) continue;
+    if (m.vertex == UINT32_MAX || f.max > m.max || (f.max == m.max && f.vertex < m.vertex)) m = f;
+  }
+}
+
+std::vector<std::vector<LocalMax>> tile_local_maxima(const TileRaw& tile,
+                                                     const std::vector<ScaleMax>& max) {
+  std::vector<std::vector<LocalMax>> out(tile.raw.size());
+  const size_t nq = tile.global.size();
+  std::vector<double> norm(nq);
+  for (size_t k = 0; k < tile.raw.size(); ++k) {
+    if (!(max[k].max > 0)) continue;  // an all-zero map stays zero: no maxima needed
+    for (size_t q = 0; q < nq; ++q) norm[q] = tile.raw[k][q] / max[k].max;
+    size_t o = 0;  // own point number (ring_offsets index)
+    for (size_t q = 0; q < nq; ++q) {
+      if (!tile.own[q]) continue;
+      bool is_max = true;
+      for (uint32_t e = tile.ring_offsets[o]; e < tile.ring_offsets[o + 1] && is_max; ++e)
+        is_max = norm[q] > norm[tile.ring[e]];
+      ++o;
+      if (is_max) out[k].push_back({tile.global[q], norm[q]});
+    }
+  }
+  return out;
+}
+
+double mbar_of(std::vector<LocalMax> maxima, const ScaleMax& max) {
+  std::sort(maxima.begin(), maxima.end(),
+            [](const LocalMax& a, const LocalMax& b) { return a.vertex < b.vertex; });
+  double sum = 0;
+  size_t others = 0;
+  for (const LocalMax& m : maxima) {
+    if (m.vertex == max.vertex) continue;
+    sum += m.value;
+    others++;
+  }
+  return others > 0 ? sum / double(others) : 0.0;
+}
+
+TileResult tile_finish(const TileRaw& tile, const TilePlan& plan, const std::vector<ScaleMax>& max,
+                       const std::vector<double>& mbar) {
+  TileResult r;
+  const size_t nq = tile.global.size();
+  r.raw.resize(tile.raw.size());
+  // S at every query point, as suppress() and compute_saliency_cpu form it.
+  std::vector<double> S(nq, 0.0);
+  for (size_t k = 0; k < tile.raw.size(); ++k) {
+    if (!(max[k].max > 0)) continue;  // suppress(): zero map
+    const double factor = (1.0 - mbar[k]) * (1.0 - mbar[k]);
+    for (size_t q = 0; q < nq; ++q) {
+      double out = tile.raw[k][q] / max[k].max;
+      out *= factor;
+      S[q] += out;
+    }
+  }
+  std::vector<double> Sm;
+  if (plan.smoothed && nq > 0) {
+    Mesh points;
+    points.positions = tile.positions;
+    const std::vector<uint8_t> all(nq, 1);
+    FilterScope scope;
+    scope.frame = GridFrame{plan.box, plan.points};
+    scope.query = &tile.own;
+    const std::vector<double> sigma{3 * plan.eps};
+    if (plan.method == Method::Fast) {
+      scope.occupied_cells.assign(plan.fast_cells.end() - 1, plan.fast_cells.end());
+      Sm = gaussian_filter_fast(points, all, S, sigma, plan.threads, nullptr, {}, {}, &scope)[0];
+    } else {
+      Sm = gaussian_filter(points, all, S, sigma, plan.threads, nullptr, {}, &scope)[0];
+    }
+  }
+  for (size_t q = 0; q < nq; ++q) {
+    if (!tile.own[q]) continue;
+    r.global.push_back(tile.global[q]);
+    r.curvature.push_back(tile.curvature[q]);
+    r.saliency.push_back(S[q]);
+    if (plan.smoothed) r.smoothed.push_back(Sm[q]);
+    for (size_t k = 0; k < tile.raw.size(); ++k) r.raw[k].push_back(tile.raw[k][q]);
+  }
+  return r;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,301 @@
+// Tiled saliency (SaliencyOptions::tiles, saliency_tiles.h) against the untiled run: the
+// exact method bit for bit, the fast method to 1e-4 of each map's maximum.
+#include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "cli/synthetic.h"
+#include "core/mesh_points.h"
+#include "saliency/saliency.h"
+#include "saliency/saliency_tiles.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+SaliencyOptions cpu_options(Method method, bool smoothed) {
+  SaliencyOptions o;
+  o.method = method;
+  o.smoothed = smoothed;
+  o.backend = Backend::Cpu;
+  return o;
+}
+
+// Largest |a - b| relative to max |a|, over one map.
+double map_error(const std::vector<double>& a, const std::vector<double>& b) {
+  REQUIRE(a.size() == b.size());
+  double top = 0, err = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    top = std::max(top, std::fabs(a[i]));
+    err = std::max(err, std::fabs(a[i] - b[i]));
+  }
+  return top > 0 ? err / top : err;
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= a.size(), mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+// Every map of a tiled run equals the untiled one's, bit for bit.
+void check_identical(const SaliencyResult& whole, const SaliencyResult& tiled) {
+  CHECK(tiled.eps == whole.eps);
+  CHECK(tiled.is_point == whole.is_point);
+  CHECK(tiled.curvature == whole.curvature);
+  REQUIRE(tiled.raw.size() == whole.raw.size());
+  for (size_t k = 0; k < whole.raw.size(); ++k) {
+    INFO("scale " << k << " error " << map_error(whole.raw[k], tiled.raw[k]));
+    CHECK(tiled.raw[k] == whole.raw[k]);
+  }
+  INFO("saliency error " << map_error(whole.saliency, tiled.saliency));
+  CHECK(tiled.saliency == whole.saliency);
+  INFO("smoothed error " << (whole.smoothed.empty() ? 0.0 : map_error(whole.smoothed, tiled.smoothed)));
+  CHECK(tiled.smoothed == whole.smoothed);
+}
+
+// A bumpy sphere beside a plane with a bump, far apart: tiles between them hold no vertex.
+Mesh two_parts() {
+  Mesh a = make_bumpy_sphere(3);
+  Mesh b = make_plane_with_bump(2.0, 40, 0.3, 0.2);
+  const uint32_t base = uint32_t(a.vertex_count());
+  for (size_t v = 0; v < b.vertex_count(); ++v) {
+    a.positions.push_back(b.positions[3 * v] + 9.0f);
+    a.positions.push_back(b.positions[3 * v + 1]);
+    a.positions.push_back(b.positions[3 * v + 2]);
+  }
+  for (uint32_t i : b.triangles) a.triangles.push_back(i + base);
+  return a;
+}
+
+// A single-process run of the phases with a plan the caller may change (the halo tests).
+SaliencyResult run_phases(const Mesh& mesh, TilePlan plan) {
+  SaliencyResult r;
+  r.is_point = referenced_vertices(mesh);
+  const size_t n = mesh.vertex_count();
+  std::vector<uint32_t> tile_of_point(n, UINT32_MAX);
+  for (size_t v = 0; v < n; ++v)
+    if (r.is_point[v]) tile_of_point[v] = uint32_t(tile_of(plan, &mesh.positions[3 * v]));
+  std::vector<TileRaw> raws;
+  std::vector<ScaleMax> max(plan.scales.size());
+  for (size_t t = 0; t < tile_count(plan); ++t) {
+    raws.push_back(tile_raw_maps(extract_tile(mesh, r.is_point, tile_of_point, plan, t), plan));
+    merge_scale_max(max, tile_scale_max(raws.back()));
+  }
+  std::vector<double> mbar;
+  for (size_t k = 0; k < plan.scales.size(); ++k) {
+    std::vector<LocalMax> all;
+    for (const TileRaw& raw : raws) {
+      auto m = tile_local_maxima(raw, max);
+      all.insert(all.end(), m[k].begin(), m[k].end());
+    }
+    mbar.push_back(mbar_of(all, max[k]));
+  }
+  r.saliency.assign(n, 0.0);
+  r.raw.assign(plan.scales.size(), std::vector<double>(n, 0.0));
+  for (const TileRaw& raw : raws) {
+    TileResult t = tile_finish(raw, plan, max, mbar);
+    for (size_t i = 0; i < t.global.size(); ++i) {
+      r.saliency[t.global[i]] = t.saliency[i];
+      for (size_t k = 0; k < t.raw.size(); ++k) r.raw[k][t.global[i]] = t.raw[k][i];
+    }
+  }
+  return r;
+}
+
+TilePlan plan_for(const Mesh& mesh, const SaliencyOptions& o, unsigned tiles) {
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  uint64_t points = 0;
+  for (uint8_t f : is_point) points += f;
+  return make_tile_plan(mesh_points_bbox(mesh, is_point), points, o, tiles);
+}
+
+// N processes in threads, exchanging through memory: what MPI ranks do, without MPI.
+class ThreadExchange : public TileExchange {
+ public:
+  struct Shared {
+    std::mutex m;
+    std::condition_variable cv;
+    int ranks = 0, arrived = 0;
+    uint64_t round = 0;
+    std::vector<std::vector<uint8_t>> slots, result;
+  };
+  ThreadExchange(Shared& s, int rank) : s_(s), rank_(rank) {}
+  int rank() const override { return rank_; }
+  int ranks() const override { return s_.ranks; }
+  std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) override {
+    std::unique_lock<std::mutex> lock(s_.m);
+    const uint64_t round = s_.round;
+    s_.slots[rank_] = mine;
+    if (++s_.arrived == s_.ranks) {
+      s_.result = s_.slots;
+      s_.arrived = 0;
+      s_.round++;
+      s_.cv.notify_all();
+    } else {
+      s_.cv.wait(lock, [&] { return s_.round != round; });
+    }
+    return s_.result;
+  }
+
+ private:
+  Shared& s_;
+  int rank_;
+};
+
+}  // namespace
+
+TEST_CASE("tiled exact saliency is bit-identical to the untiled run", "[tiles]") {
+  const Mesh meshes[] = {make_bumpy_sphere(4), make_plane_with_bump(2.0, 60, 0.3, 0.2), make_cube(12)};
+  for (const Mesh& mesh : meshes)
+    for (bool smoothed : {false, true}) {
+      SaliencyOptions o = cpu_options(Method::Exact, smoothed);
+      const SaliencyResult whole = compute_saliency(mesh, o);
+      for (unsigned tiles : {2u, 3u, 7u}) {
+        INFO("vertices " << mesh.vertex_count() << " tiles " << tiles << " smoothed " << smoothed);
+        o.tiles = tiles;
+        const SaliencyResult tiled = compute_saliency(mesh, o);
+        CHECK(tiled.tiles == size_t(plan_for(mesh, o, tiles).tiles[0]) * plan_for(mesh, o, tiles).tiles[1] *
+                                 plan_for(mesh, o, tiles).tiles[2]);
+        CHECK(tiled.tiles > 1);
+        check_identical(whole, tiled);
+        // The halo's work: every tile sweeps its queries, more than the whole run's once.
+        CHECK(tiled.pairs > whole.pairs);
+      }
+    }
+}
+
+TEST_CASE("tiled fast saliency agrees with the untiled run to 1e-4", "[tiles]") {
+  const Mesh meshes[] = {make_bumpy_sphere(4), make_plane_with_bump(2.0, 60, 0.3, 0.2)};
+  for (const Mesh& mesh : meshes)
+    for (bool smoothed : {false, true}) {
+      SaliencyOptions o = cpu_options(Method::Fast, smoothed);
+      const SaliencyResult whole = compute_saliency(mesh, o);
+      for (unsigned tiles : {2u, 5u}) {
+        INFO("vertices " << mesh.vertex_count() << " tiles " << tiles << " smoothed " << smoothed);
+        o.tiles = tiles;
+        const SaliencyResult tiled = compute_saliency(mesh, o);
+        CHECK(tiled.curvature == whole.curvature);
+        for (size_t k = 0; k < whole.raw.size(); ++k) CHECK(map_error(whole.raw[k], tiled.raw[k]) <= 1e-4);
+        CHECK(map_error(whole.saliency, tiled.saliency) <= 1e-4);
+        CHECK(pearson(whole.saliency, tiled.saliency) >= 0.99999);
+        if (smoothed) CHECK(map_error(whole.smoothed, tiled.smoothed) <= 1e-4);
+      }
+    }
+}
+
+TEST_CASE("tiled saliency on shared scans with tiny tiles", "[tiles][data]") {
+  for (const char* name : {"bunny_36k.obj", "fandisk_6k.obj"}) {
+    MESHSAL_MESH_OR_CONTINUE(path, name);
+    const Mesh mesh = load_mesh(path);
+    INFO(name);
+    SaliencyOptions exact = cpu_options(Method::Exact, true);
+    const SaliencyResult whole = compute_saliency(mesh, exact);
+    exact.tiles = 6;
+    check_identical(whole, compute_saliency(mesh, exact));
+
+    SaliencyOptions fast = cpu_options(Method::Fast, true);
+    const SaliencyResult fast_whole = compute_saliency(mesh, fast);
+    fast.tiles = 6;
+    const SaliencyResult fast_tiled = compute_saliency(mesh, fast);
+    CHECK(map_error(fast_whole.saliency, fast_tiled.saliency) <= 1e-4);
+    CHECK(pearson(fast_whole.saliency, fast_tiled.saliency) >= 0.99999);
+    CHECK(map_error(fast_whole.smoothed, fast_tiled.smoothed) <= 1e-4);
+  }
+}
+
+TEST_CASE("tiles holding no vertex and a mesh in one tile", "[tiles]") {
+  const Mesh mesh = two_parts();
+  SaliencyOptions o = cpu_options(Method::Exact, true);
+  const SaliencyResult whole = compute_saliency(mesh, o);
+  o.tiles = 9;
+  const TilePlan plan = plan_for(mesh, o, 9);
+  // Some tiles between the parts are empty.
+  size_t empty = 0;
+  std::vector<uint8_t> used(tile_count(plan), 0);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) used[tile_of(plan, &mesh.positions[3 * v])] = 1;
+  for (uint8_t u : used) empty += u ? 0 : 1;
+  CHECK(empty >= 3);
+  check_identical(whole, compute_saliency(mesh, o));
+
+  // One tile (the tiled path forced by an exchange of one process): the whole mesh.
+  ThreadExchange::Shared shared;
+  shared.ranks = 1;
+  shared.slots.resize(1);
+  ThreadExchange one(shared, 0);
+  SaliencyOptions single = cpu_options(Method::Exact, true);
+  single.exchange = &one;
+  const SaliencyResult r = compute_saliency(mesh, single);
+  CHECK(r.tiles == 1);
+  check_identical(whole, r);
+}
+
+TEST_CASE("the halo is as wide as the filter reaches and no narrower", "[tiles]") {
+  const Mesh mesh = make_bumpy_sphere(5);
+  const SaliencyOptions o = cpu_options(Method::Exact, false);
+  const SaliencyResult whole = compute_saliency(mesh, o);
+  TilePlan plan = plan_for(mesh, o, 4);
+  const double cutoff = 2 * 12 * plan.eps;  // the largest sigma's cutoff, default scales
+  CHECK(plan.source_margin > cutoff);
+  CHECK(plan.source_margin < cutoff * 1.6);
+  // The plan's halo: the same bits.
+  const SaliencyResult full = run_phases(mesh, plan);
+  CHECK(full.saliency == whole.saliency);
+  // A quarter narrower than the cutoff: points within reach go missing (beyond the corners
+  // of the triangles the halo takes, an edge or so further) and the maps change.
+  plan.source_margin = 0.75 * cutoff;
+  const SaliencyResult narrow = run_phases(mesh, plan);
+  double worst = 0;
+  for (size_t k = 0; k < whole.raw.size(); ++k) worst = std::max(worst, map_error(whole.raw[k], narrow.raw[k]));
+  CHECK(worst > 1e-6);
+}
+
+TEST_CASE("tiles shared by processes through an exchange give the single-process result", "[tiles]") {
+  const Mesh mesh = make_bumpy_sphere(4);
+  for (Method method : {Method::Exact, Method::Fast}) {
+    SaliencyOptions o = cpu_options(method, true);
+    o.tiles = 3;
+    o.threads = 1;
+    const SaliencyResult single = compute_saliency(mesh, o);
+    for (int ranks : {2, 3}) {
+      ThreadExchange::Shared shared;
+      shared.ranks = ranks;
+      shared.slots.resize(ranks);
+      std::vector<SaliencyResult> results(ranks);
+      std::vector<std::thread> threads;
+      for (int rank = 0; rank < ranks; ++rank)
+        threads.emplace_back([&, rank] {
+          ThreadExchange ex(shared, rank);
+          SaliencyOptions mine = o;
+          mine.exchange = &ex;
+          results[rank] = compute_saliency(mesh, mine);
+        });
+      for (auto& t : threads) t.join();
+      for (int rank = 0; rank < ranks; ++rank) {
+        INFO("ranks " << ranks << " rank " << rank);
+        CHECK(results[rank].ranks == ranks);
+        CHECK(results[rank].pairs == single.pairs);
+        check_identical(single, results[rank]);
+      }
+    }
+  }
+}
+
+TEST_CASE("tiles: bad options are clear errors", "[tiles]") {
+  const Mesh mesh = make_sphere(1.0, 2);
+  SaliencyOptions o = cpu_options(Method::Exact, false);
+  o.tiles = kMaxTiles + 1;
+  CHECK_THROWS_WITH(compute_saliency(mesh, o), Catch::Contains("tiles must be at most"));
+  o.tiles = 2;
+  o.backend = Backend::Gpu;
+  CHECK_THROWS_WITH(compute_saliency(mesh, o), Catch::Contains("tiles run on the CPU"));
+}
