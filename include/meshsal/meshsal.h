@@ -372,6 +372,45 @@ SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
                                 const uint32_t* indices, size_t index_count,
                                 const SaliencyOptions& options);
 
+// ------------------------------------------------------------------------------------------
+// Out of core: saliency of a mesh file larger than memory
+
+struct OutOfCoreOptions {
+  // The process's peak resident memory stays under this many bytes (0: no limit; then
+  // SaliencyOptions::tiles decides the tiling). The input is streamed into tiles on disk
+  // and the tiles are computed one at a time; the fewest tiles whose largest (with its
+  // halo) fits are taken. A limit too small for one tile is an Error naming the smallest
+  // workable one.
+  uint64_t memory_limit = 0;
+  std::string temp_dir;      // where the tiles go ("" = $TMPDIR or /tmp); removed at the end
+  bool dump_scales = false;  // also write curvature and saliency_raw_i (as write_saliency_ply)
+};
+
+struct OutOfCoreReport {
+  uint64_t vertices = 0, points = 0, triangles = 0;
+  size_t tiles = 0;               // tiles of the grid
+  int ranks = 1;                  // processes that shared them (SaliencyOptions::exchange)
+  double eps = 0;
+  uint64_t pairs = 0;             // the sweeps' pairs over every tile (halos included)
+  uint64_t tile_estimate = 0;     // bytes: the largest tile's estimated peak
+  double saliency_min = 0, saliency_max = 0, saliency_mean = 0;  // over the mesh points
+  std::vector<StageTime> stages;
+};
+
+// Saliency of the mesh in `input` written to `output` as write_saliency_ply() writes it
+// (the input's vertex order, positions as read, quality and colours; the same bytes as
+// compute_saliency + write_saliency_ply for the exact method), without ever holding the
+// whole mesh: binary PLY is streamed (other formats are loaded once and converted to a
+// temporary binary PLY). options.method Auto is taken as Fast; tiles run on the CPU.
+// With options.exchange, every process passes the same arguments, the temporary folder
+// must be on a disk they share, and only rank 0 writes `output`.
+OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
+                              const SaliencyOptions& options, const OutOfCoreOptions& out_of_core);
+
+// "700M", "2G", "1.5G", "512K", "1000000" (bytes; K M G T are powers of 1024); throws
+// Error on anything else.
+uint64_t parse_memory_size(const std::string& text);
+
 // "auto", "mixed" or "double"; throws Error on anything else.
 Precision parse_precision(const std::string& name);
 

@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "interrupt.h"
+#include "peak_memory.h"
 
 namespace meshsal_cli {
 namespace {
@@ -20,11 +21,56 @@ struct Args {
   std::string precision = "auto";  // --precision
   std::string method = "exact";    // --method
   std::string input, output, backend = "auto", scales = "2,3,4,5,6";
+  std::string memory_limit, temp_dir;  // --memory-limit, --temp-dir
+  unsigned tiles = 0;                  // --tiles
   double eps_frac = 0.003;
   bool dump_scales = false, quiet = false, json = false;
   unsigned threads = 0;
   int device = -1;
 };
+
+// --memory-limit: the library streams the file through tiles on disk (saliency_file).
+int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress& progress) {
+  using namespace meshsal;
+  OutOfCoreOptions ooc;
+  ooc.memory_limit = parse_memory_size(a.memory_limit);
+  ooc.temp_dir = a.temp_dir;
+  ooc.dump_scales = a.dump_scales;
+  const meshsal::Timer t0;
+  const OutOfCoreReport r = saliency_file(a.input, a.output, opt, ooc);
+  progress.finish();
+  const double seconds = t0.seconds();
+  const uint64_t peak = peak_resident_bytes();
+  if (a.json) {
+    JsonObject stages;
+    for (const StageTime& s : r.stages) {
+      std::string key = s.name;
+      for (char& c : key)
+        if (c == ' ' || c == '-' || c == ':') c = '_';
+      stages.number(key, s.seconds);
+    }
+    JsonObject stats;
+    stats.number("min", r.saliency_min).number("mean", r.saliency_mean).number("max", r.saliency_max);
+    JsonObject j;
+    j.text("mesh", a.input).text("output", a.output).count("vertices", r.vertices).count("points", r.points)
+        .count("faces", r.triangles).number("eps", r.eps).text("device", "cpu")
+        .text("method", opt.method == Method::Exact ? "exact" : "fast").number("seconds", seconds)
+        .object("stages", stages).count("pairs", r.pairs).count("tiles", r.tiles)
+        .count("ranks", size_t(r.ranks)).count("memory_limit", ooc.memory_limit)
+        .count("tile_estimate", r.tile_estimate).count("peak_rss", peak).object("saliency", stats);
+    j.print();
+  } else if (!a.quiet) {
+    std::printf("vertices   %llu (%llu on triangles)\n", (unsigned long long)r.vertices, (unsigned long long)r.points);
+    std::printf("faces      %llu triangles\n", (unsigned long long)r.triangles);
+    std::printf("eps        %.6g\n", r.eps);
+    std::printf("tiles      %zu (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)\n", r.tiles,
+                r.tile_estimate / 1048576.0, peak / 1048576.0, ooc.memory_limit / 1048576.0);
+    for (const StageTime& s : r.stages) std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);
+    std::printf("S          min %g, mean %g, max %g\n", r.saliency_min, r.saliency_mean, r.saliency_max);
+    std::printf("wrote      %s\n", printable(a.output).c_str());
+  }
+  return 0;
+}
 
 int run(const Args& a) {
   using namespace meshsal;
@@ -45,6 +91,9 @@ int run(const Args& a) {
   opt.notice = [&a](const std::string& line) {
     if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
   };
+  opt.tiles = a.tiles;
+  check_saliency_options(opt);
+  if (!a.memory_limit.empty()) return run_out_of_core(a, opt, progress);
 
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
@@ -82,6 +131,18 @@ RunFn setup(CLI::App& sub) {
                  "of curvature at k*eps and 2k*eps")->capture_default_str()->check(scales_list());
   sub.add_option("--eps-frac", a->eps_frac, "eps as a fraction of the bounding-box diagonal")
       ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
+  sub.add_option("--tiles", a->tiles,
+                 "Compute in cubic tiles, N along the longest axis, each with a halo of the "
+                 "filter's reach (exact: the same bits as without; fast: the same to 1e-4). With "
+                 "--memory-limit: at least this many")
+      ->check(whole_in(0, meshsal::kMaxTiles));
+  sub.add_option("--memory-limit", a->memory_limit,
+                 "Keep the peak resident memory under SIZE (e.g. 700M, 2G): the input (binary "
+                 "PLY is streamed; other formats are read once and converted) goes to tiles on "
+                 "disk, computed one at a time; too small a limit is an error naming the "
+                 "smallest workable one. CPU only");
+  sub.add_option("--temp-dir", a->temp_dir,
+                 "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");

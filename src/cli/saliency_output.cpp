@@ -73,7 +73,8 @@ JsonObject saliency_json(const std::string& input, const std::string& output, co
       .count("faces", mesh.triangle_count()).number("eps", r.eps).text("device", r.backend_name)
       .text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
       .number("read_seconds", load_seconds).number("seconds", total).object("stages", stages)
-      .count("pairs", r.pairs).object("saliency", stats);
+      .count("pairs", r.pairs).count("tiles", r.tiles).count("ranks", size_t(r.ranks))
+      .object("saliency", stats);
   return j;
 }
 

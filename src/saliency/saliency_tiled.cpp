@@ -1,55 +1,16 @@
 // compute_saliency_tiled(): the phases of saliency_tiles.h over a mesh in memory, this
 // process's share of the tiles, the reductions through a TileExchange when one is given.
-#include <cstring>
-
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "saliency/saliency_tiles.h"
+#include "saliency/tile_bytes.h"
 
 namespace meshsal {
 
 namespace {
 
-// Plain little byte streams for the exchange (every process runs this same code).
-struct Bytes {
-  std::vector<uint8_t> data;
-  template <class T>
-  void put(const T& x) {
-    const auto* b = reinterpret_cast<const uint8_t*>(&x);
-    data.insert(data.end(), b, b + sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& v) {
-    put(uint64_t(v.size()));
-    const auto* b = reinterpret_cast<const uint8_t*>(v.data());
-    data.insert(data.end(), b, b + v.size() * sizeof(T));
-  }
-};
-
-struct Reader {
-  const std::vector<uint8_t>& data;
-  size_t at = 0;
-  template <class T>
-  T get() {
-    if (at + sizeof(T) > data.size()) throw Error("tiled saliency: a process sent a short message");
-    T x;
-    std::memcpy(&x, &data[at], sizeof(T));
-    at += sizeof(T);
-    return x;
-  }
-  template <class T>
-  std::vector<T> get_vector() {
-    const uint64_t n = get<uint64_t>();
-    if (n > (data.size() - at) / sizeof(T)) throw Error("tiled saliency: a process sent a short message");
-    std::vector<T> v(n);
-    if (n) std::memcpy(v.data(), &data[at], n * sizeof(T));
-    at += n * sizeof(T);
-    return v;
-  }
-};
-
 // Every process's bytes: through the exchange, or just ours.
-std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const Bytes& mine) {
+std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const TileBytes& mine) {
   if (!exchange) return {mine.data};
   return exchange->all_gather(mine.data);
 }
@@ -96,11 +57,11 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       const std::vector<uint64_t> c = count_tile_cells(extract_tile(mesh, r.is_point, tile_of_point, plan, t), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
-    Bytes b;
+    TileBytes b;
     b.put(cells);
     std::fill(cells.begin(), cells.end(), 0);
     for (const auto& bytes : gather(exchange, b)) {
-      const std::vector<uint64_t> c = Reader{bytes}.get_vector<uint64_t>();
+      const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
       if (c.size() != cells.size()) throw Error("tiled saliency: processes disagree on the plan");
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
@@ -119,13 +80,13 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   }
   report("tiles", 1.0);
   {
-    Bytes b;
+    TileBytes b;
     b.put(max);
     b.put(r.pairs);
     max.assign(opt.scales.size(), ScaleMax{});
     r.pairs = 0;
     for (const auto& bytes : gather(exchange, b)) {
-      Reader in{bytes};
+      TileBytesReader in{bytes};
       merge_scale_max(max, in.get_vector<ScaleMax>());
       r.pairs += in.get<uint64_t>();
     }
@@ -140,11 +101,11 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw, max);
       for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
     }
-    Bytes b;
+    TileBytes b;
     for (const auto& m : maxima) b.put(m);
     for (auto& m : maxima) m.clear();
     for (const auto& bytes : gather(exchange, b)) {
-      Reader in{bytes};
+      TileBytesReader in{bytes};
       for (auto& m : maxima) {
         std::vector<LocalMax> part = in.get_vector<LocalMax>();
         m.insert(m.end(), part.begin(), part.end());
@@ -155,7 +116,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   lap("suppression");
 
   // Phase 3: each tile's own results, shared so that every process holds the whole map.
-  Bytes results;
+  TileBytes results;
   for (TileRaw& raw : raws) {
     const TileResult t = tile_finish(raw, plan, max, mbar);
     results.put(t.global);
@@ -170,7 +131,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   if (opt.smoothed) r.smoothed.assign(n, 0.0);
   r.raw.assign(opt.scales.size(), std::vector<double>(n, 0.0));
   for (const auto& bytes : gather(exchange, results)) {
-    Reader in{bytes};
+    TileBytesReader in{bytes};
     while (in.at < bytes.size()) {
       const std::vector<uint32_t> global = in.get_vector<uint32_t>();
       const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>(),

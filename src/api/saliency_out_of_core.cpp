@@ -1,0 +1,385 @@
+// saliency_file(): the phases of saliency_tiles.h over a TileStore on disk, a tile at a
+// time, each tile's state kept on disk between phases; the output streamed in the input's
+// vertex order.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "api/tile_store.h"
+#include "core/cancel.h"
+#include "core/timer.h"
+#include "io/atomic_write.h"
+#include "io/colormap.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "saliency/tile_bytes.h"
+
+namespace meshsal {
+
+namespace {
+
+std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const TileBytes& mine) {
+  if (!exchange) return {mine.data};
+  return exchange->all_gather(mine.data);
+}
+
+void save(const std::string& path, const TileBytes& b) {
+  ScratchWriter out(path);
+  out.write_vector(b.data);
+  out.close();
+}
+
+void save_raw(const std::string& path, const TileRaw& r) {
+  TileBytes b;
+  b.put(r.global);
+  b.put(r.positions);
+  b.put(r.own);
+  b.put(r.curvature);
+  b.put(uint64_t(r.raw.size()));
+  for (const auto& k : r.raw) b.put(k);
+  b.put(r.ring_offsets);
+  b.put(r.ring);
+  b.put(r.pairs);
+  save(path, b);
+}
+
+TileRaw load_raw(const std::string& path) {
+  const std::vector<uint8_t> bytes = read_scratch_file(path);
+  TileBytesReader in{bytes};
+  TileRaw r;
+  r.global = in.get_vector<uint32_t>();
+  r.positions = in.get_vector<float>();
+  r.own = in.get_vector<uint8_t>();
+  r.curvature = in.get_vector<double>();
+  r.raw.resize(in.get<uint64_t>());
+  for (auto& k : r.raw) k = in.get_vector<double>();
+  r.ring_offsets = in.get_vector<uint32_t>();
+  r.ring = in.get_vector<uint32_t>();
+  r.pairs = in.get<uint64_t>();
+  return r;
+}
+
+// The store's description, from rank 0 to the others (they read the same files).
+TileBytes describe(const TileStore& s) {
+  TileBytes b;
+  std::vector<uint8_t> dir(s.dir.path().begin(), s.dir.path().end());
+  b.put(dir);
+  b.put(s.vertices);
+  b.put(s.triangles);
+  b.put(s.points);
+  b.put(uint8_t(s.double_positions));
+  for (double o : s.origin) b.put(o);
+  b.put(s.largest_tile_estimate);
+  b.put(uint64_t(s.block));
+  b.put(s.plan.tile_edge);
+  for (int a = 0; a < 3; ++a) b.put(s.plan.box.min[a]), b.put(s.plan.box.max[a]), b.put(s.plan.tiles[a]);
+  b.put(s.plan.query_margin);
+  b.put(s.plan.source_margin);
+  b.put(s.plan.eps);
+  return b;
+}
+
+void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOptions& options) {
+  TileBytesReader in{bytes};
+  const std::vector<uint8_t> dir = in.get_vector<uint8_t>();
+  s.dir.borrow(std::string(dir.begin(), dir.end()));
+  s.vertices = in.get<uint64_t>();
+  s.triangles = in.get<uint64_t>();
+  s.points = in.get<uint64_t>();
+  s.double_positions = in.get<uint8_t>() != 0;
+  for (double& o : s.origin) o = in.get<double>();
+  s.largest_tile_estimate = in.get<uint64_t>();
+  s.block = size_t(in.get<uint64_t>());
+  const double edge = in.get<double>();
+  BoundingBox box;
+  int tiles[3];
+  for (int a = 0; a < 3; ++a) box.min[a] = in.get<double>(), box.max[a] = in.get<double>(), tiles[a] = in.get<int>();
+  s.plan = make_tile_plan(box, s.points, options, 1);
+  s.plan.tile_edge = edge;
+  for (int a = 0; a < 3; ++a) s.plan.tiles[a] = tiles[a];
+  s.plan.query_margin = in.get<double>();
+  s.plan.source_margin = in.get<double>();
+  s.plan.eps = in.get<double>();
+}
+
+// What each tile's results file holds, per own point.
+void save_result(const std::string& path, const TileResult& r) {
+  TileBytes b;
+  b.put(r.global);
+  b.put(r.curvature);
+  b.put(r.saliency);
+  for (const auto& k : r.raw) b.put(k);
+  save(path, b);
+}
+
+}  // namespace
+
+uint64_t parse_memory_size(const std::string& text) {
+  const std::string what = "memory size must be a number of bytes with an optional K, M, G or T (e.g. 700M, 2G), got '" + text + "'";
+  if (text.empty()) throw Error(what);
+  size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(text, &used);
+  } catch (...) {
+    throw Error(what);
+  }
+  std::string unit = text.substr(used);
+  if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
+  double scale = 1;
+  if (unit == "K" || unit == "k") scale = 1024.0;
+  else if (unit == "M" || unit == "m") scale = 1024.0 * 1024;
+  else if (unit == "G" || unit == "g") scale = 1024.0 * 1024 * 1024;
+  else if (unit == "T" || unit == "t") scale = 1024.0 * 1024 * 1024 * 1024;
+  else if (!unit.empty()) throw Error(what);
+  if (!(x > 0) || !std::isfinite(x) || x * scale > 1.8e19) throw Error(what);
+  return uint64_t(x * scale);
+}
+
+OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
+                              const SaliencyOptions& options_in, const OutOfCoreOptions& ooc) {
+  const CancelScope cancel(options_in.cancel);
+  check_saliency_options(options_in);
+  if (options_in.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
+  SaliencyOptions options = options_in;
+  if (options.method == Method::Auto) options.method = Method::Fast;
+  TileExchange* exchange = options.exchange;
+  const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
+  OutOfCoreReport report;
+  report.ranks = ranks;
+  Timer clock;
+  auto lap = [&](const char* name) {
+    report.stages.push_back({name, clock.seconds()});
+    clock.restart();
+  };
+  auto progress = [&](const char* stage, double f) {
+    if (options.progress) options.progress(stage, f);
+  };
+  if (rank == 0) output_target(output);  // a bad output path fails before the work
+
+  // The store: built by rank 0 (an error there reaches every rank through the exchange as
+  // an empty description), described to the others.
+  TileStore store(ooc.temp_dir);
+  {
+    TileBytes mine;
+    std::string failure;
+    if (rank == 0) {
+      try {
+        build_tile_store(store, input, options, ooc.memory_limit, options.tiles, progress);
+        mine = describe(store);
+      } catch (const Error& e) {
+        if (!exchange) throw;
+        failure = e.what();
+      }
+    }
+    const auto all = gather(exchange, mine);
+    if (all[0].empty()) {
+      if (rank == 0) throw Error(failure);
+      throw Error("rank 0 could not read the input");
+    }
+    if (rank != 0) adopt(store, all[0], options);
+  }
+  const TilePlan& plan0 = store.plan;
+  TilePlan plan = plan0;
+  const size_t ntiles = tile_count(plan);
+  report.vertices = store.vertices;
+  report.points = store.points;
+  report.triangles = store.triangles;
+  report.tiles = ntiles;
+  report.eps = plan.eps;
+  report.tile_estimate = store.largest_tile_estimate;
+  std::vector<size_t> mine;
+  for (size_t t = size_t(rank); t < ntiles; t += size_t(ranks)) mine.push_back(t);
+  auto raw_file = [&](size_t t) { return store.dir.file("raw_" + std::to_string(t) + ".bin"); };
+  auto result_file = [&](size_t t) { return store.dir.file("result_" + std::to_string(t) + ".bin"); };
+  lap("tiling");
+
+  // Phase 0 (fast): the whole mesh's occupied cells.
+  if (plan.method == Method::Fast) {
+    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
+    for (size_t i = 0; i < mine.size(); ++i) {
+      progress("cells", double(i) / mine.size());
+      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i]), plan);
+      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
+    }
+    TileBytes b;
+    b.put(cells);
+    std::fill(cells.begin(), cells.end(), 0);
+    for (const auto& bytes : gather(exchange, b)) {
+      const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
+      for (size_t k = 0; k < c.size() && k < cells.size(); ++k) cells[k] += c[k];
+    }
+    plan.fast_cells = cells;
+    lap("cell counts");
+  }
+
+  // Phase 1: raw maps, each tile's kept on disk; the scales' maxima over all tiles.
+  std::vector<ScaleMax> max(options.scales.size());
+  uint64_t pairs = 0;
+  for (size_t i = 0; i < mine.size(); ++i) {
+    progress("tiles", double(i) / mine.size());
+    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i]), plan);
+    pairs += raw.pairs;
+    merge_scale_max(max, tile_scale_max(raw));
+    save_raw(raw_file(mine[i]), raw);
+  }
+  progress("tiles", 1.0);
+  {
+    TileBytes b;
+    b.put(max);
+    b.put(pairs);
+    max.assign(options.scales.size(), ScaleMax{});
+    for (const auto& bytes : gather(exchange, b)) {
+      TileBytesReader in{bytes};
+      merge_scale_max(max, in.get_vector<ScaleMax>());
+      report.pairs += in.get<uint64_t>();
+    }
+  }
+  lap("tiles: raw maps");
+
+  // Phase 2: mbar from the local maxima of every tile, in vertex order.
+  std::vector<double> mbar(options.scales.size(), 0.0);
+  {
+    std::vector<std::vector<LocalMax>> maxima(options.scales.size());
+    for (size_t t : mine) {
+      const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
+      for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
+    }
+    TileBytes b;
+    for (const auto& m : maxima) b.put(m);
+    for (auto& m : maxima) std::vector<LocalMax>().swap(m);
+    for (const auto& bytes : gather(exchange, b)) {
+      TileBytesReader in{bytes};
+      for (auto& m : maxima) {
+        const std::vector<LocalMax> part = in.get_vector<LocalMax>();
+        m.insert(m.end(), part.begin(), part.end());
+      }
+    }
+    for (size_t k = 0; k < maxima.size(); ++k) mbar[k] = mbar_of(std::move(maxima[k]), max[k]);
+  }
+  lap("suppression");
+
+  // Phase 3: each tile's results to disk; the saliency's range for the colours.
+  double lo = INFINITY, hi = -INFINITY, sum = 0;
+  for (size_t i = 0; i < mine.size(); ++i) {
+    progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
+    const std::string raw_path = raw_file(mine[i]);
+    const TileResult r = tile_finish(load_raw(raw_path), plan, max, mbar);
+    std::remove(raw_path.c_str());
+    for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
+    save_result(result_file(mine[i]), r);
+  }
+  {
+    TileBytes b;
+    b.put(lo);
+    b.put(hi);
+    b.put(sum);
+    sum = 0;
+    for (const auto& bytes : gather(exchange, b)) {
+      TileBytesReader in{bytes};
+      lo = std::min(lo, in.get<double>());
+      hi = std::max(hi, in.get<double>());
+      sum += in.get<double>();
+    }
+  }
+  report.saliency_min = lo;
+  report.saliency_max = hi;
+  report.saliency_mean = store.points ? sum / double(store.points) : 0;
+  lap("saliency");
+
+  // The output (rank 0): the vertices a block at a time, each block's results gathered
+  // from every tile's file; then the triangles.
+  if (rank == 0) {
+    const bool wide = store.double_positions;
+    const size_t scales = options.scales.size();
+    std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by meshsal\n";
+    header += "element vertex " + std::to_string(store.vertices) + "\n";
+    header += wide ? "property double x\nproperty double y\nproperty double z\n"
+                   : "property float x\nproperty float y\nproperty float z\n";
+    header += "property float quality\n";
+    if (ooc.dump_scales) {
+      header += "property float curvature\n";
+      for (size_t k = 0; k < scales; ++k) header += "property float saliency_raw_" + std::to_string(k) + "\n";
+    }
+    header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    header += "element face " + std::to_string(store.triangles) + "\n";
+    header += "property list uchar int vertex_indices\nend_header\n";
+    const ColorLimits limits = colour_limits({lo, hi}, {1, 1}, ColorRange{});
+    const size_t block = size_t(std::min<uint64_t>(store.block, store.vertices));
+    write_file_atomically(output, [&](std::FILE* f) {
+      write_all(f, header.data(), header.size(), output);
+      std::vector<char> buf;
+      auto put = [&](const void* p, size_t n) { buf.insert(buf.end(), (const char*)p, (const char*)p + n); };
+      for (uint64_t first = 0; first < store.vertices; first += block) {
+        const size_t count = size_t(std::min<uint64_t>(block, store.vertices - first));
+        progress("writing", double(first) / double(store.vertices));
+        const size_t width = 2 + scales;  // saliency, curvature, raws
+        std::vector<double> values(count * width, 0.0);
+        std::vector<uint8_t> point(count, 0);
+        for (size_t t = 0; t < ntiles; ++t) {
+          const std::string path = result_file(t);
+          if (std::FILE* probe = std::fopen(path.c_str(), "rb")) std::fclose(probe);
+          else continue;  // a tile without points
+          const std::vector<uint8_t> bytes = read_scratch_file(path);
+          TileBytesReader in{bytes};
+          const std::vector<uint32_t> global = in.get_vector<uint32_t>();
+          const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>();
+          std::vector<std::vector<double>> raw(scales);
+          for (auto& k : raw) k = in.get_vector<double>();
+          for (size_t i = 0; i < global.size(); ++i) {
+            if (global[i] < first || global[i] >= first + count) continue;
+            const size_t v = global[i] - first;
+            point[v] = 1;
+            values[v * width] = saliency[i];
+            values[v * width + 1] = curvature[i];
+            for (size_t k = 0; k < scales; ++k) values[v * width + 2 + k] = raw[k][i];
+          }
+        }
+        std::vector<double> xyz(3 * count);
+        read_source_positions(store, first, count, xyz.data());
+        buf.clear();
+        buf.reserve(count * (12 + 4 * width + 3 + 12));
+        for (size_t v = 0; v < count; ++v) {
+          for (int a = 0; a < 3; ++a) {
+            if (wide) put(&xyz[3 * v + a], 8);
+            else {
+              const float x = float(xyz[3 * v + a]);
+              put(&x, 4);
+            }
+          }
+          const float q = float(values[v * width]);
+          put(&q, 4);
+          if (ooc.dump_scales)
+            for (size_t k = 0; k < 1 + scales; ++k) {
+              const float x = float(values[v * width + 1 + k]);
+              put(&x, 4);
+            }
+          uint8_t rgb[3];
+          colormap_rgb(point[v] ? colour_position(values[v * width], limits) : 0.0, rgb);
+          put(rgb, 3);
+        }
+        write_all(f, buf.data(), buf.size(), output);
+      }
+      std::vector<uint32_t> tri(3 * 65536);
+      for (uint64_t first = 0; first < store.triangles; first += 65536) {
+        const size_t count = size_t(std::min<uint64_t>(65536, store.triangles - first));
+        read_triangles(store, first, count, tri.data());
+        buf.clear();
+        for (size_t i = 0; i < count; ++i) {
+          buf.push_back(3);
+          for (int k = 0; k < 3; ++k) {
+            const int32_t x = int32_t(tri[3 * i + k]);
+            put(&x, 4);
+          }
+        }
+        write_all(f, buf.data(), buf.size(), output);
+      }
+    });
+    lap("writing");
+  }
+  // Every rank done before rank 0's store (and its folder) goes.
+  gather(exchange, TileBytes{});
+  return report;
+}
+
+}  // namespace meshsal

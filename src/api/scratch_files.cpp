@@ -1,0 +1,131 @@
+#include "api/scratch_files.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+namespace {
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error(path + ": " + what + " (" + std::strerror(errno) + ")");
+}
+}  // namespace
+
+ScratchDir::ScratchDir(const std::string& parent) {
+  std::string base = parent;
+  if (base.empty()) {
+    const char* t = std::getenv("TMPDIR");
+    base = t && *t ? t : "/tmp";
+  }
+  std::string pattern = base + "/meshsal-tiles-XXXXXX";
+  std::vector<char> buf(pattern.begin(), pattern.end());
+  buf.push_back('\0');
+  if (!mkdtemp(buf.data())) fail(base, "cannot create a temporary folder for the tiles");
+  path_ = buf.data();
+}
+
+void ScratchDir::borrow(const std::string& path) {
+  if (owner_) {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  path_ = path;
+  owner_ = false;
+}
+
+ScratchDir::~ScratchDir() {
+  if (!owner_ || path_.empty()) return;
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+ScratchWriter::ScratchWriter(const std::string& path, bool append) : path_(path) {
+  f_ = std::fopen(path.c_str(), append ? "ab" : "wb");
+  if (!f_) fail(path, "cannot write a temporary file");
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 16);
+}
+
+ScratchWriter::~ScratchWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void ScratchWriter::write(const void* data, size_t bytes) {
+  if (bytes && std::fwrite(data, 1, bytes, f_) != bytes) fail(path_, "cannot write a temporary file (disk full?)");
+}
+
+void ScratchWriter::close() {
+  if (!f_) return;
+  const bool bad = std::fflush(f_) != 0 || std::ferror(f_);
+  std::fclose(f_);
+  f_ = nullptr;
+  if (bad) fail(path_, "cannot write a temporary file (disk full?)");
+}
+
+ScratchReader::ScratchReader(const std::string& path) : path_(path) {
+  f_ = std::fopen(path.c_str(), "rb");
+  if (!f_) fail(path, "cannot read a temporary file");
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 16);
+}
+
+ScratchReader::~ScratchReader() {
+  if (f_) std::fclose(f_);
+}
+
+size_t ScratchReader::read(void* to, size_t bytes) {
+  const size_t got = std::fread(to, 1, bytes, f_);
+  if (got < bytes && std::ferror(f_)) fail(path_, "cannot read a temporary file");
+  return got;
+}
+
+void ScratchReader::read_exact(void* to, size_t bytes) {
+  if (read(to, bytes) != bytes) throw Error(path_ + ": a temporary file is shorter than written");
+}
+
+void ScratchReader::seek(uint64_t offset) {
+  if (fseeko(f_, off_t(offset), SEEK_SET) != 0) fail(path_, "cannot seek in a temporary file");
+}
+
+std::vector<uint8_t> read_scratch_file(const std::string& path) {
+  ScratchReader in(path);
+  std::vector<uint8_t> data;
+  uint8_t buf[1 << 16];
+  for (size_t got; (got = in.read(buf, sizeof buf)) > 0;) data.insert(data.end(), buf, buf + got);
+  return data;
+}
+
+void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
+                  void* out) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) fail(path, "cannot read a temporary file");
+  constexpr size_t kWindow = 4096;  // records per read at most
+  std::vector<uint8_t> window;
+  auto* dst = static_cast<uint8_t*>(out);
+  size_t i = 0;
+  while (i < sorted.size()) {
+    // One read from sorted[i] to the farthest index within the window.
+    const uint64_t first = sorted[i];
+    size_t j = i;
+    while (j + 1 < sorted.size() && sorted[j + 1] < first + kWindow) ++j;
+    const size_t count = size_t(sorted[j] - first + 1);
+    window.resize(count * record_bytes);
+    const ssize_t got = ::pread(fd, window.data(), window.size(), off_t(first * record_bytes));
+    if (got != ssize_t(window.size())) {
+      ::close(fd);
+      if (got < 0) fail(path, "cannot read a temporary file");
+      throw Error(path + ": a temporary file is shorter than written");
+    }
+    for (size_t k = i; k <= j; ++k)
+      std::memcpy(dst + k * record_bytes, &window[(sorted[k] - first) * record_bytes], record_bytes);
+    i = j + 1;
+  }
+  ::close(fd);
+}
+
+}  // namespace meshsal

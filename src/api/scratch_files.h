@@ -1,0 +1,68 @@
+// meshsal: the out-of-core path's files on disk: a private temporary folder removed with
+// everything in it when the run ends (an error or Ctrl-C included), and plain binary
+// readers and writers with every failure named.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace meshsal {
+
+class ScratchDir {
+ public:
+  // A new folder meshsal-tiles-XXXXXX in `parent` ("" = $TMPDIR or /tmp).
+  explicit ScratchDir(const std::string& parent);
+  // Use another process's folder instead (MPI ranks on a shared disk): this one is
+  // removed now, that one never by us.
+  void borrow(const std::string& path);
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  bool owner_ = true;
+};
+
+// Appends to a file through a buffer.
+class ScratchWriter {
+ public:
+  explicit ScratchWriter(const std::string& path, bool append = false);
+  ~ScratchWriter();
+  void write(const void* data, size_t bytes);
+  template <class T>
+  void write_vector(const std::vector<T>& v) { write(v.data(), v.size() * sizeof(T)); }
+  void close();  // flushes; throws on a failed write (a full disk)
+
+ private:
+  std::string path_;
+  std::FILE* f_ = nullptr;
+};
+
+// Reads a file front to back.
+class ScratchReader {
+ public:
+  explicit ScratchReader(const std::string& path);
+  ~ScratchReader();
+  // Up to `bytes` bytes; how many were read (0 at the end).
+  size_t read(void* to, size_t bytes);
+  void read_exact(void* to, size_t bytes);
+  void seek(uint64_t offset);
+
+ private:
+  std::string path_;
+  std::FILE* f_ = nullptr;
+};
+
+// The whole file (a tile's spilled state).
+std::vector<uint8_t> read_scratch_file(const std::string& path);
+
+// Values at sorted, distinct indices of a file of fixed-size records (the positions file):
+// read in windows of nearby records, so a tile's vertices cost few reads.
+void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
+                  void* out);
+
+}  // namespace meshsal

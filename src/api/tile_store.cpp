@@ -1,0 +1,409 @@
+#include "api/tile_store.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "core/model_frame.h"
+#include "io/ply_stream.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+
+namespace meshsal {
+
+namespace {
+
+constexpr size_t kChunk = 1 << 16;  // vertices or faces per read
+constexpr int kBins = 64;           // the point histogram's bins along each axis
+
+std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
+
+// One triangle in a bucket: its index in the file and its corners.
+struct BucketFace {
+  uint32_t face, c[3];
+};
+
+// The tiles whose cubes meet a box.
+void tiles_meeting(const TilePlan& plan, const BoundingBox& b, int lo[3], int hi[3]) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = int(std::clamp(std::floor((b.min[a] - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
+    hi[a] = int(std::clamp(std::floor((b.max[a] - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
+  }
+}
+
+// Mesh points in the bins that meet a box: at least the points inside it.
+struct Histogram {
+  BoundingBox box;
+  double bin[3];
+  std::vector<uint64_t> count = std::vector<uint64_t>(size_t(kBins) * kBins * kBins, 0);
+  int bin_of(double x, int a) const {
+    return int(std::clamp(std::floor((x - box.min[a]) / bin[a]), 0.0, double(kBins - 1)));
+  }
+  void add(const float* p) {
+    count[(size_t(bin_of(p[2], 2)) * kBins + bin_of(p[1], 1)) * kBins + bin_of(p[0], 0)]++;
+  }
+  uint64_t within(const BoundingBox& b) const {
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = bin_of(b.min[a], a), hi[a] = bin_of(b.max[a], a);
+    uint64_t sum = 0;
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) sum += count[(size_t(z) * kBins + y) * kBins + x];
+    return sum;
+  }
+};
+
+// A plan's estimates: the largest tile's peak in bytes and the work of all tiles (their
+// sub-mesh points, halos included) per mesh point.
+struct PlanCost {
+  uint64_t largest = 0;
+  double work = 0;
+};
+
+PlanCost plan_cost(const TilePlan& plan, const Histogram& h, uint64_t points) {
+  PlanCost cost;
+  const double reach = plan.query_margin + plan.source_margin + h.bin[0] + h.bin[1] + h.bin[2];
+  double total = 0;
+  for (int z = 0; z < plan.tiles[2]; ++z)
+    for (int y = 0; y < plan.tiles[1]; ++y)
+      for (int x = 0; x < plan.tiles[0]; ++x) {
+        BoundingBox b, own;
+        const int c[3] = {x, y, z};
+        for (int a = 0; a < 3; ++a) {
+          own.min[a] = plan.box.min[a] + c[a] * plan.tile_edge;
+          own.max[a] = plan.box.min[a] + (c[a] + 1) * plan.tile_edge;
+          b.min[a] = own.min[a] - reach;
+          b.max[a] = own.max[a] + reach;
+        }
+        if (h.within(own) == 0) continue;  // tiles without points of their own do nothing
+        const uint64_t n = h.within(b);
+        total += double(n);
+        cost.largest = std::max(cost.largest, uint64_t(double(n) * kTileBytesPerVertex));
+      }
+  cost.work = points ? total / double(points) : 1;
+  return cost;
+}
+
+BoundingBox empty_box() {
+  BoundingBox b;
+  for (int a = 0; a < 3; ++a) b.min[a] = INFINITY, b.max[a] = -INFINITY;
+  return b;
+}
+
+std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + "M"; }
+
+}  // namespace
+
+void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned min_tiles,
+                      const std::function<void(const char*, double)>& progress) {
+  auto report = [&](const char* stage, double f) {
+    if (progress) progress(stage, f);
+  };
+  struct stat st;
+  if (::stat(input_path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw Error(input_path + ": out of core reads regular files only (it reads the input more than once)");
+  std::string input = input_path;
+  int converted_wide = -1;  // a converted file's own precision (it is stored in double)
+  if (!PlyStream::readable(input_path)) {
+    // Another format: converted once to a binary PLY (this one step holds the mesh whole),
+    // in double so the coordinates stay the values as read.
+    Mesh m = load_mesh(input_path);
+    converted_wide = positions_need_double(m) ? 1 : 0;
+    m.double_positions = true;
+    input = store.dir.file("input.ply");
+    write_ply(input, m, {}, nullptr);
+  }
+  store.input = input;
+  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit.
+  store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
+
+  // Pass A: doubles as read, triangles, and the referenced bits.
+  PlyStream ply(input);
+  store.vertices = ply.vertex_count();
+  store.double_positions = converted_wide >= 0 ? converted_wide == 1 : ply.double_positions();
+  if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
+  std::vector<uint64_t> referenced((store.vertices + 63) / 64, 0);
+  {
+    ScratchWriter xyz(store.dir.file("xyz.f64"));
+    std::vector<double> buf(3 * kChunk);
+    uint64_t v = 0;
+    for (size_t got; (got = ply.read_vertices(buf.data(), kChunk)) > 0; v += got) {
+      for (size_t i = 0; i < 3 * got; ++i)
+        if (!std::isfinite(buf[i]))
+          throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
+      xyz.write(buf.data(), 3 * got * sizeof(double));
+    }
+    xyz.close();
+    ScratchWriter tri(store.dir.file("tri.u32"));
+    std::vector<uint32_t> t;
+    uint64_t faces_read = 0;
+    for (size_t got; (got = ply.read_faces(t, kChunk)) > 0;) {
+      faces_read += got;
+      for (uint32_t v : t) referenced[v >> 6] |= uint64_t(1) << (v & 63);
+      store.triangles += t.size() / 3;
+      tri.write_vector(t);
+      t.clear();
+      report("reading", double(faces_read) / double(std::max<uint64_t>(1, ply.face_count())));
+    }
+    tri.close();
+  }
+  if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
+  if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
+  auto is_point = [&](uint64_t v) { return (referenced[v >> 6] >> (v & 63)) & 1; };
+
+  // Pass B: the origin (set_model_positions' rule), local floats, their box and histogram.
+  BoundingBox model = empty_box();
+  {
+    ScratchReader xyz(store.dir.file("xyz.f64"));
+    std::vector<double> buf(3 * kChunk);
+    uint64_t v = 0;
+    for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got)
+      for (size_t i = 0; i < got; ++i)
+        if (is_point(v + i))
+          for (int a = 0; a < 3; ++a) {
+            model.min[a] = std::min(model.min[a], buf[3 * i + a]);
+            model.max[a] = std::max(model.max[a], buf[3 * i + a]);
+          }
+  }
+  for (int a = 0; a < 3; ++a) store.origin[a] = model.min[a] / 2 + model.max[a] / 2;
+  BoundingBox box = empty_box();
+  {
+    ScratchReader xyz(store.dir.file("xyz.f64"));
+    ScratchWriter pos(store.dir.file("pos.f32"));
+    std::vector<double> buf(3 * kChunk);
+    std::vector<float> local(3 * kChunk);
+    uint64_t v = 0;
+    for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got) {
+      for (size_t i = 0; i < 3 * got; ++i) local[i] = local_coordinate(buf[i], store.origin[i % 3]);
+      for (size_t i = 0; i < got; ++i)
+        if (is_point(v + i)) {
+          store.points++;
+          for (int a = 0; a < 3; ++a) {
+            box.min[a] = std::min(box.min[a], double(local[3 * i + a]));
+            box.max[a] = std::max(box.max[a], double(local[3 * i + a]));
+          }
+        }
+      pos.write(local.data(), 3 * got * sizeof(float));
+    }
+    pos.close();
+  }
+  Histogram hist;
+  hist.box = box;
+  for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / kBins, 1e-30);
+  {
+    ScratchReader pos(store.dir.file("pos.f32"));
+    std::vector<float> buf(3 * kChunk);
+    uint64_t v = 0;
+    for (size_t got; (got = pos.read(buf.data(), buf.size() * sizeof(float)) / 12) > 0; v += got)
+      for (size_t i = 0; i < got; ++i)
+        if (is_point(v + i)) hist.add(&buf[3 * i]);
+  }
+  std::vector<uint64_t>().swap(referenced);
+
+  // The tile count: the fewest (at least min_tiles) whose largest tile fits the limit,
+  // among those whose halos cost at most kMaxTileWork times the untiled work (smaller
+  // tiles would shrink little: the halo, the filter's reach, stays).
+  unsigned tiles = std::max(1u, min_tiles);
+  store.plan = make_tile_plan(box, store.points, options, tiles);
+  PlanCost cost = plan_cost(store.plan, hist, store.points);
+  if (memory_limit) {
+    uint64_t best = cost.largest;
+    while (kBaseBytes + cost.largest > memory_limit) {
+      const unsigned next = std::min(kMaxTiles, tiles + std::max(1u, tiles / 4));
+      const TilePlan finer = make_tile_plan(box, store.points, options, next);
+      const PlanCost finer_cost = plan_cost(finer, hist, store.points);
+      if (next == tiles || finer_cost.work > kMaxTileWork) break;
+      tiles = next;
+      store.plan = finer;
+      cost = finer_cost;
+      best = std::min(best, cost.largest);
+    }
+    if (kBaseBytes + cost.largest > memory_limit)
+      throw Error("memory limit " + mib(memory_limit) + " is too small for " + input_path +
+                  ": the smallest tile with its halo (the filter's reach around it) needs about " +
+                  mib(best) + "; the smallest workable limit is about " + mib(kBaseBytes + best));
+  }
+  store.largest_tile_estimate = cost.largest;
+
+  // Pass C: each triangle to the bucket of every tile one of its corners lies in, a block
+  // of vertex positions at a time.
+  const size_t ntiles = tile_count(store.plan);
+  std::vector<std::vector<BucketFace>> pending(ntiles);
+  size_t pending_count = 0;
+  const size_t flush_at = std::max<size_t>(kChunk, memory_limit ? size_t(memory_limit / 8 / sizeof(BucketFace)) : (1u << 22));
+  auto flush = [&]() {
+    for (size_t t = 0; t < ntiles; ++t) {
+      if (pending[t].empty()) continue;
+      ScratchWriter out(store.dir.file(bucket_name(t)), true);
+      out.write_vector(pending[t]);
+      out.close();
+      std::vector<BucketFace>().swap(pending[t]);
+    }
+    pending_count = 0;
+  };
+  bool any_area = false;  // validate_mesh's test, on triangles within one block
+  for (uint64_t first = 0; first < store.vertices; first += store.block) {
+    const size_t count = size_t(std::min<uint64_t>(store.block, store.vertices - first));
+    std::vector<float> pos(3 * count);
+    {
+      ScratchReader in(store.dir.file("pos.f32"));
+      in.seek(first * 12);
+      in.read_exact(pos.data(), pos.size() * sizeof(float));
+    }
+    ScratchReader tri(store.dir.file("tri.u32"));
+    std::vector<uint32_t> buf(3 * kChunk);
+    uint32_t f = 0;
+    for (size_t got; (got = tri.read(buf.data(), buf.size() * 4) / 12) > 0;) {
+      for (size_t i = 0; i < got; ++i, ++f) {
+        const uint32_t* c = &buf[3 * i];
+        if (!any_area && c[0] >= first && c[1] >= first && c[2] >= first && c[0] < first + count &&
+            c[1] < first + count && c[2] < first + count) {
+          double u[3], w[3];
+          for (int a = 0; a < 3; ++a) {
+            u[a] = double(pos[3 * (c[1] - first) + a]) - pos[3 * (c[0] - first) + a];
+            w[a] = double(pos[3 * (c[2] - first) + a]) - pos[3 * (c[0] - first) + a];
+          }
+          any_area = u[1] * w[2] - u[2] * w[1] != 0 || u[2] * w[0] - u[0] * w[2] != 0 || u[0] * w[1] - u[1] * w[0] != 0;
+        }
+        size_t seen[3];
+        int nseen = 0;
+        for (int k = 0; k < 3; ++k) {
+          if (c[k] < first || c[k] >= first + count) continue;
+          const size_t t = tile_of(store.plan, &pos[3 * (c[k] - first)]);
+          if (std::find(seen, seen + nseen, t) != seen + nseen) continue;
+          seen[nseen++] = t;
+          pending[t].push_back({f, {c[0], c[1], c[2]}});
+          pending_count++;
+        }
+      }
+      if (pending_count >= flush_at) flush();
+      report("tiling", (double(first) + double(f) / double(store.triangles) * double(count)) / double(store.vertices));
+    }
+  }
+  flush();
+  if (!any_area && store.block >= store.vertices)
+    throw Error(input_path + ": every triangle has zero area (degenerate mesh)");
+}
+
+TileMesh load_tile(const TileStore& store, size_t t) {
+  const TilePlan& plan = store.plan;
+  const std::string pos_file = store.dir.file("pos.f32");
+  auto read_bucket = [&](size_t u, std::vector<BucketFace>& into) {
+    const std::string path = store.dir.file(bucket_name(u));
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) return;  // no triangle there
+    const std::vector<uint8_t> bytes = read_scratch_file(path);
+    const size_t n = bytes.size() / sizeof(BucketFace);
+    const size_t at = into.size();
+    into.resize(at + n);
+    std::memcpy(into.data() + at, bytes.data(), n * sizeof(BucketFace));
+  };
+  auto by_face = [](const BucketFace& a, const BucketFace& b) { return a.face < b.face; };
+  auto same_face = [](const BucketFace& a, const BucketFace& b) { return a.face == b.face; };
+  auto positions_of = [&](const std::vector<BucketFace>& faces, std::vector<uint32_t>& ids,
+                          std::vector<float>& pos) {
+    ids.clear();
+    for (const BucketFace& f : faces) ids.insert(ids.end(), f.c, f.c + 3);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    pos.resize(3 * ids.size());
+    read_records(pos_file, 12, ids, pos.data());
+  };
+  auto at = [](const std::vector<uint32_t>& ids, const std::vector<float>& pos, uint32_t v) {
+    return &pos[3 * size_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin())];
+  };
+
+  // The tile's own triangles: their corners give the own points and their 1-rings.
+  std::vector<BucketFace> mine;
+  read_bucket(t, mine);
+  TileMesh tile;
+  if (mine.empty()) return tile;
+  std::sort(mine.begin(), mine.end(), by_face);
+  mine.erase(std::unique(mine.begin(), mine.end(), same_face), mine.end());
+  std::vector<uint32_t> ids;
+  std::vector<float> pos;
+  positions_of(mine, ids, pos);
+  BoundingBox own_box = empty_box(), ring_box = empty_box();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const float* p = &pos[3 * i];
+    for (int a = 0; a < 3; ++a) {
+      ring_box.min[a] = std::min(ring_box.min[a], double(p[a]));
+      ring_box.max[a] = std::max(ring_box.max[a], double(p[a]));
+    }
+    if (tile_of(plan, p) != t) continue;
+    for (int a = 0; a < 3; ++a) {
+      own_box.min[a] = std::min(own_box.min[a], double(p[a]));
+      own_box.max[a] = std::max(own_box.max[a], double(p[a]));
+    }
+  }
+  BoundingBox query_box = ring_box, source_box;
+  for (int a = 0; a < 3; ++a) {
+    query_box.min[a] = std::min(query_box.min[a], own_box.min[a] - plan.query_margin);
+    query_box.max[a] = std::max(query_box.max[a], own_box.max[a] + plan.query_margin);
+    source_box.min[a] = query_box.min[a] - plan.source_margin;
+    source_box.max[a] = query_box.max[a] + plan.source_margin;
+  }
+  // Every triangle with a corner among the source points lies in the bucket of a tile
+  // whose cube meets the source box.
+  std::vector<BucketFace> near;
+  std::vector<BucketFace>().swap(mine);
+  int lo[3], hi[3];
+  tiles_meeting(plan, source_box, lo, hi);
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
+        read_bucket((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, near);
+  std::sort(near.begin(), near.end(), by_face);
+  near.erase(std::unique(near.begin(), near.end(), same_face), near.end());
+  positions_of(near, ids, pos);
+  auto inside = [&](const float* p, const BoundingBox& b) {
+    for (int a = 0; a < 3; ++a)
+      if (!(double(p[a]) >= b.min[a] && double(p[a]) <= b.max[a])) return false;
+    return true;
+  };
+  size_t kept = 0;
+  for (const BucketFace& f : near) {
+    bool take = false;
+    for (int k = 0; k < 3 && !take; ++k) take = inside(at(ids, pos, f.c[k]), source_box);
+    if (take) near[kept++] = f;
+  }
+  near.resize(kept);
+  // The sub-mesh: its vertices in whole-mesh order, its triangles in file order.
+  std::vector<uint32_t> used;
+  for (const BucketFace& f : near) used.insert(used.end(), f.c, f.c + 3);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  tile.global = used;
+  tile.mesh.positions.resize(3 * used.size());
+  for (size_t i = 0; i < used.size(); ++i) {
+    const float* p = at(ids, pos, used[i]);
+    std::copy(p, p + 3, &tile.mesh.positions[3 * i]);
+    const bool own = tile_of(plan, p) == t;
+    tile.own.push_back(own ? 1 : 0);
+    tile.own_count += own ? 1 : 0;
+    tile.query.push_back(inside(p, query_box) ? 1 : 0);
+  }
+  tile.mesh.triangles.reserve(3 * near.size());
+  for (const BucketFace& f : near)
+    for (int k = 0; k < 3; ++k)
+      tile.mesh.triangles.push_back(uint32_t(std::lower_bound(used.begin(), used.end(), f.c[k]) - used.begin()));
+  return tile;
+}
+
+void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out) {
+  ScratchReader in(store.dir.file("xyz.f64"));
+  in.seek(first * 24);
+  in.read_exact(out, count * 24);
+}
+
+void read_triangles(const TileStore& store, uint64_t first, size_t count, uint32_t* out) {
+  ScratchReader in(store.dir.file("tri.u32"));
+  in.seek(first * 12);
+  in.read_exact(out, count * 12);
+}
+
+}  // namespace meshsal

@@ -1,0 +1,62 @@
+// meshsal: a mesh cut into tiles on disk, for saliency under a memory limit (out of core).
+// Built by streaming the input (binary PLY; other formats are converted once) through a
+// few passes, each holding at most a block of vertices in memory:
+//   A  vertices as read (double) to xyz.f64, faces fan-triangulated to tri.u32, and one bit
+//      per vertex for "referenced by a face";
+//   B  the mesh points' bounding box in the model's coordinates -> the origin (as the
+//      loaders set it), local float positions to pos.f32, their bounding box and a coarse
+//      histogram of the points -> the tile count that fits the limit (TilePlan);
+//   C  every triangle to the bucket file of each tile one of its corners lies in.
+// load_tile() then builds one tile's sub-mesh (saliency_tiles.h) from its bucket and its
+// neighbours', with the vertex positions read from pos.f32.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "api/scratch_files.h"
+#include "saliency/saliency_tiles.h"
+
+namespace meshsal {
+
+// What one sub-mesh vertex costs a tile's run at its peak (curvature, the averages of every
+// sigma, the grid), measured on igea_loop1 (README "Out of core"); the tile count is chosen
+// so the largest tile's estimate fits the limit.
+constexpr double kTileBytesPerVertex = 420;
+// The most work a tiling may cost, in tile points (halos included) per mesh point: finer
+// tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
+constexpr double kMaxTileWork = 12;
+// The process before any tile: the program, its libraries and the buffers of the passes.
+constexpr uint64_t kBaseBytes = uint64_t(48) << 20;
+
+struct TileStore {
+  explicit TileStore(const std::string& temp_parent) : dir(temp_parent) {}
+  ScratchDir dir;
+  std::string input;
+  uint64_t vertices = 0, triangles = 0, points = 0;
+  bool double_positions = false;  // the input stored double x, y, z
+  double origin[3] = {0, 0, 0};
+  TilePlan plan;
+  uint64_t largest_tile_estimate = 0;  // bytes, the largest tile's estimate
+  size_t block = 0;                    // vertices per block of the passes
+};
+
+// Streams `input` into tiles under `memory_limit` bytes (0: no limit, `tiles` along the
+// longest axis, else the fewest tiles that fit; at least `tiles`). Throws Error naming the
+// smallest workable limit when even the finest tiling does not fit. `progress` (may be
+// empty) gets each pass's name and fraction.
+void build_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned tiles,
+                      const std::function<void(const char*, double)>& progress);
+
+// Tile t's sub-mesh (TileMesh), from its bucket and those of the tiles its halo reaches.
+TileMesh load_tile(const TileStore& store, size_t t);
+
+// The doubles as read of vertices [first, first + count) (the output's positions).
+void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out);
+
+// Triangles [first, first + count) of the triangulated faces.
+void read_triangles(const TileStore& store, uint64_t first, size_t count, uint32_t* out);
+
+}  // namespace meshsal

@@ -1,0 +1,270 @@
+#include "io/ply_stream.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+
+#include "io/mesh_io_internal.h"
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+namespace {
+
+enum class Type { I8, U8, I16, U16, I32, U32, F32, F64, None };
+
+Type type_of(const std::string& s) {
+  if (s == "char" || s == "int8") return Type::I8;
+  if (s == "uchar" || s == "uint8") return Type::U8;
+  if (s == "short" || s == "int16") return Type::I16;
+  if (s == "ushort" || s == "uint16") return Type::U16;
+  if (s == "int" || s == "int32") return Type::I32;
+  if (s == "uint" || s == "uint32") return Type::U32;
+  if (s == "float" || s == "float32") return Type::F32;
+  if (s == "double" || s == "float64") return Type::F64;
+  return Type::None;
+}
+
+size_t size_of(Type t) {
+  switch (t) {
+    case Type::I8: case Type::U8: return 1;
+    case Type::I16: case Type::U16: return 2;
+    case Type::I32: case Type::U32: case Type::F32: return 4;
+    case Type::F64: return 8;
+    case Type::None: break;
+  }
+  return 0;
+}
+
+// One value of type t at p, in the file's byte order, as a double.
+double value_at(const uint8_t* p, Type t, bool swap) {
+  uint8_t b[8];
+  const size_t n = size_of(t);
+  std::memcpy(b, p, n);
+  if (swap) std::reverse(b, b + n);
+  switch (t) {
+    case Type::I8: { int8_t x; std::memcpy(&x, b, 1); return x; }
+    case Type::U8: return b[0];
+    case Type::I16: { int16_t x; std::memcpy(&x, b, 2); return x; }
+    case Type::U16: { uint16_t x; std::memcpy(&x, b, 2); return x; }
+    case Type::I32: { int32_t x; std::memcpy(&x, b, 4); return x; }
+    case Type::U32: { uint32_t x; std::memcpy(&x, b, 4); return x; }
+    case Type::F32: { float x; std::memcpy(&x, b, 4); return x; }
+    case Type::F64: { double x; std::memcpy(&x, b, 8); return x; }
+    case Type::None: break;
+  }
+  return 0;
+}
+
+struct Property {
+  std::string name;
+  Type type = Type::None;       // scalar type, or the list's item type
+  Type count = Type::None;      // list count type; None for a scalar
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> props;
+};
+
+}  // namespace
+
+struct PlyStream::Layout {
+  std::vector<Element> elements;
+  size_t vertex = SIZE_MAX, face = SIZE_MAX;  // element indices
+  size_t next = 0;                            // the element the stream stands at
+  bool swap = false;
+  size_t vertex_bytes = 0;                    // one vertex record
+  size_t xyz_offset[3] = {0, 0, 0};
+  Type xyz_type[3] = {Type::None, Type::None, Type::None};
+  std::vector<uint8_t> buffer;
+};
+
+PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_unique<Layout>()) {
+  auto fail = [&](const std::string& why) { throw Error(path + ": " + why); };
+  gz_ = gzopen(path.c_str(), "rb");
+  if (!gz_) fail("cannot open");
+  gzbuffer(static_cast<gzFile>(gz_), 1 << 20);
+  // The header, line by line (at most 1 MB of it).
+  std::string line, header;
+  auto next_line = [&]() {
+    line.clear();
+    for (;;) {
+      const int c = gzgetc(static_cast<gzFile>(gz_));
+      if (c < 0) fail("the PLY header ends before end_header");
+      if (c == '\n') break;
+      line.push_back(char(c));
+      if (header.size() + line.size() > (1 << 20)) fail("the PLY header is longer than 1 MB");
+    }
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    header += line + "\n";
+    return line;
+  };
+  if (next_line() != "ply") fail("not a PLY file");
+  Layout& L = *layout_;
+  bool binary = false;
+  for (;;) {
+    std::istringstream in(next_line());
+    std::string word;
+    in >> word;
+    if (word == "end_header") break;
+    if (word == "format") {
+      std::string f;
+      in >> f;
+      if (f == "binary_little_endian" || f == "binary_big_endian") {
+        binary = true;
+        const bool big_host = __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__;
+        L.swap = (f == "binary_big_endian") != big_host;
+      }
+    } else if (word == "element") {
+      Element e;
+      in >> e.name >> e.count;
+      if (!in) fail("bad element line: " + line);
+      L.elements.push_back(e);
+    } else if (word == "property") {
+      if (L.elements.empty()) fail("a property before any element");
+      Property p;
+      std::string t;
+      in >> t;
+      if (t == "list") {
+        std::string ct, it;
+        in >> ct >> it >> p.name;
+        p.count = type_of(ct);
+        p.type = type_of(it);
+        if (p.count == Type::None || p.type == Type::None || p.count == Type::F32 || p.count == Type::F64)
+          fail("bad list property: " + line);
+      } else {
+        in >> p.name;
+        p.type = type_of(t);
+        if (p.type == Type::None) fail("unknown property type: " + line);
+      }
+      L.elements.back().props.push_back(p);
+    }
+  }
+  if (!binary) fail("not a binary PLY (the out-of-core path streams binary PLY only)");
+  for (size_t e = 0; e < L.elements.size(); ++e) {
+    if (L.elements[e].name == "vertex" && L.vertex == SIZE_MAX) L.vertex = e;
+    if (L.elements[e].name == "face" && L.face == SIZE_MAX) L.face = e;
+  }
+  if (L.vertex == SIZE_MAX || L.face == SIZE_MAX) fail("a PLY needs a vertex and a face element");
+  if (L.face < L.vertex) fail("the PLY's faces come before its vertices");
+  const Element& v = L.elements[L.vertex];
+  for (const Property& p : v.props) {
+    if (p.count != Type::None) fail("a list property in the vertex element");
+    for (int a = 0; a < 3; ++a)
+      if (p.name == std::string(1, char('x' + a))) {
+        L.xyz_offset[a] = L.vertex_bytes;
+        L.xyz_type[a] = p.type;
+      }
+    L.vertex_bytes += size_of(p.type);
+  }
+  for (int a = 0; a < 3; ++a)
+    if (L.xyz_type[a] == Type::None) fail("the vertex element has no x, y and z");
+  double_xyz_ = L.xyz_type[0] == Type::F64 || L.xyz_type[1] == Type::F64 || L.xyz_type[2] == Type::F64;
+  bool indices = false;
+  for (const Property& p : L.elements[L.face].props)
+    indices |= p.count != Type::None && (p.name == "vertex_indices" || p.name == "vertex_index");
+  if (!indices) fail("the face element has no vertex_indices list");
+  vertices_ = v.count;
+  faces_ = L.elements[L.face].count;
+  if (vertices_ > UINT32_MAX) fail("more than 4294967295 vertices");
+}
+
+PlyStream::~PlyStream() {
+  if (gz_) gzclose(static_cast<gzFile>(gz_));
+}
+
+bool PlyStream::readable(const std::string& path) {
+  try {
+    PlyStream s(path);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+void PlyStream::read_exact(void* to, size_t n) {
+  auto* p = static_cast<uint8_t*>(to);
+  while (n > 0) {
+    const unsigned part = unsigned(std::min<size_t>(n, 1u << 30));
+    const int got = gzread(static_cast<gzFile>(gz_), p, part);
+    if (got <= 0) throw Error(path_ + ": the file ends before its header's counts are read");
+    p += got;
+    n -= size_t(got);
+  }
+}
+
+void PlyStream::skip_element(size_t e) {
+  const Element& el = layout_->elements[e];
+  uint8_t b[8];
+  for (uint64_t i = 0; i < el.count; ++i)
+    for (const Property& p : el.props) {
+      if (p.count == Type::None) {
+        read_exact(b, size_of(p.type));
+        continue;
+      }
+      read_exact(b, size_of(p.count));
+      const double n = value_at(b, p.count, layout_->swap);
+      if (n < 0) throw Error(path_ + ": a negative list length in element " + el.name);
+      for (double k = 0; k < n; ++k) read_exact(b, size_of(p.type));
+    }
+}
+
+size_t PlyStream::read_vertices(double* out, size_t max) {
+  Layout& L = *layout_;
+  while (L.next < L.vertex) skip_element(L.next++);
+  const size_t n = size_t(std::min<uint64_t>(max, vertices_ - vertices_read_));
+  if (n == 0) return 0;
+  L.buffer.resize(n * L.vertex_bytes);
+  read_exact(L.buffer.data(), L.buffer.size());
+  for (size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a)
+      out[3 * i + a] = value_at(&L.buffer[i * L.vertex_bytes + L.xyz_offset[a]], L.xyz_type[a], L.swap);
+  vertices_read_ += n;
+  if (vertices_read_ == vertices_) L.next = L.vertex + 1;
+  return n;
+}
+
+size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
+  Layout& L = *layout_;
+  if (vertices_read_ < vertices_) throw Error("internal: faces read before every vertex");
+  while (L.next < L.face) skip_element(L.next++);
+  const Element& f = L.elements[L.face];
+  size_t done = 0;
+  std::vector<uint32_t> poly;
+  uint8_t b[8];
+  for (; done < max && faces_read_ < faces_; ++done, ++faces_read_) {
+    for (const Property& p : f.props) {
+      if (p.count == Type::None) {
+        read_exact(b, size_of(p.type));
+        continue;
+      }
+      read_exact(b, size_of(p.count));
+      const double n = value_at(b, p.count, L.swap);
+      const bool corners = p.name == "vertex_indices" || p.name == "vertex_index";
+      if (!corners) {
+        for (double k = 0; k < n; ++k) read_exact(b, size_of(p.type));
+        continue;
+      }
+      const std::string problem = polygon_size_problem(n < 0 ? 0 : uint64_t(n));
+      if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
+      poly.resize(size_t(n));
+      L.buffer.resize(size_t(n) * size_of(p.type));
+      read_exact(L.buffer.data(), L.buffer.size());
+      for (size_t k = 0; k < poly.size(); ++k) {
+        const double x = value_at(&L.buffer[k * size_of(p.type)], p.type, L.swap);
+        if (!(x >= 0 && x < double(vertices_)))
+          throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " +
+                      std::to_string(int64_t(x)) + " but the file has " + std::to_string(vertices_) + " vertices");
+        poly[k] = uint32_t(x);
+      }
+      append_fan(triangles, poly.data(), poly.size());
+    }
+  }
+  return done;
+}
+
+}  // namespace meshsal

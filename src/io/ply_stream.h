@@ -1,0 +1,47 @@
+// meshsal: a binary PLY (little or big endian, gzip or not) read front to back in chunks,
+// for the out-of-core path: the file is never held whole in memory.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace meshsal {
+
+class PlyStream {
+ public:
+  // Opens `path` and reads its header. Throws Error unless it is a binary PLY with a vertex
+  // element holding x, y, z and a face element holding a vertex_indices (or vertex_index)
+  // list, the vertices first.
+  explicit PlyStream(const std::string& path);
+  ~PlyStream();
+  PlyStream(const PlyStream&) = delete;
+  PlyStream& operator=(const PlyStream&) = delete;
+
+  uint64_t vertex_count() const { return vertices_; }
+  uint64_t face_count() const { return faces_; }   // polygons as the file has them
+  bool double_positions() const { return double_xyz_; }
+
+  // The next vertices' x, y, z (3 doubles each) into out, at most `max`; how many were
+  // read (0 once every vertex has been).
+  size_t read_vertices(double* out, size_t max);
+  // The next polygons (at most `max`), fan-triangulated, appended to `triangles`; how many
+  // polygons were read (0 at the end). Every index is checked against vertex_count().
+  size_t read_faces(std::vector<uint32_t>& triangles, size_t max);
+
+  // True for a file this class reads (binary PLY); false for anything else, which the
+  // caller converts once.
+  static bool readable(const std::string& path);
+
+ private:
+  struct Layout;
+  void read_exact(void* to, size_t n);
+  void skip_element(size_t e);
+  std::string path_;
+  void* gz_ = nullptr;
+  std::unique_ptr<Layout> layout_;
+  uint64_t vertices_ = 0, faces_ = 0, vertices_read_ = 0, faces_read_ = 0;
+  bool double_xyz_ = false;
+};
+
+}  // namespace meshsal
