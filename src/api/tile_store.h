@@ -28,7 +28,7 @@ constexpr double kTileBytesPerVertex = 420;
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 12;
 // The process before any tile: the program, its libraries and the buffers of the passes.
-constexpr uint64_t kBaseBytes = uint64_t(48) << 20;
+constexpr uint64_t kBaseBytes = uint64_t(16) << 20;
 
 struct TileStore {
   explicit TileStore(const std::string& temp_parent) : dir(temp_parent) {}

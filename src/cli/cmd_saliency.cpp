@@ -104,7 +104,9 @@ int run(const Args& a) {
   write_saliency_ply(a.output, mesh, r, a.dump_scales);
   progress.finish();
   if (a.json) {
-    print_saliency_json(a.input, a.output, mesh, r, load);
+    JsonObject j = saliency_json(a.input, a.output, mesh, r, load);
+    j.count("peak_rss", peak_resident_bytes());
+    j.print();
   } else if (!a.quiet) {
     print_saliency_summary(mesh, r, load);
     std::printf("wrote      %s\n", printable(a.output).c_str());

@@ -1,0 +1,156 @@
+// Out of core (saliency_file, meshsal saliency --memory-limit): the same bytes as the
+// in-memory run, the peak resident memory under the limit, clear errors.
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli/synthetic.h"
+#include "cli_run.h"
+#include "json_check.h"
+#include "test_util.h"
+
+using namespace meshsal;
+using namespace meshsal_test;
+
+namespace {
+
+std::string file_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+SaliencyOptions cpu(Method method) {
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  o.method = method;
+  return o;
+}
+
+// A bumpy sphere far from the origin (survey coordinates), so the input stores doubles.
+Mesh far_sphere() {
+  Mesh m = make_bumpy_sphere(4);
+  std::vector<double> xyz = model_positions(m);
+  for (size_t i = 0; i < xyz.size(); i += 3) xyz[i] += 5e5, xyz[i + 1] += 4e6;
+  set_model_positions(m, xyz.data(), m.vertex_count());
+  m.double_positions = true;
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
+  const auto dir = scratch_dir("ooc_bytes");
+  const Mesh meshes[] = {make_bumpy_sphere(4), make_plane_with_bump(2.0, 50, 0.3, 0.2), far_sphere()};
+  int i = 0;
+  for (const Mesh& mesh : meshes) {
+    const std::string in = (dir / ("in" + std::to_string(i++) + ".ply")).string();
+    write_ply(in, mesh, {}, nullptr);
+    const Mesh loaded = load_mesh(in);
+    for (Method method : {Method::Exact, Method::Fast})
+      for (bool dump : {false, true}) {
+        INFO(in << " method " << int(method) << " dump " << dump);
+        const SaliencyResult r = compute_saliency(loaded, cpu(method));
+        std::vector<PlyFloatProperty> extra;
+        std::vector<std::string> names;
+        if (dump) {
+          extra.push_back({"curvature", &r.curvature});
+          for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
+          for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
+        }
+        write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, &r.is_point);
+        SaliencyOptions o = cpu(method);
+        o.tiles = 4;
+        OutOfCoreOptions ooc;
+        ooc.dump_scales = dump;
+        ooc.temp_dir = dir.string();
+        const OutOfCoreReport rep = saliency_file(in, (dir / "tiled.ply").string(), o, ooc);
+        CHECK(rep.tiles >= 16);
+        CHECK(rep.vertices == loaded.vertex_count());
+        CHECK(rep.triangles == loaded.triangle_count());
+        CHECK(rep.eps == r.eps);
+        CHECK(file_bytes(dir / "tiled.ply") == file_bytes(dir / "whole.ply"));
+      }
+  }
+  // Its temporary folders are gone.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) == std::string::npos);
+}
+
+TEST_CASE("out of core converts other formats once and gives the same bytes", "[outofcore]") {
+  const auto dir = scratch_dir("ooc_obj");
+  const std::string obj = (dir / "in.obj").string();
+  write_obj(obj, make_bumpy_sphere(3));
+  const CliRun whole = run_cli("saliency " + quoted(obj) + " -o " + quoted((dir / "a.ply").string()) + " -q --backend cpu", dir);
+  REQUIRE(whole.rc == 0);
+  const CliRun tiled = run_cli("saliency " + quoted(obj) + " -o " + quoted((dir / "b.ply").string()) +
+                                   " -q --backend cpu --memory-limit 1G --tiles 3", dir);
+  INFO(tiled.err);
+  REQUIRE(tiled.rc == 0);
+  CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
+}
+
+TEST_CASE("--memory-limit holds the peak resident memory under the limit", "[outofcore][cli]") {
+  const auto dir = scratch_dir("ooc_limit");
+  const std::string in = (dir / "plane.ply").string();
+  write_ply(in, make_plane_with_bump(2.0, 600, 0.3, 0.2), {}, nullptr);  // 361,201 vertices
+  const CliRun whole = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "a.ply").string()) +
+                                   " --method fast --backend cpu --json", dir);
+  REQUIRE(whole.rc == 0);
+  const double peak_whole = json_number(whole.out, "peak_rss");
+  REQUIRE(peak_whole > 0);
+  // Half the in-memory peak: tiles it must be.
+  const uint64_t limit = uint64_t(peak_whole / 2);
+  const CliRun tiled = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "b.ply").string()) +
+                                   " --method fast --backend cpu --json --memory-limit " + std::to_string(limit), dir);
+  INFO(tiled.err);
+  REQUIRE(tiled.rc == 0);
+  INFO(tiled.out);
+  CHECK(json_number(tiled.out, "tiles") > 1);
+  CHECK(json_number(tiled.out, "peak_rss") < double(limit));
+  CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
+}
+
+TEST_CASE("out of core: bad limits and inputs are clear errors", "[outofcore][cli]") {
+  const auto dir = scratch_dir("ooc_errors");
+  const std::string in = (dir / "sphere.ply").string();
+  write_ply(in, make_bumpy_sphere(5), {}, nullptr);
+  // Too small for one tile: the error names the smallest workable limit, nothing is written.
+  const CliRun small = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "b.ply").string()) +
+                                   " --backend cpu --memory-limit 17M", dir);
+  CHECK(small.rc == 1);
+  CHECK(small.err.find("memory limit 17M is too small") != std::string::npos);
+  CHECK(small.err.find("the smallest workable limit is about") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "b.ply"));
+  // The limit it names works.
+  const size_t at = small.err.find("about ", small.err.find("smallest workable"));
+  const std::string named = small.err.substr(at + 6, small.err.find_first_of(" \n", at + 6) - at - 6);
+  const CliRun ok = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "b.ply").string()) +
+                                " --backend cpu --json --memory-limit " + named, dir);
+  INFO(small.err << ok.err);
+  CHECK(ok.rc == 0);
+  CHECK(json_number(ok.out, "peak_rss") < double(parse_memory_size(named)));
+
+  for (const char* bad : {"0", "-5M", "abc", "12Q", "1e30G"}) CHECK_THROWS_AS(parse_memory_size(bad), Error);
+  CHECK(parse_memory_size("700M") == uint64_t(700) << 20);
+  CHECK(parse_memory_size("1.5G") == uint64_t(3) << 29);
+  CHECK(parse_memory_size("4096") == 4096);
+  const CliRun junk = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "c.ply").string()) + " --memory-limit lots", dir);
+  CHECK(junk.rc != 0);
+  CHECK(junk.err.find("memory size must be") != std::string::npos);
+  // A FIFO cannot be read twice: refused, not hung.
+  const std::string fifo = (dir / "pipe.ply").string();
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  const CliRun pipe = run_cli("saliency " + quoted(fifo) + " -o " + quoted((dir / "d.ply").string()) +
+                                  " --memory-limit 1G", dir, 60);
+  CHECK(pipe.rc == 1);
+  CHECK(pipe.err.find("regular files only") != std::string::npos);
+  // The GPU backend is refused.
+  const CliRun gpu = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "e.ply").string()) +
+                                 " --backend gpu --memory-limit 1G", dir);
+  CHECK(gpu.rc == 1);
+  CHECK(gpu.err.find("out of core runs on the CPU") != std::string::npos);
+}
