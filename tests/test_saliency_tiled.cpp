@@ -82,13 +82,12 @@ SaliencyResult run_phases(const Mesh& mesh, TilePlan plan) {
   SaliencyResult r;
   r.is_point = referenced_vertices(mesh);
   const size_t n = mesh.vertex_count();
-  std::vector<uint32_t> tile_of_point(n, UINT32_MAX);
-  for (size_t v = 0; v < n; ++v)
-    if (r.is_point[v]) tile_of_point[v] = uint32_t(tile_of(plan, &mesh.positions[3 * v]));
+  const TileBuckets buckets = bucket_triangles(mesh, plan);
+  const TileSource source = memory_tile_source(mesh, buckets);
   std::vector<TileRaw> raws;
   std::vector<ScaleMax> max(plan.scales.size());
   for (size_t t = 0; t < tile_count(plan); ++t) {
-    raws.push_back(tile_raw_maps(extract_tile(mesh, r.is_point, tile_of_point, plan, t), plan));
+    raws.push_back(tile_raw_maps(assemble_tile(plan, t, source), plan));
     merge_scale_max(max, tile_scale_max(raws.back()));
   }
   std::vector<double> mbar;

@@ -21,19 +21,6 @@ constexpr int kBins = 64;           // the point histogram's bins along each axi
 
 std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
 
-// One triangle in a bucket: its index in the file and its corners.
-struct BucketFace {
-  uint32_t face, c[3];
-};
-
-// The tiles whose cubes meet a box.
-void tiles_meeting(const TilePlan& plan, const BoundingBox& b, int lo[3], int hi[3]) {
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = int(std::clamp(std::floor((b.min[a] - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
-    hi[a] = int(std::clamp(std::floor((b.max[a] - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
-  }
-}
-
 // Mesh points in the bins that meet a box: at least the points inside it.
 struct Histogram {
   BoundingBox box;
@@ -232,16 +219,16 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
   // Pass C: each triangle to the bucket of every tile one of its corners lies in, a block
   // of vertex positions at a time.
   const size_t ntiles = tile_count(store.plan);
-  std::vector<std::vector<BucketFace>> pending(ntiles);
+  std::vector<std::vector<TileFace>> pending(ntiles);
   size_t pending_count = 0;
-  const size_t flush_at = std::max<size_t>(kChunk, memory_limit ? size_t(memory_limit / 8 / sizeof(BucketFace)) : (1u << 22));
+  const size_t flush_at = std::max<size_t>(kChunk, memory_limit ? size_t(memory_limit / 8 / sizeof(TileFace)) : (1u << 22));
   auto flush = [&]() {
     for (size_t t = 0; t < ntiles; ++t) {
       if (pending[t].empty()) continue;
       ScratchWriter out(store.dir.file(bucket_name(t)), true);
       out.write_vector(pending[t]);
       out.close();
-      std::vector<BucketFace>().swap(pending[t]);
+      std::vector<TileFace>().swap(pending[t]);
     }
     pending_count = 0;
   };
@@ -290,108 +277,21 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
 }
 
 TileMesh load_tile(const TileStore& store, size_t t) {
-  const TilePlan& plan = store.plan;
-  const std::string pos_file = store.dir.file("pos.f32");
-  auto read_bucket = [&](size_t u, std::vector<BucketFace>& into) {
+  TileSource source;
+  source.bucket = [&store](size_t u, std::vector<TileFace>& into) {
     const std::string path = store.dir.file(bucket_name(u));
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) return;  // no triangle there
     const std::vector<uint8_t> bytes = read_scratch_file(path);
-    const size_t n = bytes.size() / sizeof(BucketFace);
-    const size_t at = into.size();
+    const size_t n = bytes.size() / sizeof(TileFace), at = into.size();
     into.resize(at + n);
-    std::memcpy(into.data() + at, bytes.data(), n * sizeof(BucketFace));
+    std::memcpy(into.data() + at, bytes.data(), n * sizeof(TileFace));
   };
-  auto by_face = [](const BucketFace& a, const BucketFace& b) { return a.face < b.face; };
-  auto same_face = [](const BucketFace& a, const BucketFace& b) { return a.face == b.face; };
-  auto positions_of = [&](const std::vector<BucketFace>& faces, std::vector<uint32_t>& ids,
-                          std::vector<float>& pos) {
-    ids.clear();
-    for (const BucketFace& f : faces) ids.insert(ids.end(), f.c, f.c + 3);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    pos.resize(3 * ids.size());
-    read_records(pos_file, 12, ids, pos.data());
+  source.positions = [&store](const std::vector<uint32_t>& sorted, std::vector<float>& xyz) {
+    xyz.resize(3 * sorted.size());
+    read_records(store.dir.file("pos.f32"), 12, sorted, xyz.data());
   };
-  auto at = [](const std::vector<uint32_t>& ids, const std::vector<float>& pos, uint32_t v) {
-    return &pos[3 * size_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin())];
-  };
-
-  // The tile's own triangles: their corners give the own points and their 1-rings.
-  std::vector<BucketFace> mine;
-  read_bucket(t, mine);
-  TileMesh tile;
-  if (mine.empty()) return tile;
-  std::sort(mine.begin(), mine.end(), by_face);
-  mine.erase(std::unique(mine.begin(), mine.end(), same_face), mine.end());
-  std::vector<uint32_t> ids;
-  std::vector<float> pos;
-  positions_of(mine, ids, pos);
-  BoundingBox own_box = empty_box(), ring_box = empty_box();
-  for (size_t i = 0; i < ids.size(); ++i) {
-    const float* p = &pos[3 * i];
-    for (int a = 0; a < 3; ++a) {
-      ring_box.min[a] = std::min(ring_box.min[a], double(p[a]));
-      ring_box.max[a] = std::max(ring_box.max[a], double(p[a]));
-    }
-    if (tile_of(plan, p) != t) continue;
-    for (int a = 0; a < 3; ++a) {
-      own_box.min[a] = std::min(own_box.min[a], double(p[a]));
-      own_box.max[a] = std::max(own_box.max[a], double(p[a]));
-    }
-  }
-  BoundingBox query_box = ring_box, source_box;
-  for (int a = 0; a < 3; ++a) {
-    query_box.min[a] = std::min(query_box.min[a], own_box.min[a] - plan.query_margin);
-    query_box.max[a] = std::max(query_box.max[a], own_box.max[a] + plan.query_margin);
-    source_box.min[a] = query_box.min[a] - plan.source_margin;
-    source_box.max[a] = query_box.max[a] + plan.source_margin;
-  }
-  // Every triangle with a corner among the source points lies in the bucket of a tile
-  // whose cube meets the source box.
-  std::vector<BucketFace> near;
-  std::vector<BucketFace>().swap(mine);
-  int lo[3], hi[3];
-  tiles_meeting(plan, source_box, lo, hi);
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x)
-        read_bucket((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, near);
-  std::sort(near.begin(), near.end(), by_face);
-  near.erase(std::unique(near.begin(), near.end(), same_face), near.end());
-  positions_of(near, ids, pos);
-  auto inside = [&](const float* p, const BoundingBox& b) {
-    for (int a = 0; a < 3; ++a)
-      if (!(double(p[a]) >= b.min[a] && double(p[a]) <= b.max[a])) return false;
-    return true;
-  };
-  size_t kept = 0;
-  for (const BucketFace& f : near) {
-    bool take = false;
-    for (int k = 0; k < 3 && !take; ++k) take = inside(at(ids, pos, f.c[k]), source_box);
-    if (take) near[kept++] = f;
-  }
-  near.resize(kept);
-  // The sub-mesh: its vertices in whole-mesh order, its triangles in file order.
-  std::vector<uint32_t> used;
-  for (const BucketFace& f : near) used.insert(used.end(), f.c, f.c + 3);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  tile.global = used;
-  tile.mesh.positions.resize(3 * used.size());
-  for (size_t i = 0; i < used.size(); ++i) {
-    const float* p = at(ids, pos, used[i]);
-    std::copy(p, p + 3, &tile.mesh.positions[3 * i]);
-    const bool own = tile_of(plan, p) == t;
-    tile.own.push_back(own ? 1 : 0);
-    tile.own_count += own ? 1 : 0;
-    tile.query.push_back(inside(p, query_box) ? 1 : 0);
-  }
-  tile.mesh.triangles.reserve(3 * near.size());
-  for (const BucketFace& f : near)
-    for (int k = 0; k < 3; ++k)
-      tile.mesh.triangles.push_back(uint32_t(std::lower_bound(used.begin(), used.end(), f.c[k]) - used.begin()));
-  return tile;
+  return assemble_tile(store.plan, t, source);
 }
 
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out) {

@@ -41,6 +41,7 @@ struct Args {
   std::string method = "exact";  // fast: also the error against exact, per mesh
   std::string backend = "cpu";   // --method fast: where the fast rows run (exact: every backend)
   int subdivide = 0;             // midpoint subdivisions of each mesh, in memory
+  std::string write_mesh;        // --write-mesh: write the (subdivided) mesh there and stop
 };
 
 // With --method fast the exact reference runs once per mesh unless its estimated pair count
@@ -274,6 +275,15 @@ int run(const Args& a) {
     std::string model = std::filesystem::path(p).filename().string();
     for (int k = 0; k < a.subdivide; ++k) mesh = meshsal::subdivide_midpoint(mesh);
     if (a.subdivide) model += " /" + std::to_string(a.subdivide);
+    if (!a.write_mesh.empty()) {
+      // The input of the tiles benchmark (tools/bench_tiles.sh): a mesh larger than the
+      // data has, as a binary PLY.
+      if (paths.size() != 1) throw UsageError("bench --write-mesh takes one mesh");
+      meshsal::write_ply(a.write_mesh, mesh, {}, nullptr);
+      std::printf("wrote %s: %zu vertices, %zu triangles\n", printable(a.write_mesh).c_str(), mesh.vertex_count(),
+                  mesh.triangle_count());
+      return 0;
+    }
     const double read = t0.seconds();
     if (method == meshsal::Method::Fast) {
       rows.push_back(bench_fast(model, mesh, read, a));
@@ -326,6 +336,9 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--subdivide", a->subdivide,
                  "Midpoint-subdivide each mesh N times in memory first (4x the triangles each)")
       ->capture_default_str()->check(whole_in(0, 3));
+  sub.add_option("--write-mesh", a->write_mesh,
+                 "Write the mesh (after --subdivide) as binary PLY to this path and stop: the "
+                 "large input of tools/bench_tiles.sh");
   sub.add_option("--repeat", a->repeat, "Runs per mesh and device; the fastest is reported")
       ->capture_default_str()->check(whole_in(1, 1000));
   return [a] { return run(*a); };

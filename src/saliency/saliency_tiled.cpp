@@ -41,9 +41,8 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   TilePlan plan = make_tile_plan(box, points, opt, opt.tiles);
   r.eps = plan.eps;
   r.tiles = tile_count(plan);
-  std::vector<uint32_t> tile_of_point(n, UINT32_MAX);
-  for (size_t v = 0; v < n; ++v)
-    if (r.is_point[v]) tile_of_point[v] = uint32_t(tile_of(plan, &mesh.positions[3 * v]));
+  const TileBuckets buckets = bucket_triangles(mesh, plan);
+  const TileSource source = memory_tile_source(mesh, buckets);
   std::vector<size_t> mine;
   for (size_t t = size_t(rank); t < r.tiles; t += size_t(ranks)) mine.push_back(t);
   auto report = [&](const char* stage, double f) {
@@ -54,7 +53,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   if (plan.method == Method::Fast) {
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
     for (size_t t : mine) {
-      const std::vector<uint64_t> c = count_tile_cells(extract_tile(mesh, r.is_point, tile_of_point, plan, t), plan);
+      const std::vector<uint64_t> c = count_tile_cells(assemble_tile(plan, t, source), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     TileBytes b;
@@ -74,7 +73,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   std::vector<ScaleMax> max(opt.scales.size());
   for (size_t i = 0; i < mine.size(); ++i) {
     report("tiles", double(i) / mine.size());
-    raws.push_back(tile_raw_maps(extract_tile(mesh, r.is_point, tile_of_point, plan, mine[i]), plan));
+    raws.push_back(tile_raw_maps(assemble_tile(plan, mine[i], source), plan));
     r.pairs += raws.back().pairs;
     merge_scale_max(max, tile_scale_max(raws.back()));
   }

@@ -97,53 +97,126 @@ std::vector<double> tile_cell_sigmas(const TilePlan& plan) {
   return sigmas;
 }
 
-TileMesh extract_tile(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                      const std::vector<uint32_t>& tile_of_point, const TilePlan& plan, size_t t) {
-  const size_t n = mesh.vertex_count(), nt = mesh.triangle_count();
-  const float* p = mesh.positions.data();
-  const uint32_t* tri = mesh.triangles.data();
+TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source) {
+  auto by_face = [](const TileFace& a, const TileFace& b) { return a.face < b.face; };
+  auto same_face = [](const TileFace& a, const TileFace& b) { return a.face == b.face; };
+  auto distinct = [&](std::vector<TileFace>& faces) {
+    std::sort(faces.begin(), faces.end(), by_face);
+    faces.erase(std::unique(faces.begin(), faces.end(), same_face), faces.end());
+  };
+  std::vector<uint32_t> ids;
+  std::vector<float> pos;
+  auto positions_of = [&](const std::vector<TileFace>& faces) {
+    ids.clear();
+    for (const TileFace& f : faces) ids.insert(ids.end(), f.c, f.c + 3);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    source.positions(ids, pos);
+  };
+  auto at = [&](uint32_t v) { return &pos[3 * size_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin())]; };
+
+  // The tile's bucket: its own points and their 1-rings (every corner of those triangles).
   TileMesh tile;
-  // Own points and the box of them and their 1-rings.
-  BoundingBox own_box = empty_box();
-  for (size_t v = 0; v < n; ++v)
-    if (is_point[v] && tile_of_point[v] == t) grow(own_box, &p[3 * v]);
-  if (own_box.empty()) return tile;
-  BoundingBox query_box = own_box;
-  for (size_t f = 0; f < nt; ++f) {
-    const uint32_t* c = &tri[3 * f];
-    if (tile_of_point[c[0]] != t && tile_of_point[c[1]] != t && tile_of_point[c[2]] != t) continue;
-    for (int k = 0; k < 3; ++k) grow(query_box, &p[3 * size_t(c[k])]);
+  std::vector<TileFace> faces;
+  source.bucket(t, faces);
+  distinct(faces);
+  positions_of(faces);
+  BoundingBox own_box = empty_box(), query_box = empty_box();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    grow(query_box, &pos[3 * i]);
+    if (tile_of(plan, &pos[3 * i]) == t) grow(own_box, &pos[3 * i]);
   }
+  if (own_box.empty()) return tile;
+  BoundingBox source_box;
   for (int a = 0; a < 3; ++a) {
     query_box.min[a] = std::min(query_box.min[a], own_box.min[a] - plan.query_margin);
     query_box.max[a] = std::max(query_box.max[a], own_box.max[a] + plan.query_margin);
+    source_box.min[a] = query_box.min[a] - plan.source_margin;
+    source_box.max[a] = query_box.max[a] + plan.source_margin;
   }
-  // Every triangle with a corner among the source points, and the vertices they use.
-  std::vector<uint8_t> used(n, 0);
-  std::vector<uint32_t> faces;
-  for (size_t f = 0; f < nt; ++f) {
-    const uint32_t* c = &tri[3 * f];
+  // Every triangle with a corner among the source points: in the bucket of a tile whose
+  // cube meets the source box.
+  faces.clear();
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    auto cell = [&](double x) {
+      return int(std::clamp(std::floor((x - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
+    };
+    lo[a] = cell(source_box.min[a]);
+    hi[a] = cell(source_box.max[a]);
+  }
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) source.bucket((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, faces);
+  distinct(faces);
+  positions_of(faces);
+  size_t kept = 0;
+  for (const TileFace& f : faces) {
     bool take = false;
-    for (int k = 0; k < 3 && !take; ++k) take = in_box(&p[3 * size_t(c[k])], query_box, plan.source_margin);
-    if (!take) continue;
-    faces.push_back(uint32_t(f));
-    for (int k = 0; k < 3; ++k) used[c[k]] = 1;
+    for (int k = 0; k < 3 && !take; ++k) take = in_box(at(f.c[k]), source_box, 0.0);
+    if (take) faces[kept++] = f;
   }
-  std::vector<uint32_t> local(n, UINT32_MAX);
-  for (size_t v = 0; v < n; ++v) {
-    if (!used[v]) continue;
-    local[v] = uint32_t(tile.global.size());
-    tile.global.push_back(uint32_t(v));
-    const bool own = tile_of_point[v] == t;
+  faces.resize(kept);
+  // The sub-mesh: its vertices in whole-mesh order, its triangles in the mesh's order.
+  for (const TileFace& f : faces) tile.global.insert(tile.global.end(), f.c, f.c + 3);
+  std::sort(tile.global.begin(), tile.global.end());
+  tile.global.erase(std::unique(tile.global.begin(), tile.global.end()), tile.global.end());
+  tile.mesh.positions.resize(3 * tile.global.size());
+  for (size_t i = 0; i < tile.global.size(); ++i) {
+    const float* p = at(tile.global[i]);
+    std::copy(p, p + 3, &tile.mesh.positions[3 * i]);
+    const bool own = tile_of(plan, p) == t;
     tile.own.push_back(own ? 1 : 0);
     tile.own_count += own ? 1 : 0;
-    tile.query.push_back(in_box(&p[3 * v], query_box, 0.0) ? 1 : 0);
-    tile.mesh.positions.insert(tile.mesh.positions.end(), &p[3 * v], &p[3 * v + 3]);
+    tile.query.push_back(in_box(p, query_box, 0.0) ? 1 : 0);
   }
   tile.mesh.triangles.reserve(3 * faces.size());
-  for (uint32_t f : faces)
-    for (int k = 0; k < 3; ++k) tile.mesh.triangles.push_back(local[tri[3 * size_t(f) + k]]);
+  for (const TileFace& f : faces)
+    for (int k = 0; k < 3; ++k)
+      tile.mesh.triangles.push_back(
+          uint32_t(std::lower_bound(tile.global.begin(), tile.global.end(), f.c[k]) - tile.global.begin()));
   return tile;
+}
+
+TileBuckets bucket_triangles(const Mesh& mesh, const TilePlan& plan) {
+  TileBuckets b;
+  const size_t nt = mesh.triangle_count();
+  b.start.assign(tile_count(plan) + 2, 0);
+  // The distinct tiles of a triangle's corners, counted then filled (a counting sort).
+  auto tiles_of = [&](size_t f, size_t out[3]) {
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+      const size_t t = tile_of(plan, &mesh.positions[3 * size_t(mesh.triangles[3 * f + k])]);
+      if (std::find(out, out + n, t) == out + n) out[n++] = t;
+    }
+    return n;
+  };
+  size_t ts[3];
+  for (size_t f = 0; f < nt; ++f)
+    for (int i = 0, n = tiles_of(f, ts); i < n; ++i) b.start[ts[i] + 2]++;
+  for (size_t t = 2; t < b.start.size(); ++t) b.start[t] += b.start[t - 1];
+  b.faces.resize(b.start.back());
+  for (size_t f = 0; f < nt; ++f)
+    for (int i = 0, n = tiles_of(f, ts); i < n; ++i) b.faces[b.start[ts[i] + 1]++] = uint32_t(f);
+  b.start.pop_back();
+  return b;
+}
+
+TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets) {
+  TileSource s;
+  s.bucket = [&mesh, &buckets](size_t t, std::vector<TileFace>& into) {
+    for (uint64_t i = buckets.start[t]; i < buckets.start[t + 1]; ++i) {
+      const uint32_t f = buckets.faces[i];
+      const uint32_t* c = &mesh.triangles[3 * size_t(f)];
+      into.push_back({f, {c[0], c[1], c[2]}});
+    }
+  };
+  s.positions = [&mesh](const std::vector<uint32_t>& sorted, std::vector<float>& xyz) {
+    xyz.resize(3 * sorted.size());
+    for (size_t i = 0; i < sorted.size(); ++i)
+      std::copy(&mesh.positions[3 * size_t(sorted[i])], &mesh.positions[3 * size_t(sorted[i])] + 3, &xyz[3 * i]);
+  };
+  return s;
 }
 
 std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan) {

@@ -18,6 +18,7 @@
 // bits as compute_saliency_cpu.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/mesh_points.h"
@@ -64,10 +65,31 @@ struct TileMesh {
   size_t own_count = 0;
 };
 
-// Tile t's sub-mesh of a mesh in memory; tile_of_point[v] is tile_of() of mesh point v
-// (anything for other vertices).
-TileMesh extract_tile(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                      const std::vector<uint32_t>& tile_of_point, const TilePlan& plan, size_t t);
+// One triangle as the tiles see it: its index in the whole mesh and its corners.
+struct TileFace {
+  uint32_t face;
+  uint32_t c[3];
+};
+
+// Where sub-meshes come from (a mesh in memory, or tile files on disk): each tile's bucket,
+// every triangle with a corner (a mesh point) in its cube, in any order, duplicates allowed;
+// and the positions of sorted, distinct vertices (3 floats each).
+struct TileSource {
+  std::function<void(size_t tile, std::vector<TileFace>& into)> bucket;
+  std::function<void(const std::vector<uint32_t>& sorted, std::vector<float>& xyz)> positions;
+};
+
+// Tile t's sub-mesh: own points and their 1-rings from its bucket, then every triangle with
+// a corner in the source box from the buckets of the tiles that box meets.
+TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source);
+
+// The buckets of a mesh in memory (CSR: tile -> triangles), for its TileSource.
+struct TileBuckets {
+  std::vector<uint64_t> start;  // tile_count + 1
+  std::vector<uint32_t> faces;
+};
+TileBuckets bucket_triangles(const Mesh& mesh, const TilePlan& plan);
+TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets);
 
 // Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is own.
 std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan);
