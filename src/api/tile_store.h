@@ -26,7 +26,7 @@ namespace meshsal {
 constexpr double kTileBytesPerVertex = 420;
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
-constexpr double kMaxTileWork = 12;
+constexpr double kMaxTileWork = 40;
 // The process before any tile: the program, its libraries and the buffers of the passes.
 constexpr uint64_t kBaseBytes = uint64_t(16) << 20;
 

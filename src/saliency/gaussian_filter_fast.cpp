@@ -105,9 +105,37 @@ std::vector<std::vector<double>> gaussian_filter_fast(
 
   std::atomic<uint64_t> total_pairs{0};
   const std::thread::id caller = std::this_thread::get_id();
+  // A tile: each sigma's cells need only the points within its reach of the queries (2 s
+  // and the cells around them); the smaller sigmas skip most of the halo.
+  BoundingBox query_box = box;
+  if (query) {
+    for (int a = 0; a < 3; ++a) query_box.min[a] = INFINITY, query_box.max[a] = -INFINITY;
+    for (uint32_t v : point_list)
+      if ((*query)[v])
+        for (int a = 0; a < 3; ++a) {
+          query_box.min[a] = std::min(query_box.min[a], double(mesh.positions[3 * size_t(v) + a]));
+          query_box.max[a] = std::max(query_box.max[a], double(mesh.positions[3 * size_t(v) + a]));
+        }
+  }
+  std::vector<uint32_t> reached;
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
-    const SparseCells cells = sort_into_cells(mesh, point_list, box, fast_cell_edge(box, s, params), threads);
+    const double cell = fast_cell_edge(box, s, params);
+    const std::vector<uint32_t>* sorted_points = &point_list;
+    if (query) {
+      const double reach = 2 * s + 3 * cell;
+      reached.clear();
+      for (uint32_t v : point_list) {
+        bool in = true;
+        for (int a = 0; a < 3 && in; ++a) {
+          const double x = mesh.positions[3 * size_t(v) + a];
+          in = x >= query_box.min[a] - reach && x <= query_box.max[a] + reach;
+        }
+        if (in) reached.push_back(v);
+      }
+      sorted_points = &reached;
+    }
+    const SparseCells cells = sort_into_cells(mesh, *sorted_points, box, cell, threads);
     const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, threads);
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     std::atomic<size_t> done{0};

@@ -222,21 +222,59 @@ TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets) {
 std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan) {
   const std::vector<double> sigmas = tile_cell_sigmas(plan);
   if (tile.own_count == 0) return std::vector<uint64_t>(sigmas.size(), 0);
-  return count_fast_cells(tile.mesh, referenced_vertices(tile.mesh), tile.own, plan.box, sigmas);
+  // Only the cells of own points are counted, and each lies within a cell of its point:
+  // the points beyond the own box and two of the largest cells need not be sorted.
+  BoundingBox own_box = empty_box();
+  for (size_t v = 0; v < tile.own.size(); ++v)
+    if (tile.own[v]) grow(own_box, &tile.mesh.positions[3 * v]);
+  double widest = 0;
+  for (double s : sigmas) widest = std::max(widest, fast_cell_edge(plan.box, s));
+  std::vector<uint8_t> near = referenced_vertices(tile.mesh);
+  for (size_t v = 0; v < near.size(); ++v)
+    near[v] = near[v] && in_box(&tile.mesh.positions[3 * v], own_box, 2 * widest);
+  return count_fast_cells(tile.mesh, near, tile.own, plan.box, sigmas);
 }
 
-TileRaw tile_raw_maps(const TileMesh& tile, const TilePlan& plan) {
+TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
   TileRaw r;
   r.raw.resize(plan.scales.size());
   if (tile.own_count == 0) {
     r.ring_offsets.push_back(0);
     return r;
   }
-  const Mesh& mesh = tile.mesh;
+  Mesh& mesh = tile.mesh;
+  const size_t n = mesh.vertex_count();
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
-  // The same stages as compute_saliency_cpu, on the sub-mesh.
-  const Adjacency adj = build_adjacency(mesh, plan.threads);
-  std::vector<double> curvature = mean_curvature(mesh, adj, vertex_normals(mesh), plan.threads);
+  // The query points, in whole-mesh order.
+  std::vector<uint32_t> qi(n, UINT32_MAX);
+  for (size_t v = 0; v < n; ++v) {
+    if (!tile.query[v] || !is_point[v]) continue;
+    qi[v] = uint32_t(r.global.size());
+    r.global.push_back(tile.global[v]);
+    r.positions.insert(r.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v + 3]);
+    r.own.push_back(tile.own[v]);
+  }
+  // The same stages as compute_saliency_cpu, on the sub-mesh; the 1-rings and the triangles
+  // go once the curvature is known (the averages are the peak).
+  std::vector<double> curvature;
+  {
+    const Adjacency adj = build_adjacency(mesh, plan.threads);
+    curvature = mean_curvature(mesh, adj, vertex_normals(mesh), plan.threads);
+    // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
+    r.ring_offsets.push_back(0);
+    for (size_t v = 0; v < n; ++v) {
+      if (qi[v] == UINT32_MAX || !tile.own[v]) continue;
+      for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1]; ++e) {
+        const uint32_t u = qi[adj.neighbors[e]];
+        if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
+        r.ring.push_back(u);
+      }
+      r.ring_offsets.push_back(uint32_t(r.ring.size()));
+    }
+  }
+  std::vector<uint32_t>().swap(mesh.triangles);
+  for (size_t v = 0; v < n; ++v)
+    if (qi[v] != UINT32_MAX) r.curvature.push_back(curvature[v]);
   const std::vector<double> units = filter_sigma_units(plan.scales);
   const std::vector<double> sigmas = filter_sigmas(plan);
   FilterScope scope;
@@ -254,32 +292,11 @@ TileRaw tile_raw_maps(const TileMesh& tile, const TilePlan& plan) {
   auto index_of = [&](double unit) {
     return size_t(std::find(units.begin(), units.end(), unit) - units.begin());
   };
-  // The query points, in whole-mesh order.
-  std::vector<uint32_t> qi(mesh.vertex_count(), UINT32_MAX);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (!tile.query[v] || !is_point[v]) continue;
-    qi[v] = uint32_t(r.global.size());
-    r.global.push_back(tile.global[v]);
-    r.positions.insert(r.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v + 3]);
-    r.own.push_back(tile.own[v]);
-    r.curvature.push_back(curvature[v]);
-  }
   for (size_t k = 0; k < plan.scales.size(); ++k) {
     const std::vector<double>& fine = G[index_of(plan.scales[k])];
     const std::vector<double>& coarse = G[index_of(2 * plan.scales[k])];
-    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+    for (size_t v = 0; v < n; ++v)
       if (qi[v] != UINT32_MAX) r.raw[k].push_back(std::fabs(fine[v] - coarse[v]));
-  }
-  // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
-  r.ring_offsets.push_back(0);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (qi[v] == UINT32_MAX || !tile.own[v]) continue;
-    for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1]; ++e) {
-      const uint32_t u = qi[adj.neighbors[e]];
-      if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
-      r.ring.push_back(u);
-    }
-    r.ring_offsets.push_back(uint32_t(r.ring.size()));
   }
   return r;
 }

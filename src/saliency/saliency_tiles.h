@@ -106,7 +106,7 @@ struct TileRaw {
   uint64_t pairs = 0;                      // the sweep's pairs (queries' work)
 };
 
-TileRaw tile_raw_maps(const TileMesh& tile, const TilePlan& plan);
+TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan);  // consumes the tile
 
 // Each scale's maximum over the mesh points and the lowest vertex attaining it.
 struct ScaleMax {
