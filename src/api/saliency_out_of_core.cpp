@@ -305,7 +305,11 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     header += "element face " + std::to_string(store.triangles) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
     const ColorLimits limits = colour_limits({lo, hi}, {1, 1}, ColorRange{});
-    const size_t block = size_t(std::min<uint64_t>(store.block, store.vertices));
+    // A block of output vertices holds their results (8 bytes each) and positions as read:
+    // a quarter of the limit.
+    const size_t per_vertex = 8 * (2 + scales) + 25;
+    const size_t block = size_t(std::min<uint64_t>(
+        store.vertices, ooc.memory_limit ? std::max<uint64_t>(65536, ooc.memory_limit / 4 / per_vertex) : store.vertices));
     write_file_atomically(output, [&](std::FILE* f) {
       write_all(f, header.data(), header.size(), output);
       std::vector<char> buf;

@@ -23,7 +23,7 @@ namespace meshsal {
 // What one sub-mesh vertex costs a tile's run at its peak (curvature, the averages of every
 // sigma, the grid), measured on igea_loop1 (README "Out of core"); the tile count is chosen
 // so the largest tile's estimate fits the limit.
-constexpr double kTileBytesPerVertex = 420;
+constexpr double kTileBytesPerVertex = 330;
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;
