@@ -664,7 +664,11 @@ RunFn setup(CLI::App& sub) {
       "(\"skipped\" and the reason for an input not read). Inputs: files, folders (the mesh files\n"
       "inside, sorted by name), quoted globs ('scans/*.ply'), @LIST or --list LIST (a regular\n"
       "file or - for standard input: one item per line, # comments, relative items taken from\n"
-      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).");
+      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).\n"
+      "MPI: `mpirun -np N meshsal batch ...` (a build with MPI) shares the models to compute\n"
+      "over the N ranks (the k-th to rank k % N); rank 0 writes the one log, in model order,\n"
+      "and the summary; resume as above. Every rank needs the same command and sees the same\n"
+      "folders. A rank that fails (outside a model) ends every rank with its message and status.");
   sub.add_option("inputs", o->inputs, "Mesh files, folders, globs or @LIST files");
   sub.add_option("--list", o->list_file, "A file listing the inputs, one per line");
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();
