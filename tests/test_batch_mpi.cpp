@@ -81,7 +81,7 @@ std::string comparable(const std::string& line) {
 
 }  // namespace
 
-TEST_CASE("batch mpi: 2 and 3 ranks compute each model once; outputs and log as one process's", "[batch][mpi]") {
+TEST_CASE("batch mpi: 2 and 3 ranks compute each model once, outputs and log as one process makes them", "[batch][mpi]") {
   if (skip_without_mpi()) return;
   const fs::path dir = batch_scratch("mpi_same");
   const fs::path in = six_models(dir);
