@@ -11,6 +11,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
   libglm-dev catch2 zlib1g-dev libcli11-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev
+  openmpi-bin libopenmpi-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-venv
 )
 missing=()

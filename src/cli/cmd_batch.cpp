@@ -24,6 +24,7 @@
 #include "batch_log.h"
 #include "batch_outputs.h"
 #include "batch_progress.h"
+#include "batch_ranks.h"
 #include "batch_state.h"
 #include "command.h"
 #include "contact_sheet.h"
@@ -43,6 +44,7 @@
 #include "view/viewpoint.h"
 #include "view/visibility.h"
 #include "interrupt.h"
+#include "mpi_world.h"
 #if MESHSAL_WITH_VULKAN
 #include "gpu/gpu_session.h"
 #endif
@@ -288,7 +290,47 @@ std::string skipped_line(const std::string& record) {
   return line;
 }
 
+// Under MPI: every rank must share out the same models (the same inputs, options and files
+// up to date), or some model would be computed twice or never. Each rank sees every
+// rank's hash, so all of them stop alike (main: mpi_abort) instead of waiting.
+void check_same_models(const std::vector<std::string>& inputs, const std::string& options,
+                       const std::vector<size_t>& to_compute) {
+  if (meshsal::cli::mpi_world().size < 2) return;
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  const auto mix = [&h](const std::string& s) {
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0xff) * 1099511628211ull;  // a separator no text holds
+  };
+  for (const std::string& in : inputs) mix(in);
+  mix(options);
+  for (size_t i : to_compute) mix(std::to_string(i));
+  std::vector<uint8_t> mine(8);
+  for (int b = 0; b < 8; ++b) mine[size_t(b)] = uint8_t(h >> (8 * b));
+  const std::vector<std::vector<uint8_t>> all = meshsal::cli::mpi_all_gather(mine);
+  for (size_t r = 1; r < all.size(); ++r)
+    if (all[r] != all[0])
+      throw Error("batch: rank " + std::to_string(r) + " has other models to compute than rank 0 (other inputs, "
+                  "options, or files it sees): give every rank the same command, on folders every machine sees "
+                  "at the same path");
+}
+
+// Every rank ends with rank 0's exit status, after rank 0 has written everything (no rank
+// leaves before it, which would let mpirun end the job early).
+int agreed_status(int status) {
+  if (!meshsal::cli::mpi_world().active) return status;
+  std::vector<uint8_t> mine(1, uint8_t(status));
+  return meshsal::cli::mpi_all_gather(mine)[0][0];
+}
+
 int run(Options o) {
+  {
+    // A build without MPI started as N copies would run the whole batch N times at once.
+    const int launched = meshsal::cli::mpi_launcher_size();
+    if (!meshsal::cli::mpi_world().active && launched > 1)
+      throw Error("batch: this meshsal was built without MPI (MESHSAL_WITH_MPI), yet started as " +
+                  std::to_string(launched) + " processes: each would run the whole batch; run one, or "
+                  "build with MPI");
+  }
   if (o.inputs.empty() && o.list_file.empty())
     throw UsageError("give the models: files, folders, globs, @LIST or --list FILE");
   if (o.simplify > 1 && o.simplify != std::floor(o.simplify))
@@ -354,15 +396,18 @@ int run(Options o) {
         return true;
     return false;
   };
-  remove_stale_temporaries(o.out_dir, batch_output);
-  remove_stale_temporaries(o.out_dir + "/.meshsal-batch", batch_output);
+  if (meshsal::cli::mpi_world().rank == 0) {  // one rank: the others' scan does not need it
+    remove_stale_temporaries(o.out_dir, batch_output);
+    remove_stale_temporaries(o.out_dir + "/.meshsal-batch", batch_output);
+  }
 
-  // Each model: not read (refused, not a regular file), up to date (skipped) or loaded.
+  // Each model: not read (refused, not a regular file), up to date (skipped) or computed.
+  // Under MPI every rank makes the same choices here, before any rank writes (the barrier).
   const std::string options = options_line(o);
   const std::vector<std::string> names = output_names(inputs);
   std::vector<ModelOutputs> outs;
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
-  std::vector<std::string> to_load;
+  std::vector<size_t> to_compute;  // model indices, in order
   for (size_t i = 0; i < inputs.size(); ++i) {
     outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying));
     refused[i] = output_is_an_input(outs[i], input_ids);
@@ -376,23 +421,36 @@ int run(Options o) {
         // unreadable now: it is loaded, and fails with the loader's message
       }
     }
-    if (skip_record[i].empty()) to_load.push_back(inputs[i]);
+    if (skip_record[i].empty()) to_compute.push_back(i);
   }
+  const meshsal::cli::MpiWorld& world = meshsal::cli::mpi_world();
+  const int ranks = world.active ? world.size : 1, rank = world.active ? world.rank : 0;
+  const bool writer = rank == 0;  // the log, the messages, the summary, the sheet
+  check_same_models(inputs, options, to_compute);
+  meshsal::cli::mpi_barrier();
+  // This rank's models: the (round * ranks + rank)-th to compute.
+  std::vector<std::string> to_load;
+  for (size_t k = size_t(rank); k < to_compute.size(); k += size_t(ranks)) to_load.push_back(inputs[to_compute[k]]);
 
-  BatchLog log(log_path);
-  if (log.torn_bytes() && !o.quiet)  // its lines follow on a line of their own
+  std::unique_ptr<BatchLog> log;
+  if (writer) log = std::make_unique<BatchLog>(log_path);
+  if (log && log->torn_bytes() && !o.quiet)  // its lines follow on a line of their own
     std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
-                 printable(log_path).c_str(), static_cast<unsigned long long>(log.torn_bytes()));
-  BatchProgress progress(!o.quiet && stderr_is_terminal(), inputs.size());
+                 printable(log_path).c_str(), static_cast<unsigned long long>(log->torn_bytes()));
+  BatchProgress progress(writer && !o.quiet && stderr_is_terminal(), inputs.size());
   std::set<std::string> told;  // each notice once per run, not once per model
-  std::vector<std::string>* model_notes = nullptr;
-  p.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
-  p.saliency.notice = [&](const std::string& line) {
-    if (model_notes) model_notes->push_back(line);
+  const auto tell = [&](const std::string& line) {
     if (!o.quiet && told.insert(line).second) {
       progress.clear();
       std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
+  };
+  std::vector<std::string>* model_notes = nullptr;
+  p.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
+  p.saliency.notice = [&](const std::string& line) {
+    if (model_notes) model_notes->push_back(line);
+    // Under MPI rank 0 tells a model's notes with its line, in model order.
+    if (ranks == 1 || (!model_notes && writer)) tell(line);
   };
   std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
   std::vector<std::string> sheet_status(inputs.size()), sheet_message(inputs.size());  // the others'
@@ -400,42 +458,64 @@ int run(Options o) {
     sheet_status[i] = "failed";
     sheet_message[i] = error;
     progress.clear();
-    log.add(failed_line(in, names[i], error));
+    log->add(failed_line(in, names[i], error));
     std::fprintf(stderr, "error: %s\n", printable(error).c_str());
   };
 
   const Timer t_run;
-  size_t computed = 0, skipped = 0, failed = 0, left = to_load.size();
+  size_t computed = 0, skipped = 0, failed = 0;
+  std::vector<size_t> computed_by(size_t(ranks), 0);
   bool interrupted = false;
-  std::unique_ptr<ModelLoader> loader;
-  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
-  for (size_t i = 0; i < inputs.size(); ++i) {
+  // Rank 0: the log lines of the models before `end` not logged yet, in order: those not
+  // computed, and the results of those computed (all of them in by then).
+  std::vector<ModelResult> results(inputs.size());
+  std::vector<bool> has_result(inputs.size(), false);
+  size_t logged = 0;
+  const auto log_until = [&](size_t end) {
+    for (; writer && logged < end; ++logged) {
+      const size_t i = logged;
+      const std::string& in = inputs[i];
+      if (!refused[i].empty()) {
+        report_failure(in, i, refused[i]);
+        failed++;
+      } else if (!not_read[i].empty()) {
+        JsonObject j;
+        j.text("mesh", in).text("status", "skipped").text("name", names[i]).text("reason", not_read[i]);
+        progress.clear();
+        log->add(j.str());
+        if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
+        sheet_status[i] = "skipped";
+        sheet_message[i] = not_read[i];
+        skipped++;
+      } else if (!skip_record[i].empty()) {
+        log->add(skipped_line(skip_record[i]));
+        has_view[i] = o.view;
+        skipped++;
+      } else if (has_result[i]) {
+        const ModelResult& r = results[i];
+        if (ranks > 1)
+          for (const std::string& note : r.notes) tell(note);
+        if (r.status == "failed") {
+          report_failure(in, i, r.error);
+          failed++;
+        } else {
+          progress.clear();
+          log->add(r.line);
+          if (r.status == "done") {
+            has_view[i] = r.has_view;
+            computed++;
+            computed_by[size_t(r.rank)]++;
+          }
+        }
+      }
+    }
+  };
+
+  // One model on this rank: its result (the outputs and state written when done).
+  const auto compute = [&](size_t i, LoadedModel& m) {
     const std::string& in = inputs[i];
-    if (!refused[i].empty()) {
-      report_failure(in, i, refused[i]);
-      failed++;
-      continue;
-    }
-    if (!not_read[i].empty()) {
-      JsonObject j;
-      j.text("mesh", in).text("status", "skipped").text("name", names[i]).text("reason", not_read[i]);
-      progress.clear();
-      log.add(j.str());
-      if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
-      sheet_status[i] = "skipped";
-      sheet_message[i] = not_read[i];
-      skipped++;
-      continue;
-    }
-    if (!skip_record[i].empty()) {
-      log.add(skipped_line(skip_record[i]));
-      has_view[i] = o.view;
-      skipped++;
-      continue;
-    }
-    progress.remaining(--left);
-    progress.model(computed + skipped + failed, file_name(in));
-    LoadedModel m = loader->next();
+    ModelResult res;
+    res.index = i;
     std::vector<std::string> notes;
     model_notes = &notes;
     std::string error = m.error;
@@ -456,13 +536,15 @@ int run(Options o) {
         state.output_sizes = output_sizes(outs[i]);
         state.record = j.str();
         save_state(state_path(o.out_dir, names[i]), state);
-        progress.clear();
-        log.add(state.record);
-        progress.computed(t.seconds() + m.seconds);
-        has_view[i] = o.view;
-        computed++;
+        res.status = "done";
+        res.line = state.record;
+        res.has_view = o.view;
+        res.seconds = t.seconds() + m.seconds;
       } catch (const Cancelled&) {
-        interrupted = true;
+        JsonObject j;  // Ctrl-C: this model's line says so, then the summary
+        j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
+        res.status = "interrupted";
+        res.line = j.str();
       } catch (const std::bad_alloc&) {
         error = in + ": out of memory";
       } catch (const std::exception& e) {
@@ -470,23 +552,45 @@ int run(Options o) {
       }
     }
     model_notes = nullptr;
+    if (!error.empty()) {
+      res.status = "failed";
+      res.error = error;
+    }
+    res.notes = std::move(notes);
     m.mesh = {};  // free them before the next one is read
     m.attributed = {};
-    if (interrupted) {  // Ctrl-C: this model's line says so, then the summary
-      JsonObject j;
-      j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
-      progress.clear();
-      log.add(j.str());
-      break;
+    return res;
+  };
+
+  std::unique_ptr<ModelLoader> loader;
+  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
+  const size_t rounds = batch_rounds(to_compute.size(), ranks);
+  for (size_t round = 0; round < rounds && !interrupted; ++round) {
+    const size_t first = round * size_t(ranks), k = first + size_t(rank);
+    log_until(to_compute[first]);  // rank 0's model is the round's first
+    std::vector<ModelResult> mine;
+    if (k < to_compute.size()) {
+      const size_t i = to_compute[k];
+      progress.remaining(rounds - round - 1);
+      progress.model(logged, file_name(inputs[i]));
+      LoadedModel m = loader->next();
+      mine.push_back(compute(i, m));
+      if (mine.back().status == "done") progress.computed(mine.back().seconds);
     }
-    if (!error.empty()) {
-      report_failure(in, i, error);
-      failed++;
+    for (ModelResult& r : gather_results(mine)) {
+      interrupted = interrupted || r.status == "interrupted";
+      has_result[r.index] = true;
+      results[r.index] = std::move(r);
     }
+    // An interrupted round: its models' lines (the interrupted one's says so), then the
+    // summary; the models after it are not logged, as in one process.
+    log_until(to_compute[std::min(to_compute.size(), first + size_t(ranks)) - 1] + 1);
   }
+  if (!interrupted) log_until(inputs.size());
   loader.reset();
   progress.clear();
-  log.finish();
+  if (!writer) return agreed_status(0);
+  log->finish();
 
   bool sheet_failed = false;
   if (!o.contact_sheet.empty() && !interrupted) {
@@ -509,20 +613,25 @@ int run(Options o) {
     }
   }
   if (!o.quiet) {
-    std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed%s in %.3f s; log %s\n", inputs.size(),
+    std::string on_ranks;  // how the computed models were shared (none with one process)
+    for (int r = 0; ranks > 1 && r < ranks; ++r)
+      on_ranks += (r ? ", " : (" on " + std::to_string(ranks) + " ranks (computed: ")) +
+                  std::to_string(computed_by[size_t(r)]) + (r + 1 == ranks ? ")" : "");
+    std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed%s in %.3f s%s; log %s\n", inputs.size(),
                 computed, skipped, failed, interrupted ? ", then interrupted" : "", t_run.seconds(),
-                printable(log_path).c_str());
+                on_ranks.c_str(), printable(log_path).c_str());
     if (!o.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o.contact_sheet).c_str());
     std::fflush(stdout);
   }
-  if (!log.error().empty())
+  if (!log->error().empty())
     std::fprintf(stderr, "error: the log %s misses %zu line%s (the write error is above)\n",
-                 printable(log_path).c_str(), log.lost(), log.lost() == 1 ? "" : "s");
+                 printable(log_path).c_str(), log->lost(), log->lost() == 1 ? "" : "s");
   if (interrupted) {
     std::fprintf(stderr, "interrupted (a new run resumes where this one stopped)\n");
-    return kInterruptedExit;
+    std::fflush(stderr);
+    return agreed_status(kInterruptedExit);
   }
-  return failed || !log.error().empty() || sheet_failed ? 1 : 0;
+  return agreed_status(failed || !log->error().empty() || sheet_failed ? 1 : 0);
 }
 
 RunFn setup(CLI::App& sub) {
@@ -555,7 +664,11 @@ RunFn setup(CLI::App& sub) {
       "(\"skipped\" and the reason for an input not read). Inputs: files, folders (the mesh files\n"
       "inside, sorted by name), quoted globs ('scans/*.ply'), @LIST or --list LIST (a regular\n"
       "file or - for standard input: one item per line, # comments, relative items taken from\n"
-      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).");
+      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).\n"
+      "MPI: `mpirun -np N meshsal batch ...` (a build with MPI) shares the models to compute\n"
+      "over the N ranks (the k-th to rank k % N); rank 0 writes the one log, in model order,\n"
+      "and the summary; resume as above. Every rank needs the same command and sees the same\n"
+      "folders. A rank that fails (outside a model) ends every rank with its message and status.");
   sub.add_option("inputs", o->inputs, "Mesh files, folders, globs or @LIST files");
   sub.add_option("--list", o->list_file, "A file listing the inputs, one per line");
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();

@@ -10,6 +10,7 @@
 #include "json_string.h"
 #include "meshsal/meshsal.h"
 #include "interrupt.h"
+#include "mpi_world.h"
 
 namespace meshsal_cli {
 
@@ -53,7 +54,15 @@ static std::string suggestion(const std::string& given, const std::vector<std::s
 
 }  // namespace meshsal_cli
 
-int main(int argc, char** argv) {
+// Under MPI a rank that fails ends every rank (mpi_abort), so that none waits forever in a
+// collective for it; else the error line and the status, as always.
+static int fail(int status, const std::string& line) {
+  if (meshsal::cli::mpi_world().active) meshsal::cli::mpi_abort(status, line);
+  std::fprintf(stderr, "%s\n", line.c_str());
+  return status;
+}
+
+static int run_main(int argc, char** argv) {
   using namespace meshsal_cli;
   // Process-wide, so the program's choice, not the library's (which never sets it): the
   // command's stages reuse each other's freed memory instead of page-faulting it in again.
@@ -82,9 +91,8 @@ int main(int argc, char** argv) {
     std::vector<std::string> names;
     for (const Command& c : commands) names.push_back(c.name);
     if (std::find(names.begin(), names.end(), given) == names.end()) {
-      std::fprintf(stderr, "error: unknown command '%s'%s (see meshsal --help)\n", printable(given).c_str(),
-                   suggestion(given, names).c_str());
-      return 2;
+      return fail(2, "error: unknown command '" + printable(given) + "'" + suggestion(given, names) +
+                         " (see meshsal --help)");
     }
   }
   try {
@@ -97,27 +105,29 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Usage errors: one line, exit status 2 (bad input files exit with 1).
-    std::fprintf(stderr, "error: %s (see --help)\n", printable(e.what()).c_str());
-    return 2;
+    return fail(2, "error: " + printable(e.what()) + " (see --help)");
   }
   try {
     for (auto& [sub, run] : runs)
       if (sub->parsed()) return run();
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "error: %s (see --help)\n", printable(e.what()).c_str());
-    return 2;
+    return fail(2, "error: " + printable(e.what()) + " (see --help)");
   } catch (const meshsal::Cancelled&) {
-    std::fprintf(stderr, "interrupted\n");
-    return kInterruptedExit;
+    return fail(kInterruptedExit, "interrupted");
   } catch (const meshsal::Error& e) {
-    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-    return 1;
+    return fail(1, "error: " + printable(e.what()));
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "error: out of memory\n");
-    return 1;
+    return fail(1, "error: out of memory");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-    return 1;
+    return fail(1, "error: " + printable(e.what()));
   }
   return 1;
+}
+
+int main(int argc, char** argv) {
+  // MPI_Init only under mpirun/srun (mpi_world.h); it may take its arguments out of argv.
+  meshsal::cli::mpi_start(&argc, &argv);
+  const int status = run_main(argc, argv);
+  meshsal::cli::mpi_stop();
+  return status;
 }

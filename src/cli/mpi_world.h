@@ -1,0 +1,48 @@
+// meshsal CLI: the MPI world the program runs in (README, "Across machines: MPI"). The
+// process is under MPI only when mpirun or srun started it (their environment variables);
+// otherwise, and in a build without MPI (MESHSAL_WITH_MPI unset), it runs as one process
+// and never calls MPI_Init, so the CLI is unchanged where no MPI is installed or wanted.
+// Only the `meshsal` program links MPI: the library and the Python module never do.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshsal::cli {
+
+struct MpiWorld {
+  bool active = false;  // MPI_Init was called (started by mpirun/srun, built with MPI)
+  int rank = 0;
+  int size = 1;
+};
+
+// The world mpi_start() found (one inactive rank 0 of 1 before it, or without MPI).
+const MpiWorld& mpi_world();
+
+// From main(), before anything else reads argv: MPI_Init when under mpirun/srun (it may
+// take its own arguments out of argv). A no-op otherwise or when built without MPI.
+void mpi_start(int* argc, char*** argv);
+
+// MPI_Finalize when mpi_start() started MPI; else nothing.
+void mpi_stop();
+
+// A rank that fails ends every rank, never leaving the others waiting in a collective:
+// prints "meshsal (rank R): MESSAGE" on stderr and calls MPI_Abort(status), which ends the
+// whole job with that status. When not active it prints "meshsal: MESSAGE" and exits with
+// `status` (a [[noreturn]] function cannot return).
+[[noreturn]] void mpi_abort(int status, const std::string& message);
+
+// Every rank passes its bytes and receives every rank's, in rank order (at most 2 GiB in
+// all). Not active: {mine}.
+std::vector<std::vector<uint8_t>> mpi_all_gather(const std::vector<uint8_t>& mine);
+
+// Waits for every rank. Not active: nothing.
+void mpi_barrier();
+
+// How many processes mpirun or srun started, as their environment says, whether or not
+// this build has MPI (OMPI_COMM_WORLD_SIZE, PMI_SIZE; 1 where only PMIX_RANK or PMI_RANK is
+// set); 0 when none started this one. A build without MPI uses it to refuse a batch that N
+// copies of itself would each run whole.
+int mpi_launcher_size();
+
+}  // namespace meshsal::cli
