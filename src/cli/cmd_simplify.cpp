@@ -1,4 +1,5 @@
 // meshsal simplify IN -o OUT: Garland-Heckbert simplification, saliency-weighted by default.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -31,6 +32,7 @@ struct Args {
   bool has_target = false, has_ratio = false, quiet = false, json = false, lock_border = false;
   bool lambda_given = false, alpha_given = false;  // override the --weights preset's
   unsigned threads = 0;
+  long long tiles = 0;  // --tiles: 0 = not given (one piece)
 };
 
 // S from a saliency PLY, as `meshsal saliency` writes it for the same input. For an OBJ
@@ -66,6 +68,8 @@ int run(const Args& a) {
     throw UsageError("give --target-faces N, --ratio R or --target-error E");
   if (a.weights != "saliency" && a.weights != "balanced" && a.weights != "none")
     throw UsageError("--weights must be 'saliency', 'balanced' or 'none', got '" + a.weights + "'");
+  // The tiled path takes a face target only (simplify_mesh_tiled).
+  if (a.tiles > 1 && a.target_error > 0) throw UsageError("--tiles takes --target-faces N or --ratio R, not --target-error");
   if (a.weights == "none" && !a.saliency_from.empty())
     throw UsageError("--saliency-from needs --weights saliency or balanced");
   // The named weighting's parameters, with --lambda / --alpha-percentile when given.
@@ -102,7 +106,8 @@ int run(const Args& a) {
           .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
           .count("input_faces", mesh.triangle_count()).count("output_vertices", mesh.vertex_count())
           .count("output_faces", mesh.triangle_count()).count("target_faces", mesh.triangle_count())
-          .flag("unchanged", true).count("collapses", 0).text("device", "cpu").number("seconds", t0.seconds()).print();
+          .flag("unchanged", true).count("collapses", 0).count("tiles", size_t(std::max(1LL, a.tiles)))
+          .text("device", "cpu").number("seconds", t0.seconds()).print();
     if (!a.quiet) {
       std::fprintf(stderr, "note: the target (%zu faces) is at or above the mesh's %zu faces: wrote it unchanged\n",
                    a.has_target ? size_t(a.target_faces) : mesh.triangle_count(), mesh.triangle_count());
@@ -148,7 +153,8 @@ int run(const Args& a) {
 
   progress.update("simplifying", 0.0);
   SimplifyReport rep;
-  const Mesh out = simplify_mesh(mesh, opt, weights.empty() ? nullptr : &weights, &rep);
+  const std::vector<double>* w = weights.empty() ? nullptr : &weights;
+  const Mesh out = a.tiles > 1 ? simplify_mesh_tiled(mesh, opt, unsigned(a.tiles), w, &rep) : simplify_mesh(mesh, opt, w, &rep);
   progress.update("writing", 0.0);
   if (obj) write_obj(a.output, out);
   else write_ply(a.output, out, {});
@@ -173,7 +179,8 @@ int run(const Args& a) {
         .number("error_percent", 100 * rep.error).number("weight_floor", weights.empty() ? 0.0 : wo.floor)
         .number("target_error", a.target_error / 100 * diagonal)
         .number("target_error_percent", a.target_error)
-        .flag("lock_border", a.lock_border).count("attributes", out.attributes.size());
+        .flag("lock_border", a.lock_border).count("attributes", out.attributes.size())
+        .count("tiles", size_t(std::max(1LL, a.tiles)));
     if (!weights.empty())
       j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
@@ -230,6 +237,12 @@ RunFn setup(CLI::App& sub) {
                  "target (whichever comes first). The error reached is reported")
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
+  sub.add_option("--tiles", a->tiles,
+                 "Simplify by N cubic tiles along the longest axis (1 = the whole mesh at once): each tile alone\n"
+                 "with its cut pinned, then strips along the cuts; no cracks, open borders kept in place; faces\n"
+                 "at or just above the target (more with tiles only a few output triangles wide). Takes\n"
+                 "--target-faces or --ratio (not --target-error), not an OBJ split at UV seams")
+      ->check(whole_in(1, 1024));
   sub.add_option("--weights", a->weights,
                  "balanced (the paper's curve with alpha at the 50th percentile and lambda 3: salient "
                  "detail at little cost elsewhere), saliency (the paper's recipe, lambda 100 above the "

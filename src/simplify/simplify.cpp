@@ -127,10 +127,16 @@ void prefetch_ends(const State& s, const Entry& n) {
 // of them; then its entry goes back into the queue.
 Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
                    const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  return simplify_pinned(mesh, options, vertex_weights, nullptr, report);
+}
+
+Mesh simplify_pinned(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* vertex_weights,
+                     const std::vector<uint8_t>* pinned, SimplifyReport* report) {
   if (simplify_keeps_mesh(options, mesh.triangle_count())) return unchanged_mesh(mesh, report);
   const CancelScope cancel(options.cancel);
   const Timer t0;
   State s;
+  s.pinned = pinned;
   std::vector<Entry> initial;
   s.init(mesh, options, vertex_weights, &initial);
   CollapseQueue queue(s.nv);

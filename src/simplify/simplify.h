@@ -21,6 +21,12 @@ Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                          const std::vector<double>* vertex_weights = nullptr,
                          SimplifyReport* report = nullptr);
 
+// simplify_mesh with the vertices flagged in `pinned` (one flag per vertex; null = none)
+// kept in place as lock_border keeps border vertices: no collapse moves or removes them.
+// The tiled simplifier pins the vertices its cuts share with other tiles (simplify_tiled.cpp).
+Mesh simplify_pinned(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* vertex_weights,
+                     const std::vector<uint8_t>* pinned, SimplifyReport* report);
+
 // Target face count from options (target_faces or ratio) for `input_faces` faces, with the
 // checks above. Exposed for the CLI and the benchmark.
 size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces);

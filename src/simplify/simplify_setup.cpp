@@ -247,6 +247,14 @@ void State::take_locks_seams_and_attributes(const Mesh& mesh, bool lock_border) 
   locked.assign(nv, 0);
   if (lock_border)
     for (size_t v = 0; v < nv; ++v) locked[v] = border[v];
+  if (pinned) {
+    if (pinned->size() != nv)
+      throw Error("simplify: " + std::to_string(pinned->size()) + " pinned flags for a mesh of " +
+                  std::to_string(nv) + " vertices");
+    pin.resize(nv);
+    for (size_t v = 0; v < nv; ++v) pin[v] = (*pinned)[order[v]] != 0;
+    for (size_t v = 0; v < nv; ++v) locked[v] |= pin[v];
+  }
   if (!mesh.position_vertex.empty()) seams.build(mesh.position_vertex, inv, fans.corners, lock_border, &locked);
   for (uint8_t x : locked) has_locks |= x != 0;
   attributes.take(mesh, order);

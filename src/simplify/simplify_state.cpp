@@ -44,6 +44,24 @@ void State::collapse(uint32_t a, uint32_t b, const double np[3], double c) {
   if (record) sequence.push_back({order[a], order[b], c});
 }
 
+bool State::joins_pins(uint32_t kept, uint32_t removed) const {
+  for (uint32_t t : fans.fan(removed)) {
+    if (!fans.live[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t x = fans.corners_of(t)[k];
+      if (x == removed || x == kept || !pin[x]) continue;
+      bool linked = false;
+      for (uint32_t u : fans.fan(kept)) {
+        if (!fans.live[u]) continue;
+        const uint32_t* c = fans.corners_of(u);
+        linked |= c[0] == x || c[1] == x || c[2] == x;
+      }
+      if (!linked) return true;
+    }
+  }
+  return false;
+}
+
 Mesh State::output(SimplifyReport* report) const {
   std::vector<uint32_t> remap(nv, UINT32_MAX);
   Mesh out;

@@ -58,8 +58,12 @@ struct State {
   std::vector<uint8_t> alive;                // per vertex
   std::vector<uint8_t> border;               // on an open border or a non-manifold edge
   size_t border_vertices = 0;                // live vertices with border[] set
-  // Locked vertices (seam twins, lock_border) neither move nor go.
+  // Locked vertices (seam twins, lock_border, pinned) neither move nor go.
   std::vector<uint8_t> locked;
+  // Set before init (may stay null): one flag per input vertex, locked whatever lock_border
+  // says (the tiled simplifier's cuts, simplify_tiled.cpp).
+  const std::vector<uint8_t>* pinned = nullptr;
+  std::vector<uint8_t> pin;  // pinned, per internal vertex (empty when pinned is null)
   bool has_locks = false;
   SeamGroups seams;
   AttributeCarrier attributes;
@@ -144,8 +148,15 @@ struct State {
   // Whether b may collapse into a with the survivor at np (see collapse_check.h).
   Check check_edge(uint32_t a, uint32_t b, const double np[3]) {
     const CheckSurface s{&fans, vert.data(), border.data(), &seams, &marks, faces, target, min_cos};
-    return checker.edge(s, a, b, np);
+    const Check c = checker.edge(s, a, b, np);
+    if (c == Check::Ok && !pin.empty() && pin[a] != pin[b] && joins_pins(pin[a] ? a : b, pin[a] ? b : a))
+      return Check::Refused;
+    return c;
   }
+  // Whether `removed` going into the pinned `kept` would join kept to a pinned vertex it
+  // has no edge to. Pinned vertices are shared with other tiles, which may make that edge
+  // too (a non-manifold edge after the join): so no tile makes one.
+  bool joins_pins(uint32_t kept, uint32_t removed) const;
   // check_edge passed: collapses the edge onto its locked end if it has one, else onto a.
   // Returns how many collapses it made (2 along a seam); kept[i] took removed[i].
   int apply(uint32_t a, uint32_t b, const double np[3], double cost, uint32_t kept[2], uint32_t removed[2]);

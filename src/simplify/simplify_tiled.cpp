@@ -1,0 +1,243 @@
+// meshsal: tiled simplification (meshsal.h, simplify_mesh_tiled). Pass 1 simplifies each
+// tile alone with the vertices it shares with other tiles pinned; each strip pass then
+// simplifies the triangles around the vertices still pinned, grouped by a grid shifted by
+// half a tile (so a cut of the last pass lies inside a strip), toward what is left of the
+// target. A shared vertex is pinned in every piece that has it, so the pieces join on it:
+// no crack, and no border edge that the input did not have.
+#include "simplify/simplify_tiled.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "core/cancel.h"
+#include "core/mesh_points.h"
+#include "core/model_frame.h"
+#include "core/timer.h"
+#include "simplify/simplify.h"
+#include "simplify/tile_grid.h"
+#include "simplify/tile_pieces.h"
+
+namespace meshsal {
+
+using namespace simplify_detail;
+
+namespace {
+
+// The mesh being simplified between passes: its vertices carry global (input) ids.
+struct Work {
+  Mesh mesh;
+  std::vector<uint32_t> ids;  // increasing
+};
+
+struct Totals {
+  size_t collapses = 0, refused = 0;
+  double error = 0;  // in model units
+};
+
+// How a pass sets each group's face target.
+enum class Targets {
+  FirstPass,  // the ratio on the triangles away from the cut; those at it stay (they wait for the strips)
+  Remaining,  // the faces still over the target, spread over the groups by face count, carried on
+};
+
+// One pass: the triangles `selected` of work, grouped by `grid`, each group simplified as a
+// tile; the rest pass through. `pending` (per global id): vertices not yet free in any
+// pass; on return only those that this pass had to pin.
+Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const TileGrid& grid, Targets rule,
+              size_t target, double ratio, const std::vector<double>* weights, const SimplifyOptions& options,
+              std::vector<uint8_t>& pending, Totals& totals) {
+  const std::vector<std::pair<uint64_t, uint32_t>> cells = triangles_by_cell(work.mesh, selected, grid);
+  const size_t nt = work.mesh.triangle_count();
+  std::vector<uint32_t> group(nt, UINT32_MAX);  // UINT32_MAX: not selected
+  std::vector<std::vector<uint32_t>> groups;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (i == 0 || cells[i].first != cells[i - 1].first) groups.emplace_back();
+    groups.back().push_back(cells[i].second);
+    group[cells[i].second] = uint32_t(groups.size() - 1);
+  }
+  const VertexTriangles around = vertex_triangles(work.mesh);
+  std::vector<TilePiece> out;
+  std::vector<uint8_t> pinned_now(pending.size(), 0);
+  // Remaining: faces to remove, and selected faces not yet simplified.
+  long long to_remove = (long long)nt - (long long)target;
+  size_t faces_left = selected.size();
+  for (size_t g = 0; g < groups.size(); ++g) {
+    throw_if_cancelled();
+    const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
+    const size_t f = groups[g].size();
+    size_t goal;
+    if (rule == Targets::FirstPass) {
+      // A triangle with two pinned corners lies on the cut: pass 1 cannot remove it (about
+      // one per cut edge stays for the strips), so the ratio applies to the rest.
+      size_t at_cut = 0;
+      for (size_t t = 0; t < f; ++t) {
+        const uint32_t* v = &tile.mesh.triangles[3 * t];
+        at_cut += tile.pinned[v[0]] + tile.pinned[v[1]] + tile.pinned[v[2]] >= 2;
+      }
+      goal = at_cut + size_t(std::llround(ratio * double(f - at_cut)));
+    } else {
+      const double share = faces_left > 0 ? double(std::max(0LL, to_remove)) * double(f) / double(faces_left) : 0;
+      goal = f - std::min(f, size_t(std::llround(share)));
+    }
+    goal = std::max<size_t>(goal, 1);
+    std::vector<double> w;
+    if (weights) {
+      w.resize(tile.ids.size());
+      for (size_t i = 0; i < w.size(); ++i) w[i] = (*weights)[tile.ids[i]];
+    }
+    SimplifyReport rep;
+    out.push_back(simplify_tile(tile, weights ? &w : nullptr, goal, options, &rep));
+    totals.collapses += rep.collapses;
+    totals.refused += rep.refused;
+    // rep.error is in units of the tile's diagonal: to model units.
+    const BoundingBox tb = bounding_box(tile.mesh.positions.data(), tile.mesh.vertex_count(), nullptr);
+    totals.error = std::max(totals.error, rep.error * tb.diagonal());
+    to_remove -= (long long)f - (long long)out.back().mesh.triangle_count();
+    faces_left -= f;
+    // Pinned here: the tile's own vertices that it shares (a guard's far corner belongs to
+    // another group, which may free it).
+    for (size_t i = 0; i < 3 * f; ++i) {
+      const uint32_t v = tile.mesh.triangles[i];
+      pinned_now[tile.ids[v]] |= tile.pinned[v];
+    }
+  }
+  // The triangles no group took, as they are.
+  std::vector<uint32_t> rest;
+  for (size_t t = 0; t < nt; ++t)
+    if (group[t] == UINT32_MAX) rest.push_back(uint32_t(t));
+  if (!rest.empty()) out.push_back(cut_piece(work.mesh, work.ids, nullptr, group, UINT32_MAX, rest));
+  // A vertex in a group and not pinned there was free in this pass.
+  for (const std::vector<uint32_t>& list : groups)
+    for (uint32_t t : list)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t id = work.ids[work.mesh.triangles[3 * size_t(t) + k]];
+        if (!pinned_now[id]) pending[id] = 0;
+      }
+  Work next;
+  next.mesh = merge_pieces(out, work.mesh, &next.ids);
+  return next;
+}
+
+// The triangles of work at a pending vertex, and `rings` rings of triangles around them.
+std::vector<uint32_t> strip_triangles(const Work& work, const std::vector<uint8_t>& pending, int rings) {
+  const Mesh& m = work.mesh;
+  std::vector<uint8_t> near(m.vertex_count(), 0);
+  for (size_t v = 0; v < m.vertex_count(); ++v) near[v] = pending[work.ids[v]];
+  std::vector<uint8_t> taken(m.triangle_count(), 0);
+  for (int r = 0; r <= rings; ++r) {
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      const uint32_t* v = &m.triangles[3 * t];
+      taken[t] |= near[v[0]] | near[v[1]] | near[v[2]];
+    }
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      if (taken[t])
+        for (int k = 0; k < 3; ++k) near[m.triangles[3 * t + k]] = 1;
+  }
+  std::vector<uint32_t> list;
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    if (taken[t]) list.push_back(uint32_t(t));
+  return list;
+}
+
+}  // namespace
+
+Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
+                         const std::vector<double>* vertex_weights, SimplifyReport* report) {
+  if (tiles <= 1 || simplify_keeps_mesh(options, mesh.triangle_count()))
+    return simplify_mesh(mesh, options, vertex_weights, report);
+  if (tiles > kMaxTiles)
+    throw Error("simplify: at most " + std::to_string(kMaxTiles) + " tiles along the longest axis, got " +
+                std::to_string(tiles));
+  if (options.target_error > 0)
+    throw Error("simplify: tiled simplification takes a face target (target_faces or ratio), not target_error");
+  if (!mesh.position_vertex.empty())
+    throw Error("simplify: tiled simplification does not take a mesh split at seams (position_vertex)");
+  if (options.record_collapses) throw Error("simplify: tiled simplification does not record the collapses");
+  const CancelScope cancel(options.cancel);
+  const Timer t0;
+  const size_t nv = mesh.vertex_count();
+  if (vertex_weights) {
+    if (vertex_weights->size() != nv)
+      throw Error("simplify: " + std::to_string(vertex_weights->size()) + " vertex weights for a mesh of " +
+                  std::to_string(nv) + " vertices");
+    for (double x : *vertex_weights)
+      if (!(x >= 0) || !std::isfinite(x)) throw Error("simplify: vertex weights must be finite and >= 0");
+  }
+  if (!mesh.triangle_material.empty() && mesh.triangle_material.size() != mesh.triangle_count())
+    throw Error("simplify: triangle_material has " + std::to_string(mesh.triangle_material.size()) +
+                " entries for " + std::to_string(mesh.triangle_count()) + " triangles");
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= nv)
+      throw Error("simplify: triangle " + std::to_string(i / 3) + " has a vertex index out of range");
+  Work work;
+  work.mesh.positions = mesh.positions;
+  work.mesh.attributes = mesh.attributes;
+  work.mesh.materials = mesh.materials;
+  work.mesh.material_libraries = mesh.material_libraries;
+  for (int k = 0; k < 3; ++k) work.mesh.origin[k] = mesh.origin[k];
+  // As simplify_mesh: triangles with a repeated index are not part of the surface.
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t* v = &mesh.triangles[3 * t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+    work.mesh.triangles.insert(work.mesh.triangles.end(), v, v + 3);
+    if (!mesh.triangle_material.empty()) work.mesh.triangle_material.push_back(mesh.triangle_material[t]);
+  }
+  const size_t faces = work.mesh.triangle_count();
+  const size_t target = resolve_target_faces(options, faces);
+  const double ratio = double(target) / double(faces);
+  const std::vector<uint8_t> used = referenced_vertices(mesh);
+  const BoundingBox box = bounding_box(mesh.positions.data(), nv, used.data());
+  for (size_t v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k)
+      if (used[v] && !std::isfinite(mesh.positions[3 * v + k]))
+        throw Error("simplify: vertex " + std::to_string(v) + " is not finite");
+
+  // (work.mesh has no source positions: the frame is carried from `mesh` at the end.)
+  work.ids.resize(nv);
+  for (size_t v = 0; v < nv; ++v) work.ids[v] = uint32_t(v);
+  std::vector<uint32_t> all(faces);
+  for (size_t t = 0; t < faces; ++t) all[t] = uint32_t(t);
+  std::vector<uint8_t> pending(nv, 1);  // every vertex waits for its first pass
+  Totals totals;
+  work = run_pass(work, all, TileGrid(box, tiles, 0), Targets::FirstPass, target, ratio, vertex_weights,
+                  options, pending, totals);
+  for (int pass = 0; pass < kMaxStripPasses && work.mesh.triangle_count() > target; ++pass) {
+    const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
+    if (strips.empty()) break;
+    work = run_pass(work, strips, TileGrid(box, tiles, kStripShifts[pass]), Targets::Remaining, target,
+                    ratio, vertex_weights, options, pending, totals);
+  }
+  // Tiles so small that a triangle spans several pin nearly every vertex on every grid:
+  // then strips on tiles twice as large, and so on up to one piece of strips.
+  for (unsigned t = tiles / 2; t >= 1 && work.mesh.triangle_count() > target; t /= 2) {
+    const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
+    if (strips.empty()) break;
+    work = run_pass(work, strips, TileGrid(box, t, t == 1 ? 0 : 0.5), Targets::Remaining, target, ratio,
+                    vertex_weights, options, pending, totals);
+  }
+
+  Mesh out = std::move(work.mesh);
+  carry_model_frame(mesh, work.ids, out);  // an unmoved vertex is written as it was read
+  if (report) {
+    *report = SimplifyReport{};
+    report->input_faces = faces;
+    report->target_faces = target;
+    report->output_faces = out.triangle_count();
+    report->output_vertices = out.vertex_count();
+    report->reached = report->output_faces == target;
+    report->warning = precision_warning(mesh);
+    if (!report->reached)
+      report->note = "tiled simplification stopped at " + std::to_string(out.triangle_count()) + " faces (target " +
+                     std::to_string(target) + "): the strips along the tile cuts could not give up more";
+    report->collapses = totals.collapses;
+    report->refused = totals.refused;
+    report->error = box.diagonal() > 0 ? totals.error / box.diagonal() : 0;
+    report->vertex_origin = std::move(work.ids);
+    report->seconds = t0.seconds();
+  }
+  return out;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,48 @@
+// meshsal (internal): the tile grid, see tile_grid.h.
+#include "simplify/tile_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshsal {
+namespace simplify_detail {
+
+TileGrid::TileGrid(const BoundingBox& box, unsigned tiles, double shift) : shift_(shift) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k) longest = std::max(longest, box.max[k] - box.min[k]);
+  const double size = longest > 0 ? longest / tiles : 1;
+  inv_size_ = 1 / size;
+  for (int k = 0; k < 3; ++k) {
+    min_[k] = box.min[k];
+    // The last tile along an axis takes the points on the box's far face.
+    cells_[k] = std::max<int64_t>(1, int64_t(std::ceil((box.max[k] - box.min[k]) * inv_size_ + shift)));
+  }
+}
+
+uint64_t TileGrid::cell_of(const double p[3]) const {
+  uint64_t id = 0;
+  for (int k = 2; k >= 0; --k) {
+    const double x = std::floor((p[k] - min_[k]) * inv_size_ + shift_);
+    const int64_t i = x < 0 ? 0 : x >= double(cells_[k]) ? cells_[k] - 1 : int64_t(x);
+    id = id * uint64_t(cells_[k]) + uint64_t(i);
+  }
+  return id;
+}
+
+std::vector<std::pair<uint64_t, uint32_t>> triangles_by_cell(const Mesh& mesh, const std::vector<uint32_t>& triangles,
+                                                             const TileGrid& grid) {
+  std::vector<std::pair<uint64_t, uint32_t>> cells;
+  cells.reserve(triangles.size());
+  for (uint32_t t : triangles) {
+    double c[3] = {0, 0, 0};
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) c[k] += mesh.positions[3 * size_t(mesh.triangles[3 * size_t(t) + j]) + k];
+    for (double& x : c) x /= 3;
+    cells.push_back({grid.cell_of(c), t});
+  }
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+}  // namespace simplify_detail
+}  // namespace meshsal
