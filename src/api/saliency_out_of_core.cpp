@@ -199,7 +199,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("cells", double(i) / mine.size());
-      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i]), plan);
+      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i], cell_count_plan(plan)), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     TileBytes b;
@@ -218,7 +218,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   uint64_t pairs = 0;
   for (size_t i = 0; i < mine.size(); ++i) {
     progress("tiles", double(i) / mine.size());
-    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i]), plan);
+    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i], plan), plan);
     pairs += raw.pairs;
     merge_scale_max(max, tile_scale_max(raw));
     save_raw(raw_file(mine[i]), raw);

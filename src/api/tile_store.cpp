@@ -17,7 +17,7 @@ namespace meshsal {
 namespace {
 
 constexpr size_t kChunk = 1 << 16;  // vertices or faces per read
-constexpr int kBins = 64;           // the point histogram's bins along each axis
+constexpr int kBins = 128;          // the point histogram's bins along each axis (8 MB)
 
 std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
 
@@ -25,7 +25,7 @@ std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin
 struct Histogram {
   BoundingBox box;
   double bin[3];
-  std::vector<uint64_t> count = std::vector<uint64_t>(size_t(kBins) * kBins * kBins, 0);
+  std::vector<uint32_t> count = std::vector<uint32_t>(size_t(kBins) * kBins * kBins, 0);
   int bin_of(double x, int a) const {
     return int(std::clamp(std::floor((x - box.min[a]) / bin[a]), 0.0, double(kBins - 1)));
   }
@@ -276,7 +276,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
     throw Error(input_path + ": every triangle has zero area (degenerate mesh)");
 }
 
-TileMesh load_tile(const TileStore& store, size_t t) {
+TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan) {
   TileSource source;
   source.bucket = [&store](size_t u, std::vector<TileFace>& into) {
     const std::string path = store.dir.file(bucket_name(u));
@@ -291,7 +291,7 @@ TileMesh load_tile(const TileStore& store, size_t t) {
     xyz.resize(3 * sorted.size());
     read_records(store.dir.file("pos.f32"), 12, sorted, xyz.data());
   };
-  return assemble_tile(store.plan, t, source);
+  return assemble_tile(plan, t, source);
 }
 
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out) {

@@ -50,8 +50,9 @@ void build_tile_store(TileStore& store, const std::string& input, const Saliency
                       uint64_t memory_limit, unsigned tiles,
                       const std::function<void(const char*, double)>& progress);
 
-// Tile t's sub-mesh (TileMesh), from its bucket and those of the tiles its halo reaches.
-TileMesh load_tile(const TileStore& store, size_t t);
+// Tile t's sub-mesh (TileMesh) with the halo of `plan` (the store's, or phase 0's smaller
+// one), from its bucket and those of the tiles its halo reaches.
+TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan);
 
 // The doubles as read of vertices [first, first + count) (the output's positions).
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out);

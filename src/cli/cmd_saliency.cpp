@@ -1,4 +1,6 @@
 // meshsal saliency IN -o OUT.ply: the saliency map of one mesh file.
+#include <algorithm>
+#include <cstring>
 #include <memory>
 
 #include "command.h"
@@ -13,6 +15,8 @@
 #include "saliency_output.h"
 #include "interrupt.h"
 #include "peak_memory.h"
+#include "mpi_tile_exchange.h"
+#include "mpi_world.h"
 
 namespace meshsal_cli {
 namespace {
@@ -29,6 +33,22 @@ struct Args {
   int device = -1;
 };
 
+// The largest peak resident memory over the ranks (this process's alone without MPI).
+uint64_t peak_over_ranks() {
+  const uint64_t mine = peak_resident_bytes();
+  std::vector<uint8_t> bytes(sizeof mine);
+  std::memcpy(bytes.data(), &mine, sizeof mine);
+  uint64_t most = 0;
+  for (const auto& b : meshsal::cli::mpi_all_gather(bytes)) {
+    uint64_t x = 0;
+    if (b.size() == sizeof x) std::memcpy(&x, b.data(), sizeof x);
+    most = std::max(most, x);
+  }
+  return most;
+}
+
+bool is_rank0() { return meshsal::cli::mpi_world().rank == 0; }
+
 // --memory-limit: the library streams the file through tiles on disk (saliency_file).
 int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress& progress) {
   using namespace meshsal;
@@ -40,7 +60,8 @@ int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress
   const OutOfCoreReport r = saliency_file(a.input, a.output, opt, ooc);
   progress.finish();
   const double seconds = t0.seconds();
-  const uint64_t peak = peak_resident_bytes();
+  const uint64_t peak = peak_over_ranks();
+  if (!is_rank0()) return 0;
   if (a.json) {
     JsonObject stages;
     for (const StageTime& s : r.stages) {
@@ -86,26 +107,35 @@ int run(const Args& a) {
   opt.method = meshsal::parse_method(a.method);
   opt.device = a.device;
   check_saliency_options(opt);
-  Progress progress(!a.quiet && stderr_is_terminal());
+  const bool quiet = a.quiet || !is_rank0();  // one voice under mpirun: rank 0's
+  Progress progress(!quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [&a](const std::string& line) {
-    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
+  opt.notice = [quiet](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
   };
   opt.tiles = a.tiles;
+  // Under mpirun the ranks share the tiles; rank 0 writes and reports.
+  MpiTileExchange exchange;
+  if (meshsal::cli::mpi_world().active) {
+    opt.exchange = &exchange;
+    if (opt.tiles == 0 && a.memory_limit.empty()) opt.tiles = default_mpi_tiles(meshsal::cli::mpi_world().size);
+  }
   check_saliency_options(opt);
   if (!a.memory_limit.empty()) return run_out_of_core(a, opt, progress);
 
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
-  Mesh mesh = load_input(a.input, a.quiet);
+  Mesh mesh = load_input(a.input, quiet);
   double load = t0.seconds();
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);
-  write_saliency_ply(a.output, mesh, r, a.dump_scales);
+  if (is_rank0()) write_saliency_ply(a.output, mesh, r, a.dump_scales);
   progress.finish();
+  const uint64_t peak = peak_over_ranks();
+  if (!is_rank0()) return 0;
   if (a.json) {
     JsonObject j = saliency_json(a.input, a.output, mesh, r, load);
-    j.count("peak_rss", peak_resident_bytes());
+    j.count("peak_rss", peak);
     j.print();
   } else if (!a.quiet) {
     print_saliency_summary(mesh, r, load);

@@ -53,7 +53,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   if (plan.method == Method::Fast) {
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
     for (size_t t : mine) {
-      const std::vector<uint64_t> c = count_tile_cells(assemble_tile(plan, t, source), plan);
+      const std::vector<uint64_t> c = count_tile_cells(assemble_tile(cell_count_plan(plan), t, source), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     TileBytes b;

@@ -219,6 +219,15 @@ TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets) {
   return s;
 }
 
+TilePlan cell_count_plan(const TilePlan& plan) {
+  TilePlan p = plan;
+  double widest = 0;
+  for (double s : tile_cell_sigmas(plan)) widest = std::max(widest, fast_cell_edge(plan.box, s));
+  p.query_margin = 0;
+  p.source_margin = 2 * widest;
+  return p;
+}
+
 std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan) {
   const std::vector<double> sigmas = tile_cell_sigmas(plan);
   if (tile.own_count == 0) return std::vector<uint64_t>(sigmas.size(), 0);

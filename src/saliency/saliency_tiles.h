@@ -91,8 +91,10 @@ struct TileBuckets {
 TileBuckets bucket_triangles(const Mesh& mesh, const TilePlan& plan);
 TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets);
 
-// Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is own.
+// Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is own; the
+// tile need only be assembled with cell_count_plan()'s halo (two of the largest cells).
 std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan);
+TilePlan cell_count_plan(const TilePlan& plan);
 
 // Phase 1's result, kept until the tile finishes: per query point, in whole-mesh order.
 struct TileRaw {

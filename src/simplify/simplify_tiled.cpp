@@ -147,8 +147,8 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
                          const std::vector<double>* vertex_weights, SimplifyReport* report) {
   if (tiles <= 1 || simplify_keeps_mesh(options, mesh.triangle_count()))
     return simplify_mesh(mesh, options, vertex_weights, report);
-  if (tiles > kMaxTiles)
-    throw Error("simplify: at most " + std::to_string(kMaxTiles) + " tiles along the longest axis, got " +
+  if (tiles > kMaxSimplifyTiles)
+    throw Error("simplify: at most " + std::to_string(kMaxSimplifyTiles) + " tiles along the longest axis, got " +
                 std::to_string(tiles));
   if (options.target_error > 0)
     throw Error("simplify: tiled simplification takes a face target (target_faces or ratio), not target_error");

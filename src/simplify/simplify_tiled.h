@@ -8,7 +8,7 @@ namespace meshsal {
 namespace simplify_detail {
 
 // The most tiles along the longest axis (1025^3 shifted cells still fit a 64-bit id).
-constexpr unsigned kMaxTiles = 1024;
+constexpr unsigned kMaxSimplifyTiles = 1024;
 
 // Strip passes after the first pass, at most, and the shift of each one's grid (in tiles):
 // the first strips' cuts fall mid-way between the first pass's, the second's between
