@@ -235,7 +235,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
       report.pairs += in.get<uint64_t>();
     }
   }
-  lap("tiles: raw maps");
+  lap("tile raw maps");
 
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
   std::vector<double> mbar(options.scales.size(), 0.0);

@@ -117,6 +117,14 @@ int run(const Args& a) {
   // Under mpirun the ranks share the tiles; rank 0 writes and reports.
   MpiTileExchange exchange;
   if (meshsal::cli::mpi_world().active) {
+    // Every rank must run the same computation: rank 0's arguments are the run's.
+    const std::string mine = a.input + "\n" + a.output + "\n" + a.method + "\n" + a.scales + "\n" +
+                             std::to_string(a.eps_frac) + "\n" + std::to_string(a.tiles) + "\n" + a.memory_limit +
+                             "\n" + std::to_string(a.dump_scales);
+    const auto all = meshsal::cli::mpi_all_gather(std::vector<uint8_t>(mine.begin(), mine.end()));
+    if (std::string(all[0].begin(), all[0].end()) != mine)
+      throw meshsal::Error("the ranks were started with other arguments than rank 0's (this rank: " +
+                           printable(a.input) + " -o " + printable(a.output) + ")");
     opt.exchange = &exchange;
     if (opt.tiles == 0 && a.memory_limit.empty()) opt.tiles = default_mpi_tiles(meshsal::cli::mpi_world().size);
   }

@@ -90,7 +90,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       r.pairs += in.get<uint64_t>();
     }
   }
-  lap("tiles: raw maps");
+  lap("tile raw maps");
 
   // Phase 2: mbar from every tile's local maxima, in vertex order.
   std::vector<double> mbar(opt.scales.size(), 0.0);
