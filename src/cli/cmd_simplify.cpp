@@ -8,6 +8,7 @@
 #include "core/mesh_points.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
@@ -131,6 +132,9 @@ int run(const Args& a) {
     so.backend = parse_backend(a.backend);
     so.precision = meshsal::parse_precision(a.precision);
     so.method = meshsal::parse_method(a.method);
+    // Tiled simplification takes its weights from tiled saliency (the same map, computed a
+    // tile at a time).
+    if (a.tiles > 1) so.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     so.notice = [&](const std::string& line) {
       told_precision |= line.find("float precision") != std::string::npos;

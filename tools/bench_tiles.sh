@@ -1,0 +1,40 @@
+#!/bin/bash
+# The tiles benchmark (issue 23, README "Beyond one machine"): saliency (fast method) of
+# igea_loop2 midpoint-subdivided once (8.6M vertices, a temporary binary PLY) in memory,
+# with --memory-limit 700M, and under mpirun -np 2 and -np 4 with the same limit per rank:
+# whole-process wall time and peak resident memory (the largest over the ranks), the
+# tiles, and the sweep's pairs against the untiled run's (the halo's overhead).
+# Usage: tools/bench_tiles.sh [build/meshsal] [work folder, default $TMPDIR or /tmp]
+set -euo pipefail
+MESHSAL=${1:-build/meshsal}
+WORK=${2:-${TMPDIR:-/tmp}}/meshsal_bench_tiles
+MESH=$(dirname "$0")/../../shared/data/meshes/igea_loop2_2149k.ply.gz
+[ -f "$MESH" ] || { echo "SKIPPED: missing shared data $MESH"; exit 0; }
+mkdir -p "$WORK"
+PLY=$WORK/igea_loop2_x4.ply
+[ -f "$PLY" ] || "$MESHSAL" bench "$MESH" --subdivide 1 --write-mesh "$PLY"
+MPIRUN="mpirun --allow-run-as-root --oversubscribe"
+
+run() {  # name, command...
+  local name=$1; shift
+  local start=$(date +%s.%N)
+  "$@" --json > "$WORK/$name.json"
+  local end=$(date +%s.%N)
+  python3 - "$WORK/$name.json" "$name" "$start" "$end" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+wall = float(sys.argv[4]) - float(sys.argv[3])
+print(f"{sys.argv[2]:<14} wall {wall:7.1f} s  peak {j['peak_rss']/2**20:7.0f} MiB  tiles {j['tiles']:4d}  "
+      f"ranks {j['ranks']}  pairs {j['pairs']:.4g}")
+PY
+}
+
+echo "mesh: $PLY ($(stat -c %s "$PLY") bytes)"
+run in-memory "$MESHSAL" saliency "$PLY" -o "$WORK/a.ply" --method fast --backend cpu
+run limit-700M "$MESHSAL" saliency "$PLY" -o "$WORK/b.ply" --method fast --backend cpu --memory-limit 700M
+cmp "$WORK/a.ply" "$WORK/b.ply" && echo "limit-700M: the in-memory run's bytes"
+for n in 2 4; do
+  run mpi-np$n-700M $MPIRUN -np $n "$MESHSAL" saliency "$PLY" -o "$WORK/c$n.ply" --method fast --backend cpu \
+    --memory-limit 700M --threads $(( $(nproc) / n > 0 ? $(nproc) / n : 1 ))
+  cmp "$WORK/a.ply" "$WORK/c$n.ply" && echo "mpi-np$n-700M: the in-memory run's bytes"
+done
