@@ -10,41 +10,18 @@
 
 #include "cli/synthetic.h"
 #include "json_check.h"
+#include "mpi_run.h"
 #include "test_batch_util.h"
 
 using namespace meshsal_test;
 
 namespace {
 
-// Why these tests cannot run here ("" when they can).
-std::string no_mpi_reason() {
-#if MESHSAL_CLI_WITH_MPI
-  if (::access(MESHSAL_MPIEXEC, X_OK) != 0) return std::string("no MPI: mpirun ") + MESHSAL_MPIEXEC + " is missing";
-  return "";
-#else
-  return "no MPI: meshsal was built without it (MESHSAL_WITH_MPI=OFF, or no MPI found)";
-#endif
-}
-
-bool skip_without_mpi() {
-  const std::string reason = no_mpi_reason();
-  if (reason.empty()) return false;
-  std::cout << "SKIPPED: " << reason << "\n";
-  return true;
-}
-
-#if MESHSAL_CLI_WITH_MPI
-const char* const kMpiexec = MESHSAL_MPIEXEC;
-#else
-const char* const kMpiexec = "mpirun";
-#endif
-
 // mpirun ... SPEC, where SPEC is "-np N meshsal ARGS" (or MPMD parts joined by " : "), as
 // root too, more ranks than cores allowed; ended after 120 s (rc 124) should it hang.
 BatchRun run_mpi(const std::string& spec, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = "timeout -k 5 120 " + std::string(kMpiexec) + " --allow-run-as-root --oversubscribe " +
-                          spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+  const std::string cmd = mpirun_command() + spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
 }

@@ -191,6 +191,9 @@ TEST_CASE("cli: help explains every command and option", "[cli]") {
       {"--dump-scales", "Also write `curvature`"},
       {"--threads", "UINT:in [0, 1024]=" + text_of(lib.threads)},
       {"-q,--quiet", "Print nothing on success"},
+      {"--tiles", "UINT:in [0, " + std::to_string(kMaxTiles) + "]"},
+      {"--memory-limit", "TEXT"},
+      {"--temp-dir", "TEXT"},
       {"--json", "Print the summary as one JSON object"}};
   const auto options = help_entries(sal.out, "Options:");
   INFO("meshsal saliency --help:\n" << sal.out);

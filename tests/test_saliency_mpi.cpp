@@ -2,8 +2,6 @@
 // and rank 0 writes the single-process run's bytes, in memory and with --memory-limit; a
 // failing rank ends the run. Each run is under `timeout`, so a hang fails the test. Without
 // MPI in the program, or without mpirun: "SKIPPED: no MPI".
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,28 +10,13 @@
 #include "cli/synthetic.h"
 #include "cli_run.h"
 #include "json_check.h"
+#include "mpi_run.h"
 #include "test_util.h"
 
 using namespace meshsal_test;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool skip_without_mpi() {
-#if MESHSAL_CLI_WITH_MPI
-  if (::access(MESHSAL_MPIEXEC, X_OK) == 0) return false;
-  std::cout << "SKIPPED: no MPI: mpirun " << MESHSAL_MPIEXEC << " is missing\n";
-#else
-  std::cout << "SKIPPED: no MPI: meshsal was built without it\n";
-#endif
-  return true;
-}
-
-#if MESHSAL_CLI_WITH_MPI
-const char* const kMpiexec = MESHSAL_MPIEXEC;
-#else
-const char* const kMpiexec = "mpirun";
-#endif
 
 std::string file_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -45,8 +28,7 @@ std::string file_bytes(const fs::path& p) {
 // mpirun SPEC (as root too, more ranks than cores), ended after 120 s should it hang.
 CliRun run_mpi(const std::string& spec, const fs::path& dir) {
   const fs::path out = dir / "mpi_stdout.txt", err = dir / "mpi_stderr.txt";
-  const std::string cmd = "timeout -k 5 120 " + std::string(kMpiexec) + " --allow-run-as-root --oversubscribe " +
-                          spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+  const std::string cmd = mpirun_command() + spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -2,6 +2,7 @@
 // in-memory run, the peak resident memory under the limit, clear errors.
 #include <sys/stat.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -41,6 +42,12 @@ Mesh far_sphere() {
   return m;
 }
 
+// The saliency two PLY files hold for the vertices of `mesh` agree to 1e-4 of the maximum.
+void check_same_map(const std::filesystem::path& a, const std::filesystem::path& b, const Mesh& mesh) {
+  const std::vector<double> x = load_saliency_ply(a.string(), mesh), y = load_saliency_ply(b.string(), mesh);
+  CHECK(rel_error(x, y) <= 1e-4);
+}
+
 }  // namespace
 
 TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
@@ -78,12 +85,7 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
         } else {
           // The fast method's sums over cells run in another order in a tile: the same map
           // to rounding, well inside its 1e-4.
-          const std::vector<double> whole = load_saliency_ply((dir / "whole.ply").string(), loaded);
-          const std::vector<double> tiled = load_saliency_ply((dir / "tiled.ply").string(), loaded);
-          double top = 0, diff = 0;
-          for (size_t v = 0; v < whole.size(); ++v)
-            top = std::max(top, whole[v]), diff = std::max(diff, std::fabs(whole[v] - tiled[v]));
-          CHECK(diff <= 1e-4 * top);
+          check_same_map(dir / "whole.ply", dir / "tiled.ply", loaded);
         }
       }
   }
@@ -105,7 +107,7 @@ TEST_CASE("out of core converts other formats once and gives the same bytes", "[
   CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
 }
 
-TEST_CASE("--memory-limit holds the peak resident memory under the limit", "[outofcore][cli]") {
+TEST_CASE("out of core: --memory-limit holds the peak resident memory under the limit", "[outofcore][cli]") {
   const auto dir = scratch_dir("ooc_limit");
   const std::string in = (dir / "plane.ply").string();
   write_ply(in, make_plane_with_bump(2.0, 600, 0.3, 0.2), {}, nullptr);  // 361,201 vertices
@@ -123,13 +125,7 @@ TEST_CASE("--memory-limit holds the peak resident memory under the limit", "[out
   INFO(tiled.out);
   CHECK(json_number(tiled.out, "tiles") > 1);
   CHECK(json_number(tiled.out, "peak_rss") < double(limit));
-  const Mesh mesh = load_mesh(in);
-  const std::vector<double> whole_map = load_saliency_ply((dir / "a.ply").string(), mesh);
-  const std::vector<double> tiled_map = load_saliency_ply((dir / "b.ply").string(), mesh);
-  double top = 0, diff = 0;
-  for (size_t v = 0; v < whole_map.size(); ++v)
-    top = std::max(top, whole_map[v]), diff = std::max(diff, std::fabs(whole_map[v] - tiled_map[v]));
-  CHECK(diff <= 1e-4 * top);
+  check_same_map(dir / "a.ply", dir / "b.ply", load_mesh(in));
 }
 
 TEST_CASE("out of core: bad limits and inputs are clear errors", "[outofcore][cli]") {
@@ -171,4 +167,63 @@ TEST_CASE("out of core: bad limits and inputs are clear errors", "[outofcore][cl
                                  " --backend gpu --memory-limit 1G", dir);
   CHECK(gpu.rc == 1);
   CHECK(gpu.err.find("out of core runs on the CPU") != std::string::npos);
+}
+
+TEST_CASE("out of core: a mesh within one tile, and hostile PLY files", "[outofcore]") {
+  const auto dir = scratch_dir("ooc_hostile");
+  const Mesh mesh = make_bumpy_sphere(3);
+  const std::string in = (dir / "in.ply").string();
+  write_ply(in, mesh, {}, nullptr);
+  // A limit far above the mesh: one tile, the in-memory bytes.
+  const Mesh loaded = load_mesh(in);
+  const SaliencyResult r = compute_saliency(loaded, cpu(Method::Exact));
+  write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, {}, &r.is_point);
+  OutOfCoreOptions ooc;
+  ooc.memory_limit = uint64_t(4) << 30;
+  ooc.temp_dir = dir.string();
+  const OutOfCoreReport one = saliency_file(in, (dir / "one.ply").string(), cpu(Method::Exact), ooc);
+  CHECK(one.tiles == 1);
+  CHECK(file_bytes(dir / "one.ply") == file_bytes(dir / "whole.ply"));
+
+  // Damaged copies: each an Error naming the problem, no output, no temporary folder left.
+  const std::string good = file_bytes(in);
+  const size_t body = good.find("end_header\n") + 11;
+  struct Case {
+    std::string name, bytes, message;
+  };
+  std::string huge = good;
+  huge.replace(huge.find("element vertex "), std::string("element vertex ").size() + std::to_string(loaded.vertex_count()).size(),
+               "element vertex 5000000000");
+  std::string bad_index = good;
+  const uint32_t beyond = uint32_t(loaded.vertex_count() + 7);
+  std::memcpy(&bad_index[body + loaded.vertex_count() * 12 + 1], &beyond, 4);  // the first face's first corner
+  const Case cases[] = {
+      {"truncated.ply", good.substr(0, body + (good.size() - body) / 2), "file ends before"},
+      {"huge.ply", huge, "more than 4294967295 vertices"},
+      {"index.ply", bad_index, "uses vertex " + std::to_string(beyond)},
+      {"ascii.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       ""},
+      {"noheader.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n", "ends before end_header"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const std::string path = (dir / c.name).string();
+    std::ofstream(path, std::ios::binary) << c.bytes;
+    const std::string out = (dir / ("out_" + c.name)).string();
+    if (c.message.empty()) {  // ASCII PLY: read whole once, converted, computed
+      CHECK_NOTHROW(saliency_file(path, out, cpu(Method::Exact), ooc));
+      continue;
+    }
+    try {
+      saliency_file(path, out, cpu(Method::Exact), ooc);
+      FAIL("no error");
+    } catch (const Error& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(c.message) != std::string::npos);
+    }
+    CHECK(!std::filesystem::exists(out));
+  }
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) == std::string::npos);
 }

@@ -24,15 +24,7 @@ SaliencyOptions cpu_options(Method method, bool smoothed) {
 }
 
 // Largest |a - b| relative to max |a|, over one map.
-double map_error(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double top = 0, err = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    top = std::max(top, std::fabs(a[i]));
-    err = std::max(err, std::fabs(a[i] - b[i]));
-  }
-  return top > 0 ? err / top : err;
-}
+double map_error(const std::vector<double>& a, const std::vector<double>& b) { return meshsal_test::rel_error(a, b); }
 
 double pearson(const std::vector<double>& a, const std::vector<double>& b) {
   double ma = 0, mb = 0;

@@ -13,15 +13,11 @@
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "saliency/tile_bytes.h"
+#include "saliency/tile_reduce.h"
 
 namespace meshsal {
 
 namespace {
-
-std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const TileBytes& mine) {
-  if (!exchange) return {mine.data};
-  return exchange->all_gather(mine.data);
-}
 
 void save(const std::string& path, const TileBytes& b) {
   ScratchWriter out(path);
@@ -172,7 +168,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
         failure = e.what();
       }
     }
-    const auto all = gather(exchange, mine);
+    const auto all = tile_gather(exchange, mine.data);
     if (all[0].empty()) {
       if (rank == 0) throw Error(failure);
       throw Error("rank 0 could not read the input");
@@ -202,13 +198,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
       const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i], cell_count_plan(plan)), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
-    TileBytes b;
-    b.put(cells);
-    std::fill(cells.begin(), cells.end(), 0);
-    for (const auto& bytes : gather(exchange, b)) {
-      const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
-      for (size_t k = 0; k < c.size() && k < cells.size(); ++k) cells[k] += c[k];
-    }
+    cells = reduce_cell_counts(exchange, cells);
     plan.fast_cells = cells;
     lap("cell counts");
   }
@@ -224,39 +214,17 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     save_raw(raw_file(mine[i]), raw);
   }
   progress("tiles", 1.0);
-  {
-    TileBytes b;
-    b.put(max);
-    b.put(pairs);
-    max.assign(options.scales.size(), ScaleMax{});
-    for (const auto& bytes : gather(exchange, b)) {
-      TileBytesReader in{bytes};
-      merge_scale_max(max, in.get_vector<ScaleMax>());
-      report.pairs += in.get<uint64_t>();
-    }
-  }
+  reduce_scale_max(exchange, max, pairs);
+  report.pairs = pairs;
   lap("tile raw maps");
 
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
-  std::vector<double> mbar(options.scales.size(), 0.0);
-  {
-    std::vector<std::vector<LocalMax>> maxima(options.scales.size());
-    for (size_t t : mine) {
-      const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
-      for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
-    }
-    TileBytes b;
-    for (const auto& m : maxima) b.put(m);
-    for (auto& m : maxima) std::vector<LocalMax>().swap(m);
-    for (const auto& bytes : gather(exchange, b)) {
-      TileBytesReader in{bytes};
-      for (auto& m : maxima) {
-        const std::vector<LocalMax> part = in.get_vector<LocalMax>();
-        m.insert(m.end(), part.begin(), part.end());
-      }
-    }
-    for (size_t k = 0; k < maxima.size(); ++k) mbar[k] = mbar_of(std::move(maxima[k]), max[k]);
+  std::vector<std::vector<LocalMax>> maxima(options.scales.size());
+  for (size_t t : mine) {
+    const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
+    for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
+  const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
   lap("suppression");
 
   // Phase 3: each tile's results to disk; the saliency's range for the colours.
@@ -275,7 +243,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     b.put(hi);
     b.put(sum);
     sum = 0;
-    for (const auto& bytes : gather(exchange, b)) {
+    for (const auto& bytes : tile_gather(exchange, b.data)) {
       TileBytesReader in{bytes};
       lo = std::min(lo, in.get<double>());
       hi = std::max(hi, in.get<double>());
@@ -382,7 +350,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     lap("writing");
   }
   // Every rank done before rank 0's store (and its folder) goes.
-  gather(exchange, TileBytes{});
+  tile_gather(exchange, {});
   return report;
 }
 

@@ -28,7 +28,7 @@ constexpr double kTileBytesPerVertex = 330;
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;
 // The process before any tile: the program, its libraries and the buffers of the passes.
-constexpr uint64_t kBaseBytes = uint64_t(16) << 20;
+constexpr uint64_t kBaseBytes = uint64_t(28) << 20;
 
 struct TileStore {
   explicit TileStore(const std::string& temp_parent) : dir(temp_parent) {}

@@ -9,7 +9,7 @@ class Progress {
  public:
   explicit Progress(bool enabled);
   ~Progress();
-  // Shows "stage  42%"; redraws at most every 100 ms.
+  // Shows "stage  42%, 12 s left"; redraws at most every 100 ms.
   void update(const char* stage, double fraction);
   void finish();  // clears the line
 
@@ -18,6 +18,7 @@ class Progress {
   bool drawn_ = false;
   std::string last_stage_;
   std::chrono::steady_clock::time_point last_draw_{};
+  std::chrono::steady_clock::time_point stage_start_{};
 };
 
 // True when stderr is a terminal (progress is only drawn there).

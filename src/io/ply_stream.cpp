@@ -178,12 +178,18 @@ PlyStream::~PlyStream() {
 }
 
 bool PlyStream::readable(const std::string& path) {
-  try {
-    PlyStream s(path);
-    return true;
-  } catch (const Error&) {
-    return false;
-  }
+  // A binary PLY by its first lines (gzip or not); its header's problems are the
+  // constructor's errors, never a reason to read the file whole instead.
+  gzFile gz = gzopen(path.c_str(), "rb");
+  if (!gz) return false;
+  char head[512] = {0};
+  const int got = gzread(gz, head, sizeof head - 1);
+  gzclose(gz);
+  if (got <= 0) return false;
+  const std::string text(head, size_t(got));
+  if (text.rfind("ply\n", 0) != 0 && text.rfind("ply\r\n", 0) != 0) return false;
+  const size_t format = text.find("\nformat ");
+  return format != std::string::npos && text.compare(format + 8, 7, "binary_") == 0;
 }
 
 void PlyStream::read_exact(void* to, size_t n) {

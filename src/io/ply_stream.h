@@ -29,8 +29,8 @@ class PlyStream {
   // polygons were read (0 at the end). Every index is checked against vertex_count().
   size_t read_faces(std::vector<uint32_t>& triangles, size_t max);
 
-  // True for a file this class reads (binary PLY); false for anything else, which the
-  // caller converts once.
+  // True for a binary PLY (its first lines say so); false for anything else, which the
+  // caller converts once. A binary PLY with a bad header is the constructor's Error.
   static bool readable(const std::string& path);
 
  private:

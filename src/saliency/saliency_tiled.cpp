@@ -4,16 +4,11 @@
 #include "core/timer.h"
 #include "saliency/saliency_tiles.h"
 #include "saliency/tile_bytes.h"
+#include "saliency/tile_reduce.h"
 
 namespace meshsal {
 
 namespace {
-
-// Every process's bytes: through the exchange, or just ours.
-std::vector<std::vector<uint8_t>> gather(TileExchange* exchange, const TileBytes& mine) {
-  if (!exchange) return {mine.data};
-  return exchange->all_gather(mine.data);
-}
 
 }  // namespace
 
@@ -56,14 +51,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       const std::vector<uint64_t> c = count_tile_cells(assemble_tile(cell_count_plan(plan), t, source), plan);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
-    TileBytes b;
-    b.put(cells);
-    std::fill(cells.begin(), cells.end(), 0);
-    for (const auto& bytes : gather(exchange, b)) {
-      const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
-      if (c.size() != cells.size()) throw Error("tiled saliency: processes disagree on the plan");
-      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
-    }
+    cells = reduce_cell_counts(exchange, cells);
     plan.fast_cells = cells;
     lap("cell counts");
   }
@@ -78,40 +66,16 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
     merge_scale_max(max, tile_scale_max(raws.back()));
   }
   report("tiles", 1.0);
-  {
-    TileBytes b;
-    b.put(max);
-    b.put(r.pairs);
-    max.assign(opt.scales.size(), ScaleMax{});
-    r.pairs = 0;
-    for (const auto& bytes : gather(exchange, b)) {
-      TileBytesReader in{bytes};
-      merge_scale_max(max, in.get_vector<ScaleMax>());
-      r.pairs += in.get<uint64_t>();
-    }
-  }
+  reduce_scale_max(exchange, max, r.pairs);
   lap("tile raw maps");
 
   // Phase 2: mbar from every tile's local maxima, in vertex order.
-  std::vector<double> mbar(opt.scales.size(), 0.0);
-  {
-    std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
-    for (const TileRaw& raw : raws) {
-      std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw, max);
-      for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
-    }
-    TileBytes b;
-    for (const auto& m : maxima) b.put(m);
-    for (auto& m : maxima) m.clear();
-    for (const auto& bytes : gather(exchange, b)) {
-      TileBytesReader in{bytes};
-      for (auto& m : maxima) {
-        std::vector<LocalMax> part = in.get_vector<LocalMax>();
-        m.insert(m.end(), part.begin(), part.end());
-      }
-    }
-    for (size_t k = 0; k < maxima.size(); ++k) mbar[k] = mbar_of(std::move(maxima[k]), max[k]);
+  std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
+  for (const TileRaw& raw : raws) {
+    std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw, max);
+    for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
+  const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
   lap("suppression");
 
   // Phase 3: each tile's own results, shared so that every process holds the whole map.
@@ -129,7 +93,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   r.saliency.assign(n, 0.0);
   if (opt.smoothed) r.smoothed.assign(n, 0.0);
   r.raw.assign(opt.scales.size(), std::vector<double>(n, 0.0));
-  for (const auto& bytes : gather(exchange, results)) {
+  for (const auto& bytes : tile_gather(exchange, results.data)) {
     TileBytesReader in{bytes};
     while (in.at < bytes.size()) {
       const std::vector<uint32_t> global = in.get_vector<uint32_t>();

@@ -1,0 +1,56 @@
+#include "saliency/tile_reduce.h"
+
+#include "saliency/tile_bytes.h"
+
+namespace meshsal {
+
+std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine) {
+  if (!exchange) return {mine};
+  return exchange->all_gather(mine);
+}
+
+std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vector<uint64_t>& mine) {
+  TileBytes b;
+  b.put(mine);
+  std::vector<uint64_t> sum(mine.size(), 0);
+  for (const auto& bytes : tile_gather(exchange, b.data)) {
+    const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
+    if (c.size() != sum.size()) throw Error("tiled saliency: the processes disagree on the plan");
+    for (size_t k = 0; k < c.size(); ++k) sum[k] += c[k];
+  }
+  return sum;
+}
+
+void reduce_scale_max(TileExchange* exchange, std::vector<ScaleMax>& max, uint64_t& pairs) {
+  TileBytes b;
+  b.put(max);
+  b.put(pairs);
+  const size_t scales = max.size();
+  max.assign(scales, ScaleMax{});
+  pairs = 0;
+  for (const auto& bytes : tile_gather(exchange, b.data)) {
+    TileBytesReader in{bytes};
+    merge_scale_max(max, in.get_vector<ScaleMax>());
+    pairs += in.get<uint64_t>();
+  }
+  if (max.size() != scales) throw Error("tiled saliency: the processes disagree on the scales");
+}
+
+std::vector<double> reduce_mbar(TileExchange* exchange, std::vector<std::vector<LocalMax>> mine,
+                                const std::vector<ScaleMax>& max) {
+  TileBytes b;
+  for (const auto& m : mine) b.put(m);
+  for (auto& m : mine) std::vector<LocalMax>().swap(m);
+  for (const auto& bytes : tile_gather(exchange, b.data)) {
+    TileBytesReader in{bytes};
+    for (auto& m : mine) {
+      const std::vector<LocalMax> part = in.get_vector<LocalMax>();
+      m.insert(m.end(), part.begin(), part.end());
+    }
+  }
+  std::vector<double> mbar(mine.size(), 0.0);
+  for (size_t k = 0; k < mine.size(); ++k) mbar[k] = mbar_of(std::move(mine[k]), max[k]);
+  return mbar;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,27 @@
+// meshsal: the reductions of a tiled saliency run over the processes sharing it
+// (TileExchange; none: this process alone), one per phase, for every driver
+// (saliency_tiled.cpp in memory, api/saliency_out_of_core.cpp on disk).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "meshsal/meshsal.h"
+#include "saliency/saliency_tiles.h"
+
+namespace meshsal {
+
+// Every process's bytes (just `mine` without an exchange).
+std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine);
+
+// Phase 0: the sums of every process's per-sigma cell counts.
+std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vector<uint64_t>& mine);
+
+// Phase 1: each scale's maximum over every process's (lowest vertex on ties), and the sum
+// of their pairs.
+void reduce_scale_max(TileExchange* exchange, std::vector<ScaleMax>& max, uint64_t& pairs);
+
+// Phase 2: each scale's mbar from every process's local maxima (`mine[scale]`).
+std::vector<double> reduce_mbar(TileExchange* exchange, std::vector<std::vector<LocalMax>> mine,
+                                const std::vector<ScaleMax>& max);
+
+}  // namespace meshsal
