@@ -80,6 +80,7 @@ struct PlyStream::Layout {
   size_t vertex_bytes = 0;                    // one vertex record
   size_t xyz_offset[3] = {0, 0, 0};
   Type xyz_type[3] = {Type::None, Type::None, Type::None};
+  bool vertex_lists = false;                  // the vertex element holds a list property
   std::vector<uint8_t> buffer;
 };
 
@@ -153,7 +154,10 @@ PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_u
   if (L.face < L.vertex) fail("the PLY's faces come before its vertices");
   const Element& v = L.elements[L.vertex];
   for (const Property& p : v.props) {
-    if (p.count != Type::None) fail("a list property in the vertex element");
+    if (p.count != Type::None) {  // a list (skipped): records differ in size
+      L.vertex_lists = true;
+      continue;
+    }
     for (int a = 0; a < 3; ++a)
       if (p.name == std::string(1, char('x' + a))) {
         L.xyz_offset[a] = L.vertex_bytes;
@@ -224,6 +228,29 @@ size_t PlyStream::read_vertices(double* out, size_t max) {
   while (L.next < L.vertex) skip_element(L.next++);
   const size_t n = size_t(std::min<uint64_t>(max, vertices_ - vertices_read_));
   if (n == 0) return 0;
+  if (L.vertex_lists) {
+    // Property by property: scalars into a record of their own layout, lists skipped.
+    std::vector<uint8_t> record(L.vertex_bytes);
+    uint8_t b[8];
+    for (size_t i = 0; i < n; ++i) {
+      size_t at = 0;
+      for (const Property& p : L.elements[L.vertex].props) {
+        if (p.count == Type::None) {
+          read_exact(&record[at], size_of(p.type));
+          at += size_of(p.type);
+          continue;
+        }
+        read_exact(b, size_of(p.count));
+        const double items = value_at(b, p.count, L.swap);
+        if (items < 0) throw Error(path_ + ": a negative list length in the vertex element");
+        for (double k = 0; k < items; ++k) read_exact(b, size_of(p.type));
+      }
+      for (int a = 0; a < 3; ++a) out[3 * i + a] = value_at(&record[L.xyz_offset[a]], L.xyz_type[a], L.swap);
+    }
+    vertices_read_ += n;
+    if (vertices_read_ == vertices_) L.next = L.vertex + 1;
+    return n;
+  }
   L.buffer.resize(n * L.vertex_bytes);
   read_exact(L.buffer.data(), L.buffer.size());
   for (size_t i = 0; i < n; ++i)

@@ -11,6 +11,11 @@
 #include <string>
 #include <string_view>
 
+#include <unistd.h>
+
+#include <vector>
+
+#include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 
@@ -36,11 +41,48 @@ inline std::string load(const uint8_t* data, size_t size, const std::string& nam
   }
 }
 
-// The targets: obj, off, ply, stl (the bytes are the file), gz (the first byte picks the format
+// The out-of-core reader (io/ply_stream.h) over the bytes as a file: every vertex and face
+// read through. "" when the file streams to its end, else the Error (a file that is not a
+// binary PLY: "not a binary PLY").
+inline std::string read_stream(const uint8_t* data, size_t size) {
+  char path[] = "/tmp/meshsal_fuzz_plystream_XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd < 0) return "no temporary file";
+  for (size_t at = 0; at < size;) {
+    const ssize_t n = ::write(fd, data + at, size - at);
+    if (n <= 0) break;
+    at += size_t(n);
+  }
+  ::close(fd);
+  std::string outcome;
+  try {
+    if (!meshsal::PlyStream::readable(path)) {
+      outcome = "not a binary PLY";
+    } else {
+      meshsal::PlyStream s(path);
+      std::vector<double> xyz(3 * 1024);
+      while (s.read_vertices(xyz.data(), 1024) > 0) {
+      }
+      std::vector<uint32_t> triangles;
+      while (s.read_faces(triangles, 1024) > 0) triangles.clear();
+    }
+  } catch (const meshsal::Error& e) {
+    outcome = e.what();
+    if (outcome.empty()) outcome = "empty message";
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "plystream: not a meshsal::Error: %s\n", e.what());
+    std::abort();
+  }
+  ::unlink(path);
+  return outcome;
+}
+
+// The targets: plystream (read_stream), obj, off, ply, stl (the bytes are the file), gz (the first byte picks the format
 // inside, the rest is the .gz file) and saliency (the first byte picks the format; small
 // meshes that load go through the CPU saliency pipeline). Returns load's result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
+  if (target == "plystream") return read_stream(data, size);
   if (target == "obj" || target == "off" || target == "ply" || target == "stl") {
     if (target == "obj" || target == "ply") {  // the attribute paths too (what simplify reads)
       meshsal::Mesh with_attributes;
