@@ -227,3 +227,37 @@ TEST_CASE("out of core: a mesh within one tile, and hostile PLY files", "[outofc
   for (const auto& e : std::filesystem::directory_iterator(dir))
     CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) == std::string::npos);
 }
+
+TEST_CASE("out of core: batch --memory-limit writes what batch writes in memory", "[outofcore][cli]") {
+  const auto dir = scratch_dir("ooc_batch");
+  std::filesystem::create_directories(dir / "in");
+  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {}, nullptr);
+  write_obj((dir / "in" / "plane.obj").string(), make_plane_with_bump(2.0, 40, 0.3, 0.2));
+  write_ply((dir / "in" / "cube.ply").string(), make_cube(10), {}, nullptr);
+  const std::string in = quoted((dir / "in").string());
+  const CliRun whole = run_cli("batch " + in + " -o " + quoted((dir / "a").string()) + " --backend cpu -q", dir);
+  REQUIRE(whole.rc == 0);
+  const CliRun ooc = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) +
+                                 " --backend cpu -q --memory-limit 200M --temp-dir " + quoted(dir.string()), dir);
+  INFO(ooc.err);
+  REQUIRE(ooc.rc == 0);
+  for (const char* name : {"sphere", "plane", "cube"}) {
+    INFO(name);
+    const std::string file = std::string(name) + "_saliency.ply";
+    CHECK(file_bytes(dir / "a" / file) == file_bytes(dir / "b" / file));
+  }
+  const std::string log = file_bytes(dir / "b" / "batch.jsonl");
+  size_t lines = 0;
+  for (size_t at = log.find("\"memory_limit\": 209715200"); at != std::string::npos;
+       at = log.find("\"memory_limit\": 209715200", at + 1))
+    ++lines;
+  CHECK(lines == 3);
+  // A rerun finds every model up to date.
+  const CliRun again = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) + " --backend cpu --memory-limit 200M", dir);
+  CHECK(again.rc == 0);
+  CHECK(again.out.find("3 skipped") != std::string::npos);
+  // What needs the mesh in memory is refused before any work.
+  std::filesystem::create_directories(dir / "empty");
+  check_usage_error("batch " + in + " -o " + quoted((dir / "empty" / "c").string()) + " --memory-limit 200M --view",
+                    "--memory-limit", dir / "empty");
+}

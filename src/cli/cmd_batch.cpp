@@ -21,6 +21,7 @@
 #include "core/mesh_points.h"
 #include "batch_inputs.h"
 #include "batch_loader.h"
+#include "peak_memory.h"
 #include "batch_log.h"
 #include "batch_outputs.h"
 #include "batch_progress.h"
@@ -68,6 +69,7 @@ struct Options {
   unsigned threads = 0;
   int device = -1, size = 512, restarts = 8, resolution = meshsal::kDefaultViewResolution;
   std::string elevation;  // --elevation MIN,MAX of the best view (empty: the whole sphere)
+  std::string memory_limit, temp_dir;  // --memory-limit, --temp-dir: saliency out of core
   uint64_t seed = 1;      // --seed of the best view's random starts
   double depth_tol = 2.0; // --depth-tol of the best view's visibility
 };
@@ -81,6 +83,7 @@ struct Plan {
   RenderStyle style;
   Backend backend;
   ElevationRange elevation;  // --elevation (the whole sphere without it)
+  uint64_t memory_limit = 0;  // --memory-limit: each model's saliency streamed through tiles
 };
 
 // GPU reuse as the log shows it: whether this model opened a device, and how many
@@ -186,6 +189,17 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
 JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string& name,
                          const ModelOutputs& out, BatchProgress& progress) {
   const Timer t;
+  if (p.memory_limit) {
+    // Out of core (the loader read nothing): the library streams the file through tiles.
+    OutOfCoreOptions ooc;
+    ooc.memory_limit = p.memory_limit;
+    ooc.temp_dir = p.o->temp_dir;
+    const OutOfCoreReport rep = saliency_file(m.path, out.saliency, p.saliency, ooc);
+    JsonObject j = out_of_core_json(m.path, out.saliency, rep, p.saliency.method, p.memory_limit, t.seconds(),
+                                    peak_resident_bytes());
+    j.text("status", "done").text("name", name).number("total_seconds", t.seconds());
+    return j;
+  }
   const GpuCounts gpu0 = GpuCounts::now();
   const SaliencyResult r = compute_saliency(m.mesh, p.saliency);
   progress.stage("writing", 0);
@@ -338,6 +352,10 @@ int run(Options o) {
                      std::to_string(o.simplify));
   if (o.lock_border && o.simplify == 0 && o.target_error == 0)
     throw UsageError("--lock-border needs --simplify or --target-error");
+  // Out of core the mesh is never whole in memory: the saliency PLY is all a model gets.
+  if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.simplify > 0 || o.target_error > 0))
+    throw UsageError("--memory-limit computes each model's saliency out of core: it takes no --view, "
+                     "--contact-sheet, --simplify or --target-error (they need the mesh in memory)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
   Plan p;
@@ -352,6 +370,7 @@ int run(Options o) {
   p.saliency.method = parse_method(o.method);
   p.saliency.device = o.device;
   p.saliency.cancel = interrupt_flag();
+  if (!o.memory_limit.empty()) p.memory_limit = parse_memory_size(o.memory_limit);
   // The smoothed saliency Sm the weights are made of, computed with S as `simplify` does.
   p.saliency.smoothed = p.simplifying && o.weights != "none";
   check_saliency_options(p.saliency);
@@ -562,8 +581,8 @@ int run(Options o) {
     return res;
   };
 
-  std::unique_ptr<ModelLoader> loader;
-  if (!to_load.empty()) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
+  std::unique_ptr<ModelLoader> loader;  // none out of core: saliency_file reads each file
+  if (!to_load.empty() && !p.memory_limit) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
   const size_t rounds = batch_rounds(to_compute.size(), ranks);
   for (size_t round = 0; round < rounds && !interrupted; ++round) {
     const size_t first = round * size_t(ranks), k = first + size_t(rank);
@@ -573,7 +592,9 @@ int run(Options o) {
       const size_t i = to_compute[k];
       progress.remaining(rounds - round - 1);
       progress.model(logged, file_name(inputs[i]));
-      LoadedModel m = loader->next();
+      LoadedModel m;
+      if (loader) m = loader->next();
+      else m.path = inputs[i];
       mine.push_back(compute(i, m));
       if (mine.back().status == "done") progress.computed(mine.back().seconds);
     }
@@ -694,6 +715,10 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--contact-sheet", o->contact_sheet,
                  "One PNG with a tile per model: its best-view picture as a thumbnail, or a failed one "
                  "marked with its error; the name under it (implies --view)");
+  sub.add_option("--memory-limit", o->memory_limit,
+                 "Compute each model's saliency out of core under this peak resident memory (e.g. "
+                 "700M, 2G), as `saliency --memory-limit` does; no --view, --contact-sheet or --simplify");
+  sub.add_option("--temp-dir", o->temp_dir, "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));

@@ -63,23 +63,7 @@ int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress
   const uint64_t peak = peak_over_ranks();
   if (!is_rank0()) return 0;
   if (a.json) {
-    JsonObject stages;
-    for (const StageTime& s : r.stages) {
-      std::string key = s.name;
-      for (char& c : key)
-        if (c == ' ' || c == '-' || c == ':') c = '_';
-      stages.number(key, s.seconds);
-    }
-    JsonObject stats;
-    stats.number("min", r.saliency_min).number("mean", r.saliency_mean).number("max", r.saliency_max);
-    JsonObject j;
-    j.text("mesh", a.input).text("output", a.output).count("vertices", r.vertices).count("points", r.points)
-        .count("faces", r.triangles).number("eps", r.eps).text("device", "cpu")
-        .text("method", opt.method == Method::Exact ? "exact" : "fast").number("seconds", seconds)
-        .object("stages", stages).count("pairs", r.pairs).count("tiles", r.tiles)
-        .count("ranks", size_t(r.ranks)).count("memory_limit", ooc.memory_limit)
-        .count("tile_estimate", r.tile_estimate).count("peak_rss", peak).object("saliency", stats);
-    j.print();
+    out_of_core_json(a.input, a.output, r, opt.method, ooc.memory_limit, seconds, peak).print();
   } else if (!a.quiet) {
     std::printf("vertices   %llu (%llu on triangles)\n", (unsigned long long)r.vertices, (unsigned long long)r.points);
     std::printf("faces      %llu triangles\n", (unsigned long long)r.triangles);

@@ -78,6 +78,28 @@ JsonObject saliency_json(const std::string& input, const std::string& output, co
   return j;
 }
 
+JsonObject out_of_core_json(const std::string& input, const std::string& output,
+                            const meshsal::OutOfCoreReport& r, meshsal::Method method, uint64_t memory_limit,
+                            double seconds, uint64_t peak_rss) {
+  JsonObject stages;
+  for (const StageTime& s : r.stages) {
+    std::string key = s.name;
+    for (char& c : key)
+      if (c == ' ' || c == '-') c = '_';
+    stages.number(key, s.seconds);
+  }
+  JsonObject stats;
+  stats.number("min", r.saliency_min).number("mean", r.saliency_mean).number("max", r.saliency_max);
+  JsonObject j;
+  j.text("mesh", input).text("output", output).count("vertices", r.vertices).count("points", r.points)
+      .count("faces", r.triangles).number("eps", r.eps).text("device", "cpu")
+      .text("method", method == Method::Exact ? "exact" : "fast").number("seconds", seconds)
+      .object("stages", stages).count("pairs", r.pairs).count("tiles", r.tiles).count("ranks", size_t(r.ranks))
+      .count("memory_limit", memory_limit).count("tile_estimate", r.tile_estimate).count("peak_rss", peak_rss)
+      .object("saliency", stats);
+  return j;
+}
+
 void print_saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
                          const SaliencyResult& r, double load_seconds) {
   saliency_json(input, output, mesh, r, load_seconds).print();

@@ -33,6 +33,12 @@ void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyRe
 JsonObject saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
                          const meshsal::SaliencyResult& result, double load_seconds);
 
+// The same for an out-of-core run (meshsal::saliency_file): its report, the limit, the
+// seconds of the whole call and the peak resident memory (the largest over MPI ranks).
+JsonObject out_of_core_json(const std::string& input, const std::string& output,
+                            const meshsal::OutOfCoreReport& report, meshsal::Method method,
+                            uint64_t memory_limit, double seconds, uint64_t peak_rss);
+
 // saliency_json() printed on stdout.
 void print_saliency_json(const std::string& input, const std::string& output, const meshsal::Mesh& mesh,
                          const meshsal::SaliencyResult& result, double load_seconds);
