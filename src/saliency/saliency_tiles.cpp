@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/adjacency.h"
+#include "core/radix_sort.h"
 #include "saliency/curvature.h"
 #include "saliency/gaussian_filter.h"
 #include "saliency/gaussian_filter_fast.h"
@@ -97,34 +98,69 @@ std::vector<double> tile_cell_sigmas(const TilePlan& plan) {
   return sigmas;
 }
 
-TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source) {
-  auto by_face = [](const TileFace& a, const TileFace& b) { return a.face < b.face; };
-  auto same_face = [](const TileFace& a, const TileFace& b) { return a.face == b.face; };
-  auto distinct = [&](std::vector<TileFace>& faces) {
-    std::sort(faces.begin(), faces.end(), by_face);
-    faces.erase(std::unique(faces.begin(), faces.end(), same_face), faces.end());
-  };
-  std::vector<uint32_t> ids;
-  std::vector<float> pos;
-  auto positions_of = [&](const std::vector<TileFace>& faces) {
-    ids.clear();
-    for (const TileFace& f : faces) ids.insert(ids.end(), f.c, f.c + 3);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    source.positions(ids, pos);
-  };
-  auto at = [&](uint32_t v) { return &pos[3 * size_t(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin())]; };
+namespace {
 
+// Each triangle once, in the mesh's order (a tile's buckets overlap where a triangle has
+// corners in two tiles).
+void distinct_faces(std::vector<TileFace>& faces) {
+  std::vector<uint64_t> key(faces.size());
+  std::vector<uint32_t> index(faces.size());
+  uint32_t largest = 0;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    key[i] = faces[i].face;
+    index[i] = uint32_t(i);
+    largest = std::max(largest, faces[i].face);
+  }
+  radix_sort(key, index, largest);
+  std::vector<TileFace> out;
+  out.reserve(faces.size());
+  for (size_t i = 0; i < index.size(); ++i)
+    if (i == 0 || key[i] != key[i - 1]) out.push_back(faces[index[i]]);
+  faces.swap(out);
+}
+
+// The distinct corners of `faces` in vertex order, each corner's number among them
+// (local[3 f + k]) and their positions.
+struct Corners {
+  std::vector<uint32_t> ids, local;
+  std::vector<float> pos;
+};
+
+void corners_of(const std::vector<TileFace>& faces, const TileSource& source, Corners& c) {
+  const size_t n = 3 * faces.size();
+  std::vector<uint64_t> key(n);
+  std::vector<uint32_t> slot(n);
+  uint32_t largest = 0;
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      key[3 * f + k] = faces[f].c[k];
+      slot[3 * f + k] = uint32_t(3 * f + k);
+      largest = std::max(largest, faces[f].c[k]);
+    }
+  radix_sort(key, slot, largest);
+  c.ids.clear();
+  c.local.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0 || key[i] != key[i - 1]) c.ids.push_back(uint32_t(key[i]));
+    c.local[slot[i]] = uint32_t(c.ids.size() - 1);
+  }
+  source.positions(c.ids, c.pos);
+}
+
+}  // namespace
+
+TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source) {
   // The tile's bucket: its own points and their 1-rings (every corner of those triangles).
   TileMesh tile;
   std::vector<TileFace> faces;
   source.bucket(t, faces);
-  distinct(faces);
-  positions_of(faces);
+  distinct_faces(faces);
+  Corners c;
+  corners_of(faces, source, c);
   BoundingBox own_box = empty_box(), query_box = empty_box();
-  for (size_t i = 0; i < ids.size(); ++i) {
-    grow(query_box, &pos[3 * i]);
-    if (tile_of(plan, &pos[3 * i]) == t) grow(own_box, &pos[3 * i]);
+  for (size_t i = 0; i < c.ids.size(); ++i) {
+    grow(query_box, &c.pos[3 * i]);
+    if (tile_of(plan, &c.pos[3 * i]) == t) grow(own_box, &c.pos[3 * i]);
   }
   if (own_box.empty()) return tile;
   BoundingBox source_box;
@@ -148,33 +184,32 @@ TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source)
   for (int z = lo[2]; z <= hi[2]; ++z)
     for (int y = lo[1]; y <= hi[1]; ++y)
       for (int x = lo[0]; x <= hi[0]; ++x) source.bucket((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, faces);
-  distinct(faces);
-  positions_of(faces);
-  size_t kept = 0;
-  for (const TileFace& f : faces) {
-    bool take = false;
-    for (int k = 0; k < 3 && !take; ++k) take = in_box(at(f.c[k]), source_box, 0.0);
-    if (take) faces[kept++] = f;
+  distinct_faces(faces);
+  corners_of(faces, source, c);
+  std::vector<uint8_t> inside(c.ids.size());
+  for (size_t i = 0; i < c.ids.size(); ++i) inside[i] = in_box(&c.pos[3 * i], source_box, 0.0) ? 1 : 0;
+  // The sub-mesh: the triangles kept in the mesh's order, their vertices in vertex order.
+  std::vector<uint32_t> kept, number(c.ids.size(), UINT32_MAX);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const uint32_t* l = &c.local[3 * f];
+    if (!inside[l[0]] && !inside[l[1]] && !inside[l[2]]) continue;
+    kept.push_back(uint32_t(f));
+    for (int k = 0; k < 3; ++k) number[l[k]] = 0;
   }
-  faces.resize(kept);
-  // The sub-mesh: its vertices in whole-mesh order, its triangles in the mesh's order.
-  for (const TileFace& f : faces) tile.global.insert(tile.global.end(), f.c, f.c + 3);
-  std::sort(tile.global.begin(), tile.global.end());
-  tile.global.erase(std::unique(tile.global.begin(), tile.global.end()), tile.global.end());
-  tile.mesh.positions.resize(3 * tile.global.size());
-  for (size_t i = 0; i < tile.global.size(); ++i) {
-    const float* p = at(tile.global[i]);
-    std::copy(p, p + 3, &tile.mesh.positions[3 * i]);
+  for (size_t i = 0; i < c.ids.size(); ++i) {
+    if (number[i] == UINT32_MAX) continue;
+    number[i] = uint32_t(tile.global.size());
+    tile.global.push_back(c.ids[i]);
+    const float* p = &c.pos[3 * i];
+    tile.mesh.positions.insert(tile.mesh.positions.end(), p, p + 3);
     const bool own = tile_of(plan, p) == t;
     tile.own.push_back(own ? 1 : 0);
     tile.own_count += own ? 1 : 0;
     tile.query.push_back(in_box(p, query_box, 0.0) ? 1 : 0);
   }
-  tile.mesh.triangles.reserve(3 * faces.size());
-  for (const TileFace& f : faces)
-    for (int k = 0; k < 3; ++k)
-      tile.mesh.triangles.push_back(
-          uint32_t(std::lower_bound(tile.global.begin(), tile.global.end(), f.c[k]) - tile.global.begin()));
+  tile.mesh.triangles.reserve(3 * kept.size());
+  for (uint32_t f : kept)
+    for (int k = 0; k < 3; ++k) tile.mesh.triangles.push_back(number[c.local[3 * size_t(f) + k]]);
   return tile;
 }
 
