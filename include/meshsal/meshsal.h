@@ -334,7 +334,9 @@ struct SaliencyOptions {
   // triangles); each scale's maximum and mbar are reduced over all tiles before the
   // suppression. Exact: the same bits as without tiles; Fast: the same to rounding (the
   // order of sums over cells). CPU only (Backend::Gpu with tiles is an Error, Auto takes
-  // the CPU). Memory: the mesh plus one tile's work at a time.
+  // the CPU). Memory: the mesh, every tile's raw maps at its query points (about 60
+  // bytes per vertex) and one tile's work at a time; saliency_file() keeps the mesh and
+  // the maps on disk instead.
   unsigned tiles = 0;
   // With tiles: processes sharing the tiles (null: this process computes them all).
   TileExchange* exchange = nullptr;

@@ -20,18 +20,20 @@ namespace {
 struct SaliencyOut {
   py::object saliency, curvature, smoothed, raw, is_point, stages, notices;
   double eps = 0;
-  unsigned long long pairs = 0, rechecked = 0;
+  unsigned long long pairs = 0, rechecked = 0, tiles = 0;
   std::string method, backend, precision;
 };
 
 SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool raw_maps, bool smoothed,
                      const py::object& scales, double eps_frac, const std::string& method,
-                     const std::string& backend, const std::string& precision, const py::object& device, unsigned threads) {
+                     const std::string& backend, const std::string& precision, const py::object& device, unsigned threads,
+                     unsigned tiles) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   std::vector<std::string> notices;
   meshsal::SaliencyOptions options =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
   options.smoothed = smoothed;
+  options.tiles = tiles;
   meshsal::SaliencyResult r;
   {
     const InterruptibleCall call;  // other Python threads run while it computes; Ctrl-C stops it
@@ -61,6 +63,7 @@ SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool r
   out.eps = r.eps;
   out.pairs = r.pairs;
   out.rechecked = r.rechecked;
+  out.tiles = r.tiles;
   out.method = r.method == meshsal::Method::Fast ? "fast" : "exact";
   out.backend = r.backend_name;
   out.precision = r.mixed_precision ? "mixed" : "double";
@@ -83,6 +86,7 @@ void bind_saliency(py::module_& m) {
       .def_readonly("eps", &SaliencyOut::eps, "the scale unit eps, model units")
       .def_readonly("pairs", &SaliencyOut::pairs, "neighbour pairs the sweep visited")
       .def_readonly("rechecked", &SaliencyOut::rechecked, "points a mixed-precision sweep swept again in double")
+      .def_readonly("tiles", &SaliencyOut::tiles, "tiles of the grid (tiles=N), 0 untiled")
       .def_readonly("method", &SaliencyOut::method, "'exact' or 'fast' (method='auto' resolved)")
       .def_readonly("backend", &SaliencyOut::backend, "'cpu (N threads)' or the Vulkan device's name")
       .def_readonly("precision", &SaliencyOut::precision, "the sweep's arithmetic: 'double' or 'mixed'")
@@ -95,9 +99,9 @@ void bind_saliency(py::module_& m) {
   m.def("saliency", &saliency, py::arg("vertices"), py::arg("faces"), py::kw_only(),
         py::arg("raw_maps") = false, py::arg("smoothed") = false, py::arg("scales") = py::none(),
         py::arg("eps_frac") = 0.003, py::arg("method") = "exact", py::arg("backend") = "auto",
-        py::arg("precision") = "auto", py::arg("device") = -1, py::arg("threads") = 0u,
+        py::arg("precision") = "auto", py::arg("device") = -1, py::arg("threads") = 0u, py::arg("tiles") = 0u,
         (std::string(R"(saliency(vertices, faces, *, raw_maps=False, smoothed=False, scales=None, eps_frac=0.003,
-         method='exact', backend='auto', precision='auto', device=-1, threads=0) -> SaliencyResult
+         method='exact', backend='auto', precision='auto', device=-1, threads=0, tiles=0) -> SaliencyResult
 
 Mesh saliency of every vertex (`meshsal saliency`): the result's .saliency is the PLY's
 `quality`, .curvature and .raw (raw_maps=True) what --dump-scales adds, .smoothed
@@ -108,6 +112,9 @@ Mesh saliency of every vertex (`meshsal saliency`): the result's .saliency is th
   raw_maps    also return .curvature's companions .raw, the center-surround maps S_i
               (--dump-scales); save(path, V, F, r.saliency) writes the PLY of S
   smoothed    also return .smoothed, Sm = G(S, 3 eps) with the same method
+  tiles       compute in cubic tiles, this many along the longest axis, each with a halo
+              (`meshsal saliency --tiles`): exact gives the same bits, fast the same to 1e-4;
+              CPU only
 Wrong types raise TypeError; wrong shapes, NaN/inf, indices out of range ValueError; the
 library's errors meshsal.Error (a ValueError). The GIL is released while it computes.
 )") + kSaliencyArgsDoc).c_str());

@@ -57,6 +57,24 @@ def test_saliency_options_equal_cli(mesh_path, cli, tmp_path):
     np.testing.assert_array_equal(r.saliency, r2.saliency)
 
 
+def test_tiled_saliency_equals_cli_and_untiled(mesh_path, cli, tmp_path):
+    # tiles=N is `--tiles N`, and (exact method) the untiled map bit for bit; the CLI's
+    # out-of-core run writes the same values.
+    path = mesh_path("bunny_36k.obj")
+    out, ooc = tmp_path / "tiled.ply", tmp_path / "ooc.ply"
+    j = cli.json("saliency", path, "-o", out, "--backend", "cpu", "--tiles", "4", "--json")
+    cli("saliency", path, "-o", ooc, "--backend", "cpu", "--memory-limit", "200M", "-q")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="cpu", tiles=4)
+    whole = meshsal.saliency(V, F, backend="cpu")
+    assert r.tiles == j["tiles"] and r.tiles > 1 and whole.tiles == 0
+    np.testing.assert_array_equal(r.saliency, whole.saliency)
+    np.testing.assert_array_equal(r.curvature, whole.curvature)
+    for p in (out, ooc):
+        _, _, props = meshsal.load(str(p), properties=True)
+        np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
+
+
 @pytest.mark.parametrize("weights", ["saliency", "none"])
 def test_simplify_equals_cli(weights, mesh_path, cli, tmp_path):
     # A mesh without texture coordinates: the CLI carries OBJ attributes (and splits vertices
