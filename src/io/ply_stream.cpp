@@ -7,61 +7,18 @@
 #include <sstream>
 
 #include "io/mesh_io_internal.h"
+#include "io/ply_types.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 
 namespace {
 
-enum class Type { I8, U8, I16, U16, I32, U32, F32, F64, None };
-
-Type type_of(const std::string& s) {
-  if (s == "char" || s == "int8") return Type::I8;
-  if (s == "uchar" || s == "uint8") return Type::U8;
-  if (s == "short" || s == "int16") return Type::I16;
-  if (s == "ushort" || s == "uint16") return Type::U16;
-  if (s == "int" || s == "int32") return Type::I32;
-  if (s == "uint" || s == "uint32") return Type::U32;
-  if (s == "float" || s == "float32") return Type::F32;
-  if (s == "double" || s == "float64") return Type::F64;
-  return Type::None;
-}
-
-size_t size_of(Type t) {
-  switch (t) {
-    case Type::I8: case Type::U8: return 1;
-    case Type::I16: case Type::U16: return 2;
-    case Type::I32: case Type::U32: case Type::F32: return 4;
-    case Type::F64: return 8;
-    case Type::None: break;
-  }
-  return 0;
-}
-
-// One value of type t at p, in the file's byte order, as a double.
-double value_at(const uint8_t* p, Type t, bool swap) {
-  uint8_t b[8];
-  const size_t n = size_of(t);
-  std::memcpy(b, p, n);
-  if (swap) std::reverse(b, b + n);
-  switch (t) {
-    case Type::I8: { int8_t x; std::memcpy(&x, b, 1); return x; }
-    case Type::U8: return b[0];
-    case Type::I16: { int16_t x; std::memcpy(&x, b, 2); return x; }
-    case Type::U16: { uint16_t x; std::memcpy(&x, b, 2); return x; }
-    case Type::I32: { int32_t x; std::memcpy(&x, b, 4); return x; }
-    case Type::U32: { uint32_t x; std::memcpy(&x, b, 4); return x; }
-    case Type::F32: { float x; std::memcpy(&x, b, 4); return x; }
-    case Type::F64: { double x; std::memcpy(&x, b, 8); return x; }
-    case Type::None: break;
-  }
-  return 0;
-}
-
 struct Property {
   std::string name;
-  Type type = Type::None;       // scalar type, or the list's item type
-  Type count = Type::None;      // list count type; None for a scalar
+  PlyType type = PlyType::Float32;  // scalar type, or the list's item type
+  bool is_list = false;
+  PlyType count = PlyType::UInt8;   // a list's count type
 };
 
 struct Element {
@@ -79,7 +36,8 @@ struct PlyStream::Layout {
   bool swap = false;
   size_t vertex_bytes = 0;                    // one vertex record
   size_t xyz_offset[3] = {0, 0, 0};
-  Type xyz_type[3] = {Type::None, Type::None, Type::None};
+  PlyType xyz_type[3] = {PlyType::Float32, PlyType::Float32, PlyType::Float32};
+  bool has_xyz[3] = {false, false, false};
   bool vertex_lists = false;                  // the vertex element holds a list property
   std::vector<uint8_t> buffer;
 };
@@ -133,14 +91,13 @@ PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_u
       if (t == "list") {
         std::string ct, it;
         in >> ct >> it >> p.name;
-        p.count = type_of(ct);
-        p.type = type_of(it);
-        if (p.count == Type::None || p.type == Type::None || p.count == Type::F32 || p.count == Type::F64)
+        p.is_list = true;
+        if (!type_from_name(ct, p.count) || !type_from_name(it, p.type) || p.count == PlyType::Float32 ||
+            p.count == PlyType::Float64)
           fail("bad list property: " + line);
       } else {
         in >> p.name;
-        p.type = type_of(t);
-        if (p.type == Type::None) fail("unknown property type: " + line);
+        if (!type_from_name(t, p.type)) fail("unknown property type: " + line);
       }
       L.elements.back().props.push_back(p);
     }
@@ -154,7 +111,7 @@ PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_u
   if (L.face < L.vertex) fail("the PLY's faces come before its vertices");
   const Element& v = L.elements[L.vertex];
   for (const Property& p : v.props) {
-    if (p.count != Type::None) {  // a list (skipped): records differ in size
+    if (p.is_list) {  // a list (skipped): records differ in size
       L.vertex_lists = true;
       continue;
     }
@@ -162,15 +119,17 @@ PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_u
       if (p.name == std::string(1, char('x' + a))) {
         L.xyz_offset[a] = L.vertex_bytes;
         L.xyz_type[a] = p.type;
+        L.has_xyz[a] = true;
       }
-    L.vertex_bytes += size_of(p.type);
+    L.vertex_bytes += type_size(p.type);
   }
   for (int a = 0; a < 3; ++a)
-    if (L.xyz_type[a] == Type::None) fail("the vertex element has no x, y and z");
-  double_xyz_ = L.xyz_type[0] == Type::F64 || L.xyz_type[1] == Type::F64 || L.xyz_type[2] == Type::F64;
+    if (!L.has_xyz[a]) fail("the vertex element has no x, y and z");
+  double_xyz_ = L.xyz_type[0] == PlyType::Float64 || L.xyz_type[1] == PlyType::Float64 ||
+                L.xyz_type[2] == PlyType::Float64;
   bool indices = false;
   for (const Property& p : L.elements[L.face].props)
-    indices |= p.count != Type::None && (p.name == "vertex_indices" || p.name == "vertex_index");
+    indices |= p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index");
   if (!indices) fail("the face element has no vertex_indices list");
   vertices_ = v.count;
   faces_ = L.elements[L.face].count;
@@ -212,14 +171,14 @@ void PlyStream::skip_element(size_t e) {
   uint8_t b[8];
   for (uint64_t i = 0; i < el.count; ++i)
     for (const Property& p : el.props) {
-      if (p.count == Type::None) {
-        read_exact(b, size_of(p.type));
+      if (!p.is_list) {
+        read_exact(b, type_size(p.type));
         continue;
       }
-      read_exact(b, size_of(p.count));
-      const double n = value_at(b, p.count, layout_->swap);
+      read_exact(b, type_size(p.count));
+      const double n = read_value(b, p.count, layout_->swap);
       if (n < 0) throw Error(path_ + ": a negative list length in element " + el.name);
-      for (double k = 0; k < n; ++k) read_exact(b, size_of(p.type));
+      for (double k = 0; k < n; ++k) read_exact(b, type_size(p.type));
     }
 }
 
@@ -235,17 +194,17 @@ size_t PlyStream::read_vertices(double* out, size_t max) {
     for (size_t i = 0; i < n; ++i) {
       size_t at = 0;
       for (const Property& p : L.elements[L.vertex].props) {
-        if (p.count == Type::None) {
-          read_exact(&record[at], size_of(p.type));
-          at += size_of(p.type);
+        if (!p.is_list) {
+          read_exact(&record[at], type_size(p.type));
+          at += type_size(p.type);
           continue;
         }
-        read_exact(b, size_of(p.count));
-        const double items = value_at(b, p.count, L.swap);
+        read_exact(b, type_size(p.count));
+        const double items = read_value(b, p.count, L.swap);
         if (items < 0) throw Error(path_ + ": a negative list length in the vertex element");
-        for (double k = 0; k < items; ++k) read_exact(b, size_of(p.type));
+        for (double k = 0; k < items; ++k) read_exact(b, type_size(p.type));
       }
-      for (int a = 0; a < 3; ++a) out[3 * i + a] = value_at(&record[L.xyz_offset[a]], L.xyz_type[a], L.swap);
+      for (int a = 0; a < 3; ++a) out[3 * i + a] = read_value(&record[L.xyz_offset[a]], L.xyz_type[a], L.swap);
     }
     vertices_read_ += n;
     if (vertices_read_ == vertices_) L.next = L.vertex + 1;
@@ -255,7 +214,7 @@ size_t PlyStream::read_vertices(double* out, size_t max) {
   read_exact(L.buffer.data(), L.buffer.size());
   for (size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a)
-      out[3 * i + a] = value_at(&L.buffer[i * L.vertex_bytes + L.xyz_offset[a]], L.xyz_type[a], L.swap);
+      out[3 * i + a] = read_value(&L.buffer[i * L.vertex_bytes + L.xyz_offset[a]], L.xyz_type[a], L.swap);
   vertices_read_ += n;
   if (vertices_read_ == vertices_) L.next = L.vertex + 1;
   return n;
@@ -271,24 +230,24 @@ size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
   uint8_t b[8];
   for (; done < max && faces_read_ < faces_; ++done, ++faces_read_) {
     for (const Property& p : f.props) {
-      if (p.count == Type::None) {
-        read_exact(b, size_of(p.type));
+      if (!p.is_list) {
+        read_exact(b, type_size(p.type));
         continue;
       }
-      read_exact(b, size_of(p.count));
-      const double n = value_at(b, p.count, L.swap);
+      read_exact(b, type_size(p.count));
+      const double n = read_value(b, p.count, L.swap);
       const bool corners = p.name == "vertex_indices" || p.name == "vertex_index";
       if (!corners) {
-        for (double k = 0; k < n; ++k) read_exact(b, size_of(p.type));
+        for (double k = 0; k < n; ++k) read_exact(b, type_size(p.type));
         continue;
       }
       const std::string problem = polygon_size_problem(n < 0 ? 0 : uint64_t(n));
       if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
       poly.resize(size_t(n));
-      L.buffer.resize(size_t(n) * size_of(p.type));
+      L.buffer.resize(size_t(n) * type_size(p.type));
       read_exact(L.buffer.data(), L.buffer.size());
       for (size_t k = 0; k < poly.size(); ++k) {
-        const double x = value_at(&L.buffer[k * size_of(p.type)], p.type, L.swap);
+        const double x = read_value(&L.buffer[k * type_size(p.type)], p.type, L.swap);
         if (!(x >= 0 && x < double(vertices_)))
           throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " +
                       std::to_string(int64_t(x)) + " but the file has " + std::to_string(vertices_) + " vertices");
