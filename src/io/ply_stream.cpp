@@ -43,10 +43,22 @@ struct PlyStream::Layout {
 };
 
 PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_unique<Layout>()) {
-  auto fail = [&](const std::string& why) { throw Error(path + ": " + why); };
   gz_ = gzopen(path.c_str(), "rb");
-  if (!gz_) fail("cannot open");
+  if (!gz_) throw Error(path + ": cannot open");
   gzbuffer(static_cast<gzFile>(gz_), 1 << 20);
+  // A header refused here never reaches the destructor: the file is closed on the way out.
+  try {
+    read_header();
+  } catch (...) {
+    gzclose(static_cast<gzFile>(gz_));
+    gz_ = nullptr;
+    throw;
+  }
+}
+
+void PlyStream::read_header() {
+  const std::string& path = path_;
+  auto fail = [&](const std::string& why) { throw Error(path + ": " + why); };
   // The header, line by line (at most 1 MB of it).
   std::string line, header;
   auto next_line = [&]() {

@@ -35,6 +35,7 @@ class PlyStream {
 
  private:
   struct Layout;
+  void read_header();
   void read_exact(void* to, size_t n);
   void skip_element(size_t e);
   std::string path_;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <string_view>
@@ -74,6 +75,8 @@ inline std::string read_stream(const uint8_t* data, size_t size) {
     std::abort();
   }
   ::unlink(path);
+  // Messages name the input: the temporary file is "fuzz.plystream" there.
+  for (size_t at; (at = outcome.find(path)) != std::string::npos;) outcome.replace(at, std::strlen(path), "fuzz.plystream");
   return outcome;
 }
 
