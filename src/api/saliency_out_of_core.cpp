@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "api/tile_saliency.h"
 #include "api/tile_store.h"
 #include "core/cancel.h"
 #include "core/timer.h"
@@ -18,42 +19,6 @@
 namespace meshsal {
 
 namespace {
-
-void save(const std::string& path, const TileBytes& b) {
-  ScratchWriter out(path);
-  out.write_vector(b.data);
-  out.close();
-}
-
-void save_raw(const std::string& path, const TileRaw& r) {
-  TileBytes b;
-  b.put(r.global);
-  b.put(r.positions);
-  b.put(r.own);
-  b.put(r.curvature);
-  b.put(uint64_t(r.raw.size()));
-  for (const auto& k : r.raw) b.put(k);
-  b.put(r.ring_offsets);
-  b.put(r.ring);
-  b.put(r.pairs);
-  save(path, b);
-}
-
-TileRaw load_raw(const std::string& path) {
-  const std::vector<uint8_t> bytes = read_scratch_file(path);
-  TileBytesReader in{bytes};
-  TileRaw r;
-  r.global = in.get_vector<uint32_t>();
-  r.positions = in.get_vector<float>();
-  r.own = in.get_vector<uint8_t>();
-  r.curvature = in.get_vector<double>();
-  r.raw.resize(in.get<uint64_t>());
-  for (auto& k : r.raw) k = in.get_vector<double>();
-  r.ring_offsets = in.get_vector<uint32_t>();
-  r.ring = in.get_vector<uint32_t>();
-  r.pairs = in.get<uint64_t>();
-  return r;
-}
 
 // The store's description, from rank 0 to the others (they read the same files).
 TileBytes describe(const TileStore& s) {
@@ -96,16 +61,6 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
   s.plan.query_margin = in.get<double>();
   s.plan.source_margin = in.get<double>();
   s.plan.eps = in.get<double>();
-}
-
-// What each tile's results file holds, per own point.
-void save_result(const std::string& path, const TileResult& r) {
-  TileBytes b;
-  b.put(r.global);
-  b.put(r.curvature);
-  b.put(r.saliency);
-  for (const auto& k : r.raw) b.put(k);
-  save(path, b);
 }
 
 }  // namespace
@@ -175,85 +130,8 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     }
     if (rank != 0) adopt(store, all[0], options);
   }
-  const TilePlan& plan0 = store.plan;
-  TilePlan plan = plan0;
-  const size_t ntiles = tile_count(plan);
-  report.vertices = store.vertices;
-  report.points = store.points;
-  report.triangles = store.triangles;
-  report.tiles = ntiles;
-  report.eps = plan.eps;
-  report.tile_estimate = store.largest_tile_estimate;
-  std::vector<size_t> mine;
-  for (size_t t = size_t(rank); t < ntiles; t += size_t(ranks)) mine.push_back(t);
-  auto raw_file = [&](size_t t) { return store.dir.file("raw_" + std::to_string(t) + ".bin"); };
-  auto result_file = [&](size_t t) { return store.dir.file("result_" + std::to_string(t) + ".bin"); };
   lap("tiling");
-
-  // Phase 0 (fast): the whole mesh's occupied cells.
-  if (plan.method == Method::Fast) {
-    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
-    for (size_t i = 0; i < mine.size(); ++i) {
-      progress("cells", double(i) / mine.size());
-      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i], cell_count_plan(plan)), plan);
-      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
-    }
-    cells = reduce_cell_counts(exchange, cells);
-    plan.fast_cells = cells;
-    lap("cell counts");
-  }
-
-  // Phase 1: raw maps, each tile's kept on disk; the scales' maxima over all tiles.
-  std::vector<ScaleMax> max(options.scales.size());
-  uint64_t pairs = 0;
-  for (size_t i = 0; i < mine.size(); ++i) {
-    progress("tiles", double(i) / mine.size());
-    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i], plan), plan);
-    pairs += raw.pairs;
-    merge_scale_max(max, tile_scale_max(raw));
-    save_raw(raw_file(mine[i]), raw);
-  }
-  progress("tiles", 1.0);
-  reduce_scale_max(exchange, max, pairs);
-  report.pairs = pairs;
-  lap("tile raw maps");
-
-  // Phase 2: mbar from the local maxima of every tile, in vertex order.
-  std::vector<std::vector<LocalMax>> maxima(options.scales.size());
-  for (size_t t : mine) {
-    const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
-    for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
-  }
-  const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
-  lap("suppression");
-
-  // Phase 3: each tile's results to disk; the saliency's range for the colours.
-  double lo = INFINITY, hi = -INFINITY, sum = 0;
-  for (size_t i = 0; i < mine.size(); ++i) {
-    progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
-    const std::string raw_path = raw_file(mine[i]);
-    const TileResult r = tile_finish(load_raw(raw_path), plan, max, mbar);
-    std::remove(raw_path.c_str());
-    for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
-    save_result(result_file(mine[i]), r);
-  }
-  {
-    TileBytes b;
-    b.put(lo);
-    b.put(hi);
-    b.put(sum);
-    sum = 0;
-    for (const auto& bytes : tile_gather(exchange, b.data)) {
-      TileBytesReader in{bytes};
-      lo = std::min(lo, in.get<double>());
-      hi = std::max(hi, in.get<double>());
-      sum += in.get<double>();
-    }
-  }
-  report.saliency_min = lo;
-  report.saliency_max = hi;
-  report.saliency_mean = store.points ? sum / double(store.points) : 0;
-  lap("saliency");
+  tile_saliency(store, options, report);
 
   // The output (rank 0): the vertices a block at a time, each block's results gathered
   // from every tile's file; then the triangles.
@@ -272,7 +150,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     header += "element face " + std::to_string(store.triangles) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
-    const ColorLimits limits = colour_limits({lo, hi}, {1, 1}, ColorRange{});
+    const ColorLimits limits = colour_limits({report.saliency_min, report.saliency_max}, {1, 1}, ColorRange{});
     // A block of output vertices holds their results (8 bytes each) and positions as read:
     // a quarter of the limit.
     const size_t per_vertex = 8 * (2 + scales) + 25;
@@ -285,28 +163,10 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
       for (uint64_t first = 0; first < store.vertices; first += block) {
         const size_t count = size_t(std::min<uint64_t>(block, store.vertices - first));
         progress("writing", double(first) / double(store.vertices));
-        const size_t width = 2 + scales;  // saliency, curvature, raws
-        std::vector<double> values(count * width, 0.0);
-        std::vector<uint8_t> point(count, 0);
-        for (size_t t = 0; t < ntiles; ++t) {
-          const std::string path = result_file(t);
-          if (std::FILE* probe = std::fopen(path.c_str(), "rb")) std::fclose(probe);
-          else continue;  // a tile without points
-          const std::vector<uint8_t> bytes = read_scratch_file(path);
-          TileBytesReader in{bytes};
-          const std::vector<uint32_t> global = in.get_vector<uint32_t>();
-          const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>();
-          std::vector<std::vector<double>> raw(scales);
-          for (auto& k : raw) k = in.get_vector<double>();
-          for (size_t i = 0; i < global.size(); ++i) {
-            if (global[i] < first || global[i] >= first + count) continue;
-            const size_t v = global[i] - first;
-            point[v] = 1;
-            values[v * width] = saliency[i];
-            values[v * width + 1] = curvature[i];
-            for (size_t k = 0; k < scales; ++k) values[v * width + 2 + k] = raw[k][i];
-          }
-        }
+        const size_t width = kResultWidth + scales;
+        std::vector<double> values;
+        std::vector<uint8_t> point;
+        read_tile_results(store, scales, first, count, values, point);
         std::vector<double> xyz(3 * count);
         read_source_positions(store, first, count, xyz.data());
         buf.clear();
@@ -323,7 +183,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
           put(&q, 4);
           if (ooc.dump_scales)
             for (size_t k = 0; k < 1 + scales; ++k) {
-              const float x = float(values[v * width + 1 + k]);
+              const float x = float(values[v * width + 2 + k]);
               put(&x, 4);
             }
           uint8_t rgb[3];

@@ -1,0 +1,186 @@
+// tile_saliency(): the phases of saliency_tiles.h over a TileStore, see tile_saliency.h.
+#include "api/tile_saliency.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/timer.h"
+#include "saliency/tile_bytes.h"
+#include "saliency/tile_reduce.h"
+
+namespace meshsal {
+
+namespace {
+
+void save(const std::string& path, const TileBytes& b) {
+  ScratchWriter out(path);
+  out.write_vector(b.data);
+  out.close();
+}
+
+void save_raw(const std::string& path, const TileRaw& r) {
+  TileBytes b;
+  b.put(r.global);
+  b.put(r.positions);
+  b.put(r.own);
+  b.put(r.curvature);
+  b.put(uint64_t(r.raw.size()));
+  for (const auto& k : r.raw) b.put(k);
+  b.put(r.ring_offsets);
+  b.put(r.ring);
+  b.put(r.pairs);
+  save(path, b);
+}
+
+TileRaw load_raw(const std::string& path) {
+  const std::vector<uint8_t> bytes = read_scratch_file(path);
+  TileBytesReader in{bytes};
+  TileRaw r;
+  r.global = in.get_vector<uint32_t>();
+  r.positions = in.get_vector<float>();
+  r.own = in.get_vector<uint8_t>();
+  r.curvature = in.get_vector<double>();
+  r.raw.resize(in.get<uint64_t>());
+  for (auto& k : r.raw) k = in.get_vector<double>();
+  r.ring_offsets = in.get_vector<uint32_t>();
+  r.ring = in.get_vector<uint32_t>();
+  r.pairs = in.get<uint64_t>();
+  return r;
+}
+
+// What each tile's results file holds, per own point.
+void save_result(const std::string& path, const TileResult& r) {
+  TileBytes b;
+  b.put(r.global);
+  b.put(r.curvature);
+  b.put(r.saliency);
+  b.put(r.smoothed);
+  for (const auto& k : r.raw) b.put(k);
+  save(path, b);
+}
+
+}  // namespace
+
+std::string tile_result_file(const TileStore& store, size_t t) {
+  return store.dir.file("result_" + std::to_string(t) + ".bin");
+}
+
+void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report) {
+  TileExchange* exchange = options.exchange;
+  const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
+  Timer clock;
+  auto lap = [&](const char* name) {
+    report.stages.push_back({name, clock.seconds()});
+    clock.restart();
+  };
+  auto progress = [&](const char* stage, double f) {
+    if (options.progress) options.progress(stage, f);
+  };
+  TilePlan plan = store.plan;
+  const size_t ntiles = tile_count(plan);
+  report.vertices = store.vertices;
+  report.points = store.points;
+  report.triangles = store.triangles;
+  report.tiles = ntiles;
+  report.eps = plan.eps;
+  report.tile_estimate = store.largest_tile_estimate;
+  std::vector<size_t> mine;
+  for (size_t t = size_t(rank); t < ntiles; t += size_t(ranks)) mine.push_back(t);
+  auto raw_file = [&](size_t t) { return store.dir.file("raw_" + std::to_string(t) + ".bin"); };
+
+  // Phase 0 (fast): the whole mesh's occupied cells.
+  if (plan.method == Method::Fast) {
+    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
+    for (size_t i = 0; i < mine.size(); ++i) {
+      progress("cells", double(i) / mine.size());
+      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i], cell_count_plan(plan)), plan);
+      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
+    }
+    cells = reduce_cell_counts(exchange, cells);
+    plan.fast_cells = cells;
+    lap("cell counts");
+  }
+
+  // Phase 1: raw maps, each tile's kept on disk; the scales' maxima over all tiles.
+  std::vector<ScaleMax> max(options.scales.size());
+  uint64_t pairs = 0;
+  for (size_t i = 0; i < mine.size(); ++i) {
+    progress("tiles", double(i) / mine.size());
+    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i], plan), plan);
+    pairs += raw.pairs;
+    merge_scale_max(max, tile_scale_max(raw));
+    save_raw(raw_file(mine[i]), raw);
+  }
+  progress("tiles", 1.0);
+  reduce_scale_max(exchange, max, pairs);
+  report.pairs = pairs;
+  lap("tile raw maps");
+
+  // Phase 2: mbar from the local maxima of every tile, in vertex order.
+  std::vector<std::vector<LocalMax>> maxima(options.scales.size());
+  for (size_t t : mine) {
+    const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
+    for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
+  }
+  const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
+  lap("suppression");
+
+  // Phase 3: each tile's results to disk; the saliency's range for the colours.
+  double lo = INFINITY, hi = -INFINITY, sum = 0;
+  for (size_t i = 0; i < mine.size(); ++i) {
+    progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
+    const std::string raw_path = raw_file(mine[i]);
+    const TileResult r = tile_finish(load_raw(raw_path), plan, max, mbar);
+    std::remove(raw_path.c_str());
+    for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
+    save_result(tile_result_file(store, mine[i]), r);
+  }
+  {
+    TileBytes b;
+    b.put(lo);
+    b.put(hi);
+    b.put(sum);
+    sum = 0;
+    for (const auto& bytes : tile_gather(exchange, b.data)) {
+      TileBytesReader in{bytes};
+      lo = std::min(lo, in.get<double>());
+      hi = std::max(hi, in.get<double>());
+      sum += in.get<double>();
+    }
+  }
+  report.saliency_min = lo;
+  report.saliency_max = hi;
+  report.saliency_mean = store.points ? sum / double(store.points) : 0;
+  lap("saliency");
+
+}
+
+void read_tile_results(const TileStore& store, size_t scales, uint64_t first, size_t count,
+                       std::vector<double>& values, std::vector<uint8_t>& point) {
+  const size_t width = kResultWidth + scales;
+  values.assign(count * width, 0.0);
+  point.assign(count, 0);
+  for (size_t t = 0; t < tile_count(store.plan); ++t) {
+    const std::string path = tile_result_file(store, t);
+    if (std::FILE* probe = std::fopen(path.c_str(), "rb")) std::fclose(probe);
+    else continue;  // a tile without points
+    const std::vector<uint8_t> bytes = read_scratch_file(path);
+    TileBytesReader in{bytes};
+    const std::vector<uint32_t> global = in.get_vector<uint32_t>();
+    const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>(),
+                              smoothed = in.get_vector<double>();
+    std::vector<std::vector<double>> raw(scales);
+    for (auto& k : raw) k = in.get_vector<double>();
+    for (size_t i = 0; i < global.size(); ++i) {
+      if (global[i] < first || global[i] >= first + count) continue;
+      double* out = &values[(global[i] - first) * width];
+      point[global[i] - first] = 1;
+      out[0] = saliency[i];
+      out[1] = smoothed.empty() ? 0.0 : smoothed[i];
+      out[2] = curvature[i];
+      for (size_t k = 0; k < scales; ++k) out[3 + k] = raw[k][i];
+    }
+  }
+}
+
+}  // namespace meshsal

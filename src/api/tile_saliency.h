@@ -1,0 +1,29 @@
+// meshsal: the saliency of a TileStore's tiles (phases 0-3 of saliency_tiles.h), a tile
+// at a time with each tile's state on disk between phases, and the per-vertex results
+// read back in the input's order: what saliency_file() writes and simplify_file() weighs.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "api/tile_store.h"
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+
+// Phases 0-3 over this process's share of the store's tiles (options.exchange shares them
+// and reduces the per-scale scalars); each tile's results stay in its file. Fills
+// report's counts, pairs, saliency range and stages (from "cell counts" on).
+void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report);
+
+// Tile t's results file.
+std::string tile_result_file(const TileStore& store, size_t t);
+
+// Per vertex of [first, first + count), kResultWidth + scales values from every tile's
+// results: S, Sm (0 unless options.smoothed), curvature, then the raw map of each scale;
+// point[v] = 1 where a tile owns the vertex (a mesh point), else its values are 0.
+constexpr size_t kResultWidth = 3;
+void read_tile_results(const TileStore& store, size_t scales, uint64_t first, size_t count,
+                       std::vector<double>& values, std::vector<uint8_t>& point);
+
+}  // namespace meshsal
