@@ -17,6 +17,7 @@
 #include "core/timer.h"
 #include "simplify/simplify.h"
 #include "simplify/tile_grid.h"
+#include "simplify/tile_pass.h"
 #include "simplify/tile_pieces.h"
 
 namespace meshsal {
@@ -31,23 +32,12 @@ struct Work {
   std::vector<uint32_t> ids;  // increasing
 };
 
-struct Totals {
-  size_t collapses = 0, refused = 0;
-  double error = 0;  // in model units
-};
-
-// How a pass sets each group's face target.
-enum class Targets {
-  FirstPass,  // the ratio on the triangles away from the cut; those at it stay (they wait for the strips)
-  Remaining,  // the faces still over the target, spread over the groups by face count, carried on
-};
-
 // One pass: the triangles `selected` of work, grouped by `grid`, each group simplified as a
 // tile; the rest pass through. `pending` (per global id): vertices not yet free in any
 // pass; on return only those that this pass had to pin.
-Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const TileGrid& grid, Targets rule,
-              size_t target, double ratio, const std::vector<double>* weights, const SimplifyOptions& options,
-              std::vector<uint8_t>& pending, Totals& totals) {
+Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const TileGrid& grid, PassBudget budget,
+              const std::vector<double>* weights, const SimplifyOptions& options, std::vector<uint8_t>& pending,
+              PassTotals& totals) {
   const std::vector<std::pair<uint64_t, uint32_t>> cells = triangles_by_cell(work.mesh, selected, grid);
   const size_t nt = work.mesh.triangle_count();
   std::vector<uint32_t> group(nt, UINT32_MAX);  // UINT32_MAX: not selected
@@ -59,62 +49,22 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
   }
   const VertexTriangles around = vertex_triangles(work.mesh);
   std::vector<TilePiece> out;
-  std::vector<uint8_t> pinned_now(pending.size(), 0);
-  // Remaining: faces to remove, and selected faces not yet simplified.
-  long long to_remove = (long long)nt - (long long)target;
-  size_t faces_left = selected.size();
   for (size_t g = 0; g < groups.size(); ++g) {
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
-    const size_t f = groups[g].size();
-    size_t goal;
-    if (rule == Targets::FirstPass) {
-      // A triangle with two pinned corners lies on the cut: pass 1 cannot remove it (about
-      // one per cut edge stays for the strips), so the ratio applies to the rest.
-      size_t at_cut = 0;
-      for (size_t t = 0; t < f; ++t) {
-        const uint32_t* v = &tile.mesh.triangles[3 * t];
-        at_cut += tile.pinned[v[0]] + tile.pinned[v[1]] + tile.pinned[v[2]] >= 2;
-      }
-      goal = at_cut + size_t(std::llround(ratio * double(f - at_cut)));
-    } else {
-      const double share = faces_left > 0 ? double(std::max(0LL, to_remove)) * double(f) / double(faces_left) : 0;
-      goal = f - std::min(f, size_t(std::llround(share)));
-    }
-    goal = std::max<size_t>(goal, 1);
     std::vector<double> w;
     if (weights) {
       w.resize(tile.ids.size());
       for (size_t i = 0; i < w.size(); ++i) w[i] = (*weights)[tile.ids[i]];
     }
-    SimplifyReport rep;
-    out.push_back(simplify_tile(tile, weights ? &w : nullptr, goal, options, &rep));
-    totals.collapses += rep.collapses;
-    totals.refused += rep.refused;
-    // rep.error is in units of the tile's diagonal: to model units.
-    const BoundingBox tb = bounding_box(tile.mesh.positions.data(), tile.mesh.vertex_count(), nullptr);
-    totals.error = std::max(totals.error, rep.error * tb.diagonal());
-    to_remove -= (long long)f - (long long)out.back().mesh.triangle_count();
-    faces_left -= f;
-    // Pinned here: the tile's own vertices that it shares (a guard's far corner belongs to
-    // another group, which may free it).
-    for (size_t i = 0; i < 3 * f; ++i) {
-      const uint32_t v = tile.mesh.triangles[i];
-      pinned_now[tile.ids[v]] |= tile.pinned[v];
-    }
+    out.push_back(simplify_group(tile, weights ? &w : nullptr, options, budget, totals));
+    for (uint32_t id : freed_ids(tile)) pending[id] = 0;
   }
   // The triangles no group took, as they are.
   std::vector<uint32_t> rest;
   for (size_t t = 0; t < nt; ++t)
     if (group[t] == UINT32_MAX) rest.push_back(uint32_t(t));
   if (!rest.empty()) out.push_back(cut_piece(work.mesh, work.ids, nullptr, group, UINT32_MAX, rest));
-  // A vertex in a group and not pinned there was free in this pass.
-  for (const std::vector<uint32_t>& list : groups)
-    for (uint32_t t : list)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t id = work.ids[work.mesh.triangles[3 * size_t(t) + k]];
-        if (!pinned_now[id]) pending[id] = 0;
-      }
   Work next;
   next.mesh = merge_pieces(out, work.mesh, &next.ids);
   return next;
@@ -200,22 +150,20 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   std::vector<uint32_t> all(faces);
   for (size_t t = 0; t < faces; ++t) all[t] = uint32_t(t);
   std::vector<uint8_t> pending(nv, 1);  // every vertex waits for its first pass
-  Totals totals;
-  work = run_pass(work, all, TileGrid(box, tiles, 0), Targets::FirstPass, target, ratio, vertex_weights,
-                  options, pending, totals);
-  for (int pass = 0; pass < kMaxStripPasses && work.mesh.triangle_count() > target; ++pass) {
+  PassTotals totals;
+  PassBudget first;
+  first.ratio = ratio;
+  work = run_pass(work, all, TileGrid(box, tiles, 0), first, vertex_weights, options, pending, totals);
+  unsigned grid_tiles = 0;
+  double shift = 0;
+  for (int step = 0; work.mesh.triangle_count() > target && strip_grid(tiles, step, &grid_tiles, &shift); ++step) {
     const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
     if (strips.empty()) break;
-    work = run_pass(work, strips, TileGrid(box, tiles, kStripShifts[pass]), Targets::Remaining, target,
-                    ratio, vertex_weights, options, pending, totals);
-  }
-  // Tiles so small that a triangle spans several pin nearly every vertex on every grid:
-  // then strips on tiles twice as large, and so on up to one piece of strips.
-  for (unsigned t = tiles / 2; t >= 1 && work.mesh.triangle_count() > target; t /= 2) {
-    const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
-    if (strips.empty()) break;
-    work = run_pass(work, strips, TileGrid(box, t, t == 1 ? 0 : 0.5), Targets::Remaining, target, ratio,
-                    vertex_weights, options, pending, totals);
+    PassBudget rest;
+    rest.rule = Targets::Remaining;
+    rest.to_remove = (long long)work.mesh.triangle_count() - (long long)target;
+    rest.faces_left = strips.size();
+    work = run_pass(work, strips, TileGrid(box, grid_tiles, shift), rest, vertex_weights, options, pending, totals);
   }
 
   Mesh out = std::move(work.mesh);
