@@ -139,12 +139,7 @@ std::vector<double> ranks(const std::vector<double>& values, const std::vector<u
 
 }  // namespace
 
-std::vector<double> saliency_weights(const std::vector<double>& smoothed,
-                                     const std::vector<uint8_t>& is_point,
-                                     const SaliencyWeightOptions& options, double* alpha_out) {
-  if (smoothed.size() != is_point.size())
-    throw Error("saliency weights: " + std::to_string(smoothed.size()) +
-                " saliency values for " + std::to_string(is_point.size()) + " vertices");
+void check_weight_options(const SaliencyWeightOptions& options) {
   // Bounded so that W times a quadric stays far from overflow.
   if (!(options.lambda >= 0 && options.lambda <= 1e6))
     throw Error("lambda must be a finite number in [0, 1e+06]");
@@ -154,49 +149,58 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
     throw Error("gamma must be a finite number in [0, 16]");
   if (!(options.cap >= 0 && options.cap <= 1e6))
     throw Error("cap must be a finite number in [0, 1e+06]");
+}
+
+double curve_weight(double smoothed, double alpha, const SaliencyWeightOptions& options) {
+  if (options.curve == WeightCurve::Continuous) {
+    // alpha 0 (all saliency 0 up to that percentile): every point above it counts as far
+    // above, the cap (if any) bounds it.
+    double x = alpha > 0 ? std::pow(smoothed / alpha, options.gamma) : (smoothed > 0 ? HUGE_VAL : 0.0);
+    // Bounded like lambda, so that W times a quadric stays far from overflow.
+    x = std::min(x, options.cap > 0 ? options.cap : 1e6);
+    return 1 + options.lambda * x;
+  }
+  return smoothed >= alpha ? options.lambda * smoothed : smoothed;  // Threshold
+}
+
+double weight_floor(double sum, size_t n, const SaliencyWeightOptions& options) {
+  // Sm 0 everywhere (nothing salient at any scale): the mean gives no floor, and plain
+  // quadrics (W = 1) are what is left to go by.
+  return sum > 0 ? options.floor * sum / double(n) : 1.0;
+}
+
+std::vector<double> saliency_weights(const std::vector<double>& smoothed,
+                                     const std::vector<uint8_t>& is_point,
+                                     const SaliencyWeightOptions& options, double* alpha_out) {
+  if (smoothed.size() != is_point.size())
+    throw Error("saliency weights: " + std::to_string(smoothed.size()) +
+                " saliency values for " + std::to_string(is_point.size()) + " vertices");
+  check_weight_options(options);
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
       throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");
   const double alpha = percentile(smoothed, is_point, options.alpha_percentile);
   if (alpha_out) *alpha_out = alpha;
   std::vector<double> w(smoothed.size(), 0.0);
-  const double lambda = options.lambda, gamma = options.gamma;
-  switch (options.curve) {
-    case WeightCurve::Threshold:
-      for (size_t i = 0; i < smoothed.size(); ++i)
-        if (is_point[i]) w[i] = smoothed[i] >= alpha ? lambda * smoothed[i] : smoothed[i];
-      break;
-    case WeightCurve::Continuous:
-      for (size_t i = 0; i < smoothed.size(); ++i) {
-        if (!is_point[i]) continue;
-        // alpha 0 (all saliency 0 up to that percentile): every point above it counts as
-        // far above, the cap (if any) bounds it.
-        double x = alpha > 0 ? std::pow(smoothed[i] / alpha, gamma) : (smoothed[i] > 0 ? HUGE_VAL : 0.0);
-        // Bounded like lambda, so that W times a quadric stays far from overflow.
-        x = std::min(x, options.cap > 0 ? options.cap : 1e6);
-        w[i] = 1 + lambda * x;
-      }
-      break;
-    case WeightCurve::Rank: {
-      const std::vector<double> r = ranks(smoothed, is_point);
-      const double a = options.alpha_percentile / 100;
-      for (size_t i = 0; i < smoothed.size(); ++i) {
-        if (!is_point[i]) continue;
-        if (r[i] < a) { w[i] = 1; continue; }
-        const double t = a < 1 ? (r[i] - a) / (1 - a) : 1.0;
-        w[i] = 1 + lambda * (gamma == 0 ? 1.0 : std::pow(t, gamma));
-      }
-      break;
+  if (options.curve == WeightCurve::Rank) {
+    const std::vector<double> r = ranks(smoothed, is_point);
+    const double a = options.alpha_percentile / 100, lambda = options.lambda, gamma = options.gamma;
+    for (size_t i = 0; i < smoothed.size(); ++i) {
+      if (!is_point[i]) continue;
+      if (r[i] < a) { w[i] = 1; continue; }
+      const double t = a < 1 ? (r[i] - a) / (1 - a) : 1.0;
+      w[i] = 1 + lambda * (gamma == 0 ? 1.0 : std::pow(t, gamma));
     }
+  } else {
+    for (size_t i = 0; i < smoothed.size(); ++i)
+      if (is_point[i]) w[i] = curve_weight(smoothed[i], alpha, options);
   }
   double sum = 0;
   size_t n = 0;
   for (size_t i = 0; i < smoothed.size(); ++i)
     if (is_point[i]) sum += w[i], ++n;
   if (options.floor > 0 && n > 0) {
-    // Sm 0 everywhere (nothing salient at any scale): the mean gives no floor, and plain
-    // quadrics (W = 1) are what is left to go by.
-    const double lo = sum > 0 ? options.floor * sum / double(n) : 1.0;
+    const double lo = weight_floor(sum, n, options);
     for (size_t i = 0; i < w.size(); ++i)
       if (is_point[i]) w[i] = std::max(w[i], lo);
   }

@@ -29,16 +29,21 @@ uint64_t TileGrid::cell_of(const double p[3]) const {
   return id;
 }
 
+uint64_t TileGrid::centroid_cell(const float* a, const float* b, const float* c) const {
+  double m[3];
+  for (int k = 0; k < 3; ++k) m[k] = ((double(a[k]) + b[k]) + c[k]) / 3;
+  return cell_of(m);
+}
+
 std::vector<std::pair<uint64_t, uint32_t>> triangles_by_cell(const Mesh& mesh, const std::vector<uint32_t>& triangles,
                                                              const TileGrid& grid) {
   std::vector<std::pair<uint64_t, uint32_t>> cells;
   cells.reserve(triangles.size());
   for (uint32_t t : triangles) {
-    double c[3] = {0, 0, 0};
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) c[k] += mesh.positions[3 * size_t(mesh.triangles[3 * size_t(t) + j]) + k];
-    for (double& x : c) x /= 3;
-    cells.push_back({grid.cell_of(c), t});
+    const uint32_t* v = &mesh.triangles[3 * size_t(t)];
+    cells.push_back({grid.centroid_cell(&mesh.positions[3 * size_t(v[0])], &mesh.positions[3 * size_t(v[1])],
+                                        &mesh.positions[3 * size_t(v[2])]),
+                     t});
   }
   std::sort(cells.begin(), cells.end());
   return cells;

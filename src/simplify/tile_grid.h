@@ -17,6 +17,8 @@ class TileGrid {
  public:
   TileGrid(const BoundingBox& box, unsigned tiles, double shift);
   uint64_t cell_of(const double p[3]) const;
+  // The cell of the centroid of the triangle with corners a, b, c (the triangle's tile).
+  uint64_t centroid_cell(const float* a, const float* b, const float* c) const;
 
  private:
   double min_[3];

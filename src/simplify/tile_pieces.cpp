@@ -120,9 +120,13 @@ TilePiece simplify_tile(const TilePiece& tile, const std::vector<double>* weight
     r.ids[i] = tile.ids[v];
     r.pinned[i] = tile.pinned[v];
     // A pinned vertex that took a collapse went through the simplifier's internal frame and
-    // back; its neighbour tiles have it as it was read: take that, to the bit.
-    if (tile.pinned[v])
+    // back (its attributes through the carrier); its neighbour tiles have it as it was
+    // read: take that, to the bit, so every piece (and every pass) agrees on it.
+    if (tile.pinned[v]) {
       for (int k = 0; k < 3; ++k) r.mesh.positions[3 * i + k] = tile.mesh.positions[3 * size_t(v) + k];
+      for (size_t a = 0; a < r.mesh.attributes.size(); ++a)
+        r.mesh.attributes[a].values[i] = tile.mesh.attributes[a].values[v];
+    }
   }
   if (report) *report = std::move(rep);
   return r;
