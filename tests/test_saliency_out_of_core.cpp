@@ -123,8 +123,10 @@ TEST_CASE("out of core: --memory-limit holds the peak resident memory under the 
   INFO(tiled.err);
   REQUIRE(tiled.rc == 0);
   INFO(tiled.out);
-  CHECK(json_number(tiled.out, "tiles") > 1);
-  CHECK(json_number(tiled.out, "peak_rss") < double(limit));
+  if (!kAddressSanitizer) {
+    CHECK(json_number(tiled.out, "tiles") > 1);
+    CHECK(json_number(tiled.out, "peak_rss") < double(limit));
+  }
   check_same_map(dir / "a.ply", dir / "b.ply", load_mesh(in));
 }
 
@@ -146,7 +148,7 @@ TEST_CASE("out of core: bad limits and inputs are clear errors", "[outofcore][cl
                                 " --backend cpu --json --memory-limit " + named, dir);
   INFO(small.err << ok.err);
   CHECK(ok.rc == 0);
-  CHECK(json_number(ok.out, "peak_rss") < double(parse_memory_size(named)));
+  if (!kAddressSanitizer) CHECK(json_number(ok.out, "peak_rss") < double(parse_memory_size(named)));
 
   for (const char* bad : {"0", "-5M", "abc", "12Q", "1e30G"}) CHECK_THROWS_AS(parse_memory_size(bad), Error);
   CHECK(parse_memory_size("700M") == uint64_t(700) << 20);

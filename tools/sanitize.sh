@@ -28,4 +28,11 @@ if [ -n "$lvp" ]; then
 fi
 cd build-sanitize
 # package_consumer builds a plain (unsanitized) meshsal from source: nothing to check here.
-ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer "$@"
+rc=0
+ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer -LE mpi "$@" || rc=1
+# Open MPI's components (loaded and unloaded by MPI_Init/MPI_Finalize) keep allocations
+# they never free, in modules gone by exit that no suppression can name: the mpirun tests
+# run with every check but the leak check.
+ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
+  ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer -L mpi "$@" || rc=1
+exit $rc
