@@ -17,31 +17,8 @@ namespace meshsal {
 namespace {
 
 constexpr size_t kChunk = 1 << 16;  // vertices or faces per read
-constexpr int kBins = 128;          // the point histogram's bins along each axis (8 MB)
 
 std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
-
-// Mesh points in the bins that meet a box: at least the points inside it.
-struct Histogram {
-  BoundingBox box;
-  double bin[3];
-  std::vector<uint32_t> count = std::vector<uint32_t>(size_t(kBins) * kBins * kBins, 0);
-  int bin_of(double x, int a) const {
-    return int(std::clamp(std::floor((x - box.min[a]) / bin[a]), 0.0, double(kBins - 1)));
-  }
-  void add(const float* p) {
-    count[(size_t(bin_of(p[2], 2)) * kBins + bin_of(p[1], 1)) * kBins + bin_of(p[0], 0)]++;
-  }
-  uint64_t within(const BoundingBox& b) const {
-    int lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = bin_of(b.min[a], a), hi[a] = bin_of(b.max[a], a);
-    uint64_t sum = 0;
-    for (int z = lo[2]; z <= hi[2]; ++z)
-      for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int x = lo[0]; x <= hi[0]; ++x) sum += count[(size_t(z) * kBins + y) * kBins + x];
-    return sum;
-  }
-};
 
 // A plan's estimates: the largest tile's peak in bytes and the work of all tiles (their
 // sub-mesh points, halos included) per mesh point.
@@ -50,7 +27,7 @@ struct PlanCost {
   double work = 0;
 };
 
-PlanCost plan_cost(const TilePlan& plan, const Histogram& h, uint64_t points) {
+PlanCost plan_cost(const TilePlan& plan, const PointHistogram& h, uint64_t points) {
   PlanCost cost;
   const double reach = plan.query_margin + plan.source_margin + h.bin[0] + h.bin[1] + h.bin[2];
   double total = 0;
@@ -83,6 +60,16 @@ BoundingBox empty_box() {
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + "M"; }
 
 }  // namespace
+
+uint64_t PointHistogram::within(const BoundingBox& b) const {
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = bin_of(b.min[a], a), hi[a] = bin_of(b.max[a], a);
+  uint64_t sum = 0;
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x) sum += count[(size_t(z) * kBins + y) * kBins + x];
+  return sum;
+}
 
 void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned min_tiles,
@@ -178,9 +165,10 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
     }
     pos.close();
   }
-  Histogram hist;
+  store.box = box;
+  PointHistogram& hist = store.histogram;
   hist.box = box;
-  for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / kBins, 1e-30);
+  for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / PointHistogram::kBins, 1e-30);
   {
     ScratchReader pos(store.dir.file("pos.f32"));
     std::vector<float> buf(3 * kChunk);

@@ -10,6 +10,8 @@
 // load_tile() then builds one tile's sub-mesh (saliency_tiles.h) from its bucket and its
 // neighbours', with the vertex positions read from pos.f32.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -23,12 +25,29 @@ namespace meshsal {
 // What one sub-mesh vertex costs a tile's run at its peak (curvature, the averages of every
 // sigma, the grid), measured on igea_loop1 (README "Out of core"); the tile count is chosen
 // so the largest tile's estimate fits the limit.
-constexpr double kTileBytesPerVertex = 330;
+constexpr double kTileBytesPerVertex = 460;
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;
 // The process before any tile: the program, its libraries and the buffers of the passes.
 constexpr uint64_t kBaseBytes = uint64_t(28) << 20;
+
+// Mesh points per bin of a 128^3 grid over their bounding box (8 MB): what a tile's box
+// holds, to choose a tiling before any tile is built.
+struct PointHistogram {
+  static constexpr int kBins = 128;
+  BoundingBox box;
+  double bin[3] = {1, 1, 1};
+  std::vector<uint32_t> count = std::vector<uint32_t>(size_t(kBins) * kBins * kBins, 0);
+  int bin_of(double x, int a) const {
+    return int(std::clamp(std::floor((x - box.min[a]) / bin[a]), 0.0, double(kBins - 1)));
+  }
+  void add(const float* p) {
+    count[(size_t(bin_of(p[2], 2)) * kBins + bin_of(p[1], 1)) * kBins + bin_of(p[0], 0)]++;
+  }
+  // The points in the bins that meet b: at least the points inside it.
+  uint64_t within(const BoundingBox& b) const;
+};
 
 struct TileStore {
   explicit TileStore(const std::string& temp_parent) : dir(temp_parent) {}
@@ -38,6 +57,8 @@ struct TileStore {
   bool double_positions = false;  // the input stored double x, y, z
   double origin[3] = {0, 0, 0};
   TilePlan plan;
+  BoundingBox box;           // of the mesh points, in local (float) coordinates
+  PointHistogram histogram;  // of the mesh points
   uint64_t largest_tile_estimate = 0;  // bytes, the largest tile's estimate
   size_t block = 0;                    // vertices per block of the passes
 };
