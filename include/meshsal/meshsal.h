@@ -628,6 +628,33 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
 Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
                          const std::vector<double>* vertex_weights = nullptr, SimplifyReport* report = nullptr);
 
+struct OutOfCoreSimplifyReport {
+  SimplifyReport simplify;        // faces, collapses, error, note (no vertex_origin, no sequence)
+  OutOfCoreReport saliency;       // the saliency the weights came from (tiles 0: no weights)
+  unsigned tiles = 0;             // simplification tiles along the longest axis
+  double alpha = 0;               // the weights' threshold: weights->alpha_percentile of Sm
+  uint64_t tile_estimate = 0;     // bytes: the largest simplification tile's estimated peak
+  std::vector<StageTime> stages;
+};
+
+// Out of core: simplify_mesh_tiled on the mesh in `input` without ever holding it whole,
+// written to `output` as a binary PLY (the surviving vertices in input order, an unmoved
+// one as read; with weights, S as the per-vertex `quality`, carried as simplify_mesh
+// carries attributes). The input is streamed into tiles on disk as saliency_file() does
+// (binary PLY; other formats converted once); the saliency (smoothed, method Auto taken as
+// Fast) runs a tile at a time, Sm's percentile and mean are found by streaming, and each
+// pass of the tiled simplifier reads one group of triangles and its guards at a time.
+// weights: the weighting (the Rank curve needs every point's rank and is refused); null:
+// plain quadrics. tiles: at least this many along the longest axis; with a memory limit,
+// the fewest that fit it (an Error names the smallest workable limit when none does).
+// Writes the bytes that simplify_mesh_tiled with the same tile count, weights from the
+// same saliency (S as `quality`) and write_ply give. Positions and S only: other vertex
+// properties, materials and seams are not read. Throws Error as simplify_mesh_tiled does.
+OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
+                                      const SimplifyOptions& options, const SaliencyWeightOptions* weights,
+                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& out_of_core,
+                                      unsigned tiles = 1);
+
 // ------------------------------------------------------------------------------------------
 // Comparing two surfaces
 

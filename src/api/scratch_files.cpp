@@ -128,4 +128,22 @@ void read_records(const std::string& path, size_t record_bytes, const std::vecto
   ::close(fd);
 }
 
+void write_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& ids, const void* data) {
+  const int fd = ::open(path.c_str(), O_WRONLY);
+  if (fd < 0) fail(path, "cannot write a temporary file");
+  const auto* src = static_cast<const uint8_t*>(data);
+  size_t i = 0;
+  while (i < ids.size()) {
+    size_t j = i;  // one write for a run of consecutive ids
+    while (j + 1 < ids.size() && ids[j + 1] == ids[j] + 1) ++j;
+    const size_t bytes = (j - i + 1) * record_bytes;
+    if (::pwrite(fd, src + i * record_bytes, bytes, off_t(uint64_t(ids[i]) * record_bytes)) != ssize_t(bytes)) {
+      ::close(fd);
+      fail(path, "cannot write a temporary file");
+    }
+    i = j + 1;
+  }
+  if (::close(fd) != 0) fail(path, "cannot write a temporary file");
+}
+
 }  // namespace meshsal

@@ -65,4 +65,8 @@ std::vector<uint8_t> read_scratch_file(const std::string& path);
 void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
                   void* out);
 
+// Record i of `data` written over record ids[i] of an existing file (in place: the file
+// keeps its size where ids stay inside it).
+void write_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& ids, const void* data);
+
 }  // namespace meshsal

@@ -17,6 +17,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "interrupt.h"
+#include "peak_memory.h"
 
 namespace meshsal_cli {
 namespace {
@@ -34,6 +35,7 @@ struct Args {
   bool lambda_given = false, alpha_given = false;  // override the --weights preset's
   unsigned threads = 0;
   long long tiles = 0;  // --tiles: 0 = not given (one piece)
+  std::string memory_limit, temp_dir;  // --memory-limit, --temp-dir
 };
 
 // S from a saliency PLY, as `meshsal saliency` writes it for the same input. For an OBJ
@@ -58,6 +60,53 @@ std::vector<double> load_saliency_of_positions(const std::string& path, const me
   return s;
 }
 
+// --memory-limit: the library streams the file through tiles on disk (simplify_file).
+int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const meshsal::SaliencyWeightOptions& wo,
+                    const meshsal::SaliencyOptions& so, Progress& progress) {
+  using namespace meshsal;
+  if (!a.saliency_from.empty()) throw UsageError("--memory-limit computes S itself: it does not take --saliency-from");
+  if (a.target_error > 0) throw UsageError("--memory-limit takes --target-faces N or --ratio R, not --target-error");
+  OutOfCoreOptions ooc;
+  ooc.memory_limit = parse_memory_size(a.memory_limit);
+  ooc.temp_dir = a.temp_dir;
+  const meshsal::Timer t0;
+  const OutOfCoreSimplifyReport r = simplify_file(a.input, a.output, opt, a.weights == "none" ? nullptr : &wo, so, ooc,
+                                                  unsigned(std::max(1LL, a.tiles)));
+  progress.finish();
+  const SimplifyReport& rep = r.simplify;
+  const uint64_t peak = peak_resident_bytes();
+  if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", printable(rep.note).c_str());
+  if (a.json) {
+    JsonObject j;
+    j.text("mesh", a.input).text("output", a.output).count("input_vertices", size_t(r.saliency.vertices))
+        .count("input_faces", rep.input_faces).count("output_vertices", rep.output_vertices)
+        .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
+        .flag("unchanged", rep.unchanged).count("collapses", rep.collapses).flag("reached", rep.reached)
+        .text("weights", a.weights).text("device", "cpu").number("error_percent", 100 * rep.error)
+        .flag("lock_border", true).count("tiles", r.tiles).count("saliency_tiles", r.saliency.tiles)
+        .count("memory_limit", size_t(ooc.memory_limit)).count("tile_estimate", size_t(r.tile_estimate))
+        .count("peak_rss", size_t(peak));
+    if (a.weights != "none")
+      j.number("lambda", wo.lambda).number("alpha", r.alpha).number("alpha_percentile", wo.alpha_percentile);
+    j.number("seconds", t0.seconds()).print();
+  } else if (!a.quiet) {
+    std::printf("input      %zu faces\n", rep.input_faces);
+    if (a.weights != "none")
+      std::printf("weights    %s, lambda %g, alpha %.6g (%g-th percentile)\n", a.weights.c_str(), wo.lambda, r.alpha,
+                  wo.alpha_percentile);
+    else
+      std::printf("weights    none (plain quadric error)\n");
+    std::printf("tiles      %u (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)\n", r.tiles,
+                r.tile_estimate / 1048576.0, peak / 1048576.0, ooc.memory_limit / 1048576.0);
+    for (const StageTime& s : r.stages) std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);
+    std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses\n", rep.output_vertices,
+                rep.output_faces, rep.target_faces, rep.collapses);
+    std::printf("error      %.4g%% of the bounding-box diagonal (largest collapse)\n", 100 * rep.error);
+    std::printf("wrote      %s\n", printable(a.output).c_str());
+  }
+  return 0;
+}
+
 int run(const Args& a) {
   using namespace meshsal;
   // Before any work: the output is a writable .obj/.ply that is none of the inputs.
@@ -80,6 +129,23 @@ int run(const Args& a) {
   wo.floor = a.weight_floor;
 
   Progress progress(!a.quiet && stderr_is_terminal());
+  if (!a.memory_limit.empty()) {
+    if (obj) throw UsageError("--memory-limit writes a binary PLY: give -o OUT.ply");
+    SimplifyOptions opt;
+    opt.cancel = interrupt_flag();
+    if (a.has_target) opt.target_faces = size_t(a.target_faces);
+    else opt.ratio = a.ratio;
+    SaliencyOptions so;
+    so.cancel = interrupt_flag();
+    so.eps_frac = a.eps_frac;
+    so.threads = a.threads;
+    so.backend = parse_backend(a.backend);
+    so.precision = meshsal::parse_precision(a.precision);
+    so.method = meshsal::parse_method(a.method);
+    so.tiles = unsigned(std::min<long long>(std::max(1LL, a.tiles), meshsal::kMaxTiles));
+    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+    return run_out_of_core(a, opt, wo, so, progress);
+  }
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
   // Attributes (OBJ vt/vn, PLY properties) are carried to the output.
@@ -247,6 +313,14 @@ RunFn setup(CLI::App& sub) {
                  "at or just above the target (more with tiles only a few output triangles wide). Takes\n"
                  "--target-faces or --ratio (not --target-error), not an OBJ split at UV seams")
       ->check(whole_in(1, 1024));
+  sub.add_option("--memory-limit", a->memory_limit,
+                 "Keep the peak resident memory under SIZE (e.g. 700M, 2G): the input (binary PLY is\n"
+                 "streamed; other formats are read once and converted) goes to tiles on disk; the saliency\n"
+                 "and then the tiled simplification (as --tiles, at least that many tiles) run a tile at a\n"
+                 "time. Writes a binary PLY with positions and S; too small a limit is an error naming the\n"
+                 "smallest workable one. CPU only");
+  sub.add_option("--temp-dir", a->temp_dir,
+                 "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
   sub.add_option("--weights", a->weights,
                  "balanced (the paper's curve with alpha at the 50th percentile and lambda 3: salient "
                  "detail at little cost elsewhere), saliency (the paper's recipe, lambda 100 above the "

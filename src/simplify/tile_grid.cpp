@@ -29,6 +29,17 @@ uint64_t TileGrid::cell_of(const double p[3]) const {
   return id;
 }
 
+BoundingBox TileGrid::cell_box(uint64_t id) const {
+  BoundingBox b;
+  for (int k = 0; k < 3; ++k) {
+    const double i = double(id % uint64_t(cells_[k]));
+    id /= uint64_t(cells_[k]);
+    b.min[k] = min_[k] + (i - shift_) / inv_size_;
+    b.max[k] = min_[k] + (i + 1 - shift_) / inv_size_;
+  }
+  return b;
+}
+
 uint64_t TileGrid::centroid_cell(const float* a, const float* b, const float* c) const {
   double m[3];
   for (int k = 0; k < 3; ++k) m[k] = ((double(a[k]) + b[k]) + c[k]) / 3;

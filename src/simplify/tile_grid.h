@@ -19,6 +19,9 @@ class TileGrid {
   uint64_t cell_of(const double p[3]) const;
   // The cell of the centroid of the triangle with corners a, b, c (the triangle's tile).
   uint64_t centroid_cell(const float* a, const float* b, const float* c) const;
+  // Cells along x, y, z, and a cell's box (the out-of-core driver sizes its tiles by them).
+  const int64_t* cells() const { return cells_; }
+  BoundingBox cell_box(uint64_t id) const;
 
  private:
   double min_[3];

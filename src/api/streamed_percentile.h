@@ -1,0 +1,20 @@
+// meshsal: a percentile of more values than memory holds, by streaming them a few times
+// (Sm's alpha for out-of-core simplification).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+
+namespace meshsal {
+
+// Calls its argument once per value, in any order, the same values every time.
+using ValueStream = std::function<void(const std::function<void(double)>&)>;
+
+// percentile() of saliency_weights.h over the `n` values of `stream` (all finite), to the
+// bit: the order statistics it interpolates are found by narrowing a value range with
+// 65536-bin histograms until at most `cap` values are left, which are then selected in
+// memory. Streams the values about twice per narrowing. Throws Error for n == 0 or p
+// outside [0, 100].
+double streamed_percentile(const ValueStream& stream, uint64_t n, double p, size_t cap = size_t(1) << 20);
+
+}  // namespace meshsal

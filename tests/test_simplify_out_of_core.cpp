@@ -1,0 +1,216 @@
+// Out-of-core simplification (simplify_file, meshsal simplify --memory-limit; issue 23
+// item 4): the bytes of the in-memory tiled simplifier, the peak resident memory under the
+// limit, clear errors; and the streamed percentile its weights need.
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "api/streamed_percentile.h"
+#include "cli/synthetic.h"
+#include "cli_run.h"
+#include "json_check.h"
+#include "simplify/saliency_weights.h"
+#include "test_simplify_util.h"
+#include "test_util.h"
+
+using namespace meshsal;
+using namespace meshsal_test;
+
+namespace {
+
+std::string file_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+SaliencyOptions cpu(Method method) {
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  o.method = method;
+  return o;
+}
+
+SimplifyOptions ratio(double r) {
+  SimplifyOptions o;
+  o.ratio = r;
+  return o;
+}
+
+// What `meshsal simplify --tiles N` writes, through the library: the mesh as read from
+// `path`, weights from its (exact, untiled: the same bits as tiled) saliency with S as
+// `quality`, simplify_mesh_tiled, write_ply.
+void in_memory(const std::string& path, const std::string& out, const SimplifyOptions& o, unsigned tiles,
+               const SaliencyWeightOptions* weights) {
+  Mesh mesh = load_mesh(path);
+  std::vector<double> w;
+  if (weights) {
+    const SimplificationWeights sw = simplification_weights(mesh, *weights, cpu(Method::Exact));
+    w = sw.weights;
+    set_vertex_attribute(mesh, "quality", sw.saliency);
+  }
+  write_ply(out, simplify_mesh_tiled(mesh, o, tiles, weights ? &w : nullptr), {}, nullptr);
+}
+
+// A bumpy sphere at survey coordinates: the input stores doubles, the output must too.
+Mesh far_sphere() {
+  Mesh m = make_bumpy_sphere(4);
+  std::vector<double> xyz = model_positions(m);
+  for (size_t i = 0; i < xyz.size(); i += 3) xyz[i] += 5e5, xyz[i + 1] += 4e6;
+  set_model_positions(m, xyz.data(), m.vertex_count());
+  m.double_positions = true;
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("streamed percentile is percentile() to the bit", "[outofcore][weights]") {
+  std::mt19937_64 rng(7);
+  std::vector<double> v(20000);
+  std::uniform_real_distribution<double> u(0, 3);
+  for (double& x : v) x = std::pow(u(rng), 4);  // skewed, as Sm is
+  for (size_t i = 0; i < 3000; ++i) v[i] = 0;     // flat regions: many equal values
+  const ValueStream all = [&](const std::function<void(double)>& take) {
+    for (double x : v) take(x);
+  };
+  for (double p : {0.0, 1.0, 30.0, 50.0, 77.7, 99.9, 100.0})
+    for (size_t cap : {size_t(16), size_t(1000), size_t(1) << 20}) {  // 16: several narrowing rounds
+      INFO("p " << p << ", cap " << cap);
+      CHECK(streamed_percentile(all, v.size(), p, cap) == percentile(v, {}, p));
+    }
+  const std::vector<double> same(5000, 0.25);
+  const ValueStream flat = [&](const std::function<void(double)>& take) {
+    for (double x : same) take(x);
+  };
+  CHECK(streamed_percentile(flat, same.size(), 50, 16) == 0.25);
+  CHECK_THROWS_AS(streamed_percentile(all, 0, 50), Error);
+  CHECK_THROWS_AS(streamed_percentile(all, v.size(), 101), Error);
+}
+
+TEST_CASE("out-of-core simplification writes the in-memory tiled bytes", "[outofcore][simplify]") {
+  const auto dir = scratch_dir("ooc_simplify");
+  const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
+  struct Case {
+    const char* name;
+    Mesh mesh;
+    double ratio;
+    unsigned tiles;
+    bool weighted;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"sphere", make_bumpy_sphere(4), 0.1, 3, true});
+  cases.push_back({"plane", make_plane_with_bump(2.0, 60, 0.3, 0.2), 0.1, 3, true});   // open borders
+  cases.push_back({"far", far_sphere(), 0.2, 2, true});                                 // survey coordinates
+  cases.push_back({"plain", make_bumpy_sphere(4), 0.05, 3, false});                     // weights none
+  for (Case& c : cases) {
+    INFO(c.name);
+    const std::string in = (dir / (std::string(c.name) + ".ply")).string();
+    write_ply(in, c.mesh, {}, nullptr);
+    const std::string a = (dir / "a.ply").string(), b = (dir / "b.ply").string();
+    in_memory(in, a, ratio(c.ratio), c.tiles, c.weighted ? &balanced : nullptr);
+    OutOfCoreOptions ooc;
+    ooc.temp_dir = dir.string();
+    const OutOfCoreSimplifyReport r =
+        simplify_file(in, b, ratio(c.ratio), c.weighted ? &balanced : nullptr, cpu(Method::Exact), ooc, c.tiles);
+    CHECK(r.tiles == c.tiles);
+    CHECK(r.simplify.output_faces >= r.simplify.target_faces);
+    CHECK(r.simplify.collapses > 0);
+    CHECK(file_bytes(a) == file_bytes(b));
+    // The temporary folder went with the run.
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+      CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) != 0);
+    // No crack, no new border, within 1% of the target.
+    const simplify_test::Topology ti = simplify_test::topology(c.mesh), to = simplify_test::topology(load_mesh(b));
+    CHECK(to.border_edges == ti.border_edges);
+    CHECK(to.nonmanifold_edges == 0);
+    CHECK(to.nonmanifold_vertices == 0);
+    CHECK(double(r.simplify.output_faces) <= 1.01 * double(r.simplify.target_faces));
+  }
+}
+
+TEST_CASE("out-of-core simplification of a shared scan equals the in-memory tiled run", "[outofcore][simplify]") {
+  MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
+  const auto dir = scratch_dir("ooc_simplify_bunny");
+  const std::string in = (dir / "bunny.ply").string();
+  write_ply(in, load_mesh(path), {}, nullptr);
+  const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
+  in_memory(in, (dir / "a.ply").string(), ratio(0.1), 4, &balanced);
+  const OutOfCoreSimplifyReport r =
+      simplify_file(in, (dir / "b.ply").string(), ratio(0.1), &balanced, cpu(Method::Exact), {}, 4);
+  CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
+  CHECK(r.simplify.output_faces <= size_t(1.01 * double(r.simplify.target_faces)));
+  CHECK(r.alpha > 0);
+}
+
+TEST_CASE("simplify --memory-limit holds the limit and gives --tiles N's bytes", "[outofcore][simplify][cli]") {
+  const auto dir = scratch_dir("ooc_simplify_cli");
+  const std::string in = (dir / "plane.ply").string();
+  write_ply(in, make_plane_with_bump(2.0, 400, 0.3, 0.2), {}, nullptr);  // 160,801 vertices
+  const std::string common = "simplify " + quoted(in) + " --ratio 0.05 --backend cpu --json";
+  const CliRun limited =
+      run_cli(common + " -o " + quoted((dir / "b.ply").string()) + " --method fast --memory-limit 60M", dir);
+  INFO(limited.err << limited.out);
+  REQUIRE(limited.rc == 0);
+  const double tiles = json_number(limited.out, "tiles");
+  CHECK(tiles > 1);
+  if (!kAddressSanitizer) CHECK(json_number(limited.out, "peak_rss") < 60.0 * (1 << 20));
+  CHECK(json_number(limited.out, "output_faces") <= 1.01 * json_number(limited.out, "target_faces"));
+  // With the exact method the tiled saliency is the untiled one: the same bytes as --tiles
+  // in memory (a smaller mesh: the exact method is slow).
+  const std::string small = (dir / "small.ply").string();
+  write_ply(small, make_plane_with_bump(2.0, 100, 0.3, 0.2), {}, nullptr);
+  const std::string exact = "simplify " + quoted(small) + " --ratio 0.1 --backend cpu --method exact --tiles 3 -o ";
+  const CliRun mem = run_cli(exact + quoted((dir / "d.ply").string()), dir);
+  const CliRun ooc = run_cli(exact + quoted((dir / "e.ply").string()) + " --memory-limit 1G", dir);
+  REQUIRE(mem.rc == 0);
+  REQUIRE(ooc.rc == 0);
+  CHECK(file_bytes(dir / "d.ply") == file_bytes(dir / "e.ply"));
+}
+
+TEST_CASE("simplify --memory-limit: what it does not take is a clear error", "[outofcore][simplify][cli]") {
+  const auto dir = scratch_dir("ooc_simplify_errors");
+  const std::string in = (dir / "sphere.ply").string();
+  write_ply(in, make_bumpy_sphere(5), {}, nullptr);
+  const std::string base = "simplify " + quoted(in) + " --ratio 0.1 --backend cpu ";
+  const CliRun small = run_cli(base + "-o " + quoted((dir / "b.ply").string()) + " --memory-limit 20M", dir);
+  CHECK(small.rc == 1);
+  CHECK(small.err.find("the smallest workable limit is about") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "b.ply"));
+  const CliRun plain_small =
+      run_cli(base + "-o " + quoted((dir / "b.ply").string()) + " --weights none --memory-limit 20M", dir);
+  CHECK(plain_small.rc == 1);
+  CHECK(plain_small.err.find("too small to simplify") != std::string::npos);
+  const CliRun obj = run_cli(base + "-o " + quoted((dir / "b.obj").string()) + " --memory-limit 1G", dir);
+  CHECK(obj.rc != 0);
+  CHECK(obj.err.find("writes a binary PLY") != std::string::npos);
+  const CliRun error = run_cli("simplify " + quoted(in) + " --target-error 1 -o " + quoted((dir / "b.ply").string()) +
+                                   " --memory-limit 1G",
+                               dir);
+  CHECK(error.rc != 0);
+  CHECK(error.err.find("not --target-error") != std::string::npos);
+  const CliRun from = run_cli(base + "-o " + quoted((dir / "b.ply").string()) + " --saliency-from " + quoted(in) +
+                                  " --memory-limit 1G",
+                              dir);
+  CHECK(from.rc != 0);
+  CHECK(from.err.find("--saliency-from") != std::string::npos);
+  const std::string fifo = (dir / "pipe.ply").string();
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  const CliRun pipe = run_cli("simplify " + quoted(fifo) + " --ratio 0.1 -o " + quoted((dir / "d.ply").string()) +
+                                  " --memory-limit 1G",
+                              dir, 60);
+  CHECK(pipe.rc == 1);
+  CHECK(pipe.err.find("regular files only") != std::string::npos);
+  SaliencyWeightOptions rank;
+  rank.curve = WeightCurve::Rank;
+  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), ratio(0.1), &rank, cpu(Method::Fast), {}, 2),
+                    Catch::Contains("rank curve"));
+  SimplifyOptions bound;
+  bound.target_error = 0.01;
+  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), bound, nullptr, cpu(Method::Fast), {}, 2),
+                    Catch::Contains("not target_error"));
+}
