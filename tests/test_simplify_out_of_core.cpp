@@ -9,7 +9,7 @@
 #include <random>
 #include <sstream>
 
-#include "api/streamed_percentile.h"
+#include "core/streamed_percentile.h"
 #include "cli/synthetic.h"
 #include "cli_run.h"
 #include "json_check.h"

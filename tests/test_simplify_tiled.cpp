@@ -128,13 +128,12 @@ TEST_CASE("tiled simplify: 0 or 1 tile is simplify_mesh to the byte", "[simplify
 TEST_CASE("tiled simplify: closed meshes stay closed, within 1% of the target and 1.2x the RMS error",
           "[simplify][tiled]") {
   const Mesh sphere = make_sphere(1.0, 5);  // 20480 faces
-  // 2 tiles meet the issue's bars (RMS 1.02x at 10%, 1.18x at 2%).
-  for (double r : {0.1, 0.02}) check_tiled(sphere, ratio(r), 2);
-  // Known gaps with 4 tiles (tiles of ~1/16 of the area): RMS 1.67x at 10%; at 2% 442
-  // faces for 410 (the strips cannot give up more) and 1.84x.
-  check_tiled(sphere, ratio(0.1), 4, nullptr, 2.0);
-  check_tiled(sphere, ratio(0.02), 4, nullptr, 2.0, 0.1);
-  check_tiled(make_bumpy_sphere(5), ratio(0.1), 4, nullptr, 1.5);  // 1.37x
+  // The issue's bars with 2 and 4 tiles (RMS 0.85x and 0.92x with 2 tiles at 10% and 2%,
+  // 1.14x and 1.17x with 4; the target reached in every case).
+  for (unsigned tiles : {2u, 4u})
+    for (double r : {0.1, 0.02}) check_tiled(sphere, ratio(r), tiles);
+  // A known gap: 1.23x with 4 tiles on the bumpy sphere (tiles of ~1/16 of its area).
+  check_tiled(make_bumpy_sphere(5), ratio(0.1), 4, nullptr, 1.35);
   // The cube's faces are planes: the untiled error is ~0, no ratio to check.
   check_tiled(make_cube(40), ratio(0.05), 3, nullptr, 0);
 }
@@ -143,21 +142,21 @@ TEST_CASE("tiled simplify: with saliency weights", "[simplify][tiled]") {
   const Mesh m = make_bumpy_sphere(5);
   const std::vector<double> w = balanced_weights(m);
   check_tiled(m, ratio(0.1), 2, &w);
-  // Known gaps with 4 tiles: 1.30x at 10%; at 2% 420 faces for 410 and 1.88x.
-  check_tiled(m, ratio(0.1), 4, &w, 1.5);
-  check_tiled(m, ratio(0.02), 4, &w, 2.2, 0.05);
+  // With 4 tiles: 1.16x at 10%, 1.17x at 2%.
+  check_tiled(m, ratio(0.1), 4, &w);
+  check_tiled(m, ratio(0.02), 4, &w);
 }
 
 TEST_CASE("tiled simplify: open borders", "[simplify][tiled]") {
   const Mesh m = make_plane_with_bump(2.0, 80, 0.4, 0.3);  // 12800 faces, open
   // The tiled path keeps open borders in place whatever lock_border says: the border
-  // cannot give up its vertices (1.33x at 2 tiles, 2.6x at 4; 2.1x against simplify_mesh
-  // with lock_border).
+  // cannot give up its vertices (1.15x at 2 tiles, 1.53x at 4; 1.23x against simplify_mesh
+  // with lock_border): a known gap.
   SimplifyOptions o = ratio(0.1);
-  check_tiled(m, o, 2, nullptr, 1.5);
-  check_tiled(m, o, 4, nullptr, 3.0);
+  check_tiled(m, o, 2, nullptr, 1.3);
+  check_tiled(m, o, 4, nullptr, 1.7);
   o.lock_border = true;
-  check_tiled(m, o, 4, nullptr, 2.5);
+  check_tiled(m, o, 4, nullptr, 1.4);
   // The border keeps its vertices, to the bit, with and without lock_border.
   o.lock_border = false;
   SimplifyReport rep;
@@ -195,11 +194,11 @@ TEST_CASE("tiled simplify: empty tiles, a lone far triangle, tiny tiles", "[simp
   REQUIRE(out.triangle_count() == 641);
   CHECK(std::vector<float>(out.positions.begin(), out.positions.begin() + ref.positions.size()) == ref.positions);
   CHECK(std::vector<uint32_t>(out.triangles.begin(), out.triangles.begin() + ref.triangles.size()) == ref.triangles);
-  // Tiny tiles: 8 along the axis on 1280 and 5120 faces (tiles a few triangles wide).
-  // Known gaps: 2.3x the RMS at 25%; on 5120 faces at 5%, 694 faces for 256.
+  // Tiny tiles: 8 along the axis on 1280 and 5120 faces (tiles a few output triangles
+  // wide). Known gaps: 2.2x the RMS at 25%, 2.1x on 5120 faces at 5%.
   check_tiled(small, ratio(0.25), 8, nullptr, 2.5);
   check_tiled(small, ratio(0.1), 8);
-  check_tiled(s, ratio(0.05), 8, nullptr, 1.2, 2.0);
+  check_tiled(s, ratio(0.05), 8, nullptr, 2.4);
 }
 
 TEST_CASE("tiled simplify: attributes and materials go with their vertices and triangles", "[simplify][tiled]") {
@@ -260,12 +259,16 @@ TEST_CASE("tiled simplify: shared meshes at 10% and 1%, plain and saliency-weigh
     MESHSAL_MESH_OR_CONTINUE(path, name);
     const Mesh m = load_mesh(path);
     const std::vector<double> w = balanced_weights(m);
+    const bool open = std::string(name) == "bunny_36k.obj";  // five holes underneath
     for (double r : {0.1, 0.01})
       for (unsigned tiles : {2u, 4u}) {
-        INFO(name << " at " << r);
-        // The issue's 1.2x holds at 10% with 2 tiles (1.03x on both); the rest are known
-        // gaps (README): 1.26x with 4 tiles at 10% (bunny), 1.1-3.4x at 1%.
-        const double bound = r == 0.1 ? (tiles == 2 ? 1.2 : 1.4) : 4.0;
+        if (!open && tiles == 2) continue;  // (time: igea with 4 tiles only, 0.82x and 0.85x with 2)
+        INFO(name << " at " << r << ", " << tiles << " tiles");
+        // The issue's 1.2x holds at 10% (0.77-0.87x) and on the closed igea at 1% (1.04x,
+        // 1.11x). A known gap: the bunny at 1% (1.9x with 2 tiles, 2.0-2.8x with 4), whose
+        // open borders the tiled path keeps whole (1.35x of it with simplify_mesh alone,
+        // lock_border against not) in ~350 output faces a tile.
+        const double bound = r == 0.01 && open ? 3.0 : 1.2;
         check_tiled(m, ratio(r), tiles, nullptr, bound);
         check_tiled(m, ratio(r), tiles, &w, bound);
       }

@@ -602,29 +602,32 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
                             const std::vector<double>* saliency = nullptr,
                             SimplifyReport* report = nullptr, double* alpha_out = nullptr);
 
-// simplify_mesh by tiles, for meshes larger than memory (issue 23; this one holds the mesh
-// in memory, its per-tile step is what an out-of-core driver would feed). `tiles` cubic
-// tiles along the longest axis of the mesh points' bounding box, the grid anchored at its
-// minimum; each triangle belongs to the tile of its centroid. Pass 1 simplifies every tile
-// alone, the vertices it shares with other tiles pinned (neither moved nor removed, nor
-// joined by a new edge), toward the target's ratio on its triangles away from the cut.
-// Then strip passes: the triangles at the vertices still pinned, plus one ring, grouped by
-// grids shifted by 1/2, 1/4 and 3/4 tile, then by tiles twice as large up to one piece,
-// simplified with the same pins toward what is left of the target. The pieces share their
-// pinned vertices, so the result has no crack and no border edge the input did not have;
-// it is manifold and oriented where the input is. Open borders stay in place, as with
+// simplify_mesh by tiles, for meshes larger than memory (simplify_file runs the same
+// passes on disk). `tiles` cubic tiles along the longest axis of the mesh points' bounding
+// box, the grid anchored at its minimum; each triangle belongs to the tile of its
+// centroid. Rounds, each keeping at most half the faces it starts from: a first pass
+// simplifies every tile alone, the vertices it shares with other tiles pinned (neither
+// moved nor removed, nor joined by a new edge), every tile down to a common error level
+// (the level at which the tiles together keep the round's faces, found from each tile's
+// collapse costs); then strip passes: the triangles at the vertices still pinned, plus one
+// ring, grouped by grids shifted by 1/2, 1/4 and 3/4 tile, then by tiles twice as large up
+// to one piece, simplified with the same pins toward the round's target. The pieces share
+// their pinned vertices, so the result has no crack and no border edge the input did not
+// have; it is manifold and oriented where the input is. Open borders stay in place, as with
 // lock_border, whatever options.lock_border says (a tile moving its part of a border made
-// large errors, not understood yet). Weights apply per vertex as in simplify_mesh; a strip
-// pass starts its quadrics afresh from the surface the last pass left. Attributes and
+// large errors, not understood yet). Weights apply per vertex as in simplify_mesh; each
+// pass starts its quadrics afresh from the surface the last one left. Attributes and
 // materials are carried; vertex_origin maps to input vertices, output vertices follow their
 // input order. The face count lands at or above the target (report->note when above):
 // within 1% unless the tiles are small against the output's triangles. The RMS error is
-// within 1.2x of simplify_mesh's at 10% with 2-4 tiles on igea_134k, 1.1-3.5x at 1%
-// (README). report->error: the largest collapse error, in units of the whole mesh's
-// diagonal; no collapse sequence. tiles 0 or 1, or a target at or above the face count:
-// simplify_mesh itself. Throws Error as simplify_mesh does, and for tiles > 1024,
-// options.target_error, options.record_collapses or a mesh split at seams
-// (Mesh::position_vertex), which the tiled path does not take.
+// within 1.2x of simplify_mesh's on closed meshes with 2-4 tiles at 10% and 1% (igea_134k:
+// 0.82-1.11x); open borders and tiles a few output triangles wide cost more (bunny_36k at
+// 1%: 1.9-2.8x; README). It takes about 4x simplify_mesh's time. report->error: the
+// largest collapse error, in units of the whole mesh's diagonal; no collapse sequence.
+// tiles 0 or 1, or a target at or above the face count: simplify_mesh itself. Throws Error
+// as simplify_mesh does, and for tiles > 1024, options.target_error,
+// options.record_collapses or a mesh split at seams (Mesh::position_vertex), which the
+// tiled path does not take.
 Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
                          const std::vector<double>* vertex_weights = nullptr, SimplifyReport* report = nullptr);
 

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/cancel.h"
+#include "core/streamed_percentile.h"
 
 namespace meshsal {
 
@@ -233,15 +234,62 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   const size_t rec = mesh.record_bytes(), nattr = mesh.attribute_names.size();
   const std::vector<uint64_t> groups = buckets.groups();
   PassBudget budget = pass.budget;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    throw_if_cancelled();
-    if (progress) progress(double(g) / double(groups.size()));
-    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+  auto weights_of = [&](const TilePiece& tile) {
     std::vector<double> w;
     if (!mesh.weights.empty()) {
       w.resize(tile.ids.size());
       read_records(mesh.weights, 8, tile.ids, w.data());
     }
+    return w;
+  };
+  // A first pass: each group's goal from the common error level (tile_pass.h), the levels
+  // of each group kept on disk meanwhile.
+  std::vector<size_t> goals;
+  if (budget.rule == Targets::FirstPass) {
+    auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
+    uint64_t faces = 0, goal_sum = 0, count = 0;
+    std::vector<size_t> sizes;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      throw_if_cancelled();
+      if (progress) progress(0.5 * double(g) / double(groups.size()));
+      const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+      const std::vector<double> w = weights_of(tile);
+      const std::vector<double> levels = collapse_levels(tile, mesh.weights.empty() ? nullptr : &w, options);
+      ScratchWriter lf(levels_file(g));
+      lf.write_vector(levels);
+      lf.close();
+      sizes.push_back(tile.mesh.triangle_count() - tile.guards);
+      faces += sizes.back();
+      goal_sum += first_pass_goal(tile, budget.ratio);
+      count += levels.size();
+    }
+    const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
+    const ValueStream all = [&](const std::function<void(double)>& take) {
+      for (size_t g = 0; g < groups.size(); ++g) {
+        ScratchReader in(levels_file(g));
+        std::vector<double> buf(kChunk);
+        for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;)
+          for (size_t i = 0; i < got; ++i) take(buf[i]);
+      }
+    };
+    const double level = collapses == 0 ? -1.0 : streamed_kth(all, collapses - 1);
+    std::vector<LevelCount> counts;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
+      std::vector<double> levels(bytes.size() / 8);
+      std::memcpy(levels.data(), bytes.data(), bytes.size());
+      counts.push_back(count_level(levels, level));
+      std::remove(levels_file(g).c_str());
+    }
+    goals = level_goals(counts, sizes, collapses);
+    budget.rule = Targets::Given;
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    throw_if_cancelled();
+    if (progress) progress(goals.empty() ? double(g) / double(groups.size()) : 0.5 + 0.5 * double(g) / double(groups.size()));
+    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+    const std::vector<double> w = weights_of(tile);
+    if (!goals.empty()) budget.goal = goals[g];
     const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, budget, totals);
     for (uint32_t v : piece.mesh.triangles) out.write(&piece.ids[v], 4);
     out_count += piece.mesh.triangle_count();

@@ -8,7 +8,7 @@
 #include <unordered_map>
 
 #include "api/disk_simplify.h"
-#include "api/streamed_percentile.h"
+#include "core/streamed_percentile.h"
 #include "api/tile_saliency.h"
 #include "api/tile_store.h"
 #include "core/cancel.h"
@@ -320,24 +320,28 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   PassTotals totals;
   if (!keep) {
     const size_t buffer = ooc.memory_limit ? size_t(ooc.memory_limit / 8) : size_t(64) << 20;
-    VertexBits pending(store.vertices);
-    for (uint64_t v = 0; v < store.vertices; ++v) pending.set(uint32_t(v));
-    DiskPass first{TileGrid(store.box, t, 0), PassBudget{}};
-    first.budget.ratio = double(target) / double(faces);
-    run_disk_pass(mesh, first, options, pending, totals, buffer, [&](double f) { progress("simplifying", f); });
-    unsigned grid_tiles = 0;
-    double shift = 0;
-    VertexBits near1, near2;
-    for (int step = 0; mesh.triangle_count > target && strip_grid(t, step, &grid_tiles, &shift); ++step) {
-      const uint64_t strips = strip_vertices(mesh, pending, near1, near2);
-      if (strips == 0) break;
-      DiskPass pass{TileGrid(store.box, grid_tiles, shift), PassBudget{}};
-      pass.budget.rule = Targets::Remaining;
-      pass.budget.to_remove = (long long)mesh.triangle_count - (long long)target;
-      pass.budget.faces_left = size_t(strips);
-      pass.selected_near = &near1;
-      pass.guard_near = &near2;
-      run_disk_pass(mesh, pass, options, pending, totals, buffer, [&](double f) { progress("strips", f); });
+    VertexBits pending(store.vertices), near1, near2;
+    // Rounds, as simplify_mesh_tiled (simplify/tile_pass.h).
+    for (uint64_t now = mesh.triangle_count; now > target; now = mesh.triangle_count) {
+      const size_t goal = round_target(size_t(now), target);
+      for (uint64_t v = 0; v < store.vertices; ++v) pending.set(uint32_t(v));
+      DiskPass first{TileGrid(store.box, t, 0), PassBudget{}};
+      first.budget.ratio = double(goal) / double(now);
+      run_disk_pass(mesh, first, options, pending, totals, buffer, [&](double f) { progress("simplifying", f); });
+      unsigned grid_tiles = 0;
+      double shift = 0;
+      for (int step = 0; mesh.triangle_count > goal && strip_grid(t, step, &grid_tiles, &shift); ++step) {
+        const uint64_t strips = strip_vertices(mesh, pending, near1, near2);
+        if (strips == 0) break;
+        DiskPass pass{TileGrid(store.box, grid_tiles, shift), PassBudget{}};
+        pass.budget.rule = Targets::Remaining;
+        pass.budget.to_remove = (long long)mesh.triangle_count - (long long)goal;
+        pass.budget.faces_left = size_t(strips);
+        pass.selected_near = &near1;
+        pass.guard_near = &near2;
+        run_disk_pass(mesh, pass, options, pending, totals, buffer, [&](double f) { progress("strips", f); });
+      }
+      if (mesh.triangle_count >= now) break;  // the round gave up nothing: neither will the next
     }
     lap("simplifying");
   }

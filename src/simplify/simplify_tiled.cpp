@@ -14,6 +14,7 @@
 #include "core/cancel.h"
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
+#include "core/streamed_percentile.h"
 #include "core/timer.h"
 #include "simplify/simplify.h"
 #include "simplify/tile_grid.h"
@@ -48,15 +49,49 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
     group[cells[i].second] = uint32_t(groups.size() - 1);
   }
   const VertexTriangles around = vertex_triangles(work.mesh);
-  std::vector<TilePiece> out;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    throw_if_cancelled();
-    const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
+  auto weights_of = [&](const TilePiece& tile) {
     std::vector<double> w;
     if (weights) {
       w.resize(tile.ids.size());
       for (size_t i = 0; i < w.size(); ++i) w[i] = (*weights)[tile.ids[i]];
     }
+    return w;
+  };
+  // A first pass: each group's goal from the common error level (tile_pass.h).
+  std::vector<size_t> goals;
+  if (budget.rule == Targets::FirstPass) {
+    std::vector<std::vector<double>> levels;
+    uint64_t faces = 0, goal_sum = 0, count = 0;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      throw_if_cancelled();
+      const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
+      const std::vector<double> w = weights_of(tile);
+      levels.push_back(collapse_levels(tile, weights ? &w : nullptr, options));
+      faces += groups[g].size();
+      goal_sum += first_pass_goal(tile, budget.ratio);
+      count += levels.back().size();
+    }
+    const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
+    const ValueStream all = [&](const std::function<void(double)>& take) {
+      for (const std::vector<double>& l : levels)
+        for (double x : l) take(x);
+    };
+    const double level = collapses == 0 ? -1.0 : streamed_kth(all, collapses - 1);
+    std::vector<LevelCount> counts;
+    std::vector<size_t> sizes;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      counts.push_back(count_level(levels[g], level));
+      sizes.push_back(groups[g].size());
+    }
+    goals = level_goals(counts, sizes, collapses);
+    budget.rule = Targets::Given;
+  }
+  std::vector<TilePiece> out;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    throw_if_cancelled();
+    const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
+    const std::vector<double> w = weights_of(tile);
+    if (!goals.empty()) budget.goal = goals[g];
     out.push_back(simplify_group(tile, weights ? &w : nullptr, options, budget, totals));
     for (uint32_t id : freed_ids(tile)) pending[id] = 0;
   }
@@ -147,23 +182,29 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   // (work.mesh has no source positions: the frame is carried from `mesh` at the end.)
   work.ids.resize(nv);
   for (size_t v = 0; v < nv; ++v) work.ids[v] = uint32_t(v);
-  std::vector<uint32_t> all(faces);
-  for (size_t t = 0; t < faces; ++t) all[t] = uint32_t(t);
-  std::vector<uint8_t> pending(nv, 1);  // every vertex waits for its first pass
   PassTotals totals;
-  PassBudget first;
-  first.ratio = ratio;
-  work = run_pass(work, all, TileGrid(box, tiles, 0), first, vertex_weights, options, pending, totals);
-  unsigned grid_tiles = 0;
-  double shift = 0;
-  for (int step = 0; work.mesh.triangle_count() > target && strip_grid(tiles, step, &grid_tiles, &shift); ++step) {
-    const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
-    if (strips.empty()) break;
-    PassBudget rest;
-    rest.rule = Targets::Remaining;
-    rest.to_remove = (long long)work.mesh.triangle_count() - (long long)target;
-    rest.faces_left = strips.size();
-    work = run_pass(work, strips, TileGrid(box, grid_tiles, shift), rest, vertex_weights, options, pending, totals);
+  std::vector<uint8_t> pending(nv);
+  // Rounds (tile_pass.h): a first pass over every triangle, then strips along its cuts.
+  for (size_t now = work.mesh.triangle_count(); now > target; now = work.mesh.triangle_count()) {
+    const size_t goal = round_target(now, target);
+    std::vector<uint32_t> all(now);
+    for (size_t t = 0; t < now; ++t) all[t] = uint32_t(t);
+    std::fill(pending.begin(), pending.end(), 1);  // every vertex waits for the round's first pass
+    PassBudget first;
+    first.ratio = double(goal) / double(now);
+    work = run_pass(work, all, TileGrid(box, tiles, 0), first, vertex_weights, options, pending, totals);
+    unsigned grid_tiles = 0;
+    double shift = 0;
+    for (int step = 0; work.mesh.triangle_count() > goal && strip_grid(tiles, step, &grid_tiles, &shift); ++step) {
+      const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
+      if (strips.empty()) break;
+      PassBudget rest;
+      rest.rule = Targets::Remaining;
+      rest.to_remove = (long long)work.mesh.triangle_count() - (long long)goal;
+      rest.faces_left = strips.size();
+      work = run_pass(work, strips, TileGrid(box, grid_tiles, shift), rest, vertex_weights, options, pending, totals);
+    }
+    if (work.mesh.triangle_count() >= now) break;  // the round gave up nothing: neither will the next
   }
 
   Mesh out = std::move(work.mesh);

@@ -10,19 +10,26 @@
 namespace meshsal {
 namespace simplify_detail {
 
+size_t first_pass_goal(const TilePiece& tile, double ratio) {
+  // A triangle with two pinned corners lies on the cut: pass 1 cannot remove it (about
+  // one per cut edge stays for the strips), so the ratio applies to the rest.
+  const size_t f = tile.mesh.triangle_count() - tile.guards;
+  size_t at_cut = 0;
+  for (size_t t = 0; t < f; ++t) {
+    const uint32_t* v = &tile.mesh.triangles[3 * t];
+    at_cut += tile.pinned[v[0]] + tile.pinned[v[1]] + tile.pinned[v[2]] >= 2;
+  }
+  return at_cut + size_t(std::llround(ratio * double(f - at_cut)));
+}
+
 TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weights, const SimplifyOptions& options,
                          PassBudget& budget, PassTotals& totals) {
   const size_t f = tile.mesh.triangle_count() - tile.guards;
   size_t goal;
-  if (budget.rule == Targets::FirstPass) {
-    // A triangle with two pinned corners lies on the cut: pass 1 cannot remove it (about
-    // one per cut edge stays for the strips), so the ratio applies to the rest.
-    size_t at_cut = 0;
-    for (size_t t = 0; t < f; ++t) {
-      const uint32_t* v = &tile.mesh.triangles[3 * t];
-      at_cut += tile.pinned[v[0]] + tile.pinned[v[1]] + tile.pinned[v[2]] >= 2;
-    }
-    goal = at_cut + size_t(std::llround(budget.ratio * double(f - at_cut)));
+  if (budget.rule == Targets::Given) {
+    goal = budget.goal;
+  } else if (budget.rule == Targets::FirstPass) {
+    goal = first_pass_goal(tile, budget.ratio);
   } else {
     const double share = budget.faces_left > 0
                              ? double(std::max(0LL, budget.to_remove)) * double(f) / double(budget.faces_left)
@@ -40,6 +47,49 @@ TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weigh
   budget.to_remove -= (long long)f - (long long)out.mesh.triangle_count();
   budget.faces_left -= f;
   return out;
+}
+
+size_t round_target(size_t faces_now, size_t target) {
+  return std::max(target, size_t(double(faces_now) * kRoundRatio));
+}
+
+std::vector<double> collapse_levels(const TilePiece& tile, const std::vector<double>* weights,
+                                    const SimplifyOptions& options) {
+  SimplifyReport rep;
+  const size_t own = tile.mesh.triangle_count() - tile.guards;
+  simplify_tile(tile, weights, std::max<size_t>(1, own / 4), options, &rep, true);
+  // The simplifier's costs are in the tile's frame scaled to unit diagonal: quadric errors
+  // scale with the fourth power of length.
+  const BoundingBox tb = bounding_box(tile.mesh.positions.data(), tile.mesh.vertex_count(), nullptr);
+  const double d2 = tb.diagonal() * tb.diagonal(), unit = d2 * d2;
+  std::vector<double> levels(rep.sequence.size());
+  double level = 0;
+  for (size_t i = 0; i < levels.size(); ++i) levels[i] = level = std::max(level, rep.sequence[i].cost * unit);
+  return levels;
+}
+
+uint64_t level_collapses(uint64_t faces, uint64_t budget) { return faces > budget ? (faces - budget) / 2 : 0; }
+
+LevelCount count_level(const std::vector<double>& levels, double level) {
+  LevelCount c;
+  c.below = size_t(std::lower_bound(levels.begin(), levels.end(), level) - levels.begin());
+  c.at = size_t(std::upper_bound(levels.begin(), levels.end(), level) - levels.begin()) - c.below;
+  return c;
+}
+
+std::vector<size_t> level_goals(const std::vector<LevelCount>& counts, const std::vector<size_t>& faces,
+                                uint64_t collapses) {
+  uint64_t below = 0;
+  for (const LevelCount& c : counts) below += c.below;
+  uint64_t ties = collapses > below ? collapses - below : 0;
+  std::vector<size_t> goals(faces.size());
+  for (size_t g = 0; g < faces.size(); ++g) {
+    const size_t take = size_t(std::min<uint64_t>(ties, counts[g].at));
+    ties -= take;
+    const size_t n = counts[g].below + take;
+    goals[g] = faces[g] > 2 * n + 1 ? faces[g] - 2 * n : 1;
+  }
+  return goals;
 }
 
 std::vector<uint32_t> freed_ids(const TilePiece& tile) {

@@ -16,6 +16,7 @@ namespace simplify_detail {
 enum class Targets {
   FirstPass,  // the ratio on the triangles away from the cut; those at it stay (they wait for the strips)
   Remaining,  // the faces still over the target, spread over the groups by face count, carried on
+  Given,      // PassBudget::goal, set per group by the driver (from collapse_levels)
 };
 
 // What a pass has left to do, carried from group to group in group order.
@@ -24,6 +25,7 @@ struct PassBudget {
   double ratio = 1;        // FirstPass: target / input faces
   long long to_remove = 0; // Remaining: faces still over the whole mesh's target
   size_t faces_left = 0;   // Remaining: selected faces not yet simplified
+  size_t goal = 0;         // Given: this group's face target
 };
 
 struct PassTotals {
@@ -31,11 +33,44 @@ struct PassTotals {
   double error = 0;  // the largest collapse error, in model units
 };
 
+// Pass 1's goal for a group by the ratio: the ratio of its triangles away from the cut,
+// and every triangle at it (two pinned corners: they wait for the strips).
+size_t first_pass_goal(const TilePiece& tile, double ratio);
+
 // One group: `tile` (its own triangles, then the guards) simplified toward the goal the
 // budget gives it; the budget and the totals move on. `weights`: one per vertex of
 // tile.mesh (may be null).
 TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weights, const SimplifyOptions& options,
                          PassBudget& budget, PassTotals& totals);
+
+// Rounds: each keeps at most this share of the faces it starts from (its first pass over
+// every triangle, then its strips), so a round's cuts are at most twice as fine as its
+// result. Measured (tests/test_simplify_tiled.cpp, igea_134k at 1%, 4 tiles): one round
+// straight to the target left the cuts at full resolution, a strip pass had to remove
+// 80% of what was left from bands a few triangles wide, and the RMS error was 3.5x the
+// untiled run's; halving rounds: 1.1x.
+constexpr double kRoundRatio = 0.5;
+size_t round_target(size_t faces_now, size_t target);
+
+// The error level of each collapse the tile would make on its way down to an eighth of
+// its own faces: the largest collapse cost so far, in model units, so that the levels of
+// all tiles compare. Each collapse removes two faces (the tiled path locks borders).
+std::vector<double> collapse_levels(const TilePiece& tile, const std::vector<double>* weights,
+                                    const SimplifyOptions& options);
+
+// A first pass spends the round's face budget where the error is, as one simplification
+// of the whole mesh would, instead of the same ratio in every tile: the groups together
+// make the `collapses` cheapest collapses by level (level_collapses: (faces - budget) / 2),
+// found as the common level (the collapses-th smallest of all groups' levels), every
+// collapse under it, and the ties at it handed out in group order up to the count.
+uint64_t level_collapses(uint64_t faces, uint64_t budget);
+struct LevelCount {
+  size_t below = 0, at = 0;  // a group's collapses under the level, and at it
+};
+LevelCount count_level(const std::vector<double>& levels, double level);
+// Each group's face target: faces[g] - 2 * its collapses, at least 1.
+std::vector<size_t> level_goals(const std::vector<LevelCount>& counts, const std::vector<size_t>& faces,
+                                uint64_t collapses);
 
 // The global ids of the vertices `tile`'s own triangles use that it did not pin: no other
 // group has them, so this pass freed them (they are no longer pending).

@@ -43,9 +43,10 @@ TilePiece cut_piece(const Mesh& mesh, const std::vector<uint32_t>& ids, const Ve
 // The per-tile step: tile.mesh simplified toward `target_faces` of its own triangles, its
 // pinned vertices and guards kept as they are, borders as options.lock_border says.
 // Returns the tile's triangles only (no guards), the vertices they use and their global
-// ids. `weights`: one per vertex of tile.mesh (may be null). target_faces >= 1.
+// ids. `weights`: one per vertex of tile.mesh (may be null). target_faces >= 1. `record`:
+// report->sequence gets the collapses.
 TilePiece simplify_tile(const TilePiece& tile, const std::vector<double>* weights, size_t target_faces,
-                        const SimplifyOptions& options, SimplifyReport* report);
+                        const SimplifyOptions& options, SimplifyReport* report, bool record = false);
 
 // The pieces as one mesh (no guards may be left in them): its vertices are the union of
 // theirs in increasing global id (`ids` receives them), a vertex in several pieces taken

@@ -1,5 +1,5 @@
 // meshsal: a percentile of more values than memory holds, by streaming them a few times
-// (Sm's alpha for out-of-core simplification).
+// (Sm's alpha and the collapse-error level of out-of-core simplification).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -9,6 +9,11 @@ namespace meshsal {
 
 // Calls its argument once per value, in any order, the same values every time.
 using ValueStream = std::function<void(const std::function<void(double)>&)>;
+
+// The k-th smallest (0-based, k < the count) of the values of `stream`, all finite: a value
+// range narrowed with 65536-bin histograms until at most `cap` values are left, which are
+// then selected in memory. Streams the values about twice per narrowing.
+double streamed_kth(const ValueStream& stream, uint64_t k, size_t cap = size_t(1) << 20);
 
 // percentile() of saliency_weights.h over the `n` values of `stream` (all finite), to the
 // bit: the order statistics it interpolates are found by narrowing a value range with

@@ -1,5 +1,5 @@
 // streamed_percentile(), see streamed_percentile.h.
-#include "api/streamed_percentile.h"
+#include "core/streamed_percentile.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +11,10 @@
 namespace meshsal {
 
 namespace {
-
 constexpr size_t kBins = 65536;
+}  // namespace
 
-// The k-th smallest value (0-based).
-double kth_value(const ValueStream& stream, uint64_t k, size_t cap) {
+double streamed_kth(const ValueStream& stream, uint64_t k, size_t cap) {
   // The values in [lo, hi] are the candidates; `below` values lie under lo.
   double lo = -HUGE_VAL, hi = HUGE_VAL;
   uint64_t below = 0;
@@ -57,8 +56,6 @@ double kth_value(const ValueStream& stream, uint64_t k, size_t cap) {
   }
 }
 
-}  // namespace
-
 double streamed_percentile(const ValueStream& stream, uint64_t n, double p, size_t cap) {
   if (!(p >= 0 && p <= 100)) throw Error("percentile must be in [0, 100], got " + std::to_string(p));
   if (n == 0) throw Error("percentile of an empty set");
@@ -66,9 +63,9 @@ double streamed_percentile(const ValueStream& stream, uint64_t n, double p, size
   const double rank = p / 100 * double(n - 1);
   const uint64_t lo = uint64_t(std::floor(rank));
   const uint64_t hi = std::min(lo + 1, n - 1);
-  const double a = kth_value(stream, lo, cap);
+  const double a = streamed_kth(stream, lo, cap);
   if (hi == lo) return a;
-  const double b = kth_value(stream, hi, cap);
+  const double b = streamed_kth(stream, hi, cap);
   return a + (rank - double(lo)) * (b - a);
 }
 
