@@ -42,10 +42,12 @@ PlanCost plan_cost(const TilePlan& plan, const PointHistogram& h, uint64_t point
           b.min[a] = own.min[a] - reach;
           b.max[a] = own.max[a] + reach;
         }
-        if (h.within(own) == 0) continue;  // tiles without points of their own do nothing
-        const uint64_t n = h.within(b);
+        const uint64_t mine = h.within(own);
+        if (mine == 0) continue;  // tiles without points of their own do nothing
+        const uint64_t n = std::max(h.within(b), mine);
         total += double(n);
-        cost.largest = std::max(cost.largest, uint64_t(double(n) * kTileBytesPerVertex));
+        cost.largest = std::max(cost.largest, uint64_t(double(mine) * kOwnBytesPerVertex +
+                                                       double(n - mine) * kHaloBytesPerVertex));
       }
   cost.work = points ? total / double(points) : 1;
   return cost;
@@ -57,9 +59,9 @@ BoundingBox empty_box() {
   return b;
 }
 
-std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + "M"; }
-
 }  // namespace
+
+std::string mib_text(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + "M"; }
 
 uint64_t PointHistogram::within(const BoundingBox& b) const {
   int lo[3], hi[3];
@@ -198,9 +200,9 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
       best = std::min(best, cost.largest);
     }
     if (kBaseBytes + cost.largest > memory_limit)
-      throw Error("memory limit " + mib(memory_limit) + " is too small for " + input_path +
+      throw Error("memory limit " + mib_text(memory_limit) + " is too small for " + input_path +
                   ": the smallest tile with its halo (the filter's reach around it) needs about " +
-                  mib(best) + "; the smallest workable limit is about " + mib(kBaseBytes + best));
+                  mib_text(best) + "; the smallest workable limit is about " + mib_text(kBaseBytes + best));
   }
   store.largest_tile_estimate = cost.largest;
 

@@ -22,10 +22,13 @@
 
 namespace meshsal {
 
-// What one sub-mesh vertex costs a tile's run at its peak (curvature, the averages of every
-// sigma, the grid), measured on igea_loop1 (README "Out of core"); the tile count is chosen
-// so the largest tile's estimate fits the limit.
-constexpr double kTileBytesPerVertex = 460;
+// What a tile's run costs at its peak per sub-mesh vertex (curvature, the grid, the
+// averages of every sigma): a point of its own (queried: a raw map per scale) more than a
+// halo point (a source only). Measured on igea_loop1: one tile of 537k own points peaked at
+// 222 MB exact and 226 MB fast (386 B a point over the base); igea_loop2 x4 in 100 tiles at
+// 488 MB (README "Out of core"). The tile count is chosen so the largest tile's estimate fits.
+constexpr double kOwnBytesPerVertex = 460;
+constexpr double kHaloBytesPerVertex = 330;
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;
@@ -70,6 +73,9 @@ struct TileStore {
 void build_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles,
                       const std::function<void(const char*, double)>& progress);
+
+// "123M": bytes as --memory-limit takes them, rounded up (the errors naming a limit).
+std::string mib_text(uint64_t bytes);
 
 // Tile t's sub-mesh (TileMesh) with the halo of `plan` (the store's, or phase 0's smaller
 // one), from its bucket and those of the tiles its halo reaches.
