@@ -133,6 +133,22 @@ TEST_CASE("out-of-core simplification writes the in-memory tiled bytes", "[outof
   }
 }
 
+TEST_CASE("out-of-core simplification keeps the mesh as read when the target asks for it all", "[outofcore][simplify]") {
+  const auto dir = scratch_dir("ooc_simplify_keep");
+  Mesh m = make_bumpy_sphere(3);
+  m.positions.insert(m.positions.end(), {5, 5, 5});  // an unreferenced vertex stays
+  m.triangles.insert(m.triangles.end(), {0, 0, 1});  // and a degenerate triangle
+  const std::string in = (dir / "in.ply").string();
+  write_ply(in, m, {}, nullptr);
+  write_ply((dir / "a.ply").string(), load_mesh(in), {}, nullptr);
+  const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
+  const OutOfCoreSimplifyReport r =
+      simplify_file(in, (dir / "b.ply").string(), ratio(1.0), &balanced, cpu(Method::Fast), {}, 2);
+  CHECK(r.simplify.unchanged);
+  CHECK(r.simplify.collapses == 0);
+  CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
+}
+
 TEST_CASE("out-of-core simplification of a shared scan equals the in-memory tiled run", "[outofcore][simplify]") {
   MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
   const auto dir = scratch_dir("ooc_simplify_bunny");

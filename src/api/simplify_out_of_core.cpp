@@ -32,8 +32,6 @@ namespace {
 constexpr double kSimplifyBytesPerVertex = 520;
 constexpr size_t kBlock = 1 << 16;  // vertices per block of the streamed steps
 
-std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + "M"; }
-
 // The most mesh points in one cell of `grid`, from the store's histogram (each bin counted
 // in the cell of its centre: an estimate, not a bound).
 uint64_t largest_cell(const TileStore& store, const TileGrid& grid) {
@@ -72,17 +70,6 @@ uint64_t surface_triangles(const TileStore& store, const std::string& path) {
   }
   out.close();
   return kept;
-}
-
-// Model coordinates of a vertex as model_position() gives them: as read while the local
-// position is still the rounding of that, else origin + position.
-void model_xyz(const double source[3], const float local[3], const double origin[3], double out[3]) {
-  if (local_coordinate(source[0], origin[0]) == local[0] && local_coordinate(source[1], origin[1]) == local[1] &&
-      local_coordinate(source[2], origin[2]) == local[2]) {
-    for (int k = 0; k < 3; ++k) out[k] = source[k];
-    return;
-  }
-  for (int k = 0; k < 3; ++k) out[k] = origin[k] == 0 ? double(local[k]) : double(local[k]) + origin[k];
 }
 
 // The output: the vertices the triangles use (all of them with keep_all), in id order,
@@ -134,7 +121,7 @@ void write_output(const std::string& output, const TileStore& store, const DiskM
     const double tolerance = 1e-7 * std::sqrt(d2);
     for_each_vertex([&](uint64_t, const float* p, const double* source) {
       double m[3];
-      model_xyz(source, p, store.origin, m);
+      model_coordinates(source, p, store.origin, m);
       for (int k = 0; k < 3; ++k) wide |= std::fabs(double(float(m[k])) - m[k]) > tolerance;
     });
   }
@@ -152,7 +139,7 @@ void write_output(const std::string& output, const TileStore& store, const DiskM
     for_each_vertex([&](uint64_t v, const float* p, const double* source) {
       if (v % kBlock == 0 && progress) progress(0.5 * double(v) / double(mesh.vertices));
       double m[3];
-      model_xyz(source, p, store.origin, m);
+      model_coordinates(source, p, store.origin, m);
       for (int k = 0; k < 3; ++k) {
         if (wide) put(&m[k], 8);
         else {
@@ -241,6 +228,13 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   const bool keep = simplify_keeps_mesh(options, size_t(faces));
   const size_t target = keep ? size_t(faces) : resolve_target_faces(options, size_t(faces));
   rep.target_faces = target;
+  // A target at or above the face count: the mesh as it was read, every vertex and
+  // triangle, no saliency (as simplify_mesh and the command do).
+  if (keep) {
+    weights = nullptr;
+    mesh.triangles = store.dir.file("tri.u32");
+    mesh.triangle_count = store.triangles;
+  }
 
   // The vertex state (position, S) and the weights, a block of vertices at a time.
   mesh.state = store.dir.file("state.f32");
@@ -309,9 +303,9 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     report.tile_estimate = uint64_t(double(largest_cell(store, TileGrid(store.box, t, 0))) * kSimplifyBytesPerVertex);
     if (!ooc.memory_limit || fixed + report.tile_estimate <= ooc.memory_limit) break;
     if (t == kMaxSimplifyTiles)
-      throw Error("memory limit " + mib(ooc.memory_limit) + " is too small to simplify " + input +
-                  ": the smallest tile needs about " + mib(report.tile_estimate) +
-                  "; the smallest workable limit is about " + mib(fixed + report.tile_estimate));
+      throw Error("memory limit " + mib_text(ooc.memory_limit) + " is too small to simplify " + input +
+                  ": the smallest tile needs about " + mib_text(report.tile_estimate) +
+                  "; the smallest workable limit is about " + mib_text(fixed + report.tile_estimate));
     t = std::min(kMaxSimplifyTiles, t + std::max(1u, t / 4));
   }
   report.tiles = t;

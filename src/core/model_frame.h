@@ -12,20 +12,24 @@ namespace meshsal {
 // loaders, make_mesh and the "was it moved?" test of model_position all use it.
 inline float local_coordinate(double x, double origin) { return static_cast<float>(x - origin); }
 
-// Vertex v's model coordinates: its source position while its local position is still the
-// source's rounding (no computation moved it), else origin + position in double.
-inline void model_position(const Mesh& mesh, size_t v, double out[3]) {
-  const float* p = &mesh.positions[3 * v];
-  if (mesh.source_positions.size() == mesh.positions.size()) {
-    const double* s = &mesh.source_positions[3 * v];
-    if (local_coordinate(s[0], mesh.origin[0]) == p[0] && local_coordinate(s[1], mesh.origin[1]) == p[1] &&
-        local_coordinate(s[2], mesh.origin[2]) == p[2]) {
-      for (int k = 0; k < 3; ++k) out[k] = s[k];
-      return;
-    }
+// Model coordinates of a vertex from its source position as read (null: none kept) and its
+// local position: the source while the local position is still the source's rounding (no
+// computation moved it), else origin + position in double. Writers that stream vertices
+// (out of core) call it; model_position() is it on a Mesh.
+inline void model_coordinates(const double* source, const float* local, const double origin[3], double out[3]) {
+  if (source && local_coordinate(source[0], origin[0]) == local[0] &&
+      local_coordinate(source[1], origin[1]) == local[1] && local_coordinate(source[2], origin[2]) == local[2]) {
+    for (int k = 0; k < 3; ++k) out[k] = source[k];
+    return;
   }
   // An origin of 0 is not added: -0 + 0 would be +0, and a hand-made mesh is written as it is.
-  for (int k = 0; k < 3; ++k) out[k] = mesh.origin[k] == 0 ? double(p[k]) : double(p[k]) + mesh.origin[k];
+  for (int k = 0; k < 3; ++k) out[k] = origin[k] == 0 ? double(local[k]) : double(local[k]) + origin[k];
+}
+
+// Vertex v's model coordinates (model_coordinates with the mesh's source positions, if kept).
+inline void model_position(const Mesh& mesh, size_t v, double out[3]) {
+  const bool sourced = mesh.source_positions.size() == mesh.positions.size();
+  model_coordinates(sourced ? &mesh.source_positions[3 * v] : nullptr, &mesh.positions[3 * v], mesh.origin, out);
 }
 
 // Gives `out` the frame of `in`: its origin, double_positions and, where `in` keeps source
