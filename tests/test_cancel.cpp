@@ -191,6 +191,45 @@ TEST_CASE("cli: Ctrl-C stops a command at once, exit 130, no output or temporary
   for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().find(".tmp.") == std::string::npos);
 }
 
+TEST_CASE("cli: SIGTERM stops an out-of-core run as Ctrl-C does, exit 143, its temporary folder removed",
+          "[cli][cancel][outofcore]") {
+  using namespace meshsal_test;
+  const fs::path dir = scratch_dir("cancel_term");
+  fs::create_directories(dir / "tmp");
+  const std::string in = (dir / "sphere.ply").string(), out = (dir / "out.ply").string();
+  write_ply(in, slow_mesh(), {}, nullptr);
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    const int err = ::open((dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(err, 2);
+    const std::string cli = meshsal_test::cli_path();
+    ::execl(cli.c_str(), cli.c_str(), "simplify", in.c_str(), "-o", out.c_str(), "--ratio", "0.1", "--eps-frac",
+            kSlowEpsText, "--backend", "cpu", "--memory-limit", "1G", "--temp-dir", (dir / "tmp").c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Once the tiles are on disk (the folder exists), stop it.
+  auto folders = [&] {
+    size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir / "tmp")) n += e.is_directory();
+    return n;
+  };
+  for (int i = 0; i < 600 && folders() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK(folders() == 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 143);
+  CHECK(read_text(dir / "err.txt") == "interrupted\n");
+  CHECK_FALSE(fs::exists(out));
+  CHECK(folders() == 0);
+}
+
 TEST_CASE("cli: Ctrl-C during batch logs the model it was on and prints the summary", "[cli][cancel][batch]") {
   using namespace meshsal_test;
   const fs::path dir = scratch_dir("cancel_batch");

@@ -355,7 +355,8 @@ int run(Options o) {
   // Out of core the mesh is never whole in memory: the saliency PLY is all a model gets.
   if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.simplify > 0 || o.target_error > 0))
     throw UsageError("--memory-limit computes each model's saliency out of core: it takes no --view, "
-                     "--contact-sheet, --simplify or --target-error (they need the mesh in memory)");
+                     "--contact-sheet, --simplify or --target-error (views need the mesh in memory; simplify a "
+                     "model larger than memory with `meshsal simplify IN -o OUT.ply --memory-limit SIZE`)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
   Plan p;
@@ -650,7 +651,7 @@ int run(Options o) {
   if (interrupted) {
     std::fprintf(stderr, "interrupted (a new run resumes where this one stopped)\n");
     std::fflush(stderr);
-    return agreed_status(kInterruptedExit);
+    return agreed_status(interrupted_exit());
   }
   return agreed_status(failed || !log->error().empty() || sheet_failed ? 1 : 0);
 }

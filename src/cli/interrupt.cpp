@@ -6,25 +6,34 @@ namespace meshsal_cli {
 namespace {
 
 std::atomic<bool> interrupted{false};
+std::atomic<int> first_signal{SIGINT};
 static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
-void on_sigint(int) {
-  interrupted.store(true);
-  signal(SIGINT, SIG_DFL);  // the next Ctrl-C stops the process at once
+void on_signal(int sig) {
+  if (!interrupted.exchange(true)) first_signal.store(sig);
+  signal(sig, SIG_DFL);  // the next one stops the process at once
 }
 
-}  // namespace
-
-void install_interrupt_handler() {
+void install(int sig) {
   struct sigaction sa {};
-  sa.sa_handler = on_sigint;
+  sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART;
   // A shell runs background jobs with SIGINT ignored: keep that.
   struct sigaction old {};
-  if (sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) return;
-  sigaction(SIGINT, &sa, nullptr);
+  if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) return;
+  sigaction(sig, &sa, nullptr);
 }
+
+}  // namespace
+
+void install_interrupt_handler(bool terminate_too) {
+  install(SIGINT);
+  if (terminate_too) install(SIGTERM);
+}
+
+int interrupted_exit() { return 128 + first_signal.load(); }
 
 const std::atomic<bool>* interrupt_flag() { return &interrupted; }
 

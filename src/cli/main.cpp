@@ -67,7 +67,7 @@ static int run_main(int argc, char** argv) {
   // Process-wide, so the program's choice, not the library's (which never sets it): the
   // command's stages reuse each other's freed memory instead of page-faulting it in again.
   meshsal::keep_freed_memory_for_reuse();
-  install_interrupt_handler();
+  install_interrupt_handler(!meshsal::cli::mpi_world().active);
   CLI::App app{
       "meshsal: mesh saliency (Lee, Varshney, Jacobs 2005) on the CPU and on Vulkan GPUs,\n"
       "saliency-guided simplification and best-viewpoint selection.\n"
@@ -113,7 +113,7 @@ static int run_main(int argc, char** argv) {
   } catch (const UsageError& e) {
     return fail(2, "error: " + printable(e.what()) + " (see --help)");
   } catch (const meshsal::Cancelled&) {
-    return fail(kInterruptedExit, "interrupted");
+    return fail(interrupted_exit(), "interrupted");
   } catch (const meshsal::Error& e) {
     return fail(1, "error: " + printable(e.what()));
   } catch (const std::bad_alloc&) {
