@@ -38,3 +38,28 @@ for n in 2 4; do
     --memory-limit 700M --threads $(( $(nproc) / n > 0 ? $(nproc) / n : 1 ))
   cmp "$WORK/a.ply" "$WORK/c$n.ply" && echo "mpi-np$n-700M: the in-memory run's bytes"
 done
+
+# Simplification beyond memory (issue 23 item 4): plain quadrics (--weights none, so the
+# saliency's own figures above stay apart) to 10% of the faces, in memory untiled, in memory
+# with the tiles the limit picks, and with --memory-limit 700M (the same bytes as the
+# latter).
+simplify_run() {  # name, command...
+  local name=$1; shift
+  local start=$(date +%s.%N)
+  "$@" --json > "$WORK/$name.json"
+  local end=$(date +%s.%N)
+  python3 - "$WORK/$name.json" "$name" "$start" "$end" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+wall = float(sys.argv[4]) - float(sys.argv[3])
+print(f"{sys.argv[2]:<18} wall {wall:7.1f} s  peak {j['peak_rss']/2**20:7.0f} MiB  tiles {j['tiles']:4d}  "
+      f"faces {j['output_faces']} (target {j['target_faces']})")
+PY
+}
+simplify_run simplify-700M "$MESHSAL" simplify "$PLY" -o "$WORK/s_limit.ply" --ratio 0.1 --weights none \
+  --memory-limit 700M
+TILES=$(python3 -c "import json; print(json.load(open('$WORK/simplify-700M.json'))['tiles'])")
+simplify_run simplify-tiles "$MESHSAL" simplify "$PLY" -o "$WORK/s_tiles.ply" --ratio 0.1 --weights none \
+  --tiles "$TILES"
+cmp "$WORK/s_tiles.ply" "$WORK/s_limit.ply" && echo "simplify-700M: the bytes of --tiles $TILES in memory"
+simplify_run simplify-whole "$MESHSAL" simplify "$PLY" -o "$WORK/s_whole.ply" --ratio 0.1 --weights none

@@ -375,7 +375,7 @@ SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
                                 const SaliencyOptions& options);
 
 // ------------------------------------------------------------------------------------------
-// Out of core: saliency of a mesh file larger than memory
+// Out of core: saliency (and, below, simplification) of a mesh file larger than memory
 
 struct OutOfCoreOptions {
   // The process's peak resident memory stays under this many bytes (0: no limit; then

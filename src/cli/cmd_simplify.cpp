@@ -254,7 +254,8 @@ int run(const Args& a) {
     if (!weights.empty())
       j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
-    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", t0.seconds()).print();
+    j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", t0.seconds())
+        .count("peak_rss", size_t(peak_resident_bytes())).print();
   } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);

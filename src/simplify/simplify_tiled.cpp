@@ -171,7 +171,6 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   }
   const size_t faces = work.mesh.triangle_count();
   const size_t target = resolve_target_faces(options, faces);
-  const double ratio = double(target) / double(faces);
   const std::vector<uint8_t> used = referenced_vertices(mesh);
   const BoundingBox box = bounding_box(mesh.positions.data(), nv, used.data());
   for (size_t v = 0; v < nv; ++v)
