@@ -10,6 +10,7 @@
 
 #include "cli/synthetic.h"
 #include "cli_run.h"
+#include "out_of_core_util.h"
 #include "json_check.h"
 #include "test_util.h"
 
@@ -17,30 +18,6 @@ using namespace meshsal;
 using namespace meshsal_test;
 
 namespace {
-
-std::string file_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-SaliencyOptions cpu(Method method) {
-  SaliencyOptions o;
-  o.backend = Backend::Cpu;
-  o.method = method;
-  return o;
-}
-
-// A bumpy sphere far from the origin (survey coordinates), so the input stores doubles.
-Mesh far_sphere() {
-  Mesh m = make_bumpy_sphere(4);
-  std::vector<double> xyz = model_positions(m);
-  for (size_t i = 0; i < xyz.size(); i += 3) xyz[i] += 5e5, xyz[i + 1] += 4e6;
-  set_model_positions(m, xyz.data(), m.vertex_count());
-  m.double_positions = true;
-  return m;
-}
 
 // The saliency two PLY files hold for the vertices of `mesh` agree to 1e-4 of the maximum.
 void check_same_map(const std::filesystem::path& a, const std::filesystem::path& b, const Mesh& mesh) {

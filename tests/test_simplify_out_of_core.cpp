@@ -12,6 +12,7 @@
 #include "core/streamed_percentile.h"
 #include "cli/synthetic.h"
 #include "cli_run.h"
+#include "out_of_core_util.h"
 #include "json_check.h"
 #include "simplify/saliency_weights.h"
 #include "test_simplify_util.h"
@@ -21,20 +22,6 @@ using namespace meshsal;
 using namespace meshsal_test;
 
 namespace {
-
-std::string file_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-SaliencyOptions cpu(Method method) {
-  SaliencyOptions o;
-  o.backend = Backend::Cpu;
-  o.method = method;
-  return o;
-}
 
 SimplifyOptions ratio(double r) {
   SimplifyOptions o;
@@ -57,15 +44,6 @@ void in_memory(const std::string& path, const std::string& out, const SimplifyOp
   write_ply(out, simplify_mesh_tiled(mesh, o, tiles, weights ? &w : nullptr), {}, nullptr);
 }
 
-// A bumpy sphere at survey coordinates: the input stores doubles, the output must too.
-Mesh far_sphere() {
-  Mesh m = make_bumpy_sphere(4);
-  std::vector<double> xyz = model_positions(m);
-  for (size_t i = 0; i < xyz.size(); i += 3) xyz[i] += 5e5, xyz[i + 1] += 4e6;
-  set_model_positions(m, xyz.data(), m.vertex_count());
-  m.double_positions = true;
-  return m;
-}
 
 }  // namespace
 

@@ -60,6 +60,22 @@ std::vector<double> load_saliency_of_positions(const std::string& path, const me
   return s;
 }
 
+// The saliency the weights come from, as the options ask (progress on `progress`).
+meshsal::SaliencyOptions saliency_options(const Args& a, Progress& progress) {
+  meshsal::SaliencyOptions so;
+  so.cancel = interrupt_flag();
+  so.eps_frac = a.eps_frac;
+  so.threads = a.threads;
+  so.backend = parse_backend(a.backend);
+  so.precision = meshsal::parse_precision(a.precision);
+  so.method = meshsal::parse_method(a.method);
+  // Tiled simplification takes its weights from tiled saliency (the same map, computed a
+  // tile at a time).
+  if (a.tiles > 1) so.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
+  so.progress = [&progress](const char* stage, double f) { progress.update(stage, f); };
+  return so;
+}
+
 // --memory-limit: the library streams the file through tiles on disk (simplify_file).
 int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const meshsal::SaliencyWeightOptions& wo,
                     const meshsal::SaliencyOptions& so, Progress& progress) {
@@ -135,16 +151,7 @@ int run(const Args& a) {
     opt.cancel = interrupt_flag();
     if (a.has_target) opt.target_faces = size_t(a.target_faces);
     else opt.ratio = a.ratio;
-    SaliencyOptions so;
-    so.cancel = interrupt_flag();
-    so.eps_frac = a.eps_frac;
-    so.threads = a.threads;
-    so.backend = parse_backend(a.backend);
-    so.precision = meshsal::parse_precision(a.precision);
-    so.method = meshsal::parse_method(a.method);
-    so.tiles = unsigned(std::min<long long>(std::max(1LL, a.tiles), meshsal::kMaxTiles));
-    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-    return run_out_of_core(a, opt, wo, so, progress);
+    return run_out_of_core(a, opt, wo, saliency_options(a, progress), progress);
   }
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
@@ -191,17 +198,7 @@ int run(const Args& a) {
   std::string device = "cpu";  // simplification runs on the CPU; computed saliency names its own
   if (a.weights != "none") {
     const meshsal::Timer ts;
-    SaliencyOptions so;
-    so.cancel = interrupt_flag();
-    so.eps_frac = a.eps_frac;
-    so.threads = a.threads;
-    so.backend = parse_backend(a.backend);
-    so.precision = meshsal::parse_precision(a.precision);
-    so.method = meshsal::parse_method(a.method);
-    // Tiled simplification takes its weights from tiled saliency (the same map, computed a
-    // tile at a time).
-    if (a.tiles > 1) so.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
-    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
+    SaliencyOptions so = saliency_options(a, progress);
     so.notice = [&](const std::string& line) {
       told_precision |= line.find("float precision") != std::string::npos;
       if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
