@@ -239,4 +239,35 @@ TEST_CASE("out of core: batch --memory-limit writes what batch writes in memory"
   std::filesystem::create_directories(dir / "empty");
   check_usage_error("batch " + in + " -o " + quoted((dir / "empty" / "c").string()) + " --memory-limit 200M --view",
                     "--memory-limit", dir / "empty");
+  check_usage_error("batch " + in + " -o " + quoted((dir / "empty" / "c").string()) +
+                        " --memory-limit 200M --target-error 1",
+                    "--memory-limit", dir / "empty");
+}
+
+TEST_CASE("out of core: batch --memory-limit --simplify writes what simplify --memory-limit writes",
+          "[outofcore][cli][simplify]") {
+  const auto dir = scratch_dir("ooc_batch_simplify");
+  std::filesystem::create_directories(dir / "in");
+  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {}, nullptr);
+  write_ply((dir / "in" / "plane.ply").string(), make_plane_with_bump(2.0, 40, 0.3, 0.2), {}, nullptr);
+  const std::string in = quoted((dir / "in").string());
+  const std::string common = " --backend cpu --method fast --memory-limit 200M --temp-dir " + quoted(dir.string());
+  const CliRun batch = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) + " -q --simplify 0.1" + common, dir);
+  INFO(batch.err);
+  REQUIRE(batch.rc == 0);
+  for (const char* name : {"sphere", "plane"}) {
+    INFO(name);
+    const std::string alone = (dir / (std::string(name) + ".ply")).string();
+    const CliRun one = run_cli("simplify " + quoted((dir / "in" / (std::string(name) + ".ply")).string()) + " -o " +
+                                   quoted(alone) + " -q --ratio 0.1" + common,
+                               dir);
+    REQUIRE(one.rc == 0);
+    CHECK(file_bytes(alone) == file_bytes(dir / "b" / (std::string(name) + "_simplified.ply")));
+    CHECK(file_bytes(dir / "b" / (std::string(name) + "_saliency.ply")).size() > 0);
+  }
+  // A rerun finds both up to date; the log names the simplified files.
+  const CliRun again = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) + " --simplify 0.1" + common, dir);
+  CHECK(again.rc == 0);
+  CHECK(again.out.find("2 skipped") != std::string::npos);
+  CHECK(file_bytes(dir / "b" / "batch.jsonl").find("_simplified.ply") != std::string::npos);
 }

@@ -55,12 +55,13 @@ std::vector<std::string> output_names(const std::vector<std::string>& inputs) {
   return names;
 }
 
-ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified) {
+ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified,
+                           bool simplified_ply) {
   const std::string base = dir + (dir.empty() || dir.back() == '/' ? "" : "/") + name;
   ModelOutputs o;
   o.saliency = base + "_saliency.ply";
   if (view) o.view = base + "_view.png";
-  if (simplified) o.simplified = base + "_simplified.obj";
+  if (simplified) o.simplified = base + (simplified_ply ? "_simplified.ply" : "_simplified.obj");
   return o;
 }
 
@@ -72,7 +73,7 @@ std::vector<std::string> without_batch_outputs(const std::vector<std::string>& i
   std::vector<size_t> maybe;
   for (size_t i = 0; i < inputs.size(); ++i) {
     const std::string file = file_name(inputs[i]);
-    for (const char* end : {"_saliency.ply", "_simplified.obj"}) {
+    for (const char* end : {"_saliency.ply", "_simplified.obj", "_simplified.ply"}) {
       const std::string e(end);
       if (file.size() <= e.size() || file.compare(file.size() - e.size(), e.size(), e) != 0) continue;
       const size_t slash = inputs[i].find_last_of('/');

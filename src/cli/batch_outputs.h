@@ -8,7 +8,7 @@ namespace meshsal_cli {
 struct ModelOutputs {
   std::string saliency;    // DIR/NAME_saliency.ply
   std::string view;        // DIR/NAME_view.png, "" when not asked
-  std::string simplified;  // DIR/NAME_simplified.obj, "" when not asked
+  std::string simplified;  // DIR/NAME_simplified.obj (.ply out of core), "" when not asked
   std::vector<std::string> all() const;  // those asked for
 };
 
@@ -20,11 +20,13 @@ std::string file_name(const std::string& path);
 // where they still do (same name in two folders), "_2", "_3".. in input order.
 std::vector<std::string> output_names(const std::vector<std::string>& inputs);
 
-ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified);
+// `simplified_ply`: NAME_simplified.ply (out of core: simplify_file writes a binary PLY).
+ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified,
+                           bool simplified_ply = false);
 
 // `inputs` without the files a batch wrote into `dir` (for an input folder that is also the
 // output folder, run again): a file directly in `dir` named NAME_saliency.ply or
-// NAME_simplified.obj (the outputs with a mesh extension) where NAME is the output name of
+// NAME_simplified.obj or .ply (the outputs with a mesh extension) where NAME is the output name of
 // another input (output_names over the inputs kept) and DIR/.meshsal-batch/NAME.state
 // exists (batch_state.h: a batch made, or was making, that model's outputs there). A file
 // with such a name and no state is kept: a user's own mesh (an output never replaces it).

@@ -185,6 +185,30 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
   return j;
 }
 
+// NAME_simplified.ply as `meshsal simplify IN -o OUT.ply --memory-limit SIZE` writes it with
+// the same options (simplify_file: the tiled simplifier on disk, its own saliency).
+JsonObject simplified_out_of_core(const Plan& p, const std::string& input, const std::string& out) {
+  SimplifyOptions so;
+  so.threads = p.o->threads;
+  so.cancel = interrupt_flag();
+  if (p.o->simplify > 1) so.target_faces = size_t(p.o->simplify);
+  else so.ratio = p.o->simplify;
+  OutOfCoreOptions ooc;
+  ooc.memory_limit = p.memory_limit;
+  ooc.temp_dir = p.o->temp_dir;
+  const Timer t;
+  const OutOfCoreSimplifyReport r =
+      simplify_file(input, out, so, p.o->weights == "none" ? nullptr : &p.weights, p.saliency, ooc);
+  const SimplifyReport& rep = r.simplify;
+  JsonObject j;
+  j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
+      .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
+      .number("error_percent", 100 * rep.error).count("tiles", r.tiles).count("peak_rss", peak_resident_bytes())
+      .number("seconds", t.seconds());
+  if (!rep.note.empty()) j.text("note", rep.note);
+  return j;
+}
+
 // One model, loaded: saliency, its PLY, then what was asked. Throws on failure.
 JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string& name,
                          const ModelOutputs& out, BatchProgress& progress) {
@@ -197,6 +221,10 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
     const OutOfCoreReport rep = saliency_file(m.path, out.saliency, p.saliency, ooc);
     JsonObject j = out_of_core_json(m.path, out.saliency, rep, p.saliency.method, p.memory_limit, t.seconds(),
                                     peak_resident_bytes());
+    if (!out.simplified.empty()) {
+      progress.stage("simplify", 0);
+      j.object("simplify", simplified_out_of_core(p, m.path, out.simplified));
+    }
     j.text("status", "done").text("name", name).number("total_seconds", t.seconds());
     return j;
   }
@@ -352,11 +380,11 @@ int run(Options o) {
                      std::to_string(o.simplify));
   if (o.lock_border && o.simplify == 0 && o.target_error == 0)
     throw UsageError("--lock-border needs --simplify or --target-error");
-  // Out of core the mesh is never whole in memory: the saliency PLY is all a model gets.
-  if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.simplify > 0 || o.target_error > 0))
-    throw UsageError("--memory-limit computes each model's saliency out of core: it takes no --view, "
-                     "--contact-sheet, --simplify or --target-error (views need the mesh in memory; simplify a "
-                     "model larger than memory with `meshsal simplify IN -o OUT.ply --memory-limit SIZE`)");
+  // Out of core the mesh is never whole in memory: the saliency PLY, and with --simplify
+  // NAME_simplified.ply as `simplify --memory-limit` writes it, are all a model gets.
+  if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.target_error > 0))
+    throw UsageError("--memory-limit computes each model out of core: it takes no --view, --contact-sheet "
+                     "(they need the mesh in memory) or --target-error (give --simplify RATIO|FACES)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
   Plan p;
@@ -429,7 +457,7 @@ int run(Options o) {
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<size_t> to_compute;  // model indices, in order
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying));
+    outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying, p.memory_limit != 0));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
