@@ -40,12 +40,14 @@ load = _short_type_errors(_meshsal.load)
 release_cached_devices = _short_type_errors(_meshsal.release_cached_devices)
 render = _short_type_errors(_meshsal.render)
 saliency = _short_type_errors(_meshsal.saliency)
+saliency_file = _short_type_errors(_meshsal.saliency_file)
 save = _short_type_errors(_meshsal.save)
 simplify = _short_type_errors(_meshsal.simplify)
+simplify_file = _short_type_errors(_meshsal.simplify_file)
 
 # FileNotFoundError and PermissionError are left out: `from meshsal import *` would hide
 # the built-in ones (which they subclass).
 __all__ = ["Device", "Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
            "devices", "keep_freed_memory", "load", "release_cached_devices", "render", "saliency",
-           "save", "simplify", "version", "__version__"]
+           "saliency_file", "save", "simplify", "simplify_file", "version", "__version__"]
 

@@ -12,5 +12,6 @@ void bind_simplify(py::module_& m);  // simplify
 void bind_view(py::module_& m);      // best_view, render
 void bind_heap(py::module_& m);      // keep_freed_memory
 void bind_device(py::module_& m);    // Device, release_cached_devices
+void bind_out_of_core(py::module_& m);  // saliency_file, simplify_file
 
 }  // namespace meshsal_py

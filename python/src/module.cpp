@@ -47,4 +47,5 @@ PYBIND11_MODULE(_meshsal, m) {
   meshsal_py::bind_view(m);
   meshsal_py::bind_heap(m);
   meshsal_py::bind_device(m);
+  meshsal_py::bind_out_of_core(m);
 }

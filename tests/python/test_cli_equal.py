@@ -75,6 +75,28 @@ def test_tiled_saliency_equals_cli_and_untiled(mesh_path, cli, tmp_path):
         np.testing.assert_array_equal(r.saliency.astype(np.float32), props["quality"])
 
 
+def test_out_of_core_files_equal_cli(mesh_path, cli, tmp_path):
+    # saliency_file and simplify_file are `--memory-limit` runs: the CLI's bytes.
+    src = mesh_path("bunny_3k.off")
+    V, F = meshsal.load(str(src))
+    path = tmp_path / "in.ply"
+    meshsal.save(str(path), V, F)
+    a, b = tmp_path / "a.ply", tmp_path / "b.ply"
+    cli("saliency", path, "-o", a, "--memory-limit", "100M", "--method", "exact", "-q")
+    r = meshsal.saliency_file(path, b, memory_limit="100M", method="exact")
+    assert a.read_bytes() == b.read_bytes()
+    assert r["vertices"] == len(V) and r["faces"] == len(F) and r["tiles"] >= 1
+    c, d = tmp_path / "c.ply", tmp_path / "d.ply"
+    j = cli.json("simplify", path, "-o", c, "--ratio", "0.2", "--memory-limit", "100M", "--tiles", "2", "--json")
+    s = meshsal.simplify_file(path, d, ratio=0.2, memory_limit=100 << 20, tiles=2)
+    assert c.read_bytes() == d.read_bytes()
+    assert s["output_faces"] == j["output_faces"] and s["tiles"] == j["tiles"] == 2
+    with pytest.raises(ValueError):
+        meshsal.simplify_file(path, d, ratio=0.2, target_faces=10)
+    with pytest.raises(meshsal.Error, match="smallest workable limit"):
+        meshsal.simplify_file(path, d, ratio=0.2, memory_limit="1M")
+
+
 @pytest.mark.parametrize("weights", ["saliency", "none"])
 def test_simplify_equals_cli(weights, mesh_path, cli, tmp_path):
     # A mesh without texture coordinates: the CLI carries OBJ attributes (and splits vertices
