@@ -104,7 +104,8 @@ TEST_CASE("out-of-core simplification writes the in-memory tiled bytes", "[outof
       CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) != 0);
     // No crack, no new border, within 1% of the target.
     const simplify_test::Topology ti = simplify_test::topology(c.mesh), to = simplify_test::topology(load_mesh(b));
-    CHECK(to.border_edges == ti.border_edges);
+    if (ti.border_edges == 0) CHECK(to.border_edges == 0);  // closed stays closed: no crack
+    CHECK(to.border_edges <= ti.border_edges);
     CHECK(to.nonmanifold_edges == 0);
     CHECK(to.nonmanifold_vertices == 0);
     CHECK(double(r.simplify.output_faces) <= 1.01 * double(r.simplify.target_faces));

@@ -613,21 +613,21 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
 // ring, grouped by grids shifted by 1/2, 1/4 and 3/4 tile, then by tiles twice as large up
 // to one piece, simplified with the same pins toward the round's target. The pieces share
 // their pinned vertices, so the result has no crack and no border edge the input did not
-// have; it is manifold and oriented where the input is. Open borders stay in place, as with
-// lock_border, whatever options.lock_border says (a tile moving its part of a border made
-// large errors, not understood yet). Weights apply per vertex as in simplify_mesh; each
-// pass starts its quadrics afresh from the surface the last one left. Attributes and
-// materials are carried; vertex_origin maps to input vertices, output vertices follow their
-// input order. The face count lands at or above the target (report->note when above):
-// within 1% unless the tiles are small against the output's triangles. The RMS error is
-// within 1.2x of simplify_mesh's on closed meshes with 2-4 tiles at 10% and 1% (igea_134k:
-// 0.82-1.11x); open borders and tiles a few output triangles wide cost more (bunny_36k at
-// 1%: 1.9-2.8x; README). It takes about 4x simplify_mesh's time. report->error: the
-// largest collapse error, in units of the whole mesh's diagonal; no collapse sequence.
-// tiles 0 or 1, or a target at or above the face count: simplify_mesh itself. Throws Error
-// as simplify_mesh does, and for tiles > 1024, options.target_error,
-// options.record_collapses or a mesh split at seams (Mesh::position_vertex), which the
-// tiled path does not take.
+// have; it is manifold and oriented where the input is. Every pass takes its groups'
+// goals from the common level, strips too, so a small piece gives up only what is cheap.
+// Open borders simplify as options.lock_border says. Weights apply per vertex as in
+// simplify_mesh; each pass starts its quadrics afresh from the surface the last one left.
+// Attributes and materials are carried; vertex_origin maps to input vertices, output
+// vertices follow their input order. The face count lands at or above the target
+// (report->note when above): within 1% unless the tiles are small against the output's
+// triangles. The RMS error is within 1.2x of simplify_mesh's with 2-4 tiles at 10% and 1%
+// on igea_134k (0.82-0.95x) and bunny_36k (0.82-0.93x) but for tiles a few output
+// triangles wide (bunny at 1% with 4 tiles, 695 faces over ~40 tiles: 2.8x; README). It
+// takes 3-5x simplify_mesh's time. report->error: the largest collapse error, in units of
+// the whole mesh's diagonal; no collapse sequence. tiles 0 or 1, or a target at or above
+// the face count: simplify_mesh itself. Throws Error as simplify_mesh does, and for tiles >
+// 1024, options.target_error, options.record_collapses or a mesh split at seams
+// (Mesh::position_vertex), which the tiled path does not take.
 Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
                          const std::vector<double>* vertex_weights = nullptr, SimplifyReport* report = nullptr);
 

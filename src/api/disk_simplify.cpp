@@ -242,10 +242,10 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     }
     return w;
   };
-  // A first pass: each group's goal from the common error level (tile_pass.h), the levels
+  // Each group's goal from the common error level (tile_pass.h), in every pass; the levels
   // of each group kept on disk meanwhile.
   std::vector<size_t> goals;
-  if (budget.rule == Targets::FirstPass) {
+  if (budget.rule != Targets::Given) {
     auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
     uint64_t faces = 0, goal_sum = 0, count = 0;
     std::vector<size_t> sizes;
@@ -260,9 +260,12 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
       lf.close();
       sizes.push_back(tile.mesh.triangle_count() - tile.guards);
       faces += sizes.back();
-      goal_sum += first_pass_goal(tile, budget.ratio);
+      if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
       count += levels.size();
     }
+    // A strip pass: what is left to remove, from the selected faces.
+    if (budget.rule == Targets::Remaining)
+      goal_sum = faces - std::min<uint64_t>(faces, uint64_t(std::max(0LL, budget.to_remove)));
     const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
     const ValueStream all = [&](const std::function<void(double)>& take) {
       for (size_t g = 0; g < groups.size(); ++g) {

@@ -307,7 +307,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
   sub.add_option("--tiles", a->tiles,
                  "Simplify by N cubic tiles along the longest axis (1 = the whole mesh at once): each tile alone\n"
-                 "with its cut pinned, then strips along the cuts; no cracks, open borders kept in place; faces\n"
+                 "with its cut pinned, then strips along the cuts; no cracks, no new border; faces\n"
                  "at or just above the target (more with tiles only a few output triangles wide). Takes\n"
                  "--target-faces or --ratio (not --target-error), not an OBJ split at UV seams")
       ->check(whole_in(1, 1024));

@@ -57,9 +57,9 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
     }
     return w;
   };
-  // A first pass: each group's goal from the common error level (tile_pass.h).
+  // Each group's goal from the common error level (tile_pass.h), in every pass.
   std::vector<size_t> goals;
-  if (budget.rule == Targets::FirstPass) {
+  if (budget.rule != Targets::Given) {
     std::vector<std::vector<double>> levels;
     uint64_t faces = 0, goal_sum = 0, count = 0;
     for (size_t g = 0; g < groups.size(); ++g) {
@@ -68,9 +68,12 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
       const std::vector<double> w = weights_of(tile);
       levels.push_back(collapse_levels(tile, weights ? &w : nullptr, options));
       faces += groups[g].size();
-      goal_sum += first_pass_goal(tile, budget.ratio);
+      if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
       count += levels.back().size();
     }
+    // A strip pass: what is left to remove, from the selected faces.
+    if (budget.rule == Targets::Remaining)
+      goal_sum = faces - std::min<uint64_t>(faces, uint64_t(std::max(0LL, budget.to_remove)));
     const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
     const ValueStream all = [&](const std::function<void(double)>& take) {
       for (const std::vector<double>& l : levels)

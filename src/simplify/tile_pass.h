@@ -15,7 +15,7 @@ namespace simplify_detail {
 // How a pass sets each group's face target.
 enum class Targets {
   FirstPass,  // the ratio on the triangles away from the cut; those at it stay (they wait for the strips)
-  Remaining,  // the faces still over the target, spread over the groups by face count, carried on
+  Remaining,  // a strip pass: the faces still over the round's target (to_remove), by the common level
   Given,      // PassBudget::goal, set per group by the driver (from collapse_levels)
 };
 
@@ -58,8 +58,10 @@ size_t round_target(size_t faces_now, size_t target);
 std::vector<double> collapse_levels(const TilePiece& tile, const std::vector<double>* weights,
                                     const SimplifyOptions& options);
 
-// A first pass spends the round's face budget where the error is, as one simplification
-// of the whole mesh would, instead of the same ratio in every tile: the groups together
+// Every pass spends its face budget where the error is, as one simplification of the whole
+// mesh would, instead of the same ratio (or share of the faces) in every group: a strip
+// piece of five triangles at a plane's corner, told to give up one, gave up the corner
+// (Hausdorff 15% of the diagonal). The groups together
 // make the `collapses` cheapest collapses by level (level_collapses: (faces - budget) / 2),
 // found as the common level (the collapses-th smallest of all groups' levels), every
 // collapse under it, and the ties at it handed out in group order up to the count.
