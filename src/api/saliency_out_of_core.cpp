@@ -8,7 +8,7 @@
 #include "api/tile_saliency.h"
 #include "api/tile_store.h"
 #include "core/cancel.h"
-#include "core/timer.h"
+#include "core/stage_clock.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
@@ -98,11 +98,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
   OutOfCoreReport report;
   report.ranks = ranks;
-  Timer clock;
-  auto lap = [&](const char* name) {
-    report.stages.push_back({name, clock.seconds()});
-    clock.restart();
-  };
+  StageClock clock(report.stages);
   auto progress = [&](const char* stage, double f) {
     if (options.progress) options.progress(stage, f);
   };
@@ -130,7 +126,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
     }
     if (rank != 0) adopt(store, all[0], options);
   }
-  lap("tiling");
+  clock.lap("tiling");
   tile_saliency(store, options, report);
 
   // The output (rank 0): the vertices a block at a time, each block's results gathered
@@ -207,7 +203,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
         write_all(f, buf.data(), buf.size(), output);
       }
     });
-    lap("writing");
+    clock.lap("writing");
   }
   // Every rank done before rank 0's store (and its folder) goes.
   tile_gather(exchange, {});

@@ -13,6 +13,7 @@
 #include "api/tile_store.h"
 #include "core/cancel.h"
 #include "core/model_frame.h"
+#include "core/stage_clock.h"
 #include "core/timer.h"
 #include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
@@ -198,11 +199,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   }
   OutOfCoreSimplifyReport report;
   const Timer t0;
-  Timer clock;
-  auto lap = [&](const char* name) {
-    report.stages.push_back({name, clock.seconds()});
-    clock.restart();
-  };
+  StageClock clock(report.stages);
   auto progress = [&](const char* stage, double f) {
     if (so.progress) so.progress(stage, f);
   };
@@ -211,7 +208,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
   build_tile_store(store, input, so, weights ? ooc.memory_limit : 0, weights ? std::max(1u, so.tiles) : 1, progress);
-  lap("tiling");
+  clock.lap("tiling");
   report.saliency.vertices = store.vertices;
   report.saliency.points = store.points;
   report.saliency.triangles = store.triangles;
@@ -241,7 +238,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   if (weights) {
     mesh.attribute_names = {"quality"};
     tile_saliency(store, so, report.saliency);
-    lap("saliency");
+    clock.lap("saliency");
   }
   {
     const size_t scales = so.scales.size(), rec = mesh.record_bytes();
@@ -291,7 +288,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
       w.write(buf.data(), got * 8);
     }
     w.close();
-    lap("weights");
+    clock.lap("weights");
   }
   std::remove(store.dir.file("sm.f64").c_str());
 
@@ -330,18 +327,17 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
         DiskPass pass{TileGrid(store.box, grid_tiles, shift), PassBudget{}};
         pass.budget.rule = Targets::Remaining;
         pass.budget.to_remove = (long long)mesh.triangle_count - (long long)goal;
-        pass.budget.faces_left = size_t(strips);
         pass.selected_near = &near1;
         pass.guard_near = &near2;
         run_disk_pass(mesh, pass, options, pending, totals, buffer, [&](double f) { progress("strips", f); });
       }
       if (mesh.triangle_count >= now) break;  // the round gave up nothing: neither will the next
     }
-    lap("simplifying");
+    clock.lap("simplifying");
   }
 
   write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep);
-  lap("writing");
+  clock.lap("writing");
   rep.unchanged = keep;
   rep.reached = rep.output_faces == target;
   if (keep)

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/timer.h"
+#include "core/stage_clock.h"
 #include "saliency/tile_bytes.h"
 #include "saliency/tile_reduce.h"
 
@@ -68,11 +68,7 @@ std::string tile_result_file(const TileStore& store, size_t t) {
 void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report) {
   TileExchange* exchange = options.exchange;
   const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
-  Timer clock;
-  auto lap = [&](const char* name) {
-    report.stages.push_back({name, clock.seconds()});
-    clock.restart();
-  };
+  StageClock clock(report.stages);
   auto progress = [&](const char* stage, double f) {
     if (options.progress) options.progress(stage, f);
   };
@@ -98,7 +94,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     }
     cells = reduce_cell_counts(exchange, cells);
     plan.fast_cells = cells;
-    lap("cell counts");
+    clock.lap("cell counts");
   }
 
   // Phase 1: raw maps, each tile's kept on disk; the scales' maxima over all tiles.
@@ -114,7 +110,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   progress("tiles", 1.0);
   reduce_scale_max(exchange, max, pairs);
   report.pairs = pairs;
-  lap("tile raw maps");
+  clock.lap("tile raw maps");
 
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(options.scales.size());
@@ -123,7 +119,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
-  lap("suppression");
+  clock.lap("suppression");
 
   // Phase 3: each tile's results to disk; the saliency's range for the colours.
   double lo = INFINITY, hi = -INFINITY, sum = 0;
@@ -151,7 +147,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   report.saliency_min = lo;
   report.saliency_max = hi;
   report.saliency_mean = store.points ? sum / double(store.points) : 0;
-  lap("saliency");
+  clock.lap("saliency");
 
 }
 

@@ -11,25 +11,10 @@
 #include "core/parallel.h"
 #include "saliency/saliency.h"
 #include "saliency/suppression.h"
-#include "core/timer.h"
+#include "core/stage_clock.h"
 
 namespace meshsal {
 
-namespace {
-
-class StageClock {
- public:
-  explicit StageClock(SaliencyResult& r) : r_(r) {}
-  void lap(const char* name) {
-    r_.stages.push_back({name, timer_.seconds()});
-    timer_.restart();
-  }
-
- private:
-  SaliencyResult& r_;
-  Timer timer_;
-};
-}  // namespace
 
 // Sigmas of the filter: every scale k and its surround 2k, deduplicated, in eps units.
 std::vector<double> filter_sigma_units(const std::vector<double>& scales) {
@@ -57,7 +42,7 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
   auto report = [&](const char* stage, double f) {
     if (opt.progress) opt.progress(stage, f);
   };
-  StageClock clock(r);
+  StageClock clock(r.stages);
 
   r.is_point = referenced_vertices(mesh);
   r.eps = scale_unit(mesh, r.is_point, opt.eps_frac);

@@ -1,7 +1,7 @@
 // compute_saliency_tiled(): the phases of saliency_tiles.h over a mesh in memory, this
 // process's share of the tiles, the reductions through a TileExchange when one is given.
 #include "core/parallel.h"
-#include "core/timer.h"
+#include "core/stage_clock.h"
 #include "saliency/saliency_tiles.h"
 #include "saliency/tile_bytes.h"
 #include "saliency/tile_reduce.h"
@@ -22,11 +22,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   r.method = opt.method;
   r.backend_name = "cpu (" + std::to_string(resolve_threads(opt.threads)) + " threads)";
   r.ranks = ranks;
-  Timer clock;
-  auto lap = [&](const char* name) {
-    r.stages.push_back({name, clock.seconds()});
-    clock.restart();
-  };
+  StageClock clock(r.stages);
 
   r.is_point = referenced_vertices(mesh);
   const size_t n = mesh.vertex_count();
@@ -53,7 +49,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
     }
     cells = reduce_cell_counts(exchange, cells);
     plan.fast_cells = cells;
-    lap("cell counts");
+    clock.lap("cell counts");
   }
 
   // Phase 1: raw maps per tile; each scale's maximum over all tiles.
@@ -67,7 +63,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   }
   report("tiles", 1.0);
   reduce_scale_max(exchange, max, r.pairs);
-  lap("tile raw maps");
+  clock.lap("tile raw maps");
 
   // Phase 2: mbar from every tile's local maxima, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
@@ -76,7 +72,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
-  lap("suppression");
+  clock.lap("suppression");
 
   // Phase 3: each tile's own results, shared so that every process holds the whole map.
   TileBytes results;
@@ -111,7 +107,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       }
     }
   }
-  lap(opt.smoothed ? "saliency and smoothing" : "saliency");
+  clock.lap(opt.smoothed ? "saliency and smoothing" : "saliency");
   return r;
 }
 
