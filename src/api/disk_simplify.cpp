@@ -233,7 +233,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   uint64_t out_count = 0;
   const size_t rec = mesh.record_bytes(), nattr = mesh.attribute_names.size();
   const std::vector<uint64_t> groups = buckets.groups();
-  PassBudget budget = pass.budget;
+  const PassBudget& budget = pass.budget;
   auto weights_of = [&](const TilePiece& tile) {
     std::vector<double> w;
     if (!mesh.weights.empty()) {
@@ -245,7 +245,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   // Each group's goal from the common error level (tile_pass.h), in every pass; the levels
   // of each group kept on disk meanwhile.
   std::vector<size_t> goals;
-  if (budget.rule != Targets::Given) {
+  {
     auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
     uint64_t faces = 0, goal_sum = 0, count = 0;
     std::vector<size_t> sizes;
@@ -263,10 +263,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
       if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
       count += levels.size();
     }
-    // A strip pass: what is left to remove, from the selected faces.
-    if (budget.rule == Targets::Remaining)
-      goal_sum = faces - std::min<uint64_t>(faces, uint64_t(std::max(0LL, budget.to_remove)));
-    const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
+    const uint64_t collapses = std::min(pass_collapses(budget, faces, goal_sum), count);
     const ValueStream all = [&](const std::function<void(double)>& take) {
       for (size_t g = 0; g < groups.size(); ++g) {
         ScratchReader in(levels_file(g));
@@ -285,15 +282,13 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
       std::remove(levels_file(g).c_str());
     }
     goals = level_goals(counts, sizes, collapses);
-    budget.rule = Targets::Given;
   }
   for (size_t g = 0; g < groups.size(); ++g) {
     throw_if_cancelled();
-    if (progress) progress(goals.empty() ? double(g) / double(groups.size()) : 0.5 + 0.5 * double(g) / double(groups.size()));
+    if (progress) progress(0.5 + 0.5 * double(g) / double(groups.size()));
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
     const std::vector<double> w = weights_of(tile);
-    if (!goals.empty()) budget.goal = goals[g];
-    const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, budget, totals);
+    const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, goals[g], totals);
     for (uint32_t v : piece.mesh.triangles) out.write(&piece.ids[v], 4);
     out_count += piece.mesh.triangle_count();
     // Pinned vertices are as they were (simplify_tile restores them); the rest may have moved.

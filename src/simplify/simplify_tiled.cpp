@@ -36,7 +36,7 @@ struct Work {
 // One pass: the triangles `selected` of work, grouped by `grid`, each group simplified as a
 // tile; the rest pass through. `pending` (per global id): vertices not yet free in any
 // pass; on return only those that this pass had to pin.
-Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const TileGrid& grid, PassBudget budget,
+Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const TileGrid& grid, const PassBudget& budget,
               const std::vector<double>* weights, const SimplifyOptions& options, std::vector<uint8_t>& pending,
               PassTotals& totals) {
   const std::vector<std::pair<uint64_t, uint32_t>> cells = triangles_by_cell(work.mesh, selected, grid);
@@ -59,7 +59,7 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
   };
   // Each group's goal from the common error level (tile_pass.h), in every pass.
   std::vector<size_t> goals;
-  if (budget.rule != Targets::Given) {
+  {
     std::vector<std::vector<double>> levels;
     uint64_t faces = 0, goal_sum = 0, count = 0;
     for (size_t g = 0; g < groups.size(); ++g) {
@@ -71,10 +71,7 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
       if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
       count += levels.back().size();
     }
-    // A strip pass: what is left to remove, from the selected faces.
-    if (budget.rule == Targets::Remaining)
-      goal_sum = faces - std::min<uint64_t>(faces, uint64_t(std::max(0LL, budget.to_remove)));
-    const uint64_t collapses = std::min(level_collapses(faces, goal_sum), count);
+    const uint64_t collapses = std::min(pass_collapses(budget, faces, goal_sum), count);
     const ValueStream all = [&](const std::function<void(double)>& take) {
       for (const std::vector<double>& l : levels)
         for (double x : l) take(x);
@@ -87,15 +84,13 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
       sizes.push_back(groups[g].size());
     }
     goals = level_goals(counts, sizes, collapses);
-    budget.rule = Targets::Given;
   }
   std::vector<TilePiece> out;
   for (size_t g = 0; g < groups.size(); ++g) {
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
     const std::vector<double> w = weights_of(tile);
-    if (!goals.empty()) budget.goal = goals[g];
-    out.push_back(simplify_group(tile, weights ? &w : nullptr, options, budget, totals));
+    out.push_back(simplify_group(tile, weights ? &w : nullptr, options, goals[g], totals));
     for (uint32_t id : freed_ids(tile)) pending[id] = 0;
   }
   // The triangles no group took, as they are.
@@ -203,7 +198,6 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
       PassBudget rest;
       rest.rule = Targets::Remaining;
       rest.to_remove = (long long)work.mesh.triangle_count() - (long long)goal;
-      rest.faces_left = strips.size();
       work = run_pass(work, strips, TileGrid(box, grid_tiles, shift), rest, vertex_weights, options, pending, totals);
     }
     if (work.mesh.triangle_count() >= now) break;  // the round gave up nothing: neither will the next

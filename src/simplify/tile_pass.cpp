@@ -23,29 +23,14 @@ size_t first_pass_goal(const TilePiece& tile, double ratio) {
 }
 
 TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weights, const SimplifyOptions& options,
-                         PassBudget& budget, PassTotals& totals) {
-  const size_t f = tile.mesh.triangle_count() - tile.guards;
-  size_t goal;
-  if (budget.rule == Targets::Given) {
-    goal = budget.goal;
-  } else if (budget.rule == Targets::FirstPass) {
-    goal = first_pass_goal(tile, budget.ratio);
-  } else {
-    const double share = budget.faces_left > 0
-                             ? double(std::max(0LL, budget.to_remove)) * double(f) / double(budget.faces_left)
-                             : 0;
-    goal = f - std::min(f, size_t(std::llround(share)));
-  }
-  goal = std::max<size_t>(goal, 1);
+                         size_t goal, PassTotals& totals) {
   SimplifyReport rep;
-  TilePiece out = simplify_tile(tile, weights, goal, options, &rep);
+  TilePiece out = simplify_tile(tile, weights, std::max<size_t>(goal, 1), options, &rep);
   totals.collapses += rep.collapses;
   totals.refused += rep.refused;
   // rep.error is in units of the tile's diagonal: to model units.
   const BoundingBox tb = bounding_box(tile.mesh.positions.data(), tile.mesh.vertex_count(), nullptr);
   totals.error = std::max(totals.error, rep.error * tb.diagonal());
-  budget.to_remove -= (long long)f - (long long)out.mesh.triangle_count();
-  budget.faces_left -= f;
   return out;
 }
 
@@ -68,7 +53,12 @@ std::vector<double> collapse_levels(const TilePiece& tile, const std::vector<dou
   return levels;
 }
 
-uint64_t level_collapses(uint64_t faces, uint64_t budget) { return faces > budget ? (faces - budget) / 2 : 0; }
+uint64_t pass_collapses(const PassBudget& budget, uint64_t faces, uint64_t first_goals) {
+  const uint64_t keep = budget.rule == Targets::FirstPass
+                            ? first_goals
+                            : faces - std::min<uint64_t>(faces, uint64_t(std::max(0LL, budget.to_remove)));
+  return faces > keep ? (faces - keep) / 2 : 0;
+}
 
 LevelCount count_level(const std::vector<double>& levels, double level) {
   LevelCount c;

@@ -12,20 +12,17 @@
 namespace meshsal {
 namespace simplify_detail {
 
-// How a pass sets each group's face target.
+// What a pass keeps of its groups' faces (pass_collapses); each group's share then comes
+// from the common error level.
 enum class Targets {
   FirstPass,  // the ratio on the triangles away from the cut; those at it stay (they wait for the strips)
-  Remaining,  // a strip pass: the faces still over the round's target (to_remove), by the common level
-  Given,      // PassBudget::goal, set per group by the driver (from collapse_levels)
+  Remaining,  // a strip pass: the faces still over the round's target (to_remove)
 };
 
-// What a pass has left to do, carried from group to group in group order.
 struct PassBudget {
   Targets rule = Targets::FirstPass;
-  double ratio = 1;        // FirstPass: target / input faces
-  long long to_remove = 0; // Remaining: faces still over the whole mesh's target
-  size_t faces_left = 0;   // Remaining: selected faces not yet simplified
-  size_t goal = 0;         // Given: this group's face target
+  double ratio = 1;        // FirstPass: the round's target / its faces
+  long long to_remove = 0; // Remaining: faces still over the round's target
 };
 
 struct PassTotals {
@@ -37,11 +34,11 @@ struct PassTotals {
 // and every triangle at it (two pinned corners: they wait for the strips).
 size_t first_pass_goal(const TilePiece& tile, double ratio);
 
-// One group: `tile` (its own triangles, then the guards) simplified toward the goal the
-// budget gives it; the budget and the totals move on. `weights`: one per vertex of
-// tile.mesh (may be null).
+// One group: `tile` (its own triangles, then the guards) simplified toward `goal` faces of
+// its own (level_goals); the totals move on. `weights`: one per vertex of tile.mesh (may
+// be null).
 TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weights, const SimplifyOptions& options,
-                         PassBudget& budget, PassTotals& totals);
+                         size_t goal, PassTotals& totals);
 
 // Rounds: each keeps at most this share of the faces it starts from (its first pass over
 // every triangle, then its strips), so a round's cuts are at most twice as fine as its
@@ -62,10 +59,13 @@ std::vector<double> collapse_levels(const TilePiece& tile, const std::vector<dou
 // mesh would, instead of the same ratio (or share of the faces) in every group: a strip
 // piece of five triangles at a plane's corner, told to give up one, gave up the corner
 // (Hausdorff 15% of the diagonal). The groups together
-// make the `collapses` cheapest collapses by level (level_collapses: (faces - budget) / 2),
+// make the `collapses` cheapest collapses by level (pass_collapses),
 // found as the common level (the collapses-th smallest of all groups' levels), every
 // collapse under it, and the ties at it handed out in group order up to the count.
-uint64_t level_collapses(uint64_t faces, uint64_t budget);
+// The collapses a pass asks of its groups' `faces` own faces: down to the sum of their
+// first_pass_goal()s (`first_goals`) in a first pass, down by budget.to_remove in a strip
+// pass; two faces a collapse.
+uint64_t pass_collapses(const PassBudget& budget, uint64_t faces, uint64_t first_goals);
 struct LevelCount {
   size_t below = 0, at = 0;  // a group's collapses under the level, and at it
 };
