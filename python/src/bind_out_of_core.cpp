@@ -81,10 +81,9 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1]");
     options.ratio = r;
   }
-  if (weights != "saliency" && weights != "balanced" && weights != "none")
-    throw py::value_error("weights must be 'saliency', 'balanced' or 'none', got '" + weights + "'");
-  const meshsal::SaliencyWeightOptions wo =
-      meshsal::weight_preset(meshsal::parse_weighting(weights == "none" ? "balanced" : weights));
+  // The library's names and presets, as --weights (meshsal.Error for another name).
+  const meshsal::Weighting weighting = meshsal::parse_weighting(weights);
+  const meshsal::SaliencyWeightOptions wo = meshsal::weight_preset(weighting);
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
       saliency_options({py::none(), eps_frac, method, "cpu", "auto", py::int_(-1), threads}, &notices);
@@ -95,7 +94,8 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
     const InterruptibleCall call;
     options.cancel = call.flag();
     so.cancel = call.flag();
-    r = meshsal::simplify_file(in, out, options, weights == "none" ? nullptr : &wo, so, ooc, std::max(1u, tiles));
+    r = meshsal::simplify_file(in, out, options, weighting == meshsal::Weighting::None ? nullptr : &wo, so, ooc,
+                               std::max(1u, tiles));
   }
   py::dict d;
   d["input_faces"] = r.simplify.input_faces;
