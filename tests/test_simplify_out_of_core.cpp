@@ -165,6 +165,15 @@ TEST_CASE("simplify --memory-limit holds the limit and gives --tiles N's bytes",
   REQUIRE(mem.rc == 0);
   REQUIRE(ooc.rc == 0);
   CHECK(file_bytes(dir / "d.ply") == file_bytes(dir / "e.ply"));
+  // --lock-border reaches the out-of-core run too: the same bytes as in memory, and not
+  // those without it (the plane's border gives up vertices then).
+  const CliRun mem_locked = run_cli(exact + quoted((dir / "f.ply").string()) + " --lock-border", dir);
+  const CliRun ooc_locked = run_cli(exact + quoted((dir / "g.ply").string()) + " --lock-border --memory-limit 1G --json", dir);
+  REQUIRE(mem_locked.rc == 0);
+  REQUIRE(ooc_locked.rc == 0);
+  CHECK(file_bytes(dir / "f.ply") == file_bytes(dir / "g.ply"));
+  CHECK(file_bytes(dir / "f.ply") != file_bytes(dir / "e.ply"));
+  CHECK(ooc_locked.out.find("\"lock_border\": true") != std::string::npos);
 }
 
 TEST_CASE("simplify --memory-limit: what it does not take is a clear error", "[outofcore][simplify][cli]") {

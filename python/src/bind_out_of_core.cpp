@@ -67,11 +67,12 @@ py::dict saliency_file(const py::object& input, const py::object& output, const 
 
 py::dict simplify_file(const py::object& input, const py::object& output, const py::object& target_faces,
                        const py::object& ratio, const py::object& memory_limit, const py::object& temp_dir,
-                       unsigned tiles, const std::string& weights, double eps_frac, const std::string& method,
-                       unsigned threads) {
+                       unsigned tiles, bool lock_border, const std::string& weights, double eps_frac,
+                       const std::string& method, unsigned threads) {
   if (target_faces.is_none() == ratio.is_none()) throw py::value_error("give one of target_faces and ratio");
   meshsal::SimplifyOptions options;
   options.threads = threads;
+  options.lock_border = lock_border;
   if (!target_faces.is_none()) {
     const long long t = target_faces.cast<long long>();
     if (t < 1 || t > 4000000000LL) throw py::value_error("target_faces must be in [1, 4000000000]");
@@ -135,16 +136,17 @@ method 'auto' is taken as 'fast'. Returns the report (counts, tiles, tile_estima
 saliency range, stages).)");
   m.def("simplify_file", &simplify_file, py::arg("input"), py::arg("output"), py::kw_only(),
         py::arg("target_faces") = py::none(), py::arg("ratio") = py::none(), py::arg("memory_limit") = py::none(),
-        py::arg("temp_dir") = py::none(), py::arg("tiles") = 1u,
+        py::arg("temp_dir") = py::none(), py::arg("tiles") = 1u, py::arg("lock_border") = false,
         py::arg("weights") = meshsal::weighting_name(meshsal::kDefaultWeighting), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("threads") = 0u,
         R"(simplify_file(input, output, *, target_faces=None, ratio=None, memory_limit=None,
-              temp_dir=None, tiles=1, weights='balanced', eps_frac=0.003, method='exact',
-              threads=0) -> dict
+              temp_dir=None, tiles=1, lock_border=False, weights='balanced', eps_frac=0.003,
+              method='exact', threads=0) -> dict
 
 `meshsal simplify IN -o OUT.ply --memory-limit SIZE` (the same bytes): the tiled
 simplifier run on disk, a tile at a time, toward target_faces or ratio (give one), with
-saliency weights ('saliency', 'balanced' or 'none') computed out of core. At least `tiles`
+saliency weights ('saliency', 'balanced' or 'none') computed out of core; lock_border keeps
+the vertices of open borders in place (--lock-border). At least `tiles`
 tiles along the longest axis, more where memory_limit needs them. Writes a binary PLY
 (positions and S as `quality`). Returns the report (faces, collapses, error_percent,
 tiles, alpha, stages).)");

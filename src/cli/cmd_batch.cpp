@@ -193,6 +193,7 @@ JsonObject simplified_out_of_core(const Plan& p, const std::string& input, const
   so.cancel = interrupt_flag();
   if (p.o->simplify > 1) so.target_faces = size_t(p.o->simplify);
   else so.ratio = p.o->simplify;
+  so.lock_border = p.o->lock_border;
   OutOfCoreOptions ooc;
   ooc.memory_limit = p.memory_limit;
   ooc.temp_dir = p.o->temp_dir;

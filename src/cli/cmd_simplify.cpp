@@ -99,7 +99,7 @@ int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const me
         .count("output_faces", rep.output_faces).count("target_faces", rep.target_faces)
         .flag("unchanged", rep.unchanged).count("collapses", rep.collapses).flag("reached", rep.reached)
         .text("weights", a.weights).text("device", "cpu").number("error_percent", 100 * rep.error)
-        .flag("lock_border", true).count("tiles", r.tiles).count("saliency_tiles", r.saliency.tiles)
+        .flag("lock_border", a.lock_border).count("tiles", r.tiles).count("saliency_tiles", r.saliency.tiles)
         .count("memory_limit", size_t(ooc.memory_limit)).count("tile_estimate", size_t(r.tile_estimate))
         .count("peak_rss", size_t(peak));
     if (a.weights != "none")
@@ -151,6 +151,7 @@ int run(const Args& a) {
     opt.cancel = interrupt_flag();
     if (a.has_target) opt.target_faces = size_t(a.target_faces);
     else opt.ratio = a.ratio;
+    opt.lock_border = a.lock_border;
     return run_out_of_core(a, opt, wo, saliency_options(a, progress), progress);
   }
   const meshsal::Timer t0;
