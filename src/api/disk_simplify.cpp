@@ -78,7 +78,7 @@ class Buckets {
     if (!cells_.count(cell)) return {};
     const std::vector<uint8_t> bytes = read_scratch_file(path(cell));
     std::vector<BucketFace> faces(bytes.size() / sizeof(BucketFace));
-    std::memcpy(faces.data(), bytes.data(), faces.size() * sizeof(BucketFace));
+    if (!faces.empty()) std::memcpy(faces.data(), bytes.data(), faces.size() * sizeof(BucketFace));
     return faces;
   }
 
@@ -277,7 +277,8 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     for (size_t g = 0; g < groups.size(); ++g) {
       const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
       std::vector<double> levels(bytes.size() / 8);
-      std::memcpy(levels.data(), bytes.data(), bytes.size());
+      // (A group with no collapse has an empty file: memcpy's pointers would be null.)
+      if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
       counts.push_back(count_level(levels, level));
       std::remove(levels_file(g).c_str());
     }
