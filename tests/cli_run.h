@@ -28,12 +28,13 @@ inline std::string cli_path() {
 }
 
 // An empty folder meshsal_NAME_PID under the temporary directory (emptied if it exists), for
-// a test's inputs and outputs; ctest runs each test case in a process of its own.
+// a test's inputs and outputs, removed when the test process exits.
 inline std::filesystem::path scratch_dir(const std::string& name) {
   const std::filesystem::path d = std::filesystem::temp_directory_path() /
                                   ("meshsal_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
+  remove_at_exit(d);
   return d;
 }
 

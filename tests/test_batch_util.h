@@ -14,6 +14,7 @@
 
 #include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
+#include "test_io_util.h"
 
 namespace meshsal_test {
 
@@ -35,6 +36,7 @@ inline fs::path batch_scratch(const std::string& name) {
   fs::path d = fs::temp_directory_path() / ("meshsal_batch_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
+  remove_at_exit(d);
   return d;
 }
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,28 @@
 #include "meshsal/meshsal.h"
 
 namespace meshsal_test {
+
+// Removes `dir` when this test process exits (ctest runs each case in a process of its own),
+// so a suite run leaves nothing in /tmp; MESHSAL_KEEP_SCRATCH=1 keeps them for a post-mortem.
+// Only the process that asked removes it: a forked child that exits leaves it alone.
+inline void remove_at_exit(const std::filesystem::path& dir) {
+  struct Sweeper {
+    std::vector<std::filesystem::path> dirs;
+    pid_t owner = ::getpid();
+    ~Sweeper() {
+      const char* keep = std::getenv("MESHSAL_KEEP_SCRATCH");
+      if (::getpid() != owner || (keep && *keep && std::string(keep) != "0")) return;
+      for (const auto& d : dirs) {
+        std::error_code ec;
+        std::filesystem::permissions(d, std::filesystem::perms::owner_all,
+                                     std::filesystem::perm_options::add, ec);
+        std::filesystem::remove_all(d, ec);
+      }
+    }
+  };
+  static Sweeper sweeper;
+  sweeper.dirs.push_back(dir);
+}
 
 // A fresh folder under the system temp dir, removed with everything in it at scope exit.
 struct TempDir {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "test_io_util.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -73,6 +74,7 @@ TEST_CASE("cli: saliency with more threads than the process may start falls back
   const std::string dir = std::filesystem::temp_directory_path().string() + "/meshsal_threads_" +
                           std::to_string(::getpid());
   std::filesystem::create_directories(dir);
+  meshsal_test::remove_at_exit(dir);
   const std::string cli = MESHSAL_CLI;
   const std::string many = "sh -c \"ulimit -v 250000; exec '" + cli + "' saliency '" + bunny + "' -o '" + dir +
                            "/many.ply' --threads 1000 --backend cpu -q\" 2>&1";
