@@ -43,7 +43,7 @@ std::map<std::string, std::string> expected_outcomes() {
 
 TEST_CASE("fuzz corpus: every seed loads", "[fuzz]") {
   size_t files = 0;
-  for (const char* target : {"obj", "off", "ply", "stl", "gz", "saliency", "plystream"}) {
+  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream"}) {
     for (const auto& entry : fs::directory_iterator(kFuzzDir / "corpus" / target)) {
       INFO(target << ": " << entry.path().filename().string());
       CHECK(replay(target, entry.path()) == "");
@@ -57,7 +57,7 @@ TEST_CASE("fuzz regressions: each file gives its recorded outcome", "[fuzz]") {
   const auto expected = expected_outcomes();
   REQUIRE(expected.size() >= 10);
   size_t files = 0;
-  for (const char* target : {"obj", "off", "ply", "stl", "gz", "saliency", "plystream"}) {
+  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream"}) {
     const fs::path dir = kFuzzDir / "regressions" / target;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) {

@@ -47,7 +47,7 @@ TEST_CASE("bad input: missing file, folder, unknown extension", "[io]") {
   expect_error(dir.file("nope.ply.gz"), "No such file");
   std::filesystem::create_directory(dir.file("folder.ply"));
   expect_error(dir.file("folder.ply"), "folder");
-  expect_error(dir.write("mesh.xyz", kObjOk), "unknown mesh format '.xyz' (expected .obj, .ply, .off or .stl");
+  expect_error(dir.write("mesh.xyz", kObjOk), "unknown mesh format '.xyz' (expected .obj, .ply, .off, .stl, .gltf or .glb");
   expect_error(dir.write("mesh", kObjOk), "unknown mesh format");
   expect_error(dir.write("mesh.gz", kObjOk), "unknown mesh format");
   CHECK(meshsal_test::load_error(dir.write("fine.obj", kObjOk)).empty());

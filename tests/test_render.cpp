@@ -278,7 +278,7 @@ TEST_CASE("cli: render and viewpoint --help name every input format, STL include
     CliRun cr;
     REQUIRE((cr = run_cli_merged(std::string(cmd) + " --help")).rc == 0);
     INFO(cr.out);
-    CHECK(cr.out.find("mesh (OBJ, PLY, OFF, STL, optionally .gz)") != std::string::npos);
+    CHECK(cr.out.find("mesh (OBJ, PLY, OFF, STL, glTF, GLB, optionally .gz)") != std::string::npos);
     CHECK(cr.out.find("--json") != std::string::npos);
   }
 }

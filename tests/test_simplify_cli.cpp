@@ -81,7 +81,7 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
   r = run_cli_merged("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
   CHECK(r.rc == 1);
-  CHECK(r.out.find("x.stl: -o must be a .obj or .ply file") != std::string::npos);
+  CHECK(r.out.find("x.stl: -o must be a .obj, .ply, .glb or .gltf file") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }

@@ -60,6 +60,8 @@ struct VertexAttribute {
   std::vector<float> values;  // one per vertex
 };
 
+struct GltfAssets;  // a glTF input's materials and textures (see Mesh::gltf_assets)
+
 struct Mesh {
   // x,y,z per vertex, in input order, in local coordinates: relative to `origin`. Every
   // computation (saliency, simplification, views, distances) works on these floats.
@@ -114,6 +116,17 @@ struct Mesh {
   std::vector<std::string> material_libraries;
   std::vector<std::string> materials;
   std::vector<uint32_t> triangle_material;
+
+  // Optional (glTF input): the file's materials, textures, images and samplers, opaque
+  // here, so write_gltf carries them over unchanged (triangle_material's slots name them).
+  std::shared_ptr<const GltfAssets> gltf_assets;
+
+  // Optional (glTF input): the world transform that every mesh instance of the file's scene
+  // shares (the usual single mesh node), 16 numbers, column-major as glTF writes them.
+  // positions are world coordinates, as for any instancing; write_gltf writes them back in
+  // this frame under a node with this matrix, so a file keeps its node transform on the
+  // way through. Empty = the identity (or instances with different transforms).
+  std::vector<double> frame;
 
   size_t vertex_count() const { return positions.size() / 3; }
   size_t triangle_count() const { return triangles.size() / 3; }
@@ -203,8 +216,16 @@ struct LoadReport {
   std::vector<std::string> unread;
 };
 
-// Loads OBJ, PLY (ascii, binary little/big endian), OFF or STL (ascii or binary), optionally
-// gzipped, chosen by extension (.obj .ply .off .stl, each optionally followed by .gz).
+// Loads OBJ, PLY (ascii, binary little/big endian), OFF, STL (ascii or binary) or glTF 2.0
+// (.gltf with its buffers, .glb), optionally gzipped, chosen by extension (.obj .ply .off
+// .stl .gltf .glb, each optionally followed by .gz). glTF: every triangle primitive of every
+// mesh instance in the default scene (scene 0 when none is named), node transforms applied
+// (positions in world coordinates; a transform all instances share is kept in Mesh::frame),
+// strips and fans made triangles, merged into one mesh whose vertices at one position are
+// linked (Mesh::position_vertex) so saliency sees one surface; with attributes, NORMAL,
+// TEXCOORD_0 and COLOR_0 (when every primitive has them); materials carried
+// (Mesh::gltf_assets). Points, lines, Draco or meshopt compression and GPU instancing are
+// refused, naming them.
 // Polygons are fan-triangulated. STL corners at identical positions are welded into shared
 // vertices, numbered in order of first appearance (the count goes to `report`); a binary
 // STL is recognised by its size (84 + 50 n bytes), whatever its header says, and an STL
@@ -245,6 +266,42 @@ void write_obj(const std::string& path, const Mesh& mesh);
 void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
                         const std::vector<PlyFloatProperty>& extra = {},
                         const std::vector<uint8_t>* is_point = nullptr);
+
+// One mesh of a glTF file written by write_gltf: the mesh (not owned), optionally its
+// saliency (one value per vertex) with the mesh points that set the colour scale (null:
+// the vertices a triangle uses), and the name of its node and mesh ("" = "mesh" or "LODi").
+struct GltfLevel {
+  const Mesh* mesh = nullptr;
+  const std::vector<double>* saliency = nullptr;
+  const std::vector<uint8_t>* is_point = nullptr;
+  std::string name;
+};
+
+// Writes glTF 2.0: binary for a name ending in .glb, JSON with its buffer embedded (base64)
+// for .gltf; the same atomic way as write_ply. Each level becomes a mesh under a node of
+// its own: levels[0] is the scene's node, and with more levels its MSFT_lod extension lists
+// the others' nodes in order (finest first, as MSFT_lod reads them). Per vertex: POSITION,
+// NORMAL (nx ny nz, renormalised; a zero one replaced by the faces' normal), TEXCOORD_0 (u v,
+// s t or texture_u texture_v, v flipped to glTF's convention), COLOR_0 (unsigned byte
+// RGBA: the saliency on the pictures' colour scale, else the mesh's red green blue alpha),
+// _SALIENCY (float) and every other attribute as a float _NAME in capitals (quality ->
+// _QUALITY). Triangles go into one primitive per material (triangle_material), with the
+// input's glTF materials, textures and images when it has them (Mesh::gltf_assets), else a
+// plain material per name. Positions are written in the node's frame: a glTF input's
+// shared node transform (Mesh::frame) is written back as the node's matrix; otherwise
+// the node is translated to Mesh::origin and the local floats are written as they are, so
+// survey coordinates keep their precision. The levels' meshes should share the frame
+// (levels of one input do); levels[0]'s materials and frame are the file's.
+void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels);
+// One mesh, with its saliency when given.
+void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
+
+// The writer a file name picks, for every front end's -o: ".obj", ".ply", ".glb" or ".gltf"
+// (case-insensitive), "" for none of them.
+std::string mesh_output_format(const std::string& path);
+// Writes `mesh` in the format its name gives: OBJ (write_obj; no saliency), PLY (write_ply,
+// or write_saliency_ply with the saliency), GLB or glTF (write_gltf). Error otherwise.
+void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
 
 // Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
 // property) for `mesh`. Throws Error when the file has no quality property, a quality is

@@ -45,30 +45,21 @@ py::object load(const py::object& path_obj, bool properties, bool attributes, un
   return py::make_tuple(vertices, faces, d);
 }
 
-bool ends_with_ci(const std::string& s, const char* tail) {
-  const size_t n = std::strlen(tail);
-  if (s.size() < n) return false;
-  for (size_t i = 0; i < n; ++i)
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != tail[i]) return false;
-  return true;
-}
-
 void save(const py::object& path_obj, const py::object& vertices, const py::object& faces,
           const py::object& saliency, const py::object& attributes, const py::object& position_vertex) {
   const std::string path = path_bytes(path_obj);
-  const bool ply = ends_with_ci(path, ".ply"), obj = ends_with_ci(path, ".obj");
-  if (!ply && !obj) throw py::value_error("path must end in .ply or .obj (the formats meshsal writes)");
+  const std::string format = meshsal::mesh_output_format(path);
+  const bool obj = format == ".obj";
+  if (format.empty()) throw py::value_error("path must end in .ply, .obj, .glb or .gltf (the formats meshsal writes)");
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   std::vector<double> s;
   if (!saliency.is_none()) {
-    if (obj) throw py::value_error("saliency needs a .ply path (OBJ has no place for per-vertex values)");
+    if (obj) throw py::value_error("saliency needs a .ply, .glb or .gltf path (OBJ has no place for per-vertex values)");
     s = vertex_values(saliency, mesh.vertex_count(), "saliency");
   }
   try {
     py::gil_scoped_release unlocked;
-    if (obj) meshsal::write_obj(path, mesh);
-    else if (!s.empty()) meshsal::write_saliency_ply(path, mesh, s);
-    else meshsal::write_ply(path, mesh, {});
+    meshsal::write_mesh(path, mesh, s.empty() ? nullptr : &s);
   } catch (const meshsal::Error& e) {
     raise_file_error(e, path_obj);
   }
@@ -97,8 +88,9 @@ void bind_io(py::module_& m) {
         R"(load(path, *, properties=False, attributes=False, max_input_bytes=0)
     -> (V, F), (V, F, props) or (V, F, attributes, position_vertex)
 
-Reads a mesh file as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl, each
-optionally .gz; polygons fan-triangulated, STL corners welded. Returns the vertices V
+Reads a mesh file as `meshsal saliency` does: .obj, .ply (ascii, binary), .off, .stl,
+.gltf, .glb, each optionally .gz (glTF: the default scene's triangles, node transforms
+applied); polygons fan-triangulated, STL corners welded. Returns the vertices V
 (n, 3) as the file has them: float32 when every coordinate is a float32 value (binary float
 PLY, STL), else float64 (text files' decimals, double PLYs, survey coordinates), and the
 faces F, uint32 (m, 3), both owned by numpy without a copy.
@@ -125,12 +117,13 @@ file meshsal.Error with the CLI's message.)");
 
 Writes a mesh with the library's writers, the bytes the CLI writes for the same mesh:
 
-  path             str, bytes or os.PathLike ending in .ply (binary little-endian PLY) or
-                   .obj (v, vt, vn and f lines); written to a temporary file and renamed,
-                   so a failure never leaves a half-written file
+  path             str, bytes or os.PathLike ending in .ply (binary little-endian PLY),
+                   .obj (v, vt, vn and f lines), .glb or .gltf (glTF 2.0); written to a
+                   temporary file and renamed, so a failure never leaves a half-written file
   vertices, faces  as in saliency()
-  saliency         S per vertex (a .ply only): written as `meshsal saliency -o OUT.ply` writes
-                   it, the property quality = S and red/green/blue its colour scale
+  saliency         S per vertex (not for .obj): written as `meshsal saliency -o OUT` writes
+                   it; PLY: the property quality = S and red/green/blue its colour scale;
+                   glTF: _SALIENCY and COLOR_0
 
 With attributes (e.g. a SimplifyResult's .attributes and .position_vertex) a PLY gets
 them as vertex properties (red/green/blue/alpha as uchar) and an OBJ its texture

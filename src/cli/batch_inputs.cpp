@@ -159,7 +159,7 @@ class Expander {
 
 bool is_mesh_file_name(const std::string& path) {
   const std::string ext = mesh_extension(path);
-  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
 }
 
 std::vector<std::string> expand_batch_inputs(const std::vector<std::string>& items,

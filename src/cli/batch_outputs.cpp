@@ -24,8 +24,8 @@ std::string stem(const std::string& name) {
   for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   size_t end = name.size();
   if (lower.size() > 3 && lower.compare(lower.size() - 3, 3, ".gz") == 0) end -= 3;
-  for (const char* ext : {".obj", ".ply", ".off", ".stl"})
-    if (end > 4 && lower.compare(end - 4, 4, ext) == 0) return name.substr(0, end - 4);
+  for (const std::string ext : {".obj", ".ply", ".off", ".stl", ".glb", ".gltf"})
+    if (end > ext.size() && lower.compare(end - ext.size(), ext.size(), ext) == 0) return name.substr(0, end - ext.size());
   return name;
 }
 

@@ -146,7 +146,7 @@ int run(const Options& o) {
 
 RunFn setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, glTF, GLB, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("-o,--output", o->output, "PNG to write")->required();
   auto* theta = app.add_option("--theta", o->theta_deg, "view longitude in degrees (0 looks from the front, 90 from the right)")
       ->capture_default_str()->check(finite_in(-360, 360));

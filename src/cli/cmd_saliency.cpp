@@ -79,8 +79,11 @@ int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress
 
 int run(const Args& a) {
   using namespace meshsal;
-  // Before any work: the output is a writable .ply that is not the input.
-  check_outputs({{a.output, "-o", {".ply"}}}, {a.input});
+  // Before any work: the output is a writable .ply, .glb or .gltf that is not the input.
+  check_outputs({{a.output, "-o", {".ply", ".glb", ".gltf"}}}, {a.input});
+  const bool gltf_out = meshsal::mesh_output_format(a.output) != ".ply";
+  if (gltf_out && !a.memory_limit.empty())
+    throw UsageError("--memory-limit writes a binary PLY: give -o OUT.ply");
   SaliencyOptions opt;
   opt.cancel = interrupt_flag();
   opt.eps_frac = a.eps_frac;
@@ -117,7 +120,8 @@ int run(const Args& a) {
 
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
-  Mesh mesh = load_input(a.input, quiet);
+  // A glTF output carries the input's normals, UVs and colours (and a glTF input's materials).
+  Mesh mesh = load_input(a.input, quiet, nullptr, gltf_out);
   double load = t0.seconds();
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);
@@ -139,11 +143,13 @@ int run(const Args& a) {
 RunFn setup(CLI::App& sub) {
   auto a = std::make_shared<Args>();
   sub.footer(
-      "Compute the mesh saliency of IN (OBJ, PLY, OFF or STL, optionally .gz) and write OUT.ply:\n"
-      "binary PLY with the input positions and faces, per-vertex `quality` (saliency, read by\n"
-      "MeshLab) and red/green/blue (low = blue, high = red).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
-  sub.add_option("-o,--output", a->output, "Output PLY file")->required();
+      "Compute the mesh saliency of IN (OBJ, PLY, OFF, STL, glTF or GLB, optionally .gz) and\n"
+      "write OUT.ply: binary PLY with the input positions and faces, per-vertex `quality`\n"
+      "(saliency, read by MeshLab) and red/green/blue (low = blue, high = red). OUT.glb or\n"
+      "OUT.gltf: glTF 2.0 with the saliency as the vertex attribute _SALIENCY and as COLOR_0 on\n"
+      "the same colour scale, the input's normals, UVs and materials carried over.");
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz)")->required();
+  sub.add_option("-o,--output", a->output, "Output file: .ply, .glb or .gltf")->required();
   sub.add_option("--backend", a->backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe "
                  "included) or cpu")->capture_default_str();

@@ -123,12 +123,27 @@ int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const me
   return 0;
 }
 
+// The simplified mesh in the format its name gives; a glTF takes the saliency the
+// simplifier carried (the `quality` attribute) as _SALIENCY and COLOR_0.
+void write_simplified(const std::string& path, const meshsal::Mesh& mesh) {
+  const std::string format = meshsal::mesh_output_format(path);
+  if (format != ".glb" && format != ".gltf") return meshsal::write_mesh(path, mesh);
+  meshsal::Mesh plain = mesh;
+  std::vector<double> s;
+  for (auto it = plain.attributes.begin(); it != plain.attributes.end(); ++it)
+    if (it->name == "quality") {
+      s.assign(it->values.begin(), it->values.end());
+      plain.attributes.erase(it);
+      break;
+    }
+  meshsal::write_mesh(path, plain, s.empty() ? nullptr : &s);
+}
+
 int run(const Args& a) {
   using namespace meshsal;
-  // Before any work: the output is a writable .obj/.ply that is none of the inputs.
-  check_outputs({{a.output, "-o", {".obj", ".ply"}}}, {a.input, a.saliency_from});
-  const bool obj = a.output.size() >= 4 && (a.output.compare(a.output.size() - 4, 4, ".obj") == 0 ||
-                                            a.output.compare(a.output.size() - 4, 4, ".OBJ") == 0);
+  // Before any work: the output is a writable .obj/.ply/.glb/.gltf that is none of the inputs.
+  check_outputs({{a.output, "-o", {".obj", ".ply", ".glb", ".gltf"}}}, {a.input, a.saliency_from});
+  const bool obj = mesh_output_format(a.output) == ".obj";
   if (a.has_target && a.has_ratio) throw UsageError("give only one of --target-faces N and --ratio R");
   if (!a.has_target && !a.has_ratio && a.target_error == 0)
     throw UsageError("give --target-faces N, --ratio R or --target-error E");
@@ -146,7 +161,7 @@ int run(const Args& a) {
 
   Progress progress(!a.quiet && stderr_is_terminal());
   if (!a.memory_limit.empty()) {
-    if (obj) throw UsageError("--memory-limit writes a binary PLY: give -o OUT.ply");
+    if (mesh_output_format(a.output) != ".ply") throw UsageError("--memory-limit writes a binary PLY: give -o OUT.ply");
     SimplifyOptions opt;
     opt.cancel = interrupt_flag();
     if (a.has_target) opt.target_faces = size_t(a.target_faces);
@@ -170,8 +185,7 @@ int run(const Args& a) {
   // no saliency computed for it.
   if ((a.has_target || a.has_ratio) && simplify_keeps_mesh(opt, mesh.triangle_count())) {
     progress.update("writing", 0.0);
-    if (obj) write_obj(a.output, mesh);
-    else write_ply(a.output, mesh, {});
+    write_simplified(a.output, mesh);
     progress.finish();
     if (const std::string note = material_files_note(a.input, a.output, mesh.material_libraries);
         obj && !a.quiet && !note.empty())
@@ -216,7 +230,7 @@ int run(const Args& a) {
     alpha = w.alpha;
     if (!w.device.empty()) device = w.device;
     t_saliency = ts.seconds();
-    if (!obj) set_vertex_attribute(mesh, "quality", w.saliency);  // S goes to the output PLY as `quality`
+    if (!obj) set_vertex_attribute(mesh, "quality", w.saliency);  // S goes to the output as `quality` (glTF: _SALIENCY)
   }
 
   progress.update("simplifying", 0.0);
@@ -224,8 +238,7 @@ int run(const Args& a) {
   const std::vector<double>* w = weights.empty() ? nullptr : &weights;
   const Mesh out = a.tiles > 1 ? simplify_mesh_tiled(mesh, opt, unsigned(a.tiles), w, &rep) : simplify_mesh(mesh, opt, w, &rep);
   progress.update("writing", 0.0);
-  if (obj) write_obj(a.output, out);
-  else write_ply(a.output, out, {});
+  write_simplified(a.output, out);
   progress.finish();
   if (const std::string note = material_files_note(a.input, a.output, out.material_libraries);
       obj && !a.quiet && !note.empty())
@@ -291,9 +304,11 @@ RunFn setup(CLI::App& sub) {
       "Texture coordinates and normals (OBJ vt/vn) and other PLY vertex properties are carried to\n"
       "the output, interpolated along each collapsed edge; UV seams stay closed (seam vertices\n"
       "do not move and collapse only along the seam, both sides at once).\n"
-      "A PLY output also gets the saliency S as `quality` (unless --weights none).");
-  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, optionally .gz)")->required();
-  sub.add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
+      "A PLY output also gets the saliency S as `quality`, a glTF output (.glb, .gltf) as\n"
+      "_SALIENCY and COLOR_0, with a glTF input's node transform and materials (unless\n"
+      "--weights none).");
+  sub.add_option("input", a->input, "Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz)")->required();
+  sub.add_option("-o,--output", a->output, "Output mesh (.obj, .ply, .glb or .gltf)")->required();
   sub.add_option_function<long long>(
       "--target-faces", [a](long long n) { a->target_faces = n; a->has_target = true; },
       "Number of faces to keep")->check(whole_in(1, 4000000000LL));

@@ -145,7 +145,7 @@ RunFn setup(CLI::App& app) {
       "visible_score = U, the sum of the score over the mesh points visible from it, and\n"
       "visible_fraction = U over the sum over all points; `exhaustive`: the best of --views\n"
       "directions (null without --views or --map).");
-  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, optionally .gz); a saliency PLY brings its own saliency")->required();
+  app.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, glTF, GLB, optionally .gz); a saliency PLY brings its own saliency")->required();
   app.add_option("--saliency-from", o->saliency_from, "PLY with per-vertex 'quality' (from `meshsal saliency`) instead of computing it");
   app.add_option("--score", o->score, "saliency, or curvature (|H|, the paper's baseline)")
       ->capture_default_str()->check(CLI::IsMember({"saliency", "curvature"}));  // a usage error (2)

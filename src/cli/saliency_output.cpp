@@ -17,6 +17,21 @@ using namespace meshsal;
 
 void write_saliency_ply(const std::string& path, const Mesh& mesh, const SaliencyResult& r,
                         bool dump_scales) {
+  const std::string format = mesh_output_format(path);
+  if (format == ".glb" || format == ".gltf") {
+    Mesh with_maps;
+    if (dump_scales) {
+      with_maps = mesh;
+      set_vertex_attribute(with_maps, "curvature", r.curvature);
+      for (size_t i = 0; i < r.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), r.raw[i]);
+    }
+    GltfLevel level;
+    level.mesh = dump_scales ? &with_maps : &mesh;
+    level.saliency = &r.saliency;
+    level.is_point = &r.is_point;
+    write_gltf(path, {level});
+    return;
+  }
   std::vector<PlyFloatProperty> props;  // after quality = S, which the library's writer puts first
   std::vector<std::string> names;
   if (dump_scales) {

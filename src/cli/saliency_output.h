@@ -13,7 +13,8 @@ class App;
 namespace meshsal_cli {
 
 // quality = S, red/green/blue = colour map of S; with dump_scales also curvature and
-// saliency_raw_0..n-1. Written atomically.
+// saliency_raw_0..n-1. Written atomically. A name ending in .glb or .gltf gets glTF instead
+// (write_gltf: _SALIENCY and COLOR_0; the dumped maps as _CURVATURE, _SALIENCY_RAW_0..).
 void write_saliency_ply(const std::string& path, const meshsal::Mesh& mesh,
                         const meshsal::SaliencyResult& result, bool dump_scales);
 

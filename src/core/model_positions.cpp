@@ -16,7 +16,7 @@ void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
   std::vector<uint8_t> used(vertex_count, 0);
   bool any = false;
   for (uint32_t i : mesh.triangles)
-    if (i < vertex_count) any = used[i] = 1;
+    if (i < vertex_count) used[i] = 1, any = true;
   const BoundingBox box = bounding_box(xyz, vertex_count, any ? used.data() : nullptr);
   for (int k = 0; k < 3; ++k)
     mesh.origin[k] = box.min[k] <= box.max[k] ? box.min[k] / 2 + box.max[k] / 2 : 0.0;

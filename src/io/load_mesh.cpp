@@ -28,14 +28,16 @@ std::string lower_extension(const std::string& path, bool& gz) {
 
 std::string check_extension(const std::string& name, bool& gz) {
   const std::string ext = lower_extension(name, gz);
-  if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
+  if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl" && ext != ".gltf" && ext != ".glb")
     throw Error(name + ": unknown mesh format" + (ext.empty() ? std::string() : " '" + ext + "'") +
-                " (expected .obj, .ply, .off or .stl, optionally gzipped as .gz)");
+                " (expected .obj, .ply, .off, .stl, .gltf or .glb, optionally gzipped as .gz)");
   return ext;
 }
 
+// `folder`: where a .gltf's external buffers and images are looked up ("" = none may be read).
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
-           VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes) {
+           VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes,
+           const std::string& folder) {
   Bytes inflated;
   std::string_view bytes = raw;
   if (has_gzip_magic(raw)) {
@@ -55,6 +57,8 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
   if (ext == ".obj") mesh = load_obj_text(bytes, name, attributes);
   else if (ext == ".off") mesh = load_off_text(bytes, name);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
+  else if (ext == ".gltf" || ext == ".glb")
+    mesh = load_gltf_bytes(bytes, name, ext == ".glb", folder, limit, attributes, report ? &report->unread : nullptr);
   else mesh = load_ply_bytes(bytes, name, properties, attributes, report ? &report->unread : nullptr);
   return mesh;
 }
@@ -92,7 +96,9 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   return load_named(path, properties, [&] {
     const uint64_t limit = options.max_input_bytes;  // 0: the default rules
     const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
-    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes);
+    const size_t slash = path.find_last_of('/');
+    const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes, folder);
   });
 }
 
@@ -103,7 +109,7 @@ Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProp
   const std::string ext = check_extension(name, gz);
   return load_named(name, properties,
                     [&] {
-    return parse(bytes, name, ext, gz, properties, options.max_input_bytes, report, options.attributes);
+    return parse(bytes, name, ext, gz, properties, options.max_input_bytes, report, options.attributes, "");
   });
 }
 

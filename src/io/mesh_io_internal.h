@@ -24,6 +24,13 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
 
+// glTF 2.0 (load_gltf.cpp): `binary` for GLB. `folder` is where external buffers and images
+// are read from ("" = the glTF came from memory: any external reference is an Error);
+// each is read whole, at most `limit` bytes (0: kNoHeaderLimitBytes), regular files only.
+// `attributes`: NORMAL, TEXCOORD_0 and COLOR_0 as nx ny nz, u v, red green blue alpha.
+Mesh load_gltf_bytes(std::string_view bytes, const std::string& name, bool binary, const std::string& folder,
+                     uint64_t limit, bool attributes, std::vector<std::string>* unread);
+
 // Every parser reads coordinates in double into mesh.source_positions and ends with this:
 // origin, local float positions, and the source kept where it is needed (set_model_positions).
 inline void localize_read_positions(Mesh& mesh) {
@@ -87,6 +94,22 @@ uint64_t stl_input_limit(std::string_view head, const std::string& name);
 inline uint64_t counts_limit(uint64_t header_bytes, unsigned __int128 need) {
   const unsigned __int128 limit = header_bytes + kCountsSlackBytes + need * kCountsFactor;
   return limit > UINT64_MAX ? UINT64_MAX : static_cast<uint64_t>(limit);
+}
+
+// The writers' common check: whole triples and every index inside the vertices.
+inline void check_mesh(const std::string& path, const Mesh& mesh) {
+  if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)
+    throw Error(path + ": cannot write: mesh arrays are not multiples of 3");
+  for (uint32_t i : mesh.triangles)
+    if (i >= mesh.vertex_count())
+      throw Error(path + ": cannot write: a triangle uses vertex " + std::to_string(i) +
+                  " but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
+}
+
+inline const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
+  for (const VertexAttribute& a : mesh.attributes)
+    if (a.name == name) return &a;
+  return nullptr;
 }
 
 }  // namespace meshsal

@@ -32,10 +32,14 @@ bool same_attributes(const Mesh& mesh, uint32_t a, uint32_t b) {
 
 }  // namespace
 
-void find_seam_twins(Mesh& mesh) {
+namespace {
+
+// Links each group of vertices at one position; `every_group`: also groups that agree in
+// every attribute (else only those that differ somewhere).
+void link_groups(Mesh& mesh, bool every_group) {
   mesh.position_vertex.clear();
   const size_t n = mesh.vertex_count();
-  if (mesh.attributes.empty() || n < 2) return;
+  if ((!every_group && mesh.attributes.empty()) || n < 2) return;
   std::vector<Keyed> sorted(n);
   for (size_t v = 0; v < n; ++v) {
     sorted[v].v = uint32_t(v);
@@ -48,7 +52,7 @@ void find_seam_twins(Mesh& mesh) {
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
     while (j < n && sorted[j].same_place(sorted[i])) ++j;
-    bool split = false;
+    bool split = every_group && j > i + 1;
     for (size_t k = i + 1; k < j && !split; ++k) split = !same_attributes(mesh, sorted[i].v, sorted[k].v);
     if (split) {
       if (pv.empty()) {
@@ -61,5 +65,11 @@ void find_seam_twins(Mesh& mesh) {
   }
   mesh.position_vertex = std::move(pv);
 }
+
+}  // namespace
+
+void find_seam_twins(Mesh& mesh) { link_groups(mesh, false); }
+
+void link_position_twins(Mesh& mesh) { link_groups(mesh, true); }
 
 }  // namespace meshsal

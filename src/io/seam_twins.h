@@ -12,4 +12,9 @@ namespace meshsal {
 // duplicates that agree in every attribute (those stay separate vertices, as in the file).
 void find_seam_twins(Mesh& mesh);
 
+// The same for every group of vertices at one position, whatever their attributes: glTF
+// primitives (and the instances of a scene) meet at duplicated vertices that are one
+// surface.
+void link_position_twins(Mesh& mesh);
+
 }  // namespace meshsal

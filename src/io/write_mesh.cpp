@@ -14,6 +14,7 @@
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
 #include "io/atomic_write.h"
+#include "io/mesh_io_internal.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -31,24 +32,9 @@ void append_le(std::vector<char>& buf, T value) {
   buf.insert(buf.end(), b, b + sizeof(T));
 }
 
-void check_mesh(const std::string& path, const Mesh& mesh) {
-  if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)
-    throw Error(path + ": cannot write: mesh arrays are not multiples of 3");
-  for (uint32_t i : mesh.triangles)
-    if (i >= mesh.vertex_count())
-      throw Error(path + ": cannot write: a triangle uses vertex " + std::to_string(i) +
-                  " but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
-}
-
 // PLY keeps colours as bytes: these channels are written as uchar (rounded, clamped).
 bool is_colour_channel(const std::string& name) {
   return name == "red" || name == "green" || name == "blue" || name == "alpha";
-}
-
-const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
-  for (const VertexAttribute& a : mesh.attributes)
-    if (a.name == name) return &a;
-  return nullptr;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/mesh_context.h"
 #include "core/model_frame.h"
 
 namespace meshsal {
@@ -85,8 +86,7 @@ Mesh State::output(SimplifyReport* report) const {
   for (size_t t = 0; t < tri_alive.size(); ++t)
     if (tri_alive[t])
       for (int k = 0; k < 3; ++k) out.triangles.push_back(remap[tri[3 * t + k]]);
-  out.material_libraries = mesh_in->material_libraries;
-  out.materials = mesh_in->materials;
+  copy_mesh_context(*mesh_in, out);
   if (!tri_material.empty()) {
     out.triangle_material.reserve(out.triangle_count());
     for (size_t t = 0; t < tri_alive.size(); ++t)

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "core/mesh_context.h"
 #include "core/cancel.h"
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
@@ -157,9 +158,7 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   Work work;
   work.mesh.positions = mesh.positions;
   work.mesh.attributes = mesh.attributes;
-  work.mesh.materials = mesh.materials;
-  work.mesh.material_libraries = mesh.material_libraries;
-  for (int k = 0; k < 3; ++k) work.mesh.origin[k] = mesh.origin[k];
+  copy_mesh_context(mesh, work.mesh);
   // As simplify_mesh: triangles with a repeated index are not part of the surface.
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* v = &mesh.triangles[3 * t];

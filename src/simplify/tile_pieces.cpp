@@ -43,9 +43,7 @@ void copy_submesh(const Mesh& mesh, const std::vector<uint32_t>& verts, const st
     }
   if (!mesh.triangle_material.empty())
     for (uint32_t t : list) out.triangle_material.push_back(mesh.triangle_material[t]);
-  out.materials = mesh.materials;
-  out.material_libraries = mesh.material_libraries;
-  for (int k = 0; k < 3; ++k) out.origin[k] = mesh.origin[k];
+  copy_mesh_context(mesh, out);
 }
 
 std::vector<uint32_t> corners_of(const Mesh& mesh, const std::vector<uint32_t>& list) {
@@ -144,9 +142,7 @@ Mesh merge_pieces(const std::vector<TilePiece>& pieces, const Mesh& like, std::v
   }
   std::stable_sort(all.begin(), all.end(), [](const Source& a, const Source& b) { return a.id < b.id; });
   Mesh out;
-  for (int k = 0; k < 3; ++k) out.origin[k] = like.origin[k];
-  out.materials = like.materials;
-  out.material_libraries = like.material_libraries;
+  copy_mesh_context(like, out);
   for (const VertexAttribute& a : like.attributes) out.attributes.push_back({a.name, {}});
   std::vector<std::vector<uint32_t>> index(pieces.size());
   for (size_t p = 0; p < pieces.size(); ++p) index[p].resize(pieces[p].ids.size());

@@ -80,14 +80,14 @@ inline std::string read_stream(const uint8_t* data, size_t size) {
   return outcome;
 }
 
-// The targets: plystream (read_stream), obj, off, ply, stl (the bytes are the file), gz (the first byte picks the format
+// The targets: plystream (read_stream), obj, off, ply, stl, gltf, glb (the bytes are the file), gz (the first byte picks the format
 // inside, the rest is the .gz file) and saliency (the first byte picks the format; small
 // meshes that load go through the CPU saliency pipeline). Returns load's result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
   if (target == "plystream") return read_stream(data, size);
-  if (target == "obj" || target == "off" || target == "ply" || target == "stl") {
-    if (target == "obj" || target == "ply") {  // the attribute paths too (what simplify reads)
+  if (target == "obj" || target == "off" || target == "ply" || target == "stl" || target == "gltf" || target == "glb") {
+    if (target == "obj" || target == "ply" || target == "gltf" || target == "glb") {  // the attribute paths too (what simplify reads)
       meshsal::Mesh with_attributes;
       load(data, size, "fuzz." + target, with_attributes, true);
     }

@@ -187,3 +187,18 @@ def test_best_view_curvature_score_equals_cli(mesh_path, cli):
     assert float("%.9g" % b["visible_score"]) == j["visible_score"]
     assert g9(b["visible_fraction"]) == j["visible_fraction"]
     assert (g9(b["theta"]), g9(b["phi"])) == (j["theta"], j["phi"])
+
+
+def test_gltf_save_equals_cli(mesh_path, cli, tmp_path):
+    # `meshsal saliency -o x.glb` and meshsal.save(x.glb, V, F, S): the same bytes; the GLB
+    # reads back with the same saliency as its source.
+    path = mesh_path("bunny_3k.off")
+    cli.json("saliency", path, "-o", tmp_path / "cli.glb", "--backend", "cpu", "--json")
+    V, F = meshsal.load(str(path))
+    r = meshsal.saliency(V, F, backend="cpu")
+    meshsal.save(str(tmp_path / "py.glb"), V, F, r.saliency)
+    assert (tmp_path / "py.glb").read_bytes() == (tmp_path / "cli.glb").read_bytes()
+    V2, F2 = meshsal.load(str(tmp_path / "py.glb"))
+    np.testing.assert_array_equal(F2, F)
+    np.testing.assert_allclose(V2, V, rtol=0, atol=1e-6)
+    np.testing.assert_array_equal(meshsal.saliency(V2, F2, backend="cpu").saliency, r.saliency)

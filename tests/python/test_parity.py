@@ -155,9 +155,9 @@ def test_save_and_load_round_trip(sphere, tmp_path):
         V2, F2 = meshsal.load(p)  # an OBJ's decimals come back float64: the same floats
         np.testing.assert_array_equal(V2.astype(np.float32), V.astype(np.float32))
         np.testing.assert_array_equal(F2, F)
-    with pytest.raises(ValueError, match="must end in .ply or .obj"):
+    with pytest.raises(ValueError, match="must end in .ply, .obj, .glb or .gltf"):
         meshsal.save(tmp_path / "ball.stl", V, F)
-    with pytest.raises(ValueError, match="needs a .ply path"):
+    with pytest.raises(ValueError, match="needs a .ply, .glb or .gltf path"):
         meshsal.save(tmp_path / "ball.obj", V, F, np.zeros(len(V)))
     with pytest.raises(ValueError, match=r"saliency must have shape"):
         meshsal.save(tmp_path / "ball.ply", V, F, np.zeros(3))

@@ -1,0 +1,527 @@
+// meshsal: glTF 2.0 input (.gltf with its buffers, .glb) through tinygltf (Debian's
+// libtinygltf-dev). tinygltf parses the JSON and the buffers; everything read from them
+// (accessors, strides, sparse substitutions, indices, the node tree) is checked here before
+// it is used, so a hostile file gives an Error, never a read out of bounds.
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/gltf_assets.h"
+#include "io/gltf_frame.h"
+#include "io/mesh_io_internal.h"
+#include "io/read_bytes.h"
+#include "io/seam_twins.h"
+
+namespace meshsal {
+namespace {
+
+// What tinygltf may read besides the file itself: external buffers and images, only
+// regular files (a FIFO named as a buffer would block), each at most `limit` bytes, and
+// none at all when the glTF came from memory (no folder to resolve names in).
+struct FileAccess {
+  bool allowed = false;
+  uint64_t limit = 0;
+};
+
+// Every name "exists": read_whole_file then says what is wrong with it.
+bool file_exists(const std::string&, void*) { return true; }
+
+std::string expand_path(const std::string& path, void*) { return path; }  // no shell expansion
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  const FileAccess& access = *static_cast<FileAccess*>(user);
+  if (!access.allowed) {
+    if (err) *err += "refers to an external file '" + path + "' (only a .gltf file on disk may)\n";
+    return false;
+  }
+  try {
+    const Bytes bytes = read_file(path, access.limit, /*regular_only=*/true);
+    if (bytes.size > access.limit) throw Error(path + ": larger than the input limit");
+    out->assign(bytes.data.get(), bytes.data.get() + bytes.size);
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+}
+
+bool write_whole_file(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not allowed while loading\n";
+  return false;
+}
+
+// Images are kept as bytes (never decoded: saliency needs no texture, and a carried
+// texture is written as it was read). One in a bufferView is not touched here: tinygltf
+// 2.7 hands its bytes over without checking the view against its buffer, so carry_assets
+// copies those after checking (view_span).
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0) image->image.assign(bytes, bytes + std::max(size, 0));
+  image->as_is = true;
+  return true;
+}
+
+[[noreturn]] void fail(const std::string& what) { throw Error(what); }
+
+size_t component_bytes(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+size_t type_components(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+  }
+}
+
+// One component as a double: floats as they are, integers as they are or, when
+// `normalized`, mapped to [0, 1] (unsigned) or [-1, 1] (signed) as the glTF spec says.
+double component(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t c; std::memcpy(&c, p, 1); return normalized ? std::max(c / 127.0, -1.0) : c; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t c; std::memcpy(&c, p, 2); return normalized ? std::max(c / 32767.0, -1.0) : c; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t c; std::memcpy(&c, p, 2); return normalized ? c / 65535.0 : c; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t c; std::memcpy(&c, p, 4); return normalized ? c / 4294967295.0 : c; }
+  }
+  return 0;
+}
+
+// The bytes of bufferView `index` that `count` elements of `element` bytes at `offset` with
+// `stride` (0 = packed) occupy, checked to lie inside it; returns the first element.
+const unsigned char* view_span(const tinygltf::Model& model, int index, size_t offset, size_t count,
+                               size_t element, size_t stride, const std::string& what, size_t* step) {
+  if (index < 0 || size_t(index) >= model.bufferViews.size()) fail(what + ": bufferView " + std::to_string(index) + " does not exist");
+  const tinygltf::BufferView& view = model.bufferViews[size_t(index)];
+  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) fail(what + ": its bufferView names no buffer");
+  const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+    fail(what + ": bufferView " + std::to_string(index) + " runs past the end of its buffer");
+  if (stride == 0) stride = element;
+  if (stride < element) fail(what + ": byteStride " + std::to_string(stride) + " is smaller than an element");
+  *step = stride;
+  if (count == 0) return data.data() + view.byteOffset;
+  // offset + (count - 1) * stride + element <= byteLength, without overflow.
+  const unsigned __int128 end = (unsigned __int128)offset + (unsigned __int128)(count - 1) * stride + element;
+  if (end > view.byteLength) fail(what + ": " + std::to_string(count) + " elements run past the end of bufferView " + std::to_string(index));
+  return data.data() + view.byteOffset + offset;
+}
+
+// An accessor's values as doubles, `components` per element (checked against its type),
+// sparse substitutions applied.
+std::vector<double> read_accessor(const tinygltf::Model& model, int index, size_t components, const std::string& what) {
+  if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor " + std::to_string(index) + " does not exist");
+  const tinygltf::Accessor& a = model.accessors[size_t(index)];
+  const size_t bytes = component_bytes(a.componentType);
+  if (bytes == 0) fail(what + ": unsupported component type " + std::to_string(a.componentType));
+  if (type_components(a.type) != components) fail(what + ": expected " + std::to_string(components) + " components per element");
+  const size_t element = bytes * components;
+  std::vector<double> out;
+  // Sizes are checked against the buffers before anything is allocated.
+  size_t step = 0;
+  const unsigned char* base = nullptr;
+  if (a.bufferView >= 0) {
+    size_t stride = model.bufferViews[size_t(std::min<int>(a.bufferView, int(model.bufferViews.size()) - 1))].byteStride;
+    if (size_t(a.bufferView) >= model.bufferViews.size()) stride = 0;
+    base = view_span(model, a.bufferView, a.byteOffset, a.count, element, stride, what, &step);
+  } else if (!a.sparse.isSparse) {
+    fail(what + ": accessor " + std::to_string(index) + " has no data (no bufferView and not sparse)");
+  } else if (a.count > (uint64_t(1) << 28)) {
+    fail(what + ": a sparse accessor of " + std::to_string(a.count) + " zeros is too large");
+  }
+  out.assign(a.count * components, 0.0);
+  if (base)
+    for (size_t i = 0; i < a.count; ++i)
+      for (size_t c = 0; c < components; ++c)
+        out[i * components + c] = component(base + i * step + c * bytes, a.componentType, a.normalized);
+  if (a.sparse.isSparse) {
+    const size_t n = size_t(std::max(a.sparse.count, 0));
+    if (a.sparse.count < 1 || n > a.count) fail(what + ": sparse count " + std::to_string(a.sparse.count) + " out of range");
+    const int itype = a.sparse.indices.componentType;
+    const size_t ibytes = itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                                  itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
+                              ? component_bytes(itype) : 0;
+    if (ibytes == 0) fail(what + ": sparse indices of an unsupported type");
+    size_t istep = 0, vstep = 0;
+    const unsigned char* ip = view_span(model, a.sparse.indices.bufferView, size_t(std::max(a.sparse.indices.byteOffset, 0)),
+                                        n, ibytes, 0, what + " (sparse indices)", &istep);
+    const unsigned char* vp = view_span(model, a.sparse.values.bufferView, size_t(std::max(a.sparse.values.byteOffset, 0)),
+                                        n, element, 0, what + " (sparse values)", &vstep);
+    for (size_t k = 0; k < n; ++k) {
+      const double target = component(ip + k * istep, itype, false);
+      if (target >= double(a.count)) fail(what + ": sparse index " + std::to_string(uint64_t(target)) + " out of range");
+      for (size_t c = 0; c < components; ++c)
+        out[size_t(target) * components + c] = component(vp + k * vstep + c * bytes, a.componentType, a.normalized);
+    }
+  }
+  return out;
+}
+
+size_t accessor_count(const tinygltf::Model& model, int index, const std::string& what) {
+  if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor " + std::to_string(index) + " does not exist");
+  return model.accessors[size_t(index)].count;
+}
+
+// A node's own transform (matrix, or translation * rotation * scale), column-major.
+Frame node_transform(const tinygltf::Node& node, const std::string& what) {
+  Frame m = identity_frame();
+  if (node.matrix.size() == 16) {
+    std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
+  } else {
+    if (!node.matrix.empty()) fail(what + ": a matrix needs 16 numbers");
+    std::array<double, 3> t{0, 0, 0}, s{1, 1, 1};
+    std::array<double, 4> q{0, 0, 0, 1};
+    if (!node.translation.empty()) { if (node.translation.size() != 3) fail(what + ": translation needs 3 numbers"); std::copy_n(node.translation.begin(), 3, t.begin()); }
+    if (!node.scale.empty()) { if (node.scale.size() != 3) fail(what + ": scale needs 3 numbers"); std::copy_n(node.scale.begin(), 3, s.begin()); }
+    if (!node.rotation.empty()) { if (node.rotation.size() != 4) fail(what + ": rotation needs 4 numbers"); std::copy_n(node.rotation.begin(), 4, q.begin()); }
+    m = trs_frame(t.data(), q.data(), s.data());
+  }
+  for (double v : m)
+    if (!std::isfinite(v)) fail(what + ": a transform with a non-finite number");
+  return m;
+}
+
+struct Instance {
+  int mesh;
+  Frame world;
+};
+
+// The mesh instances of the default scene (scene 0 when none is named; every root node
+// when the file has no scene), each with its world transform. The node graph must be a
+// tree (the spec's rule): a node reached twice is refused, which also stops cycles.
+std::vector<Instance> scene_instances(const tinygltf::Model& model) {
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (size_t(s) >= model.scenes.size()) fail("scene " + std::to_string(s) + " does not exist");
+    roots = model.scenes[size_t(s)].nodes;
+  } else {
+    std::vector<char> child(model.nodes.size(), 0);
+    for (const tinygltf::Node& n : model.nodes)
+      for (int c : n.children)
+        if (c >= 0 && size_t(c) < child.size()) child[size_t(c)] = 1;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!child[i]) roots.push_back(int(i));
+  }
+  std::vector<Instance> out;
+  std::vector<char> seen(model.nodes.size(), 0);
+  std::vector<std::pair<int, Frame>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, identity_frame()});
+  while (!stack.empty()) {
+    const auto [index, parent] = stack.back();
+    stack.pop_back();
+    const std::string what = "node " + std::to_string(index);
+    if (index < 0 || size_t(index) >= model.nodes.size()) fail(what + " does not exist");
+    if (seen[size_t(index)]) fail(what + " is reached twice (the node hierarchy must be a tree)");
+    seen[size_t(index)] = 1;
+    const tinygltf::Node& node = model.nodes[size_t(index)];
+    if (node.extensions.count("EXT_mesh_gpu_instancing"))
+      fail(what + ": uses EXT_mesh_gpu_instancing, which meshsal does not read");
+    const Frame world = multiply(parent, node_transform(node, what));
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model.meshes.size()) fail(what + ": mesh " + std::to_string(node.mesh) + " does not exist");
+      out.push_back({node.mesh, world});
+    }
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
+  }
+  return out;
+}
+
+// The vertex channels read with LoadOptions::attributes, in the names the other loaders
+// use (write_obj writes u v as vt, nx ny nz as vn; red green blue alpha are colours).
+struct Channels {
+  bool normal = false, uv = false, color = false;
+};
+
+bool geometry_extension(const std::string& ext) {
+  return ext == "KHR_mesh_quantization" || ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
+         ext == "KHR_meshopt_compression" || ext == "EXT_mesh_gpu_instancing" || ext == "MSFT_lod";
+}
+
+// The image's file type from its first bytes (a bufferView image must name it).
+std::string image_mime(const std::vector<unsigned char>& b) {
+  if (b.size() >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return "image/png";
+  if (b.size() >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff) return "image/jpeg";
+  if (b.size() >= 12 && std::memcmp(b.data(), "RIFF", 4) == 0 && std::memcmp(b.data() + 8, "WEBP", 4) == 0) return "image/webp";
+  if (b.size() >= 12 && std::memcmp(b.data() + 4, "ftyp", 4) == 0) return "image/ktx2";
+  return "";
+}
+
+// The input's materials and what they use, for write_gltf (GltfAssets).
+std::shared_ptr<const GltfAssets> carry_assets(tinygltf::Model& model, const std::map<int, uint32_t>& material_slot) {
+  if (model.materials.empty()) return nullptr;
+  auto a = std::make_shared<GltfAssets>();
+  for (tinygltf::Image& im : model.images) {
+    if (im.bufferView >= 0) {
+      size_t step = 0;
+      const size_t len = size_t(im.bufferView) < model.bufferViews.size() ? model.bufferViews[size_t(im.bufferView)].byteLength : 0;
+      const unsigned char* p = view_span(model, im.bufferView, 0, len ? 1 : 0, len, 0, "image '" + im.name + "'", &step);
+      im.image.assign(p, p + len);
+    }
+    if (!im.image.empty()) {
+      im.uri.clear();
+      if (im.mimeType.empty()) im.mimeType = image_mime(im.image);
+      if (im.mimeType.empty()) im.mimeType = "image/png";
+    }
+    im.bufferView = -1;
+  }
+  a->materials = std::move(model.materials);
+  a->textures = std::move(model.textures);
+  a->images = std::move(model.images);
+  a->samplers = std::move(model.samplers);
+  for (const std::string& e : model.extensionsUsed)
+    if (!geometry_extension(e)) a->extensions_used.push_back(e);
+  for (const std::string& e : model.extensionsRequired)
+    if (!geometry_extension(e)) a->extensions_required.push_back(e);
+  a->slot_material.assign(material_slot.size(), -1);
+  for (const auto& [material, slot] : material_slot) a->slot_material[slot] = material;
+  return a;
+}
+
+}  // namespace
+
+Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_named prefixes it*/, bool binary, const std::string& folder,
+                     uint64_t limit, bool attributes, std::vector<std::string>* unread) {
+  tinygltf::TinyGLTF loader;
+  FileAccess access{!folder.empty(), limit ? limit : kNoHeaderLimitBytes};
+  loader.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &write_whole_file, &access});
+  loader.SetImageLoader(&keep_image_bytes, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                       unsigned(std::min<size_t>(bytes.size(), UINT32_MAX)), folder)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                                      unsigned(std::min<size_t>(bytes.size(), UINT32_MAX)), folder);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    const size_t nl = err.find('\n');
+    fail("not a valid glTF file: " + (nl == std::string::npos ? err : err.substr(0, nl)));
+  }
+  for (const std::string& ext : model.extensionsRequired)
+    if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression" ||
+        ext == "EXT_mesh_gpu_instancing")
+      fail("requires the extension " + ext + ", which meshsal does not read (decompress it first, e.g. with gltfpack -noq)");
+
+  const std::vector<Instance> instances = scene_instances(model);
+  if (instances.empty()) fail("the scene holds no mesh");
+  Channels channels;
+  if (attributes) {
+    // A channel is kept when every triangle primitive has it (else its values would be
+    // made up where a primitive lacks it).
+    channels = {true, true, true};
+    for (const Instance& in : instances)
+      for (const tinygltf::Primitive& p : model.meshes[size_t(in.mesh)].primitives) {
+        channels.normal &= p.attributes.count("NORMAL") > 0;
+        channels.uv &= p.attributes.count("TEXCOORD_0") > 0;
+        channels.color &= p.attributes.count("COLOR_0") > 0;
+      }
+  }
+  // The memory bound: instancing lets a small file name a large mesh many times, so the
+  // vertices and indices to build are counted and held to the other loaders' rule first.
+  const uint64_t input_bytes = bytes.size() + [&] {
+    uint64_t b = 0;
+    for (const tinygltf::Buffer& buf : model.buffers) b += buf.data.size();
+    return b;
+  }();
+  unsigned __int128 need = 0;
+  for (const Instance& in : instances)
+    for (const tinygltf::Primitive& p : model.meshes[size_t(in.mesh)].primitives) {
+      const auto pos = p.attributes.find("POSITION");
+      if (pos != p.attributes.end()) need += (unsigned __int128)accessor_count(model, pos->second, "POSITION") * 64;
+      if (p.indices >= 0) need += (unsigned __int128)accessor_count(model, p.indices, "indices") * 12;
+    }
+  if (need > (unsigned __int128)counts_limit(input_bytes, input_bytes))
+    fail("its instances would build a mesh far larger than the file (a mesh named by many nodes): refused");
+
+  Mesh mesh;
+  std::vector<double>& xyz = mesh.source_positions;
+  std::vector<float> nrm, uv, rgba;
+  std::map<int, uint32_t> material_slot;  // glTF material index (-1: none) -> Mesh::materials
+  std::vector<uint32_t> tri_material;
+  std::set<std::string> skipped;
+  bool any_material = false;
+  std::vector<Frame> worlds;
+  std::map<std::pair<size_t, std::map<std::string, int>>, std::pair<size_t, size_t>> vertex_ranges;
+  for (size_t ii = 0; ii < instances.size(); ++ii) {
+    const Instance& in = instances[ii];
+    const tinygltf::Mesh& gm = model.meshes[size_t(in.mesh)];
+    const Frame normal_frame = normal_matrix(in.world);
+    const bool flip = determinant3(in.world) < 0;  // a mirroring transform reverses the winding
+    for (size_t pi = 0; pi < gm.primitives.size(); ++pi) {
+      const tinygltf::Primitive& p = gm.primitives[pi];
+      const std::string what = "mesh " + std::to_string(in.mesh) + " primitive " + std::to_string(pi);
+      if (p.extensions.count("KHR_draco_mesh_compression"))
+        fail(what + ": Draco-compressed (KHR_draco_mesh_compression), which meshsal does not read (decompress it first)");
+      if (p.mode == TINYGLTF_MODE_POINTS || p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_LOOP ||
+          p.mode == TINYGLTF_MODE_LINE_STRIP)
+        fail(what + ": " + (p.mode == TINYGLTF_MODE_POINTS ? "points" : "lines") +
+             " (mode " + std::to_string(p.mode) + "): meshsal reads triangle primitives only");
+      if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(what + ": unknown mode " + std::to_string(p.mode));
+      const auto pos = p.attributes.find("POSITION");
+      if (pos == p.attributes.end()) fail(what + ": no POSITION attribute");
+      // Primitives of one instance that name the same accessors (one per material, as
+      // write_gltf and most exporters write them) share their vertices.
+      size_t first = 0, nv = 0;
+      const auto range = vertex_ranges.find({ii, p.attributes});
+      if (range != vertex_ranges.end()) {
+        first = range->second.first, nv = range->second.second;
+      } else {
+        const std::vector<double> local = read_accessor(model, pos->second, 3, what + " POSITION");
+        nv = local.size() / 3, first = xyz.size() / 3;
+        if (first + nv > UINT32_MAX) fail("more than 2^32 - 1 vertices");
+        for (size_t v = 0; v < nv; ++v) {
+          double w[3];
+          transform_point(in.world, &local[3 * v], w);
+          xyz.insert(xyz.end(), w, w + 3);
+        }
+        for (const auto& [attr, index] : p.attributes) {
+          (void)index;
+          const bool kept = (attr == "POSITION") || (attr == "NORMAL" && channels.normal) ||
+                            (attr == "TEXCOORD_0" && channels.uv) || (attr == "COLOR_0" && channels.color);
+          if (!kept) skipped.insert("vertex attribute '" + attr + "'");
+        }
+        if (channels.normal) {
+          const std::vector<double> n = read_accessor(model, p.attributes.at("NORMAL"), 3, what + " NORMAL");
+          if (n.size() != local.size()) fail(what + ": NORMAL and POSITION counts differ");
+          for (size_t v = 0; v < nv; ++v) {
+            double w[3];
+            transform_direction(normal_frame, &n[3 * v], w);
+            const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+            for (int k = 0; k < 3; ++k) nrm.push_back(float(len > 0 ? w[k] / len : w[k]));
+          }
+        }
+        if (channels.uv) {
+          const std::vector<double> t = read_accessor(model, p.attributes.at("TEXCOORD_0"), 2, what + " TEXCOORD_0");
+          if (t.size() != 2 * nv) fail(what + ": TEXCOORD_0 and POSITION counts differ");
+          // glTF's v runs down the image, OBJ's (and every other loader's) up.
+          for (size_t v = 0; v < nv; ++v) uv.push_back(float(t[2 * v])), uv.push_back(float(1.0 - t[2 * v + 1]));
+        }
+        if (channels.color) {
+          const int acc = p.attributes.at("COLOR_0");
+          const size_t comps = acc >= 0 && size_t(acc) < model.accessors.size() && model.accessors[size_t(acc)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+          const std::vector<double> c = read_accessor(model, acc, comps, what + " COLOR_0");
+          if (c.size() != comps * nv) fail(what + ": COLOR_0 and POSITION counts differ");
+          for (size_t v = 0; v < nv; ++v) {
+            for (size_t k = 0; k < 4; ++k) {
+              const double x = k < comps ? c[comps * v + k] : 1.0;
+              rgba.push_back(float(std::nearbyint(std::clamp(x, 0.0, 1.0) * 255.0)));
+            }
+          }
+        }
+        vertex_ranges[{ii, p.attributes}] = {first, nv};
+      }
+      // The corners: indexed or in vertex order; strips and fans become triangles.
+      std::vector<uint32_t> corners;
+      if (p.indices >= 0) {
+        const tinygltf::Accessor* ia = size_t(p.indices) < model.accessors.size() ? &model.accessors[size_t(p.indices)] : nullptr;
+        if (ia && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+          fail(what + ": indices must be unsigned integers");
+        const std::vector<double> idx = read_accessor(model, p.indices, 1, what + " indices");
+        corners.reserve(idx.size());
+        for (double x : idx) {
+          if (x >= double(nv)) fail(what + ": index " + std::to_string(uint64_t(x)) + " out of range (" + std::to_string(nv) + " vertices)");
+          corners.push_back(uint32_t(x));
+        }
+      } else {
+        corners.resize(nv);
+        for (size_t v = 0; v < nv; ++v) corners[v] = uint32_t(v);
+      }
+      std::vector<std::array<uint32_t, 3>> tris;
+      if (p.mode == TINYGLTF_MODE_TRIANGLES) {
+        if (corners.size() % 3) fail(what + ": " + std::to_string(corners.size()) + " indices, not a multiple of 3");
+        for (size_t i = 0; i + 2 < corners.size(); i += 3) tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
+      } else {
+        for (size_t i = 0; i + 2 < corners.size(); ++i) {
+          std::array<uint32_t, 3> t = p.mode == TINYGLTF_MODE_TRIANGLE_FAN ? std::array<uint32_t, 3>{corners[i + 1], corners[i + 2], corners[0]}
+                                      : (i % 2 == 0)                        ? std::array<uint32_t, 3>{corners[i], corners[i + 1], corners[i + 2]}
+                                                                            : std::array<uint32_t, 3>{corners[i + 1], corners[i], corners[i + 2]};
+          // Strips join pieces with zero-area triangles that repeat a corner: dropped.
+          if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) tris.push_back(t);
+        }
+      }
+      uint32_t slot = 0;
+      if (p.material >= 0 && size_t(p.material) >= model.materials.size())
+        fail(what + ": material " + std::to_string(p.material) + " does not exist");
+      if (p.material >= 0) any_material = true;
+      const auto found = material_slot.find(p.material);
+      if (found != material_slot.end()) {
+        slot = found->second;
+      } else {
+        slot = uint32_t(mesh.materials.size());
+        material_slot[p.material] = slot;
+        std::string mname;
+        if (p.material >= 0 && size_t(p.material) < model.materials.size()) mname = model.materials[size_t(p.material)].name;
+        if (p.material >= 0 && mname.empty()) mname = "material_" + std::to_string(p.material);
+        mesh.materials.push_back(mname);
+      }
+      for (auto t : tris) {
+        if (flip) std::swap(t[1], t[2]);
+        for (uint32_t c : t) mesh.triangles.push_back(uint32_t(first) + c);
+        tri_material.push_back(slot);
+      }
+    }
+    worlds.push_back(in.world);
+  }
+  if (any_material) {
+    mesh.triangle_material = std::move(tri_material);
+    mesh.gltf_assets = carry_assets(model, material_slot);
+  } else {
+    mesh.materials.clear();
+  }
+  const size_t n = xyz.size() / 3;
+  if (attributes) {
+    if (channels.normal) mesh.attributes.push_back({"nx", {}}), mesh.attributes.push_back({"ny", {}}), mesh.attributes.push_back({"nz", {}});
+    const size_t normal_at = 0;
+    for (size_t v = 0; channels.normal && v < n; ++v)
+      for (int k = 0; k < 3; ++k) mesh.attributes[normal_at + size_t(k)].values.push_back(nrm[3 * v + size_t(k)]);
+    if (channels.uv) {
+      VertexAttribute u{"u", {}}, w{"v", {}};
+      for (size_t v = 0; v < n; ++v) u.values.push_back(uv[2 * v]), w.values.push_back(uv[2 * v + 1]);
+      mesh.attributes.push_back(std::move(u));
+      mesh.attributes.push_back(std::move(w));
+    }
+    if (channels.color) {
+      const char* names[4] = {"red", "green", "blue", "alpha"};
+      for (size_t k = 0; k < 4; ++k) {
+        VertexAttribute c{names[k], {}};
+        for (size_t v = 0; v < n; ++v) c.values.push_back(rgba[4 * v + k]);
+        mesh.attributes.push_back(std::move(c));
+      }
+    }
+  }
+  // One frame for the whole scene when every instance has the same one: a writer puts the
+  // positions back in it (see Frame).
+  if (worlds[0] != identity_frame() &&
+      std::all_of(worlds.begin(), worlds.end(), [&](const Frame& f) { return f == worlds[0]; }))
+    mesh.frame.assign(worlds[0].begin(), worlds[0].end());
+  if (unread) unread->assign(skipped.begin(), skipped.end());
+  localize_read_positions(mesh);
+  // Primitives (and instances) meet at duplicated vertices: linked as seam twins, so the
+  // saliency sees one surface while each vertex keeps its own attributes.
+  link_position_twins(mesh);
+  return mesh;
+}
+
+}  // namespace meshsal
