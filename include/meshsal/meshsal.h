@@ -659,6 +659,39 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
                             const std::vector<double>* saliency = nullptr,
                             SimplifyReport* report = nullptr, double* alpha_out = nullptr);
 
+// One level of a chain of levels of detail (simplify_lod).
+struct LodLevel {
+  Mesh mesh;                     // the level, attributes and materials carried
+  std::vector<double> saliency;  // S per vertex of this level (the input's, carried); empty unweighted
+  SimplifyReport report;         // of the step that made it from the level before
+};
+
+// Levels of detail in one call: each level's face target from `levels` (target_faces, or
+// ratio of the INPUT's faces; lock_border and the rest as simplify_mesh reads them; no
+// target_error), each below the one before (Error otherwise). With weight_options, the
+// saliency is computed once on `mesh` (saliency_options; or taken from `saliency`) and
+// carried down the chain as a vertex attribute, interpolated along each collapse; each
+// level is simplified from the level before with weights from S on that mesh
+// (simplification_weights). Without (null), plain quadrics. Simplifying from the level
+// before measured better than from the input at equal faces (8-12% lower RMS error at 20%
+// and 5% on bunny_36k, armadillo_43k and igea_134k: README, Levels of detail).
+std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyOptions>& levels,
+                                   const SaliencyWeightOptions* weight_options, const SaliencyOptions& saliency_options,
+                                   const std::vector<double>* saliency = nullptr);
+
+// The levels of "0.5,0.2,0.05" or "20000,5000" (--lod): a number with a decimal point or
+// an exponent is a ratio in (0, 1), a whole number a face count; at most 16. Error otherwise.
+std::vector<SimplifyOptions> parse_lod_levels(const std::string& text);
+
+// Writes a chain: a .glb or .gltf holds `mesh` (with its saliency, may be null) as LOD0 and
+// each level as LOD1.. (write_gltf: one mesh each, linked by MSFT_lod); an .obj or .ply
+// path gets one file per level, lod_level_path(path, 1..) (a PLY with the level's S as
+// `quality`), and `mesh` is not written.
+void write_lod(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency,
+               const std::vector<LodLevel>& levels);
+// "dir/out_lod2.obj" for ("dir/out.obj", 2): the file of level `level` of write_lod.
+std::string lod_level_path(const std::string& path, size_t level);
+
 // simplify_mesh by tiles, for meshes larger than memory (simplify_file runs the same
 // passes on disk). `tiles` cubic tiles along the longest axis of the mesh points' bounding
 // box, the grid anchored at its minimum; each triangle belongs to the tile of its

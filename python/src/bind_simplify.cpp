@@ -52,9 +52,63 @@ double number_or(const py::object& value, double fallback, const char* name) {
   return py::float_(value).cast<double>();
 }
 
+// A SimplifyOut from one simplified mesh and its report (simplify() and each lod level).
+void fill_result(SimplifyOut& out, meshsal::Mesh result, meshsal::SimplifyReport report, std::vector<std::string> notices,
+                 double diagonal, const std::string& mode, const meshsal::SaliencyWeightOptions& wo, bool computed,
+                 bool float32_in) {
+  const py::ssize_t nf = py::ssize_t(result.triangle_count());
+  out.vertices = model_vertices(result, false, !float32_in);  // float64 in, float64 out
+  out.faces = to_numpy(std::move(result.triangles), {nf, 3});
+  out.vertex_origin = to_numpy(std::move(report.vertex_origin));
+  out.attributes = attributes_dict(std::move(result.attributes));
+  out.position_vertex = position_vertex_array(std::move(result.position_vertex));
+  if (!report.warning.empty()) notices.push_back("warning: " + report.warning);
+  out.notices = py::cast(notices);
+  out.input_faces = report.input_faces;
+  out.target_faces = report.target_faces;
+  out.output_faces = report.output_faces;
+  out.collapses = report.collapses;
+  out.reached = report.reached;
+  out.unchanged = report.unchanged;
+  out.note = report.note;
+  out.weights = out.unchanged ? "none" : mode;
+  out.seconds = report.seconds;
+  out.error = report.error * diagonal;
+  out.error_percent = 100 * report.error;
+  if (computed && !out.unchanged) {
+    out.lambda = wo.lambda;
+    out.alpha_percentile = wo.alpha_percentile;
+    out.weight_floor = wo.floor;
+  }
+}
+
 }  // namespace
 
 namespace {
+
+// lod=: a str as --lod reads it, or a sequence of ints (face counts) and floats (ratios).
+std::vector<meshsal::SimplifyOptions> lod_levels(const py::object& lod) {
+  if (py::isinstance<py::str>(lod)) return meshsal::parse_lod_levels(lod.cast<std::string>());
+  if (!py::isinstance<py::sequence>(lod)) throw py::type_error("lod must be a list of ratios and face counts, or a str");
+  std::vector<meshsal::SimplifyOptions> levels;
+  for (const py::handle item : lod.cast<py::sequence>()) {
+    meshsal::SimplifyOptions o;
+    if (py::isinstance<py::bool_>(item) || !PyNumber_Check(item.ptr()))
+      throw py::type_error("lod items must be ratios (float) or face counts (int), got " +
+                           std::string(py::str(item.get_type().attr("__name__"))));
+    if (py::isinstance<py::int_>(item) || (PyIndex_Check(item.ptr()) && !PyFloat_Check(item.ptr()))) {
+      const long long t = py::reinterpret_borrow<py::object>(item).cast<long long>();
+      if (t < 1 || t > 4000000000LL) throw py::value_error("lod face counts must be in [1, 4000000000], got " + std::to_string(t));
+      o.target_faces = size_t(t);
+    } else {
+      o.ratio = py::reinterpret_borrow<py::object>(item).cast<double>();
+      if (!(o.ratio > 0 && o.ratio < 1)) throw py::value_error("lod ratios must be in (0, 1), got " + std::string(py::str(item)));
+    }
+    levels.push_back(o);
+  }
+  if (levels.empty() || levels.size() > 16) throw py::value_error("lod must list 1 to 16 levels");
+  return levels;
+}
 
 SimplifyOut simplify(const py::object& vertices, const py::object& faces, const py::object& target_faces,
                      const py::object& ratio, const py::object& target_error, bool lock_border,
@@ -62,7 +116,8 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
                      const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
                      const py::object& position_vertex, const py::object& scales, double eps_frac,
                      const std::string& method, const std::string& backend, const std::string& precision,
-                     const py::object& device, unsigned threads) {
+                     const py::object& device, unsigned threads, std::vector<SimplifyOut>* lod_out,
+                     const std::vector<meshsal::SimplifyOptions>* lod) {
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   const size_t n = mesh.vertex_count();
   // The CLI's rule: one of target_faces and ratio, or target_error alone.
@@ -71,7 +126,9 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     throw py::value_error("target_error must be in [0, 100] (% of the bounding-box diagonal), got " +
                           std::string(py::str(target_error)));
   if (!target_faces.is_none() && !ratio.is_none()) throw py::value_error("give only one of target_faces and ratio");
-  if (target_faces.is_none() && ratio.is_none() && error_percent == 0)
+  if (lod && (!target_faces.is_none() || !ratio.is_none() || error_percent > 0))
+    throw py::value_error("lod names every level: give it without target_faces, ratio or target_error");
+  if (!lod && target_faces.is_none() && ratio.is_none() && error_percent == 0)
     throw py::value_error("give target_faces, ratio or target_error");
   meshsal::SimplifyOptions options;
   options.threads = threads;
@@ -117,6 +174,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (!(wo.floor >= 0 && wo.floor <= 100)) throw py::value_error("weight_floor must be in [0, 100]");
   if (!computed && !saliency.is_none())
     throw py::value_error("saliency (S per vertex) needs weights='saliency' or 'balanced'");
+  if (lod && mode == "array") throw py::value_error("lod takes weights 'saliency', 'balanced' or 'none', not an array");
 
   std::vector<double> w, s;
   if (mode == "array") w = vertex_values(weights, n, "weights");
@@ -127,6 +185,25 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
 
   SimplifyOut out;
   const double diagonal = mesh_diagonal(mesh);  // for the error in model units, as the CLI's JSON
+  if (lod) {
+    // The chain (simplify_lod): the saliency once, carried down; each level as a result.
+    std::vector<meshsal::LodLevel> chain;
+    {
+      const InterruptibleCall call;
+      std::vector<meshsal::SimplifyOptions> levels = *lod;
+      for (meshsal::SimplifyOptions& o : levels) o.lock_border = lock_border, o.threads = threads, o.cancel = call.flag();
+      so.cancel = call.flag();
+      chain = meshsal::simplify_lod(mesh, levels, computed ? &wo : nullptr, so, s.empty() ? nullptr : &s);
+    }
+    for (meshsal::LodLevel& level : chain) {
+      SimplifyOut o;
+      if (computed) meshsal::set_vertex_attribute(level.mesh, "quality", level.saliency);
+      fill_result(o, std::move(level.mesh), std::move(level.report), notices, diagonal, mode, wo, computed,
+                  float32_vertices(vertices));
+      lod_out->push_back(std::move(o));
+    }
+    return out;
+  }
   meshsal::Mesh result;
   meshsal::SimplifyReport report;
   {
@@ -145,31 +222,32 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     }
     result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
   }
-  const py::ssize_t nf = py::ssize_t(result.triangle_count());
-  out.vertices = model_vertices(result, false, !float32_vertices(vertices));  // float64 in, float64 out
-  out.faces = to_numpy(std::move(result.triangles), {nf, 3});
-  out.vertex_origin = to_numpy(std::move(report.vertex_origin));
-  out.attributes = attributes_dict(std::move(result.attributes));
-  out.position_vertex = position_vertex_array(std::move(result.position_vertex));
-  if (!report.warning.empty()) notices.push_back("warning: " + report.warning);
-  out.notices = py::cast(notices);
-  out.input_faces = report.input_faces;
-  out.target_faces = report.target_faces;
-  out.output_faces = report.output_faces;
-  out.collapses = report.collapses;
-  out.reached = report.reached;
-  out.unchanged = report.unchanged;
-  out.note = report.note;
-  out.weights = out.unchanged ? "none" : mode;
-  out.seconds = report.seconds;
-  out.error = report.error * diagonal;
-  out.error_percent = 100 * report.error;
-  if (computed && !out.unchanged) {
-    out.lambda = wo.lambda;
-    out.alpha_percentile = wo.alpha_percentile;
-    out.weight_floor = wo.floor;
-  }
+  fill_result(out, std::move(result), std::move(report), notices, diagonal, mode, wo, computed, float32_vertices(vertices));
   return out;
+}
+
+py::object simplify_any(const py::object& vertices, const py::object& faces, const py::object& target_faces,
+                        const py::object& ratio, const py::object& target_error, bool lock_border,
+                        const py::object& weights, const py::object& saliency, const py::object& lambda_arg,
+                        const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
+                        const py::object& position_vertex, const py::object& scales, double eps_frac,
+                        const std::string& method, const std::string& backend, const std::string& precision,
+                        const py::object& device, unsigned threads, const py::object& lod) {
+  if (lod.is_none())
+    return py::cast(simplify(vertices, faces, target_faces, ratio, target_error, lock_border, weights, saliency,
+                             lambda_arg, alpha_arg, floor_arg, attributes, position_vertex, scales, eps_frac, method,
+                             backend, precision, device, threads, nullptr, nullptr));
+  std::vector<meshsal::SimplifyOptions> levels;
+  try {
+    levels = lod_levels(lod);
+  } catch (const meshsal::Error& e) {
+    throw py::value_error(e.what());
+  }
+  std::vector<SimplifyOut> out;
+  simplify(vertices, faces, target_faces, ratio, target_error, lock_border, weights, saliency, lambda_arg, alpha_arg,
+           floor_arg, attributes, position_vertex, scales, eps_frac, method, backend, precision, device, threads, &out,
+           &levels);
+  return py::cast(std::move(out));
 }
 
 }  // namespace
@@ -216,18 +294,19 @@ void bind_simplify(py::module_& m) {
                std::to_string(r.output_faces) + " faces (target " + std::to_string(r.target_faces) + ")>";
       });
   const std::string default_weights = meshsal::weighting_name(meshsal::kDefaultWeighting);
-  m.def("simplify", &simplify, py::arg("vertices"), py::arg("faces"), py::arg("target_faces") = py::none(),
+  m.def("simplify", &simplify_any, py::arg("vertices"), py::arg("faces"), py::arg("target_faces") = py::none(),
         py::kw_only(), py::arg("ratio") = py::none(), py::arg("target_error") = py::none(),
         py::arg("lock_border") = false, py::arg("weights") = default_weights,
         py::arg("saliency") = py::none(), py::arg("lambda_") = py::none(), py::arg("alpha_percentile") = py::none(),
         py::arg("weight_floor") = meshsal::kDefaultWeightFloor, py::arg("attributes") = py::none(),
         py::arg("position_vertex") = py::none(), py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
-        py::arg("device") = -1, py::arg("threads") = 0u,
+        py::arg("device") = -1, py::arg("threads") = 0u, py::arg("lod") = py::none(),
         ("simplify(vertices, faces, target_faces=None, *, ratio=None, target_error=None, lock_border=False,\n"
          "         weights='" + default_weights + R"(', saliency=None, lambda_=None, alpha_percentile=None,
          weight_floor=0.001, attributes=None, position_vertex=None, scales=None, eps_frac=0.003,
-         method='exact', backend='auto', precision='auto', device=-1, threads=0) -> SimplifyResult
+         method='exact', backend='auto', precision='auto', device=-1, threads=0, lod=None)
+    -> SimplifyResult, or with lod a list of them
 
 Garland-Heckbert edge collapses (`meshsal simplify`, the same library calls, so the same
 mesh): to target_faces, or to ratio times the faces (give at most one), and/or until
@@ -253,6 +332,11 @@ every further collapse would move the surface by more than target_error.
                     the preset's (30 for 'saliency', 50 for 'balanced')
   weight_floor      raise W to at least this fraction of the mean W, so that no collapse is
                     free (0: the paper's literal rule, which erases flat regions), [0, 100]
+  lod               levels of detail in one call (`meshsal simplify --lod`): a list of ratios
+                    of the input's faces (floats in (0, 1)) and face counts (ints), each below
+                    the one before, or a str such as '0.5,0.2,0.05'; returns one SimplifyResult
+                    per level. The saliency is computed once and carried down the chain; each
+                    level is simplified from the one before (meshsal.simplify_lod)
 
 A target at or above the face count returns the mesh unchanged (.unchanged, .note). The
 result unpacks as V, F = simplify(...); .vertex_origin maps output to input vertices;

@@ -36,6 +36,7 @@ struct Args {
   unsigned threads = 0;
   long long tiles = 0;  // --tiles: 0 = not given (one piece)
   std::string memory_limit, temp_dir;  // --memory-limit, --temp-dir
+  std::string lod;                     // --lod: ratios or face counts
 };
 
 // S from a saliency PLY, as `meshsal saliency` writes it for the same input. For an OBJ
@@ -123,6 +124,71 @@ int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const me
   return 0;
 }
 
+// --lod: the chain of levels (simplify_lod), the saliency computed once, written by
+// write_lod (one glTF with every level, or OUT_lodI files).
+int run_lod(const Args& a, const meshsal::SaliencyWeightOptions& wo, Progress& progress) {
+  using namespace meshsal;
+  const std::vector<SimplifyOptions> levels = parse_lod_levels(a.lod);
+  const std::string format = mesh_output_format(a.output);
+  const bool gltf = format == ".glb" || format == ".gltf";
+  std::vector<OutputFile> outputs;
+  if (gltf) outputs.push_back({a.output, "-o", {}});
+  for (size_t i = 0; !gltf && i < levels.size(); ++i) outputs.push_back({lod_level_path(a.output, i + 1), "-o", {}});
+  check_outputs(outputs, {a.input, a.saliency_from});
+  const meshsal::Timer t0;
+  progress.update("reading", 0.0);
+  Mesh mesh = load_input(a.input, a.quiet, nullptr, true);
+  SaliencyOptions so = saliency_options(a, progress);
+  so.notice = [&](const std::string& line) {
+    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
+  };
+  const bool weighted = a.weights != "none";
+  std::vector<double> s;
+  if (weighted) {
+    progress.update("saliency", 0.0);
+    s = a.saliency_from.empty() ? compute_saliency(mesh, so).saliency
+                                : load_saliency_of_positions(a.saliency_from, mesh, mesh_extension(a.input) == ".ply");
+  }
+  progress.update("simplifying", 0.0);
+  std::vector<SimplifyOptions> opts = levels;
+  for (SimplifyOptions& o : opts) o.lock_border = a.lock_border, o.cancel = interrupt_flag();
+  const std::vector<LodLevel> chain = simplify_lod(mesh, opts, weighted ? &wo : nullptr, so, weighted ? &s : nullptr);
+  progress.update("writing", 0.0);
+  write_lod(a.output, mesh, weighted ? &s : nullptr, chain);
+  progress.finish();
+  if (a.json) {
+    std::vector<JsonObject> js;
+    for (size_t i = 0; i < chain.size(); ++i) {
+      const SimplifyReport& r = chain[i].report;
+      js.push_back(JsonObject()
+                       .count("level", i + 1)
+                       .text("output", gltf ? a.output : lod_level_path(a.output, i + 1))
+                       .count("target_faces", r.target_faces)
+                       .count("output_faces", r.output_faces)
+                       .count("output_vertices", r.output_vertices)
+                       .flag("reached", r.reached)
+                       .number("error_percent", 100 * r.error)
+                       .number("seconds", r.seconds));
+    }
+    JsonObject().text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
+        .count("input_faces", mesh.triangle_count()).text("weights", a.weights).objects("levels", js)
+        .number("seconds", t0.seconds()).print();
+  } else if (!a.quiet) {
+    std::printf("input      %zu vertices, %zu faces\n", mesh.vertex_count(), mesh.triangle_count());
+    std::printf("weights    %s (saliency computed once, carried down the chain)\n", a.weights.c_str());
+    for (size_t i = 0; i < chain.size(); ++i) {
+      const SimplifyReport& r = chain[i].report;
+      std::printf("LOD%zu       %zu faces (target %zu), %zu vertices, error %.4g%%%s\n", i + 1, r.output_faces,
+                  r.target_faces, r.output_vertices, 100 * r.error,
+                  gltf ? "" : printable(" -> " + lod_level_path(a.output, i + 1)).c_str());
+    }
+    std::printf("wrote      %s\n", printable(gltf ? a.output + " (LOD0 = the input, MSFT_lod)" : a.output).c_str());
+  }
+  for (const LodLevel& l : chain)
+    if (!l.report.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", printable(l.report.note).c_str());
+  return 0;
+}
+
 // The simplified mesh in the format its name gives; a glTF takes the saliency the
 // simplifier carried (the `quality` attribute) as _SALIENCY and COLOR_0.
 void write_simplified(const std::string& path, const meshsal::Mesh& mesh) {
@@ -145,7 +211,11 @@ int run(const Args& a) {
   check_outputs({{a.output, "-o", {".obj", ".ply", ".glb", ".gltf"}}}, {a.input, a.saliency_from});
   const bool obj = mesh_output_format(a.output) == ".obj";
   if (a.has_target && a.has_ratio) throw UsageError("give only one of --target-faces N and --ratio R");
-  if (!a.has_target && !a.has_ratio && a.target_error == 0)
+  if (!a.lod.empty() && (a.has_target || a.has_ratio || a.target_error > 0))
+    throw UsageError("--lod names every level: give it without --target-faces, --ratio or --target-error");
+  if (!a.lod.empty() && (a.tiles > 1 || !a.memory_limit.empty()))
+    throw UsageError("--lod runs in memory, in one piece: not with --tiles or --memory-limit");
+  if (a.lod.empty() && !a.has_target && !a.has_ratio && a.target_error == 0)
     throw UsageError("give --target-faces N, --ratio R or --target-error E");
   if (a.weights != "saliency" && a.weights != "balanced" && a.weights != "none")
     throw UsageError("--weights must be 'saliency', 'balanced' or 'none', got '" + a.weights + "'");
@@ -160,6 +230,7 @@ int run(const Args& a) {
   wo.floor = a.weight_floor;
 
   Progress progress(!a.quiet && stderr_is_terminal());
+  if (!a.lod.empty()) return run_lod(a, wo, progress);
   if (!a.memory_limit.empty()) {
     if (mesh_output_format(a.output) != ".ply") throw UsageError("--memory-limit writes a binary PLY: give -o OUT.ply");
     SimplifyOptions opt;
@@ -321,6 +392,21 @@ RunFn setup(CLI::App& sub) {
                  "target (whichever comes first). The error reached is reported")
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", a->lock_border, "Keep the vertices of open borders exactly in place");
+  sub.add_option("--lod", a->lod,
+                 "Levels of detail in one run, e.g. 0.5,0.2,0.05 (ratios of the input's faces) or 20000,5000\n"
+                 "(face counts): the saliency computed once, each level simplified from the one before.\n"
+                 "OUT.glb/.gltf holds the input as LOD0 and every level (MSFT_lod); OUT.obj/.ply gives\n"
+                 "OUT_lod1.obj, OUT_lod2.obj, ...")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              meshsal::parse_lod_levels(text);
+            } catch (const meshsal::Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "LIST"));
   sub.add_option("--tiles", a->tiles,
                  "Simplify by N cubic tiles along the longest axis (1 = the whole mesh at once): each tile alone\n"
                  "with its cut pinned, then strips along the cuts; no cracks, no new border; faces\n"

@@ -1,0 +1,131 @@
+// Levels of detail: simplify_lod (the saliency computed once and carried down the chain),
+// write_lod (one GLB linked by MSFT_lod, or one file per level) and `simplify --lod`.
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "cli/synthetic.h"
+#include "cli_run.h"
+#include "gltf_util.h"
+#include "meshsal/meshsal.h"
+
+using namespace meshsal;
+using meshsal_test::quoted;
+using meshsal_test::run_cli;
+using meshsal_test::scratch_dir;
+
+namespace {
+
+SaliencyOptions cpu() {
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  return o;
+}
+
+// The JSON chunk of a GLB.
+std::string glb_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string b = ss.str();
+  REQUIRE(b.size() > 20);
+  uint32_t n = 0;
+  std::memcpy(&n, b.data() + 12, 4);
+  return b.substr(20, n);
+}
+
+}  // namespace
+
+TEST_CASE("lod: the chain reaches each target, each level from the one before", "[simplify][lod]") {
+  const Mesh m = make_bumpy_sphere(4);  // 5120 faces
+  std::vector<SimplifyOptions> levels(3);
+  levels[0].ratio = 0.5;
+  levels[1].ratio = 0.2;
+  levels[2].target_faces = 300;
+  const SaliencyWeightOptions wo = weight_preset(Weighting::Balanced);
+  const std::vector<LodLevel> chain = simplify_lod(m, levels, &wo, cpu());
+  REQUIRE(chain.size() == 3);
+  CHECK(chain[0].mesh.triangle_count() == 2560);
+  CHECK(chain[1].mesh.triangle_count() == 1024);
+  CHECK(chain[2].mesh.triangle_count() == 300);
+  for (const LodLevel& l : chain) {
+    CHECK(l.report.reached);
+    REQUIRE(l.saliency.size() == l.mesh.vertex_count());
+    for (double s : l.saliency) CHECK(s >= 0);
+    for (const VertexAttribute& a : l.mesh.attributes) CHECK(a.name.find("lod") == std::string::npos);  // the carrier is gone
+  }
+  // Level 1 was made from level 0: its input count is level 0's faces.
+  CHECK(chain[1].report.input_faces == 2560);
+  // The saliency carried to level 1 is the input's at the vertices that never moved.
+  const SaliencyResult s = compute_saliency(m, cpu());
+  size_t same = 0;
+  for (size_t v = 0; v < chain[0].mesh.vertex_count(); ++v) {
+    const uint32_t from = chain[0].report.vertex_origin[v];
+    if (chain[0].mesh.positions[3 * v] == m.positions[3 * from] && chain[0].mesh.positions[3 * v + 1] == m.positions[3 * from + 1] &&
+        chain[0].mesh.positions[3 * v + 2] == m.positions[3 * from + 2]) {
+      CHECK(chain[0].saliency[v] == Approx(s.saliency[from]).epsilon(1e-6));
+      ++same;
+    }
+  }
+  CHECK(same > 100);
+  // The first level equals simplify_with_saliency with the same S.
+  SimplifyOptions o;
+  o.ratio = 0.5;
+  const Mesh direct = simplify_with_saliency(m, o, wo, cpu(), &s.saliency);
+  CHECK(direct.triangles == chain[0].mesh.triangles);
+  // Levels must shrink; target_error is not a level.
+  std::vector<SimplifyOptions> bad(2);
+  bad[0].ratio = 0.2;
+  bad[1].ratio = 0.5;
+  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), Catch::Contains("not fewer than level 1's"));
+  CHECK_THROWS_WITH(parse_lod_levels("0.5,x"), Catch::Contains("comma-separated list of ratios in (0, 1) or face counts"));
+  CHECK_THROWS_WITH(parse_lod_levels("1.5"), Catch::Contains("ratios in (0, 1)"));
+  const std::vector<SimplifyOptions> parsed = parse_lod_levels("0.5,2000,1e-2");
+  REQUIRE(parsed.size() == 3);
+  CHECK(parsed[0].ratio == 0.5);
+  CHECK(parsed[1].target_faces == 2000);
+  CHECK(parsed[2].ratio == 0.01);
+}
+
+TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file per level", "[cli][lod][gltf][validator]") {
+  const auto dir = scratch_dir("lod_cli");
+  const std::string in = (dir / "m.obj").string();
+  write_obj(in, make_bumpy_sphere(4));
+  const std::string glb = (dir / "m.glb").string();
+  auto r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.5,0.2,300 --backend cpu --json", dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("\"output_faces\": 2560") != std::string::npos);
+  CHECK(r.out.find("\"output_faces\": 1024") != std::string::npos);
+  CHECK(r.out.find("\"output_faces\": 300") != std::string::npos);
+  std::string report;
+  CHECK(meshsal_test::validate_gltf(glb, &report) == 0);
+  INFO(report);
+  const std::string json = glb_json(glb);
+  CHECK(json.find("\"MSFT_lod\":{\"ids\":[1,2,3]}") != std::string::npos);
+  CHECK(json.find("\"extensionsUsed\":[\"MSFT_lod\"]") != std::string::npos);
+  CHECK(json.find("\"name\":\"LOD3\"") != std::string::npos);
+  // The scene shows LOD0, the input, whole.
+  CHECK(load_mesh(glb).triangle_count() == 5120);
+  // OBJ: one file per level, the input not written again.
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.obj").string()) + " --lod 0.5,300 --backend cpu -q", dir);
+  REQUIRE(r.rc == 0);
+  CHECK(load_mesh((dir / "out_lod1.obj").string()).triangle_count() == 2560);
+  CHECK(load_mesh((dir / "out_lod2.obj").string()).triangle_count() == 300);
+  CHECK_FALSE(std::filesystem::exists(dir / "out.obj"));
+  // A PLY level carries its saliency as quality.
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.ply").string()) + " --lod 0.5 --backend cpu -q", dir);
+  REQUIRE(r.rc == 0);
+  VertexProperties props;
+  load_mesh((dir / "out_lod1.ply").string(), &props);
+  CHECK(props.count("quality") == 1);
+  // Usage errors.
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.5 --ratio 0.1", dir);
+  CHECK(r.rc == 2);
+  CHECK(r.err.find("--lod names every level") != std::string::npos);
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.2,0.5 --backend cpu", dir);
+  CHECK(r.rc != 0);
+  CHECK(r.err.find("not fewer than level 1's") != std::string::npos);
+}
