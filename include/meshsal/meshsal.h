@@ -942,6 +942,29 @@ struct Viewpoint {
 Viewpoint best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
                          const ViewpointOptions& options);
 
+// What a viewer page shows besides the model (write_view_page).
+struct ViewPageOptions {
+  std::string title;                                        // the page's heading (the file name)
+  std::vector<std::pair<std::string, std::string>> stats;  // rows of the statistics table
+  std::string note;                                         // a line the page shows ("" = none)
+  // A mesh with more faces is shown as a copy simplified to this many (plain quadrics,
+  // the saliency carried along), and the page says so; 0 = never.
+  size_t max_faces = 2000000;
+};
+
+// True when this build has the web viewer (three.js bundled at build time from web/;
+// tools/setup.sh installs what it needs): write_view_page works.
+bool built_with_viewer();
+
+// Writes one self-contained HTML page (no network needed to open it): the mesh coloured by
+// `saliency` (one value per vertex) on the pictures' colour scale with its colour bar and
+// scale, orbit controls from `camera` (best_viewpoint's Viewpoint::camera for this mesh),
+// a toggle between saliency, plain shading and wireframe, and options.stats. The mesh is
+// embedded as a GLB (write_gltf's, in local coordinates), three.js (MIT licence, kept in
+// the page) inline. Atomic as write_ply. Error when built without the viewer.
+void write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                     const ViewCamera& camera, const ViewPageOptions& options = {});
+
 // An 8-bit RGB image, rows top to bottom.
 struct Image {
   int width = 0, height = 0;

@@ -78,4 +78,8 @@ void transform_direction(const Frame& m, const double d[3], double out[3]) {
   for (int r = 0; r < 3; ++r) out[r] = m[r] * d[0] + m[4 + r] * d[1] + m[8 + r] * d[2];
 }
 
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+double linear_to_srgb(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055; }
+
 }  // namespace meshsal

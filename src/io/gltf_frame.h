@@ -1,5 +1,6 @@
 // meshsal (internal): 4x4 transforms of glTF nodes, column-major as glTF stores them, in
-// double: node TRS to matrix, composition, and applying one to points and normals.
+// double: node TRS to matrix, composition, and applying one to points and normals; and
+// the sRGB transfer function for glTF's linear vertex colours.
 #pragma once
 #include <array>
 
@@ -18,5 +19,9 @@ Frame normal_matrix(const Frame& m);
 double determinant3(const Frame& m);  // of the upper 3x3: < 0 for a mirroring transform
 void transform_point(const Frame& m, const double p[3], double out[3]);
 void transform_direction(const Frame& m, const double d[3], double out[3]);  // upper 3x3 only
+
+// glTF's vertex colours are linear; meshsal's colours (pictures, PLY red green blue) sRGB.
+double srgb_to_linear(double c);
+double linear_to_srgb(double c);
 
 }  // namespace meshsal

@@ -141,8 +141,7 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, size_
   size_t step = 0;
   const unsigned char* base = nullptr;
   if (a.bufferView >= 0) {
-    size_t stride = model.bufferViews[size_t(std::min<int>(a.bufferView, int(model.bufferViews.size()) - 1))].byteStride;
-    if (size_t(a.bufferView) >= model.bufferViews.size()) stride = 0;
+    const size_t stride = size_t(a.bufferView) < model.bufferViews.size() ? model.bufferViews[size_t(a.bufferView)].byteStride : 0;
     base = view_span(model, a.bufferView, a.byteOffset, a.count, element, stride, what, &step);
   } else if (!a.sparse.isSparse) {
     fail(what + ": accessor " + std::to_string(index) + " has no data (no bufferView and not sparse)");
@@ -424,8 +423,9 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
           if (c.size() != comps * nv) fail(what + ": COLOR_0 and POSITION counts differ");
           for (size_t v = 0; v < nv; ++v) {
             for (size_t k = 0; k < 4; ++k) {
-              const double x = k < comps ? c[comps * v + k] : 1.0;
-              rgba.push_back(float(std::nearbyint(std::clamp(x, 0.0, 1.0) * 255.0)));
+              // Linear in glTF; sRGB bytes in meshsal (alpha stays linear).
+              const double x = std::clamp(k < comps ? c[comps * v + k] : 1.0, 0.0, 1.0);
+              rgba.push_back(float(std::nearbyint((k == 3 ? x : linear_to_srgb(x)) * 255.0)));
             }
           }
         }

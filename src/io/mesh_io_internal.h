@@ -96,6 +96,10 @@ inline uint64_t counts_limit(uint64_t header_bytes, unsigned __int128 need) {
   return limit > UINT64_MAX ? UINT64_MAX : static_cast<uint64_t>(limit);
 }
 
+// The bytes write_gltf writes (GLB when `binary`, else glTF JSON with its buffer embedded);
+// `path` only names the output in messages (write_gltf.cpp).
+std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel>& levels, bool binary);
+
 // The writers' common check: whole triples and every index inside the vertices.
 inline void check_mesh(const std::string& path, const Mesh& mesh) {
   if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)

@@ -151,7 +151,9 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     prim.attributes["TEXCOORD_0"] = b.accessor(uv.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 8, kArrayBuffer);
     used.push_back(u), used.push_back(w);
   }
-  // COLOR_0: the saliency on the pictures' colour scale, else the input's colours.
+  // COLOR_0: the saliency on the pictures' colour scale, else the input's colours. glTF's
+  // vertex colours are linear (the spec): our sRGB bytes go in converted, 16 bits a channel
+  // so that reading them back gives the same bytes.
   const VertexAttribute* rgba[4] = {find_attribute(mesh, "red"), find_attribute(mesh, "green"), find_attribute(mesh, "blue"),
                                     find_attribute(mesh, "alpha")};
   std::vector<uint8_t> colour(4 * n, 255);
@@ -168,9 +170,15 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
         if (rgba[k]) colour[4 * v + size_t(k)] = uint8_t(std::clamp(std::nearbyint(double(rgba[k]->values[v])), 0.0, 255.0));
     used.insert(used.end(), rgba, rgba + 4);
   }
-  if (level.saliency || (rgba[0] && rgba[1] && rgba[2]))
+  if (level.saliency || (rgba[0] && rgba[1] && rgba[2])) {
+    uint16_t table[256];
+    for (int c = 0; c < 256; ++c) table[c] = uint16_t(std::nearbyint(srgb_to_linear(c / 255.0) * 65535.0));
+    std::vector<uint16_t> linear(4 * n);
+    for (size_t i = 0; i < linear.size(); ++i)
+      linear[i] = i % 4 == 3 ? uint16_t(colour[i] * 257) : table[colour[i]];  // alpha is linear already
     prim.attributes["COLOR_0"] =
-        b.accessor(colour.data(), n, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, 4, kArrayBuffer, true);
+        b.accessor(linear.data(), n, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, 8, kArrayBuffer, true);
+  }
   // Every other attribute as a custom float channel.
   for (const VertexAttribute& a : mesh.attributes) {
     if (std::find(used.begin(), used.end(), &a) != used.end()) continue;
@@ -243,12 +251,10 @@ bool ends_with(const std::string& s, const char* tail) {
 
 }  // namespace
 
-void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels) {
+std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel>& levels, bool binary) {
   if (levels.empty()) throw Error(path + ": cannot write: no mesh given");
   for (const GltfLevel& l : levels)
     if (!l.mesh) throw Error(path + ": cannot write: a level without a mesh");
-  const bool binary = ends_with(path, ".glb");
-  if (!binary && !ends_with(path, ".gltf")) throw Error(path + ": cannot write: glTF output ends in .glb or .gltf");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "meshsal";
@@ -300,7 +306,13 @@ void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels) {
   std::ostringstream out;
   if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary))
     throw Error(path + ": cannot write: the glTF writer failed");
-  const std::string bytes = out.str();
+  return out.str();
+}
+
+void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels) {
+  const bool binary = ends_with(path, ".glb");
+  if (!binary && !ends_with(path, ".gltf")) throw Error(path + ": cannot write: glTF output ends in .glb or .gltf");
+  const std::string bytes = gltf_file_bytes(path, levels, binary);
   write_file_atomically(path, [&](std::FILE* f) { write_all(f, bytes.data(), bytes.size(), path); });
 }
 
