@@ -99,3 +99,27 @@ TEST_CASE("view: a mesh over --max-faces is shown as a simplified copy, and the 
   CHECK(r.rc == 1);
   CHECK(r.err.find("-o must be a .html file") != std::string::npos);
 }
+
+TEST_CASE("view: batch --html writes each model's page and a gallery, failed models marked", "[cli][view][batch]") {
+  const auto dir = scratch_dir("view_batch");
+  std::filesystem::create_directories(dir / "in");
+  write_obj((dir / "in" / "ball.obj").string(), make_bumpy_sphere(3));
+  std::ofstream(dir / "in" / "broken.obj") << "v 0 0 0\nf 1 2 3\n";
+  const std::string out = (dir / "out").string();
+  const std::string args = "batch " + quoted((dir / "in").string()) + " -o " + quoted(out) + " --html --backend cpu";
+  auto r = run_cli(args, dir);
+  CHECK(r.rc == 1);  // one model failed
+  CHECK(r.out.find("2 models: 1 computed, 0 skipped, 1 failed") != std::string::npos);
+  // The model's page is the one `meshsal view` writes (its title, the bundle, the GLB).
+  const std::string page = text_of(dir / "out" / "ball_view.html");
+  CHECK(page.find("<title>meshsal: ball.obj</title>") != std::string::npos);
+  CHECK(page.find("data-status=\"loading\"") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "out" / "ball_view.png"));  // --html implies the picture
+  const std::string gallery = text_of(dir / "out" / "index.html");
+  CHECK(gallery.find("<a href=\"ball_view.html\"><img src=\"ball_view.png\"") != std::string::npos);
+  CHECK(gallery.find("<div class=\"card failed\"><div class=\"name\">broken.obj: failed</div>") != std::string::npos);
+  // Run again: the model is up to date, and the gallery still opens its page.
+  r = run_cli(args, dir);
+  CHECK(r.out.find("0 computed, 1 skipped, 1 failed") != std::string::npos);
+  CHECK(text_of(dir / "out" / "index.html").find("<a href=\"ball_view.html\">") != std::string::npos);
+}

@@ -35,6 +35,7 @@ std::vector<std::string> ModelOutputs::all() const {
   std::vector<std::string> v{saliency};
   if (!view.empty()) v.push_back(view);
   if (!simplified.empty()) v.push_back(simplified);
+  if (!page.empty()) v.push_back(page);
   return v;
 }
 
@@ -56,12 +57,13 @@ std::vector<std::string> output_names(const std::vector<std::string>& inputs) {
 }
 
 ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified,
-                           bool simplified_ply) {
+                           bool simplified_ply, bool page) {
   const std::string base = dir + (dir.empty() || dir.back() == '/' ? "" : "/") + name;
   ModelOutputs o;
   o.saliency = base + "_saliency.ply";
   if (view) o.view = base + "_view.png";
   if (simplified) o.simplified = base + (simplified_ply ? "_simplified.ply" : "_simplified.obj");
+  if (page) o.page = base + "_view.html";
   return o;
 }
 

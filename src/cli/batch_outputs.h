@@ -9,6 +9,7 @@ struct ModelOutputs {
   std::string saliency;    // DIR/NAME_saliency.ply
   std::string view;        // DIR/NAME_view.png, "" when not asked
   std::string simplified;  // DIR/NAME_simplified.obj (.ply out of core), "" when not asked
+  std::string page;        // DIR/NAME_view.html (--html), "" when not asked
   std::vector<std::string> all() const;  // those asked for
 };
 
@@ -21,8 +22,9 @@ std::string file_name(const std::string& path);
 std::vector<std::string> output_names(const std::vector<std::string>& inputs);
 
 // `simplified_ply`: NAME_simplified.ply (out of core: simplify_file writes a binary PLY).
+// `page`: NAME_view.html (--html, which implies the view picture).
 ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified,
-                           bool simplified_ply = false);
+                           bool simplified_ply = false, bool page = false);
 
 // `inputs` without the files a batch wrote into `dir` (for an input folder that is also the
 // output folder, run again): a file directly in `dir` named NAME_saliency.ply or

@@ -29,6 +29,7 @@
 #include "batch_state.h"
 #include "command.h"
 #include "contact_sheet.h"
+#include "gallery_page.h"
 #include "core/timer.h"
 #include "io/atomic_write.h"
 #include "json_object.h"
@@ -62,6 +63,7 @@ struct Options {
   double target_error = 0;  // --target-error, % of the bounding-box diagonal (0: none)
   bool lock_border = false;
   bool view = false, force = false, quiet = false;
+  bool html = false;  // --html: NAME_view.html per model and the gallery DIR/index.html
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
   std::string weights = meshsal::weighting_name(meshsal::kDefaultWeighting);  // --simplify's weighting
   double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
@@ -104,7 +106,7 @@ const double kDeg = 180.0 / 3.14159265358979323846;
 
 // The best view (as `meshsal viewpoint`), its picture, and its part of the log line.
 JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& input,
-                     const std::string& png, BatchProgress& progress) {
+                     const std::string& png, BatchProgress& progress, ViewCamera* camera) {
   const Timer t;
   // The one view pipeline (best_viewpoint), with `meshsal viewpoint`'s settings.
   ViewpointOptions vo;
@@ -121,6 +123,7 @@ JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, c
   vo.notice = p.saliency.notice;
   vo.cancel = interrupt_flag();
   const Viewpoint best = best_viewpoint(mesh, r.saliency, vo);
+  if (camera) *camera = best.camera;
   const ViewAngles shown = best.view;
   const double* d = best.camera.direction;
   progress.stage("view picture", 0);
@@ -238,7 +241,17 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
   JsonObject j = saliency_json(m.path, out.saliency, m.mesh, r, m.seconds);
   j.text("status", "done").text("name", name).number("write_seconds", write_s);
   if (m.welded_corners) j.count("welded_corners", m.welded_corners);
-  if (!out.view.empty()) j.object("view", best_view(p, m.mesh, r, m.path, out.view, progress));
+  ViewCamera camera;
+  if (!out.view.empty()) j.object("view", best_view(p, m.mesh, r, m.path, out.view, progress, &camera));
+  if (!out.page.empty()) {
+    // The page `meshsal view` writes, from the same view.
+    progress.stage("page", 0);
+    ViewPageOptions po;
+    po.title = file_name(m.path);
+    po.stats = view_page_stats(m.mesh, r.saliency, "computed (" + r.backend_name + ")", t.seconds() + m.seconds);
+    write_view_page(out.page, m.mesh, r.saliency, camera, po);
+    j.text("page", out.page);
+  }
   if (!out.simplified.empty()) {
     progress.stage("simplify", 0);
     j.object("simplify", simplified(p, m, r, out.simplified));
@@ -289,7 +302,7 @@ std::string options_line(const Options& o) {
                 "version=%d method=%s scales=%s eps_frac=%.17g precision=%s backend=%s device=%d view=%d "
                 "size=%d restarts=%d resolution=%d up=%s simplify=%.17g weights=%s weight_floor=%.17g",
                 MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
-                o.backend.c_str(), o.device, int(o.view), o.size, o.restarts, o.resolution, o.up.c_str(),
+                o.backend.c_str(), o.device, int(o.view || o.html), o.size, o.restarts, o.resolution, o.up.c_str(),
                 o.simplify, o.weights.c_str(), o.weight_floor);
   std::string line = buf;
   // Only where a simplified mesh is made, so that the records of runs without one still
@@ -300,6 +313,7 @@ std::string options_line(const Options& o) {
     line += buf;
   }
   // Only when not the defaults, so that the records of earlier runs stay up to date.
+  if (o.html) line += " html=1";
   if (!o.elevation.empty()) line += " elevation=" + o.elevation;
   if (o.seed != 1) line += " seed=" + std::to_string(o.seed);
   if (o.depth_tol != 2.0) {
@@ -432,7 +446,11 @@ int run(Options o) {
       }
   }
   const std::string log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
-  check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}}, inputs);
+  const std::string gallery = o.html ? o.out_dir + "/index.html" : "";
+  check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {gallery, "--html", {}}}, inputs);
+  if (o.html && !built_with_viewer())
+    throw Error("--html: this meshsal was built without the web viewer (web/node_modules was missing at build "
+                "time: run tools/setup.sh, then build again)");
   std::set<std::pair<dev_t, ino_t>> input_ids;
   for (const std::string& in : inputs) {
     struct stat st;
@@ -440,7 +458,7 @@ int run(Options o) {
   }
   // What runs killed mid-write left: temporaries of the outputs a batch writes.
   const auto batch_output = [](const std::string& base) {
-    for (const char* end : {"_saliency.ply", "_view.png", "_simplified.obj", ".state"})
+    for (const char* end : {"_saliency.ply", "_view.png", "_view.html", "_simplified.obj", ".state"})
       if (base.size() > std::strlen(end) && base.compare(base.size() - std::strlen(end), std::string::npos, end) == 0)
         return true;
     return false;
@@ -458,7 +476,7 @@ int run(Options o) {
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<size_t> to_compute;  // model indices, in order
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(model_outputs(o.out_dir, names[i], o.view, p.simplifying, p.memory_limit != 0));
+    outs.push_back(model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
@@ -538,7 +556,7 @@ int run(Options o) {
         skipped++;
       } else if (!skip_record[i].empty()) {
         log->add(skipped_line(skip_record[i]));
-        has_view[i] = o.view;
+        has_view[i] = o.view || o.html;
         skipped++;
       } else if (has_result[i]) {
         const ModelResult& r = results[i];
@@ -587,7 +605,7 @@ int run(Options o) {
         save_state(state_path(o.out_dir, names[i]), state);
         res.status = "done";
         res.line = state.record;
-        res.has_view = o.view;
+        res.has_view = o.view || o.html;
         res.seconds = t.seconds() + m.seconds;
       } catch (const Cancelled&) {
         JsonObject j;  // Ctrl-C: this model's line says so, then the summary
@@ -663,6 +681,22 @@ int run(Options o) {
       sheet_failed = true;
     }
   }
+  bool gallery_failed = false;
+  if (o.html && !interrupted) {
+    // Every model: its thumbnail opening its page, or a marked card with its error.
+    std::vector<GalleryItem> items;
+    for (size_t i = 0; i < inputs.size(); ++i) {
+      const bool shown = has_view[i] && sheet_status[i].empty();
+      items.push_back({file_name(inputs[i]), shown ? file_name(outs[i].page) : "", shown ? file_name(outs[i].view) : "",
+                       sheet_status[i].empty() ? "done" : sheet_status[i], sheet_message[i]});
+    }
+    try {
+      write_gallery(gallery, items);
+    } catch (const Error& e) {
+      std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
+      gallery_failed = true;
+    }
+  }
   if (!o.quiet) {
     std::string on_ranks;  // how the computed models were shared (none with one process)
     for (int r = 0; ranks > 1 && r < ranks; ++r)
@@ -672,6 +706,7 @@ int run(Options o) {
                 computed, skipped, failed, interrupted ? ", then interrupted" : "", t_run.seconds(),
                 on_ranks.c_str(), printable(log_path).c_str());
     if (!o.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o.contact_sheet).c_str());
+    if (o.html && !gallery_failed && !interrupted) std::printf("wrote  %s\n", printable(gallery).c_str());
     std::fflush(stdout);
   }
   if (!log->error().empty())
@@ -682,7 +717,7 @@ int run(Options o) {
     std::fflush(stderr);
     return agreed_status(interrupted_exit());
   }
-  return agreed_status(failed || !log->error().empty() || sheet_failed ? 1 : 0);
+  return agreed_status(failed || !log->error().empty() || sheet_failed || gallery_failed ? 1 : 0);
 }
 
 RunFn setup(CLI::App& sub) {
@@ -725,6 +760,10 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();
   sub.add_option("--log", o->log, "The JSON Lines log (default DIR/batch.jsonl)");
   sub.add_flag("--view", o->view, "Also write the best-view picture NAME_view.png");
+  sub.add_flag("--html", o->html,
+               "Also write NAME_view.html per model (the page `meshsal view` writes: the model in the browser,\n"
+               "from its best view) and DIR/index.html, a gallery of every model's thumbnail (NAME_view.png,\n"
+               "implied) opening its page, failed models marked");
   sub.add_option("--simplify", o->simplify,
                  "Also write NAME_simplified.obj with saliency weights: a ratio of the faces in (0, 1], "
                  "or a face count above 1 (as simplify --ratio / --target-faces)")->check(finite_in(0, 1e12, true));

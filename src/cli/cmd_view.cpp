@@ -30,34 +30,6 @@ struct Options {
   bool quiet = false, json = false;
 };
 
-// The statistics table of a page: what the model is and what its saliency came to.
-std::vector<std::pair<std::string, std::string>> page_stats(const meshsal::Mesh& mesh, const std::vector<double>& s,
-                                                            const std::string& source, double seconds) {
-  using meshsal::Error;
-  double lo = 0, hi = 0, sum = 0;
-  size_t n = 0;
-  const std::vector<uint8_t> used = [&] {
-    std::vector<uint8_t> u(mesh.vertex_count(), 0);
-    for (uint32_t v : mesh.triangles) u[v] = 1;
-    return u;
-  }();
-  for (size_t v = 0; v < s.size(); ++v)
-    if (used[v]) {
-      lo = n ? std::min(lo, s[v]) : s[v], hi = n ? std::max(hi, s[v]) : s[v];
-      sum += s[v], ++n;
-    }
-  auto num = [](double x) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%.4g", x);
-    return std::string(b);
-  };
-  return {{"vertices", std::to_string(mesh.vertex_count())},
-          {"faces", std::to_string(mesh.triangle_count())},
-          {"saliency", source},
-          {"S min / mean / max", num(lo) + " / " + num(n ? sum / double(n) : 0) + " / " + num(hi)},
-          {"computed in", num(seconds) + " s"}};
-}
-
 int run(const Options& o) {
   using namespace meshsal;
   const Timer t0;
@@ -96,7 +68,7 @@ int run(const Options& o) {
   ViewPageOptions po;
   po.title = std::filesystem::path(o.input).filename().string();
   po.max_faces = size_t(o.max_faces);
-  po.stats = page_stats(mesh, s, source.empty() ? "computed" : source, t0.seconds());
+  po.stats = view_page_stats(mesh, s, source.empty() ? "computed" : source, t0.seconds());
   write_view_page(o.output, mesh, s, best.camera, po);
   progress.finish();
   const bool simplified = po.max_faces > 0 && mesh.triangle_count() > po.max_faces;

@@ -42,6 +42,33 @@ void write_saliency_ply(const std::string& path, const Mesh& mesh, const Salienc
   meshsal::write_saliency_ply(path, mesh, r.saliency, props, &r.is_point);
 }
 
+// The statistics table of a page: what the model is and what its saliency came to.
+std::vector<std::pair<std::string, std::string>> view_page_stats(const meshsal::Mesh& mesh, const std::vector<double>& s,
+                                                            const std::string& source, double seconds) {
+  double lo = 0, hi = 0, sum = 0;
+  size_t n = 0;
+  const std::vector<uint8_t> used = [&] {
+    std::vector<uint8_t> u(mesh.vertex_count(), 0);
+    for (uint32_t v : mesh.triangles) u[v] = 1;
+    return u;
+  }();
+  for (size_t v = 0; v < s.size(); ++v)
+    if (used[v]) {
+      lo = n ? std::min(lo, s[v]) : s[v], hi = n ? std::max(hi, s[v]) : s[v];
+      sum += s[v], ++n;
+    }
+  auto num = [](double x) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.4g", x);
+    return std::string(b);
+  };
+  return {{"vertices", std::to_string(mesh.vertex_count())},
+          {"faces", std::to_string(mesh.triangle_count())},
+          {"saliency", source},
+          {"S min / mean / max", num(lo) + " / " + num(n ? sum / double(n) : 0) + " / " + num(hi)},
+          {"computed in", num(seconds) + " s"}};
+}
+
 SaliencyStats saliency_stats(const SaliencyResult& r) {
   std::vector<double> s;
   for (size_t v = 0; v < r.saliency.size(); ++v)

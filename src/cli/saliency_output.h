@@ -18,6 +18,11 @@ namespace meshsal_cli {
 void write_saliency_ply(const std::string& path, const meshsal::Mesh& mesh,
                         const meshsal::SaliencyResult& result, bool dump_scales);
 
+// The statistics table of a viewer page (`view`, `batch --html`): vertices, faces, where S
+// came from (`source`), S over the mesh points (min / mean / max) and the seconds taken.
+std::vector<std::pair<std::string, std::string>> view_page_stats(const meshsal::Mesh& mesh, const std::vector<double>& s,
+                                                                 const std::string& source, double seconds);
+
 // Saliency S over the mesh points: min, mean, max and percentiles (nearest rank).
 struct SaliencyStats {
   double min = 0, mean = 0, max = 0, p10 = 0, p50 = 0, p90 = 0, p99 = 0;
