@@ -129,3 +129,28 @@ TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file pe
   CHECK(r.rc != 0);
   CHECK(r.err.find("not fewer than level 1's") != std::string::npos);
 }
+
+TEST_CASE("lod: batch --lod writes the file simplify --lod writes, byte for byte", "[cli][lod][batch]") {
+  const auto dir = scratch_dir("lod_batch");
+  std::filesystem::create_directories(dir / "in");
+  const std::string in = (dir / "in" / "ball.obj").string();
+  write_obj(in, make_bumpy_sphere(3));
+  auto r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
+                       " --lod 0.5,100 --backend cpu -q",
+                   dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "one.glb").string()) + " --lod 0.5,100 --backend cpu -q", dir);
+  REQUIRE(r.rc == 0);
+  std::ifstream a(dir / "out" / "ball_lod.glb", std::ios::binary), b(dir / "one.glb", std::ios::binary);
+  std::stringstream sa, sb;
+  sa << a.rdbuf();
+  sb << b.rdbuf();
+  CHECK(sa.str().size() > 1000);
+  CHECK(sa.str() == sb.str());
+  // A rerun in the output folder does not take the GLB for an input.
+  r = run_cli("batch " + quoted((dir / "out").string()) + " " + quoted((dir / "in").string()) + " -o " +
+                  quoted((dir / "out").string()) + " --lod 0.5,100 --backend cpu",
+              dir);
+  CHECK(r.out.find("1 models: 0 computed, 1 skipped") != std::string::npos);
+}

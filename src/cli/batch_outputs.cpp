@@ -36,6 +36,7 @@ std::vector<std::string> ModelOutputs::all() const {
   if (!view.empty()) v.push_back(view);
   if (!simplified.empty()) v.push_back(simplified);
   if (!page.empty()) v.push_back(page);
+  if (!lod.empty()) v.push_back(lod);
   return v;
 }
 
@@ -57,13 +58,14 @@ std::vector<std::string> output_names(const std::vector<std::string>& inputs) {
 }
 
 ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool view, bool simplified,
-                           bool simplified_ply, bool page) {
+                           bool simplified_ply, bool page, bool lod) {
   const std::string base = dir + (dir.empty() || dir.back() == '/' ? "" : "/") + name;
   ModelOutputs o;
   o.saliency = base + "_saliency.ply";
   if (view) o.view = base + "_view.png";
   if (simplified) o.simplified = base + (simplified_ply ? "_simplified.ply" : "_simplified.obj");
   if (page) o.page = base + "_view.html";
+  if (lod) o.lod = base + "_lod.glb";
   return o;
 }
 
@@ -75,7 +77,7 @@ std::vector<std::string> without_batch_outputs(const std::vector<std::string>& i
   std::vector<size_t> maybe;
   for (size_t i = 0; i < inputs.size(); ++i) {
     const std::string file = file_name(inputs[i]);
-    for (const char* end : {"_saliency.ply", "_simplified.obj", "_simplified.ply"}) {
+    for (const char* end : {"_saliency.ply", "_simplified.obj", "_simplified.ply", "_lod.glb"}) {
       const std::string e(end);
       if (file.size() <= e.size() || file.compare(file.size() - e.size(), e.size(), e) != 0) continue;
       const size_t slash = inputs[i].find_last_of('/');

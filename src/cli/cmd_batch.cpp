@@ -64,6 +64,7 @@ struct Options {
   bool lock_border = false;
   bool view = false, force = false, quiet = false;
   bool html = false;  // --html: NAME_view.html per model and the gallery DIR/index.html
+  std::string lod;    // --lod LIST: NAME_lod.glb per model, as `simplify --lod LIST -o NAME_lod.glb`
   std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
   std::string weights = meshsal::weighting_name(meshsal::kDefaultWeighting);  // --simplify's weighting
   double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
@@ -80,6 +81,7 @@ struct Options {
 struct Plan {
   const Options* o;
   bool simplifying = false;  // --simplify or --target-error
+  std::vector<SimplifyOptions> lod;  // --lod's levels (empty: none)
   SaliencyOptions saliency;
   SaliencyWeightOptions weights;  // --simplify's
   RenderStyle style;
@@ -188,6 +190,28 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
   return j;
 }
 
+// NAME_lod.glb as `meshsal simplify IN -o NAME_lod.glb --lod LIST` writes it: the mesh read
+// with its attributes, S computed once (this model's, when it was computed on the same
+// vertices), simplify_lod and write_lod.
+JsonObject lod_chain(const Plan& p, const LoadedModel& m, const SaliencyResult& r, const std::string& out) {
+  if (!m.attributed_error.empty()) throw Error(m.attributed_error);
+  const Mesh& mesh = m.has_attributed ? m.attributed : m.mesh;
+  const Timer t;
+  const bool weighted = p.o->weights != "none";
+  std::vector<double> s;
+  if (weighted)
+    s = same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() ? r.saliency : compute_saliency(mesh, p.saliency).saliency;
+  std::vector<SimplifyOptions> levels = p.lod;
+  for (SimplifyOptions& l : levels) l.lock_border = p.o->lock_border, l.cancel = interrupt_flag();
+  const std::vector<LodLevel> chain = simplify_lod(mesh, levels, weighted ? &p.weights : nullptr, p.saliency, weighted ? &s : nullptr);
+  write_lod(out, mesh, weighted ? &s : nullptr, chain);
+  std::string faces = "[";
+  for (size_t i = 0; i < chain.size(); ++i) faces += (i ? ", " : "") + std::to_string(chain[i].report.output_faces);
+  JsonObject j;
+  j.text("output", out).raw("faces", faces + "]").number("seconds", t.seconds());
+  return j;
+}
+
 // NAME_simplified.ply as `meshsal simplify IN -o OUT.ply --memory-limit SIZE` writes it with
 // the same options (simplify_file: the tiled simplifier on disk, its own saliency).
 JsonObject simplified_out_of_core(const Plan& p, const std::string& input, const std::string& out) {
@@ -256,6 +280,10 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
     progress.stage("simplify", 0);
     j.object("simplify", simplified(p, m, r, out.simplified));
   }
+  if (!out.lod.empty()) {
+    progress.stage("levels of detail", 0);
+    j.object("lod", lod_chain(p, m, r, out.lod));
+  }
   const GpuCounts gpu1 = GpuCounts::now();
   if (built_with_vulkan())
     j.flag("device_opened", gpu1.opened > gpu0.opened).count("pipelines_built", gpu1.kernels - gpu0.kernels);
@@ -314,6 +342,7 @@ std::string options_line(const Options& o) {
   }
   // Only when not the defaults, so that the records of earlier runs stay up to date.
   if (o.html) line += " html=1";
+  if (!o.lod.empty()) line += " lod=" + o.lod + " lock_border=" + std::to_string(int(o.lock_border));
   if (!o.elevation.empty()) line += " elevation=" + o.elevation;
   if (o.seed != 1) line += " seed=" + std::to_string(o.seed);
   if (o.depth_tol != 2.0) {
@@ -393,8 +422,10 @@ int run(Options o) {
   if (o.simplify > 1 && o.simplify != std::floor(o.simplify))
     throw UsageError("--simplify: a value above 1 is a face count and must be a whole number, got " +
                      std::to_string(o.simplify));
-  if (o.lock_border && o.simplify == 0 && o.target_error == 0)
-    throw UsageError("--lock-border needs --simplify or --target-error");
+  if (o.lock_border && o.simplify == 0 && o.target_error == 0 && o.lod.empty())
+    throw UsageError("--lock-border needs --simplify, --target-error or --lod");
+  if (!o.lod.empty() && !o.memory_limit.empty())
+    throw UsageError("--lod simplifies each model in memory: not with --memory-limit");
   // Out of core the mesh is never whole in memory: the saliency PLY, and with --simplify
   // NAME_simplified.ply as `simplify --memory-limit` writes it, are all a model gets.
   if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.target_error > 0))
@@ -405,6 +436,7 @@ int run(Options o) {
   Plan p;
   p.o = &o;
   p.simplifying = o.simplify > 0 || o.target_error > 0;
+  if (!o.lod.empty()) p.lod = parse_lod_levels(o.lod);
   p.backend = parse_backend(o.backend);
   p.saliency.eps_frac = o.eps_frac;
   p.saliency.scales = parse_scales(o.scales);
@@ -458,7 +490,7 @@ int run(Options o) {
   }
   // What runs killed mid-write left: temporaries of the outputs a batch writes.
   const auto batch_output = [](const std::string& base) {
-    for (const char* end : {"_saliency.ply", "_view.png", "_view.html", "_simplified.obj", ".state"})
+    for (const char* end : {"_saliency.ply", "_view.png", "_view.html", "_simplified.obj", "_lod.glb", ".state"})
       if (base.size() > std::strlen(end) && base.compare(base.size() - std::strlen(end), std::string::npos, end) == 0)
         return true;
     return false;
@@ -476,7 +508,8 @@ int run(Options o) {
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<size_t> to_compute;  // model indices, in order
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html));
+    outs.push_back(
+        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html, !p.lod.empty()));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
@@ -630,7 +663,8 @@ int run(Options o) {
   };
 
   std::unique_ptr<ModelLoader> loader;  // none out of core: saliency_file reads each file
-  if (!to_load.empty() && !p.memory_limit) loader = std::make_unique<ModelLoader>(to_load, p.simplifying);
+  if (!to_load.empty() && !p.memory_limit)
+    loader = std::make_unique<ModelLoader>(to_load, p.simplifying || !p.lod.empty());
   const size_t rounds = batch_rounds(to_compute.size(), ranks);
   for (size_t round = 0; round < rounds && !interrupted; ++round) {
     const size_t first = round * size_t(ranks), k = first + size_t(rank);
@@ -760,6 +794,19 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("-o,--output", o->out_dir, "Output folder (made if missing)")->required();
   sub.add_option("--log", o->log, "The JSON Lines log (default DIR/batch.jsonl)");
   sub.add_flag("--view", o->view, "Also write the best-view picture NAME_view.png");
+  sub.add_option("--lod", o->lod,
+                 "Also write NAME_lod.glb, the file `meshsal simplify IN -o NAME_lod.glb --lod LIST` writes: the\n"
+                 "input as LOD0 and each level (ratios of the faces, or face counts), linked by MSFT_lod")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              meshsal::parse_lod_levels(text);
+            } catch (const meshsal::Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "LIST"));
   sub.add_flag("--html", o->html,
                "Also write NAME_view.html per model (the page `meshsal view` writes: the model in the browser,\n"
                "from its best view) and DIR/index.html, a gallery of every model's thumbnail (NAME_view.png,\n"
