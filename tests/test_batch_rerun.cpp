@@ -177,5 +177,5 @@ TEST_CASE("batch: the simplified mesh is simplify's byte for byte, attributes, -
   // --lock-border alone simplifies nothing.
   r = run_cli("batch " + quoted(in.string()) + " -o " + quoted((dir / "out9").string()) + " --lock-border", dir, 60);
   CHECK(r.rc == 2);
-  CHECK(r.err.find("--lock-border needs --simplify or --target-error") != std::string::npos);
+  CHECK(r.err.find("--lock-border needs --simplify, --target-error or --lod") != std::string::npos);
 }

@@ -164,7 +164,7 @@ TEST_CASE("cli: help explains every command and option", "[cli]") {
   std::vector<std::string> names;
   for (const auto& [name, summary] : commands) names.push_back(name);
   CHECK(names == std::vector<std::string>{"batch", "bench", "compare", "demo", "devices", "render", "saliency",
-                                          "simplify", "viewpoint"});
+                                          "simplify", "view", "viewpoint"});
   for (const auto& [name, summary] : commands) {
     const CliRun own = run_cli(name + " --help", dir);
     INFO("meshsal " << name << " --help:\n" << own.out);
