@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 
 #include "cli/synthetic.h"
 #include "gltf_util.h"
+#include "io/gltf_assets.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"
 #include "test_util.h"
@@ -372,4 +374,52 @@ TEST_CASE("gltf: every file we write passes the Khronos glTF-Validator", "[io][g
     CHECK(rc == 0);
     CHECK(report.find(": 0 errors") != std::string::npos);
   }
+}
+
+TEST_CASE("gltf: a textured material is carried to the output unchanged", "[io][gltf][validator]") {
+  TempDir dir;
+  // A 4x4 PNG texture, a material using it, a triangle with UVs.
+  write_png(dir.file("t.png"), Image(4, 4, 200, 30, 30));
+  std::ifstream png_in(dir.file("t.png"), std::ios::binary);
+  const std::vector<uint8_t> png((std::istreambuf_iterator<char>(png_in)), std::istreambuf_iterator<char>());
+  GltfBytes b;
+  const size_t pos = b.add(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const size_t uv = b.add(std::vector<float>{0, 0, 1, 0, 0, 1});
+  const size_t img = b.add(png);
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"material\":0}]}],"
+      "\"materials\":[{\"name\":\"painted\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},\"metallicFactor\":0.25}}],"
+      "\"textures\":[{\"source\":0,\"sampler\":0}],\"samplers\":[{\"magFilter\":9728,\"wrapS\":33071}],"
+      "\"images\":[{\"bufferView\":2,\"mimeType\":\"image/png\",\"name\":\"paint\"}],"
+      "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+      "{\"bufferView\":1,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}],"
+      "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":" + std::to_string(pos) + ",\"byteLength\":36},"
+      "{\"buffer\":0,\"byteOffset\":" + std::to_string(uv) + ",\"byteLength\":24},"
+      "{\"buffer\":0,\"byteOffset\":" + std::to_string(img) + ",\"byteLength\":" + std::to_string(png.size()) + "}],"
+      "\"buffers\":[" + b.buffer_json() + "]}";
+  LoadOptions o;
+  o.attributes = true;
+  const Mesh m = load_text(json, "t.gltf", nullptr, true);
+  REQUIRE(m.gltf_assets != nullptr);
+  write_gltf(dir.file("out.glb"), m);
+  const Mesh back = load_mesh(dir.file("out.glb"), nullptr, o);
+  REQUIRE(back.gltf_assets != nullptr);
+  const GltfAssets& a = *back.gltf_assets;
+  REQUIRE(a.images.size() == 1);
+  CHECK(a.images[0].image == png);  // the texture's bytes, as read
+  CHECK(a.images[0].mimeType == "image/png");
+  CHECK(a.images[0].name == "paint");
+  REQUIRE(a.materials.size() == 1);
+  CHECK(a.materials[0].name == "painted");
+  CHECK(a.materials[0].pbrMetallicRoughness.baseColorTexture.index == 0);
+  CHECK(a.materials[0].pbrMetallicRoughness.metallicFactor == 0.25);
+  REQUIRE(a.samplers.size() == 1);
+  CHECK(a.samplers[0].magFilter == 9728);
+  CHECK(a.samplers[0].wrapS == 33071);
+  CHECK(back.materials == std::vector<std::string>{"painted"});
+  std::string report;
+  CHECK(meshsal_test::validate_gltf(dir.file("out.glb"), &report) == 0);
+  INFO(report);
+  CHECK(report.find(": 0 errors") != std::string::npos);
 }
