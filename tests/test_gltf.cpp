@@ -423,3 +423,21 @@ TEST_CASE("gltf: a textured material is carried to the output unchanged", "[io][
   INFO(report);
   CHECK(report.find(": 0 errors") != std::string::npos);
 }
+
+TEST_CASE("gltf: files from gltfpack, quantised read and meshopt-compressed refused by name", "[io][gltf]") {
+  // tests/data: bunny_3k simplified to 698 faces, written as GLB by meshsal, then through
+  // Debian's gltfpack 0.18: default settings (KHR_mesh_quantization: 16-bit positions,
+  // the scale and offset in the node) and -cc (EXT_meshopt_compression).
+  const std::string data = std::string(MESHSAL_SOURCE_DIR) + "/tests/data/";
+  const Mesh q = load_mesh(data + "bunny_quantized.glb");
+  CHECK(q.vertex_count() == 351);
+  CHECK(q.triangle_count() == 698);
+  // The node's dequantising transform applied: the bunny's size (eps = 0.003 diagonal as
+  // meshsal computed it for the unquantised GLB: 7.51422909e-4).
+  SaliencyOptions o = cpu_exact();
+  const SaliencyResult r = compute_saliency(q, o);
+  CHECK(r.eps == Approx(7.51422909e-4).epsilon(1e-4));
+  CHECK_THROWS_WITH(load_mesh(data + "bunny_meshopt.glb"),
+                    Catch::Contains("bunny_meshopt.glb: uses the extension EXT_meshopt_compression, which meshsal does "
+                                    "not read (decompress it first, e.g. with gltfpack -noq)"));
+}

@@ -312,6 +312,18 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
                          : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                                       unsigned(std::min<size_t>(bytes.size(), UINT32_MAX)), folder);
   if (!ok) {
+    // A compressed file (gltfpack -cc, Draco) fails tinygltf's buffer checks before its
+    // extensions are known (its fallback buffer has no data): name the extension instead.
+    std::string_view json = bytes;
+    if (binary && bytes.size() >= 20) {
+      uint32_t length = 0;
+      std::memcpy(&length, bytes.data() + 12, 4);
+      json = bytes.substr(20, length);
+    }
+    for (const char* ext : {"EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_draco_mesh_compression"})
+      if (json.find(ext) != std::string_view::npos)
+        fail(std::string("uses the extension ") + ext +
+             ", which meshsal does not read (decompress it first, e.g. with gltfpack -noq)");
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     const size_t nl = err.find('\n');
     fail("not a valid glTF file: " + (nl == std::string::npos ? err : err.substr(0, nl)));
