@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/html_text.h"
 #include "core/mesh_points.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
@@ -34,20 +35,6 @@ std::string base64(const std::string& in) {
   } else if (i + 2 == in.size()) {
     const uint32_t v = byte(i) << 16 | byte(i + 1) << 8;
     out += t[v >> 18], out += t[(v >> 12) & 63], out += t[(v >> 6) & 63], out += '=';
-  }
-  return out;
-}
-
-std::string html_escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
   }
   return out;
 }

@@ -797,16 +797,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--lod", o->lod,
                  "Also write NAME_lod.glb, the file `meshsal simplify IN -o NAME_lod.glb --lod LIST` writes: the\n"
                  "input as LOD0 and each level (ratios of the faces, or face counts), linked by MSFT_lod")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              meshsal::parse_lod_levels(text);
-            } catch (const meshsal::Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "LIST"));
+      ->check(lod_list());
   sub.add_flag("--html", o->html,
                "Also write NAME_view.html per model (the page `meshsal view` writes: the model in the browser,\n"
                "from its best view) and DIR/index.html, a gallery of every model's thumbnail (NAME_view.png,\n"

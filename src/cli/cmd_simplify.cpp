@@ -397,16 +397,7 @@ RunFn setup(CLI::App& sub) {
                  "(face counts): the saliency computed once, each level simplified from the one before.\n"
                  "OUT.glb/.gltf holds the input as LOD0 and every level (MSFT_lod); OUT.obj/.ply gives\n"
                  "OUT_lod1.obj, OUT_lod2.obj, ...")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              meshsal::parse_lod_levels(text);
-            } catch (const meshsal::Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "LIST"));
+      ->check(lod_list());
   sub.add_option("--tiles", a->tiles,
                  "Simplify by N cubic tiles along the longest axis (1 = the whole mesh at once): each tile alone\n"
                  "with its cut pinned, then strips along the cuts; no cracks, no new border; faces\n"

@@ -5,24 +5,13 @@
 #include <cstdio>
 #include <string>
 
+#include "core/html_text.h"
 #include "io/atomic_write.h"
 
 namespace meshsal_cli {
 namespace {
 
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+using meshsal::html_escaped;
 
 // A relative link to a file beside the gallery: its name, percent-encoded where a URL needs it.
 std::string href(const std::string& name) {
@@ -57,11 +46,11 @@ void write_gallery(const std::string& path, const std::vector<GalleryItem>& item
   for (const GalleryItem& it : items) {
     if (!it.page.empty()) {
       html += "<div class=\"card done\"><a href=\"" + href(it.page) + "\"><img src=\"" + href(it.picture) + "\" alt=\"" +
-              escaped(it.name) + "\"></a><div class=\"name\"><a href=\"" + href(it.page) + "\">" + escaped(it.name) +
+              html_escaped(it.name) + "\"></a><div class=\"name\"><a href=\"" + href(it.page) + "\">" + html_escaped(it.name) +
               "</a></div></div>\n";
     } else {
-      html += "<div class=\"card " + escaped(it.status) + "\"><div class=\"name\">" + escaped(it.name) + ": " +
-              escaped(it.status) + "</div><div class=\"why\">" + escaped(it.message) + "</div></div>\n";
+      html += "<div class=\"card " + html_escaped(it.status) + "\"><div class=\"name\">" + html_escaped(it.name) + ": " +
+              html_escaped(it.status) + "</div><div class=\"why\">" + html_escaped(it.message) + "</div></div>\n";
     }
   }
   html += "</div>\n</body>\n</html>\n";

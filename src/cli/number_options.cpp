@@ -89,6 +89,19 @@ CLI::Validator whole_in(long long lo, long long hi) {
       "in " + range);
 }
 
+CLI::Validator lod_list() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          meshsal::parse_lod_levels(text);
+        } catch (const meshsal::Error& e) {
+          return e.what();
+        }
+        return "";
+      },
+      "LIST");
+}
+
 CLI::Validator scales_list() {
   return CLI::Validator(
       [](std::string& text) -> std::string {

@@ -20,6 +20,9 @@ CLI::Validator whole_in(long long lo, long long hi);
 // --scales: a comma-separated list of numbers in (0, 100] (meshsal::parse_scales).
 CLI::Validator scales_list();
 
+// --lod: ratios and face counts as meshsal::parse_lod_levels reads them.
+CLI::Validator lod_list();
+
 // --color-range: LO,HI as meshsal::parse_color_range reads it.
 CLI::Validator color_range_check();
 
