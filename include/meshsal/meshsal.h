@@ -164,6 +164,9 @@ bool positions_need_double(const Mesh& mesh);
 // `meshsal simplify` and Python's simplify() put on the mesh they simplify. Error when the
 // count is not the vertex count.
 void set_vertex_attribute(Mesh& mesh, const std::string& name, const std::vector<double>& values);
+// Removes the attribute `name` from mesh.attributes and returns its values (empty when the
+// mesh has none by that name): how a value carried along simplification is taken back out.
+std::vector<double> take_vertex_attribute(Mesh& mesh, const std::string& name);
 
 // Throws Error when the mesh is empty, an index is out of range, a coordinate is NaN/Inf
 // or no triangle has non-zero area.

@@ -15,4 +15,15 @@ void set_vertex_attribute(Mesh& mesh, const std::string& name, const std::vector
   mesh.attributes.push_back({name, std::move(v)});
 }
 
+std::vector<double> take_vertex_attribute(Mesh& mesh, const std::string& name) {
+  std::vector<double> out;
+  for (auto it = mesh.attributes.begin(); it != mesh.attributes.end(); ++it)
+    if (it->name == name) {
+      out.assign(it->values.begin(), it->values.end());
+      mesh.attributes.erase(it);
+      break;
+    }
+  return out;
+}
+
 }  // namespace meshsal

@@ -18,17 +18,6 @@ namespace {
 // The attribute that carries S from level to level: a name no file gives.
 const char* const kCarriedSaliency = "\x01meshsal lod saliency";
 
-std::vector<double> take_attribute(Mesh& mesh, const std::string& name) {
-  std::vector<double> out;
-  for (auto it = mesh.attributes.begin(); it != mesh.attributes.end(); ++it)
-    if (it->name == name) {
-      out.assign(it->values.begin(), it->values.end());
-      mesh.attributes.erase(it);
-      break;
-    }
-  return out;
-}
-
 }  // namespace
 
 std::vector<SimplifyOptions> parse_lod_levels(const std::string& text) {
@@ -93,8 +82,8 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
       const SimplificationWeights w = simplification_weights(current, *weight_options, saliency_options, &s);
       set_vertex_attribute(current, kCarriedSaliency, s);
       level.mesh = simplify_mesh(current, o, &w.weights, &level.report);
-      level.saliency = take_attribute(level.mesh, kCarriedSaliency);
-      take_attribute(current, kCarriedSaliency);
+      level.saliency = take_vertex_attribute(level.mesh, kCarriedSaliency);
+      take_vertex_attribute(current, kCarriedSaliency);
       s = level.saliency;
     } else {
       level.mesh = simplify_mesh(current, o, nullptr, &level.report);

@@ -81,12 +81,7 @@ void write_view_page(const std::string& path, const Mesh& mesh, const std::vecto
     SimplifyOptions so;
     so.target_faces = options.max_faces;
     shown = simplify_mesh(with_s, so);
-    for (auto it = shown.attributes.begin(); it != shown.attributes.end(); ++it)
-      if (it->name == "\x01meshsal page saliency") {
-        shown_s.assign(it->values.begin(), it->values.end());
-        shown.attributes.erase(it);
-        break;
-      }
+    shown_s = take_vertex_attribute(shown, "\x01meshsal page saliency");
     char buf[200];
     std::snprintf(buf, sizeof buf, "The page shows a copy simplified to %zu faces (plain quadrics, the saliency "
                   "carried): the mesh has %zu.", shown.triangle_count(), mesh.triangle_count());

@@ -195,13 +195,7 @@ void write_simplified(const std::string& path, const meshsal::Mesh& mesh) {
   const std::string format = meshsal::mesh_output_format(path);
   if (format != ".glb" && format != ".gltf") return meshsal::write_mesh(path, mesh);
   meshsal::Mesh plain = mesh;
-  std::vector<double> s;
-  for (auto it = plain.attributes.begin(); it != plain.attributes.end(); ++it)
-    if (it->name == "quality") {
-      s.assign(it->values.begin(), it->values.end());
-      plain.attributes.erase(it);
-      break;
-    }
+  const std::vector<double> s = meshsal::take_vertex_attribute(plain, "quality");
   meshsal::write_mesh(path, plain, s.empty() ? nullptr : &s);
 }
 

@@ -8,6 +8,7 @@
 
 #include "command.h"
 #include "json_object.h"
+#include "core/mesh_points.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
 
@@ -47,11 +48,7 @@ std::vector<std::pair<std::string, std::string>> view_page_stats(const meshsal::
                                                             const std::string& source, double seconds) {
   double lo = 0, hi = 0, sum = 0;
   size_t n = 0;
-  const std::vector<uint8_t> used = [&] {
-    std::vector<uint8_t> u(mesh.vertex_count(), 0);
-    for (uint32_t v : mesh.triangles) u[v] = 1;
-    return u;
-  }();
+  const std::vector<uint8_t> used = meshsal::referenced_vertices(mesh);
   for (size_t v = 0; v < s.size(); ++v)
     if (used[v]) {
       lo = n ? std::min(lo, s[v]) : s[v], hi = n ? std::max(hi, s[v]) : s[v];

@@ -241,14 +241,6 @@ void add_materials(tinygltf::Model& model, const Mesh& mesh) {
   }
 }
 
-bool ends_with(const std::string& s, const char* tail) {
-  const size_t n = std::strlen(tail);
-  if (s.size() < n) return false;
-  for (size_t i = 0; i < n; ++i)
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != tail[i]) return false;
-  return true;
-}
-
 }  // namespace
 
 std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel>& levels, bool binary) {
@@ -310,8 +302,9 @@ std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel
 }
 
 void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels) {
-  const bool binary = ends_with(path, ".glb");
-  if (!binary && !ends_with(path, ".gltf")) throw Error(path + ": cannot write: glTF output ends in .glb or .gltf");
+  const std::string format = mesh_output_format(path);
+  const bool binary = format == ".glb";
+  if (!binary && format != ".gltf") throw Error(path + ": cannot write: glTF output ends in .glb or .gltf");
   const std::string bytes = gltf_file_bytes(path, levels, binary);
   write_file_atomically(path, [&](std::FILE* f) { write_all(f, bytes.data(), bytes.size(), path); });
 }
