@@ -376,6 +376,10 @@ struct SaliencyOptions {
   // Backend::Cpu with a session is an Error (the two contradict each other).
   Device* session = nullptr;
   bool smoothed = false;                      // also compute Sm = G(S, 3 eps) (simplification)
+  // Keep the raw center-surround maps in SaliencyResult::raw (8 bytes per vertex per
+  // scale); false leaves raw empty, and the fast CPU path then holds one map at a time
+  // (the CLI asks for them only with --dump-scales). S is the same bits either way.
+  bool raw_maps = true;
   Precision precision = Precision::Auto;      // the GPU sweep's arithmetic
   Method method = Method::Exact;              // exact or approximate averages (see Method)
   // Called with a stage name and the fraction done of that stage (0..1), from the calling
@@ -405,6 +409,9 @@ struct SaliencyOptions {
 struct StageTime {
   std::string name;
   double seconds;
+  // The process's peak resident memory during the stage, in bytes; 0 unless measured
+  // (meshsal bench turns it on; reading it restarts the kernel's high-water mark).
+  uint64_t peak_bytes = 0;
 };
 
 struct SaliencyResult {

@@ -68,6 +68,30 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
 }
 
 
+// The path options.backend (method resolved) and options.tiles choose.
+SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
+  if (options.tiles > 1 || options.exchange) {
+    // Tiles run on the CPU: the GPU path takes the whole mesh.
+    if (options.backend == Backend::Gpu)
+      throw Error("tiles run on the CPU: use backend cpu or auto with tiles");
+    if (options.session) throw Error("a Vulkan device session was given with tiles, which run on the CPU");
+    return compute_saliency_tiled(mesh, options);
+  }
+  // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
+  switch (options.backend) {
+    case Backend::Cpu:
+      if (options.session)
+        throw Error("a Vulkan device session was given with the cpu backend: use backend gpu or auto, or no session");
+      return compute_saliency_cpu(mesh, options);
+    case Backend::Auto:
+      return compute_auto(mesh, options);
+    case Backend::Gpu:
+      if (options.session) return gpu_backend().saliency_on(session_handle(*options.session), mesh, options);
+      return gpu_backend().saliency(mesh, options);
+  }
+  throw Error("unknown backend");
+}
+
 }  // namespace
 
 // Method::Auto: fast when the exact sweep would take more pairs than kAutoPairBudget.
@@ -103,26 +127,10 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
     if (const std::string w = precision_warning(mesh); !w.empty()) options_in.notice("warning: " + w);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);
-  if (options.tiles > 1 || options.exchange) {
-    // Tiles run on the CPU: the GPU path takes the whole mesh.
-    if (options.backend == Backend::Gpu)
-      throw Error("tiles run on the CPU: use backend cpu or auto with tiles");
-    if (options.session) throw Error("a Vulkan device session was given with tiles, which run on the CPU");
-    return compute_saliency_tiled(mesh, options);
-  }
-  // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
-  switch (options.backend) {
-    case Backend::Cpu:
-      if (options.session)
-        throw Error("a Vulkan device session was given with the cpu backend: use backend gpu or auto, or no session");
-      return compute_saliency_cpu(mesh, options);
-    case Backend::Auto:
-      return compute_auto(mesh, options);
-    case Backend::Gpu:
-      if (options.session) return gpu_backend().saliency_on(session_handle(*options.session), mesh, options);
-      return gpu_backend().saliency(mesh, options);
-  }
-  throw Error("unknown backend");
+  SaliencyResult r = run_backend(mesh, options);
+  // The paths that need the raw maps for S make them; the fast CPU path keeps none.
+  if (!options.raw_maps) std::vector<std::vector<double>>().swap(r.raw);
+  return r;
 }
 
 Method parse_method(const std::string& name) {

@@ -21,7 +21,7 @@
 #include "core/mesh_points.h"
 #include "batch_inputs.h"
 #include "batch_loader.h"
-#include "peak_memory.h"
+#include "core/peak_memory.h"
 #include "batch_log.h"
 #include "batch_outputs.h"
 #include "batch_progress.h"
@@ -231,7 +231,7 @@ JsonObject simplified_out_of_core(const Plan& p, const std::string& input, const
   JsonObject j;
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
-      .number("error_percent", 100 * rep.error).count("tiles", r.tiles).count("peak_rss", peak_resident_bytes())
+      .number("error_percent", 100 * rep.error).count("tiles", r.tiles).count("peak_rss", meshsal::peak_resident_bytes())
       .number("seconds", t.seconds());
   if (!rep.note.empty()) j.text("note", rep.note);
   return j;
@@ -248,7 +248,7 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
     ooc.temp_dir = p.o->temp_dir;
     const OutOfCoreReport rep = saliency_file(m.path, out.saliency, p.saliency, ooc);
     JsonObject j = out_of_core_json(m.path, out.saliency, rep, p.saliency.method, p.memory_limit, t.seconds(),
-                                    peak_resident_bytes());
+                                    meshsal::peak_resident_bytes());
     if (!out.simplified.empty()) {
       progress.stage("simplify", 0);
       j.object("simplify", simplified_out_of_core(p, m.path, out.simplified));

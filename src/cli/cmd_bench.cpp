@@ -10,6 +10,7 @@
 #include "command.h"
 #include "load_input.h"
 #include "json_string.h"
+#include "core/peak_memory.h"
 #include "core/timer.h"
 #include "json_object.h"
 #include "cli/data_dir.h"
@@ -48,13 +49,6 @@ struct Args {
 // passes this (~60 s on 2 cores); then its time is estimated from the pairs instead.
 constexpr double kExactReferencePairLimit = 2e10;
 constexpr double kExactPairsPerSecond = 3.3e8;  // measured: 2 cores, igea_134k (README)
-
-// Peak resident memory of this process so far, in bytes.
-double peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_maxrss) * 1024.0;
-}
 
 struct Row {
   std::string path;  // the mesh file as given (JSON "mesh")
@@ -125,7 +119,7 @@ Row bench_one(const std::string& model, const meshsal::Mesh& mesh, double read,
   }
   row.device = row.best.backend_name;
   row.method = row.best.method == meshsal::Method::Fast ? "fast" : "exact";
-  row.peak_rss = peak_rss_bytes();
+  row.peak_rss = double(meshsal::peak_resident_bytes());
   row.precision = opt.backend == meshsal::Backend::Cpu ? "double"
                   : row.best.mixed_precision           ? "mixed"
                                                        : "double";
@@ -215,6 +209,12 @@ void print_table(const std::vector<Row>& rows) {
                 " memory of the process so far per vertex; Sm = smoothing a given S, as simplify\n"
                 " --saliency-from does, with each method's averages)\n", kExactPairsPerSecond);
   }
+  // Each stage's time and peak resident memory (the process's, the mesh included).
+  std::printf("\n%-24s %-22s %-18s %9s %10s %9s\n", "model", "device", "stage", "seconds", "peak MB", "peak B/v");
+  for (const Row& r : rows)
+    for (const auto& st : r.best.stages)
+      std::printf("%-24s %-22.22s %-18s %8.3fs %10.1f %9.1f\n", r.model.c_str(), r.device.c_str(), st.name.c_str(),
+                  st.seconds, double(st.peak_bytes) / 1e6, r.vertices ? double(st.peak_bytes) / double(r.vertices) : 0.0);
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
               " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
               " in mixed precision, the double recheck of near ties; prec: the sweep's arithmetic;\n"
@@ -227,11 +227,16 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
   std::vector<JsonObject> items;
   for (const Row& r : rows) {
     JsonObject stages;
-    for (const auto& st : r.best.stages) stages.number(json_key(st.name), st.seconds);
+    JsonObject stage_peaks;
+    for (const auto& st : r.best.stages) {
+      stages.number(json_key(st.name), st.seconds);
+      stage_peaks.count(json_key(st.name), st.peak_bytes);
+    }
     JsonObject j;
     j.text("mesh", r.path).text("name", r.model).count("subdivisions", uint64_t(a.subdivide))
         .count("vertices", r.vertices).text("device", r.device).text("precision", r.precision)
         .text("method", r.method).number("read_seconds", r.read).number("seconds", r.total).object("stages", stages)
+        .object("stage_peak_bytes", stage_peaks)
         .count("pairs", r.best.pairs).number("pairs_per_second", r.total > 0 ? r.best.pairs / r.total : 0.0)
         .count("rechecked", r.best.rechecked).count("peak_rss_bytes", uint64_t(r.peak_rss));
     if (r.method == "fast") {
@@ -268,6 +273,7 @@ int run(const Args& a) {
   if (method == meshsal::Method::Exact && a.backend != "cpu")
     throw UsageError("bench: --backend applies to --method fast (exact times every backend)");
   std::vector<Row> rows;
+  meshsal::set_stage_peaks(true);  // each stage's peak memory in the table and --json
   const meshsal::Timer wall;
   for (const std::string& p : paths) {
     const meshsal::Timer t0;

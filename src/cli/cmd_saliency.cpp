@@ -14,7 +14,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "interrupt.h"
-#include "peak_memory.h"
+#include "core/peak_memory.h"
 #include "mpi_tile_exchange.h"
 #include "mpi_world.h"
 
@@ -35,7 +35,7 @@ struct Args {
 
 // The largest peak resident memory over the ranks (this process's alone without MPI).
 uint64_t peak_over_ranks() {
-  const uint64_t mine = peak_resident_bytes();
+  const uint64_t mine = meshsal::peak_resident_bytes();
   std::vector<uint8_t> bytes(sizeof mine);
   std::memcpy(bytes.data(), &mine, sizeof mine);
   uint64_t most = 0;
@@ -101,6 +101,7 @@ int run(const Args& a) {
     if (!quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
   };
   opt.tiles = a.tiles;
+  opt.raw_maps = a.dump_scales;  // written only then; 8 bytes per vertex per scale otherwise
   // Under mpirun the ranks share the tiles; rank 0 writes and reports.
   MpiTileExchange exchange;
   if (meshsal::cli::mpi_world().active) {

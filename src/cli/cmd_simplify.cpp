@@ -17,7 +17,7 @@
 #include "progress.h"
 #include "saliency_output.h"
 #include "interrupt.h"
-#include "peak_memory.h"
+#include "core/peak_memory.h"
 
 namespace meshsal_cli {
 namespace {
@@ -91,7 +91,7 @@ int run_out_of_core(const Args& a, const meshsal::SimplifyOptions& opt, const me
                                                   unsigned(std::max(1LL, a.tiles)));
   progress.finish();
   const SimplifyReport& rep = r.simplify;
-  const uint64_t peak = peak_resident_bytes();
+  const uint64_t peak = meshsal::peak_resident_bytes();
   if (!rep.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", printable(rep.note).c_str());
   if (a.json) {
     JsonObject j;
@@ -331,7 +331,7 @@ int run(const Args& a) {
       j.number("lambda", wo.lambda).number("alpha", alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.saliency_from).number("saliency_seconds", t_saliency);
     j.number("read_seconds", t_load).number("simplify_seconds", rep.seconds).number("seconds", t0.seconds())
-        .count("peak_rss", size_t(peak_resident_bytes())).print();
+        .count("peak_rss", size_t(meshsal::peak_resident_bytes())).print();
   } else if (!a.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", mesh.vertex_count(),
                 rep.input_faces, t_load);

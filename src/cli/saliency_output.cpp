@@ -8,6 +8,7 @@
 
 #include "command.h"
 #include "json_object.h"
+#include "core/kth_smallest.h"
 #include "core/mesh_points.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
@@ -72,21 +73,21 @@ SaliencyStats saliency_stats(const SaliencyResult& r) {
     if (v < r.is_point.size() && r.is_point[v]) s.push_back(r.saliency[v]);
   SaliencyStats st;
   if (s.empty()) return st;
-  std::sort(s.begin(), s.end());
   double sum = 0;
   for (double x : s) sum += x;
   // Nearest rank: the smallest value with at least p% of the points at or below it.
   auto rank = [&](double p) {
     const size_t k = static_cast<size_t>(std::ceil(p / 100.0 * double(s.size())));
-    return s[std::min(s.size() - 1, k == 0 ? 0 : k - 1)];
+    return std::min(s.size() - 1, k == 0 ? 0 : k - 1);
   };
-  st.min = s.front();
-  st.max = s.back();
+  const std::vector<double> q = kth_smallest(s, {0, rank(10), rank(50), rank(90), rank(99), s.size() - 1});
+  st.min = q[0];
+  st.max = q[5];
   st.mean = sum / double(s.size());
-  st.p10 = rank(10);
-  st.p50 = rank(50);
-  st.p90 = rank(90);
-  st.p99 = rank(99);
+  st.p10 = q[1];
+  st.p50 = q[2];
+  st.p90 = q[3];
+  st.p99 = q[4];
   return st;
 }
 

@@ -71,4 +71,13 @@ void parallel_for(size_t n, unsigned threads, size_t chunk,
   if (failure) std::rethrow_exception(failure);
 }
 
+void parallel_for_owned(size_t n, unsigned threads, const std::function<void(size_t, size_t)>& body) {
+  // Ranges of at least 64K entries: each call scans the whole input, so more ranges than
+  // that work needs only multiply the scans.
+  const size_t ranges = std::max<size_t>(1, std::min<size_t>(resolve_threads(threads), n >> 16));
+  parallel_for(ranges, unsigned(ranges), 1, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) body(n * r / ranges, n * (r + 1) / ranges);
+  });
+}
+
 }  // namespace meshsal

@@ -20,6 +20,13 @@ unsigned resolve_threads(unsigned requested);
 void parallel_for(size_t n, unsigned threads, size_t chunk,
                   const std::function<void(size_t begin, size_t end)>& body);
 
+// Splits [0, n) into one contiguous range per thread and calls body(lo, hi) once per range,
+// concurrently. For scatter loops (over the triangles, adding into per-vertex sums) where
+// each call reads all the input but writes only the entries of its own range: every entry
+// is then summed in input order whatever the thread count, so the results are the same bits
+// on 1 thread or 64.
+void parallel_for_owned(size_t n, unsigned threads, const std::function<void(size_t lo, size_t hi)>& body);
+
 // The same with the way a thread is started given (tests make it fail): `start` returns a
 // running std::thread or throws std::system_error.
 using ThreadStarter = std::function<std::thread(std::function<void()>)>;

@@ -1,8 +1,10 @@
 // meshsal: the wall time of each stage of a call, appended to its report's stages as each
-// stage ends (SaliencyResult, OutOfCoreReport, OutOfCoreSimplifyReport).
+// stage ends (SaliencyResult, OutOfCoreReport, OutOfCoreSimplifyReport), and with
+// stage_peaks() on (meshsal bench) the peak resident memory of each stage.
 #pragma once
 #include <vector>
 
+#include "core/peak_memory.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
 
@@ -10,10 +12,19 @@ namespace meshsal {
 
 class StageClock {
  public:
-  explicit StageClock(std::vector<StageTime>& stages) : stages_(stages) {}
-  // The stage that ends now: its name and the seconds since the last lap (or the start).
+  explicit StageClock(std::vector<StageTime>& stages) : stages_(stages) {
+    if (stage_peaks()) restart_peak_resident();
+  }
+  // The stage that ends now: its name, the seconds since the last lap (or the start) and
+  // its peak memory (0 unless stage_peaks()).
   void lap(const char* name) {
-    stages_.push_back({name, timer_.seconds()});
+    const double seconds = timer_.seconds();
+    uint64_t peak = 0;
+    if (stage_peaks()) {
+      peak = stage_peak_resident_bytes();
+      restart_peak_resident();
+    }
+    stages_.push_back({name, seconds, peak});
     timer_.restart();
   }
 

@@ -1,5 +1,7 @@
 #include "io/colormap.h"
 
+#include "core/kth_smallest.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -26,12 +28,11 @@ ColorLimits colour_limits(const std::vector<double>& values, const std::vector<u
   std::vector<double> vals;
   for (size_t v = 0; v < values.size(); ++v)
     if ((mask.empty() || mask[v]) && std::isfinite(values[v])) vals.push_back(values[v]);
-  std::sort(vals.begin(), vals.end());
   auto resolve = [&](double x, bool percentile) {
     if (!percentile) return x;
     if (vals.empty()) return 0.0;
     size_t k = size_t(std::lround(std::clamp(x, 0.0, 100.0) / 100.0 * double(vals.size() - 1)));
-    return vals[k];
+    return kth_smallest(vals, {k})[0];
   };
   ColorLimits l{resolve(range.lo, range.lo_percentile), resolve(range.hi, range.hi_percentile)};
   if (!(l.hi > l.lo)) l.hi = l.lo + 1;

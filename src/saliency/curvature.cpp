@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/cancel.h"
+#include "core/morton_order.h"
 #include "core/parallel.h"
 #include "saliency/cpu_dispatch.h"
 
@@ -12,24 +14,35 @@ namespace {
 // The hot loops below are written once and compiled twice, for baseline x86-64 and for
 // AVX2 (cpu_dispatch.h); both copies give the same bits.
 
-// Sums the un-normalised face normals into normals[] (3 n, zeroed) and normalises them.
-inline void vertex_normals_body(const Mesh& mesh, double* normals) {
-  const size_t n = mesh.vertex_count();
+// Un-normalised normal of triangle t: its length is twice the area (area weighting).
+inline void face_normal(const float* p, const uint32_t* t, double fn[3]) {
+  double e1[3], e2[3];
+  for (int k = 0; k < 3; ++k) {
+    e1[k] = double(p[3 * t[1] + k]) - p[3 * t[0] + k];
+    e2[k] = double(p[3 * t[2] + k]) - p[3 * t[0] + k];
+  }
+  fn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  fn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+inline bool owns(uint32_t v, size_t lo, size_t hi) { return v >= lo && v < hi; }
+
+// Sums the face normals into normals[] (3 n, zeroed) for the vertices [lo, hi) and
+// normalises them: each vertex's sum runs in triangle order, whoever owns it.
+inline void vertex_normals_body(const Mesh& mesh, size_t lo, size_t hi, double* normals) {
   const float* p = mesh.positions.data();
   for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    if ((f & 0xffff) == 0) throw_if_cancelled();
     const uint32_t* t = &mesh.triangles[3 * f];
-    double e1[3], e2[3];
-    for (int k = 0; k < 3; ++k) {
-      e1[k] = double(p[3 * t[1] + k]) - p[3 * t[0] + k];
-      e2[k] = double(p[3 * t[2] + k]) - p[3 * t[0] + k];
-    }
-    // Un-normalised face normal: its length is twice the area (area weighting).
-    double fn[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                    e1[0] * e2[1] - e1[1] * e2[0]};
+    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) continue;
+    double fn[3];
+    face_normal(p, t, fn);
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) normals[3 * t[c] + k] += fn[k];
+      if (owns(t[c], lo, hi))
+        for (int k = 0; k < 3; ++k) normals[3 * t[c] + k] += fn[k];
   }
-  for (size_t v = 0; v < n; ++v) {
+  for (size_t v = lo; v < hi; ++v) {
     double* nv = &normals[3 * v];
     double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
     if (len > 0 && std::isfinite(len)) {
@@ -40,6 +53,19 @@ inline void vertex_normals_body(const Mesh& mesh, double* normals) {
   }
 }
 
+// The term of edge (i, j) in vertex i's curvature sum: k_ij |T_ij|^2, with 0 where the edge
+// has zero length or is parallel to N_i.
+inline double edge_term(const float* p, const double* ni, uint32_t i, uint32_t j) {
+  double d[3] = {double(p[3 * j]) - p[3 * i], double(p[3 * j + 1]) - p[3 * i + 1],
+                 double(p[3 * j + 2]) - p[3 * i + 2]};
+  double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  if (!(len2 > 0)) return 0.0;
+  double nd = ni[0] * d[0] + ni[1] * d[1] + ni[2] * d[2];
+  double tangential2 = len2 - nd * nd;  // |(I - N N^T)(v_i - v_j)|^2
+  if (!(tangential2 > 1e-12 * len2)) return 0.0;
+  return 2.0 * nd / len2;
+}
+
 // Taubin 1995 as SPEC 1 fixes it: H_i = sum_j w_ij k_ij |T_ij|^2, where |T_ij|^2 is 1 unless
 // the edge is of zero length or parallel to N_i (then the term adds 0).
 inline double vertex_mean_curvature(const Mesh& mesh, const Adjacency& adj,
@@ -48,17 +74,10 @@ inline double vertex_mean_curvature(const Mesh& mesh, const Adjacency& adj,
   const double* ni = &normals[3 * i];
   double total_area = 0.0, sum = 0.0;
   for (uint32_t e = adj.offsets[i]; e < adj.offsets[i + 1]; ++e) {
-    uint32_t j = adj.neighbors[e];
-    double w = adj.edge_area[e];
+    const double w = adj.edge_area[e];
     total_area += w;
-    double d[3] = {double(p[3 * j]) - p[3 * i], double(p[3 * j + 1]) - p[3 * i + 1],
-                   double(p[3 * j + 2]) - p[3 * i + 2]};
-    double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    if (!(len2 > 0)) continue;
-    double nd = ni[0] * d[0] + ni[1] * d[1] + ni[2] * d[2];
-    double tangential2 = len2 - nd * nd;  // |(I - N N^T)(v_i - v_j)|^2
-    if (!(tangential2 > 1e-12 * len2)) continue;
-    sum += w * (2.0 * nd / len2);
+    const double k = edge_term(p, ni, uint32_t(i), adj.neighbors[e]);
+    if (k != 0.0) sum += w * k;
   }
   return total_area > 0 ? sum / total_area : 0.0;
 }
@@ -68,34 +87,74 @@ inline void mean_curvature_body(const Mesh& mesh, const Adjacency& adj, const do
   for (size_t i = begin; i < end; ++i) H[i] = vertex_mean_curvature(mesh, adj, normals, i);
 }
 
-MESHSAL_TARGET_BASELINE void vertex_normals_baseline(const Mesh& mesh, double* normals) {
-  vertex_normals_body(mesh, normals);
+// The same sums taken over the triangles (mean_curvature_faces): a triangle of area A
+// gives each corner i, for each of its two edges (i, j), A to the area and A k_ij to the
+// sum; an edge's areas are thus added per triangle instead of first per edge. Triangles
+// with a repeated corner have area 0 and add nothing, as the 1-rings skip them.
+inline void curvature_sums_body(const Mesh& mesh, const double* normals, size_t lo, size_t hi,
+                                double* sum, double* area) {
+  const float* p = mesh.positions.data();
+  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    if ((f & 0xffff) == 0) throw_if_cancelled();
+    const uint32_t* t = &mesh.triangles[3 * f];
+    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) continue;
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    double fn[3];
+    face_normal(p, t, fn);
+    // The area as build_adjacency() takes it.
+    const double A = 0.5 * std::sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t i = t[c];
+      if (!owns(i, lo, hi)) continue;
+      const double* ni = &normals[3 * size_t(i)];
+      area[i] += A + A;
+      const double k1 = edge_term(p, ni, i, t[(c + 1) % 3]), k2 = edge_term(p, ni, i, t[(c + 2) % 3]);
+      if (k1 != 0.0) sum[i] += A * k1;
+      if (k2 != 0.0) sum[i] += A * k2;
+    }
+  }
+  for (size_t i = lo; i < hi; ++i) sum[i] = area[i] > 0 ? sum[i] / area[i] : 0.0;
+}
+
+MESHSAL_TARGET_BASELINE void vertex_normals_baseline(const Mesh& mesh, size_t lo, size_t hi,
+                                                     double* normals) {
+  vertex_normals_body(mesh, lo, hi, normals);
 }
 MESHSAL_TARGET_BASELINE void mean_curvature_baseline(const Mesh& mesh, const Adjacency& adj,
                                                      const double* normals, size_t begin,
                                                      size_t end, double* H) {
   mean_curvature_body(mesh, adj, normals, begin, end, H);
 }
+MESHSAL_TARGET_BASELINE void curvature_sums_baseline(const Mesh& mesh, const double* normals,
+                                                     size_t lo, size_t hi, double* sum,
+                                                     double* area) {
+  curvature_sums_body(mesh, normals, lo, hi, sum, area);
+}
 #if MESHSAL_HAVE_AVX2_COPIES
-MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, double* normals) {
-  vertex_normals_body(mesh, normals);
+MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, size_t lo, size_t hi, double* normals) {
+  vertex_normals_body(mesh, lo, hi, normals);
 }
 MESHSAL_TARGET_AVX2 void mean_curvature_avx2(const Mesh& mesh, const Adjacency& adj,
                                              const double* normals, size_t begin, size_t end,
                                              double* H) {
   mean_curvature_body(mesh, adj, normals, begin, end, H);
 }
+MESHSAL_TARGET_AVX2 void curvature_sums_avx2(const Mesh& mesh, const double* normals, size_t lo,
+                                             size_t hi, double* sum, double* area) {
+  curvature_sums_body(mesh, normals, lo, hi, sum, area);
+}
 #endif
 
 }  // namespace
 
-std::vector<double> vertex_normals(const Mesh& mesh) {
+std::vector<double> vertex_normals(const Mesh& mesh, unsigned threads) {
   std::vector<double> normals(3 * mesh.vertex_count(), 0.0);
   auto body = vertex_normals_baseline;
 #if MESHSAL_HAVE_AVX2_COPIES
   if (cpu_path() == CpuPath::avx2) body = vertex_normals_avx2;
 #endif
-  body(mesh, normals.data());
+  parallel_for_owned(mesh.vertex_count(), threads,
+                     [&](size_t lo, size_t hi) { body(mesh, lo, hi, normals.data()); });
   return normals;
 }
 
@@ -109,6 +168,37 @@ std::vector<double> mean_curvature(const Mesh& mesh, const Adjacency& adjacency,
   parallel_for(H.size(), threads, 4096, [&](size_t begin, size_t end) {
     body(mesh, adjacency, normals.data(), begin, end, H.data());
   });
+  return H;
+}
+
+std::vector<double> mean_curvature_faces(const Mesh& mesh, const std::vector<double>& normals,
+                                         unsigned threads) {
+  std::vector<double> H(mesh.vertex_count(), 0.0);
+  std::vector<double> area(mesh.vertex_count(), 0.0);
+  auto body = curvature_sums_baseline;
+#if MESHSAL_HAVE_AVX2_COPIES
+  if (cpu_path() == CpuPath::avx2) body = curvature_sums_avx2;
+#endif
+  parallel_for_owned(mesh.vertex_count(), threads, [&](size_t lo, size_t hi) {
+    body(mesh, normals.data(), lo, hi, H.data(), area.data());
+  });
+  return H;
+}
+
+std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& box, unsigned threads) {
+  MortonOrder m = morton_order(mesh, box, threads);
+  std::vector<double> H_curve;
+  {
+    // The triangles by the Morton cell (32 per axis) of their lowest-coded corner, ties in
+    // input order: each vertex's triangles then come in an order that depends on the
+    // positions and the input order alone, the same in a tile as in the whole mesh.
+    for (uint32_t& c : m.code) c >>= 3 * (kMortonBits - 5);
+    const Mesh curve = renumbered_mesh(mesh, m.order, m.code, nullptr, threads);
+    std::vector<uint32_t>().swap(m.code);
+    H_curve = mean_curvature_faces(curve, vertex_normals(curve, threads), threads);
+  }
+  std::vector<double> H(H_curve.size());
+  for (size_t i = 0; i < H.size(); ++i) H[m.order[i]] = H_curve[i];
   return H;
 }
 

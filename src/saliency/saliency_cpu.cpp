@@ -6,7 +6,6 @@
 #include "saliency/curvature.h"
 #include "meshsal/meshsal.h"
 #include "saliency/gaussian_filter.h"
-#include "saliency/gaussian_filter_fast.h"
 #include "core/mesh_points.h"
 #include "core/parallel.h"
 #include "saliency/saliency.h"
@@ -29,15 +28,14 @@ std::vector<double> filter_sigma_units(const std::vector<double>& scales) {
 SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt) {
   check_saliency_options(opt);
   if (opt.method == Method::Auto) throw Error("internal: method auto not resolved");
+  if (opt.method == Method::Fast) return compute_saliency_fast_cpu(mesh, opt);
   SaliencyResult r;
   r.method = opt.method;
   r.backend_name = "cpu (" + std::to_string(resolve_threads(opt.threads)) + " threads)";
-  // The averages, exact (SPEC 1) or from cell aggregates (SPEC 5); nothing else differs.
+  // The exact averages (SPEC 1).
   auto filter = [&](const std::vector<double>& values, const std::vector<double>& sigmas,
                     FilterStats* stats, const std::function<void(double)>& progress) {
-    return opt.method == Method::Fast
-               ? gaussian_filter_fast(mesh, r.is_point, values, sigmas, opt.threads, stats, progress)
-               : gaussian_filter(mesh, r.is_point, values, sigmas, opt.threads, stats, progress);
+    return gaussian_filter(mesh, r.is_point, values, sigmas, opt.threads, stats, progress);
   };
   auto report = [&](const char* stage, double f) {
     if (opt.progress) opt.progress(stage, f);
@@ -47,7 +45,7 @@ SaliencyResult compute_saliency_cpu(const Mesh& mesh, const SaliencyOptions& opt
   r.is_point = referenced_vertices(mesh);
   r.eps = scale_unit(mesh, r.is_point, opt.eps_frac);
   Adjacency adj = build_adjacency(mesh, opt.threads);
-  std::vector<double> normals = vertex_normals(mesh);
+  std::vector<double> normals = vertex_normals(mesh, opt.threads);
   r.curvature = mean_curvature(mesh, adj, normals, opt.threads);
   // Only suppression's 1-ring is needed from here on: free the rest before the averages,
   // the run's largest stage (issue 14: about 300 bytes per vertex in all).

@@ -303,7 +303,10 @@ TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
   std::vector<double> curvature;
   {
     const Adjacency adj = build_adjacency(mesh, plan.threads);
-    curvature = mean_curvature(mesh, adj, vertex_normals(mesh), plan.threads);
+    // Each method's curvature as the whole mesh computes it (saliency_cpu.cpp,
+    // saliency_fast_cpu.cpp): an own vertex has all its triangles here, so the same bits.
+    curvature = plan.method == Method::Fast ? mean_curvature_morton(mesh, plan.box, plan.threads)
+                                            : mean_curvature(mesh, adj, vertex_normals(mesh, plan.threads), plan.threads);
     // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
     r.ring_offsets.push_back(0);
     for (size_t v = 0; v < n; ++v) {

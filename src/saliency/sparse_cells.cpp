@@ -13,7 +13,8 @@ namespace {
 constexpr int kAxisBits = 21;
 
 // Slots and keys of the occupied cells from the sorted keys.
-void mark_cells(const std::vector<uint64_t>& keys, SparseCells& s) {
+template <class Key>
+void mark_cells(const std::vector<Key>& keys, SparseCells& s) {
   for (size_t i = 0; i < keys.size(); ++i) {
     if (i == 0 || keys[i] != keys[i - 1]) {
       s.start.push_back(uint32_t(i));
@@ -21,6 +22,21 @@ void mark_cells(const std::vector<uint64_t>& keys, SparseCells& s) {
     }
   }
   s.start.push_back(uint32_t(keys.size()));
+}
+
+// Keys of Key bits (32 where the grid has fewer than 2^32 cells: half the memory and
+// traffic of the sort on a 10M-vertex scan).
+template <class Key>
+void sort_keys(const Mesh& mesh, const std::vector<uint32_t>& points, const BoundingBox& box, double cell,
+               unsigned threads, SparseCells& s) {
+  std::vector<Key> keys(points.size());
+  parallel_for(points.size(), threads, 1 << 15, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      keys[i] = Key(cell_key(box, cell, s.dims, &mesh.positions[3 * size_t(points[i])]));
+  });
+  s.order = points;
+  radix_sort(keys, s.order, s.dims[0] * s.dims[1] * s.dims[2] - 1, threads);
+  mark_cells(keys, s);
 }
 
 }  // namespace
@@ -45,14 +61,10 @@ SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& point
                             const BoundingBox& box, double cell, unsigned threads) {
   SparseCells s;
   cell_dims(box, cell, s.dims);
-  std::vector<uint64_t> keys(points.size());
-  parallel_for(points.size(), threads, 1 << 15, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      keys[i] = cell_key(box, cell, s.dims, &mesh.positions[3 * size_t(points[i])]);
-  });
-  s.order = points;
-  radix_sort(keys, s.order, s.dims[0] * s.dims[1] * s.dims[2] - 1);
-  mark_cells(keys, s);
+  if (s.dims[0] * s.dims[1] * s.dims[2] <= (uint64_t(1) << 32))
+    sort_keys<uint32_t>(mesh, points, box, cell, threads, s);
+  else
+    sort_keys<uint64_t>(mesh, points, box, cell, threads, s);
   return s;
 }
 

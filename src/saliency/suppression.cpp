@@ -1,45 +1,101 @@
 #include "saliency/suppression.h"
 
+#include <atomic>
+
+#include "core/parallel.h"
+
 namespace meshsal {
+
+namespace {
+
+// The suppression around a map's local maxima, whichever way they were found: normalise()
+// divides by the maximum, then finish() takes mbar over the flagged local maxima in vertex
+// order and scales the map.
+struct Suppression {
+  SuppressionInfo si;
+  size_t global;  // lowest-index mesh point attaining the maximum
+  std::vector<double> out;
+
+  // False (and out all zero) when the map has no positive maximum.
+  bool normalise(const std::vector<double>& map, const std::vector<uint8_t>& is_point) {
+    const size_t n = map.size();
+    global = n;
+    for (size_t v = 0; v < n; ++v)
+      if (is_point[v] && (global == n || map[v] > si.max)) {
+        si.max = map[v];
+        global = v;
+      }
+    out.assign(n, 0.0);
+    if (!(si.max > 0)) return false;
+    for (size_t v = 0; v < n; ++v)
+      if (is_point[v]) out[v] = map[v] / si.max;
+    return true;
+  }
+
+  // mbar averages the local maxima other than the global one (which is 1 after
+  // normalisation).
+  void finish(const std::vector<uint8_t>& is_max) {
+    double sum = 0;
+    size_t others = 0;
+    for (size_t v = 0; v < out.size(); ++v) {
+      if (!is_max[v]) continue;
+      si.local_maxima++;
+      if (v == global) continue;
+      sum += out[v];
+      others++;
+    }
+    si.mbar = others > 0 ? sum / double(others) : 0.0;
+    const double factor = (1.0 - si.mbar) * (1.0 - si.mbar);
+    for (double& x : out) x *= factor;
+  }
+};
+
+}  // namespace
 
 std::vector<double> suppress(const std::vector<double>& map, const std::vector<uint8_t>& is_point,
                              const Adjacency& adj, SuppressionInfo* info) {
-  const size_t n = map.size();
-  SuppressionInfo si;
-  size_t global = n;  // lowest-index mesh point attaining the maximum
-  for (size_t v = 0; v < n; ++v)
-    if (is_point[v] && (global == n || map[v] > si.max)) {
-      si.max = map[v];
-      global = v;
+  Suppression s;
+  if (s.normalise(map, is_point)) {
+    // Local maxima: strictly greater than every 1-ring neighbour.
+    std::vector<uint8_t> is_max(map.size(), 0);
+    for (size_t v = 0; v < map.size(); ++v) {
+      if (!is_point[v]) continue;
+      bool m = true;
+      for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1] && m; ++e) m = s.out[v] > s.out[adj.neighbors[e]];
+      is_max[v] = m;
     }
-  std::vector<double> out(n, 0.0);
-  if (!(si.max > 0)) {
-    if (info) *info = si;
-    return out;
+    s.finish(is_max);
   }
-  for (size_t v = 0; v < n; ++v)
-    if (is_point[v]) out[v] = map[v] / si.max;
+  if (info) *info = s.si;
+  return std::move(s.out);
+}
 
-  // Local maxima: strictly greater than every 1-ring neighbour. mbar averages those other
-  // than the global maximum (which is 1 after normalisation).
-  double sum = 0;
-  size_t others = 0;
-  for (size_t v = 0; v < n; ++v) {
-    if (!is_point[v]) continue;
-    bool is_max = true;
-    for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1] && is_max; ++e)
-      is_max = out[v] > out[adj.neighbors[e]];
-    if (!is_max) continue;
-    si.local_maxima++;
-    if (v == global) continue;
-    sum += out[v];
-    others++;
+std::vector<double> suppress_faces(const std::vector<double>& map, const std::vector<uint8_t>& is_point,
+                                   const Mesh& mesh, unsigned threads, SuppressionInfo* info) {
+  Suppression s;
+  if (s.normalise(map, is_point)) {
+    // Every mesh point is a local maximum until an edge of a triangle shows a neighbour
+    // at least as high: the 1-ring's test, edge by edge. Flags are only ever cleared, so
+    // threads may clear the same one (relaxed atomics: no order is needed).
+    std::vector<std::atomic<uint8_t>> flag(map.size());
+    for (size_t v = 0; v < map.size(); ++v) flag[v].store(is_point[v], std::memory_order_relaxed);
+    const uint32_t* t = mesh.triangles.data();
+    const double* out = s.out.data();
+    parallel_for(mesh.triangle_count(), threads, 1 << 14, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f)
+        for (int e = 0; e < 3; ++e) {
+          const uint32_t a = t[3 * f + e], b = t[3 * f + (e + 1) % 3];
+          if (a == b) continue;
+          if (!(out[a] > out[b])) flag[a].store(0, std::memory_order_relaxed);
+          if (!(out[b] > out[a])) flag[b].store(0, std::memory_order_relaxed);
+        }
+    });
+    std::vector<uint8_t> is_max(map.size());
+    for (size_t v = 0; v < map.size(); ++v) is_max[v] = flag[v].load(std::memory_order_relaxed);
+    s.finish(is_max);
   }
-  si.mbar = others > 0 ? sum / double(others) : 0.0;
-  const double factor = (1.0 - si.mbar) * (1.0 - si.mbar);
-  for (size_t v = 0; v < n; ++v) out[v] *= factor;
-  if (info) *info = si;
-  return out;
+  if (info) *info = s.si;
+  return std::move(s.out);
 }
 
 }  // namespace meshsal

@@ -1,0 +1,280 @@
+// The pieces of the fast method's CPU pipeline (saliency_fast_cpu.cpp), each against the
+// path it replaces: curvature and suppression from the triangles against the 1-rings, the
+// Morton renumbering against the input, the parallel radix sort against std::stable_sort,
+// order statistics against a sort, and the pipeline itself with and without its raw maps.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "cli/synthetic.h"
+#include "core/adjacency.h"
+#include "core/kth_smallest.h"
+#include "core/mesh_points.h"
+#include "core/morton_order.h"
+#include "core/peak_memory.h"
+#include "core/radix_sort.h"
+#include "saliency/curvature.h"
+#include "saliency/saliency.h"
+#include "saliency/suppression.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+// A bumpy sphere of 163,842 vertices (more than 2 x 64K, so that 2 and 4 threads split the
+// vertices) with an unreferenced vertex and a degenerate triangle added.
+Mesh test_mesh() {
+  Mesh m = make_bumpy_sphere(7);
+  m.positions.insert(m.positions.end(), {3.f, 3.f, 3.f});
+  m.triangles.insert(m.triangles.end(), {5, 5, 9});
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("fast pipeline: curvature from the triangles equals the 1-ring curvature to rounding", "[fast]") {
+  const Mesh m = test_mesh();
+  const std::vector<double> normals = vertex_normals(m, 1);
+  const std::vector<double> ring = mean_curvature(m, build_adjacency(m), normals);
+  const std::vector<double> faces = mean_curvature_faces(m, normals, 1);
+  REQUIRE(faces.size() == ring.size());
+  double top = 0, worst = 0;
+  for (double h : ring) top = std::max(top, std::fabs(h));
+  for (size_t v = 0; v < ring.size(); ++v) worst = std::max(worst, std::fabs(faces[v] - ring[v]));
+  INFO("worst " << worst << " of " << top);
+  CHECK(top > 1.0);
+  CHECK(worst <= 1e-12 * top);
+  CHECK(faces.back() == 0.0);  // the unreferenced vertex
+  // The same bits on any thread count (each vertex summed in triangle order).
+  CHECK(vertex_normals(m, 4) == normals);
+  CHECK(mean_curvature_faces(m, normals, 4) == faces);
+  CHECK(mean_curvature_faces(m, vertex_normals(m, 3), 3) == faces);
+}
+
+TEST_CASE("fast pipeline: suppression from the triangles equals the 1-ring suppression bit for bit", "[fast]") {
+  const Mesh m = test_mesh();
+  const Adjacency adj = build_adjacency(m);
+  const std::vector<uint8_t> is_point = referenced_vertices(m);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> level(0, 40);  // few levels: many ties between neighbours
+  std::vector<double> map(m.vertex_count());
+  for (double& x : map) x = level(rng) / 8.0;
+  for (unsigned threads : {1u, 4u}) {
+    SuppressionInfo a, b;
+    const std::vector<double> ring = suppress(map, is_point, adj, &a);
+    const std::vector<double> faces = suppress_faces(map, is_point, m, threads, &b);
+    CHECK(faces == ring);
+    CHECK(a.max == b.max);
+    CHECK(a.mbar == b.mbar);
+    CHECK(a.local_maxima == b.local_maxima);
+    CHECK(a.local_maxima > 10);
+  }
+  // A zero map stays zero.
+  const std::vector<double> zero(m.vertex_count(), 0.0);
+  CHECK(suppress_faces(zero, is_point, m) == zero);
+}
+
+TEST_CASE("fast pipeline: the Morton renumbering keeps the surface", "[fast]") {
+  for (uint32_t x : {0u, 1u, 5u, 0x155555u, 0x1fffffu}) {
+    uint64_t naive = 0;
+    for (int b = 0; b < 21; ++b) naive |= uint64_t((x >> b) & 1) << (3 * b);
+    CHECK(spread_bits_21(x) == naive);
+  }
+  // The test mesh with its vertices shuffled, as a scan subdivided elsewhere may come.
+  const Mesh base = test_mesh();
+  std::vector<uint32_t> shuffle(base.vertex_count());
+  for (size_t i = 0; i < shuffle.size(); ++i) shuffle[i] = uint32_t(i);
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(9));
+  const Mesh m = renumbered_mesh(base, shuffle);
+  const BoundingBox box = mesh_points_bbox(m, referenced_vertices(m));
+  const MortonOrder curve = morton_order(m, box, 2);
+  const std::vector<uint32_t>& order = curve.order;
+  for (size_t i = 1; i < order.size(); ++i) REQUIRE(curve.code[i - 1] <= curve.code[i]);
+  std::vector<uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == i);  // a permutation
+  CHECK(morton_order(m, box, 1).order == order);
+  std::vector<uint32_t> new_of;
+  std::vector<uint32_t> key(curve.code);
+  for (uint32_t& k : key) k >>= 15;
+  const Mesh w = renumbered_mesh(m, order, key, &new_of, 2);
+  REQUIRE(w.vertex_count() == m.vertex_count());
+  REQUIRE(w.triangle_count() == m.triangle_count());
+  for (size_t i = 0; i < order.size(); ++i) {
+    REQUIRE(new_of[order[i]] == i);
+    for (int a = 0; a < 3; ++a) REQUIRE(w.positions[3 * i + a] == m.positions[3 * size_t(order[i]) + a]);
+  }
+  // The same triangles (as corner triples of input vertices), sorted by their corners'
+  // smallest key.
+  std::vector<std::array<uint32_t, 3>> in, out;
+  uint32_t last_smallest = 0;
+  bool faces_sorted = true;
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    in.push_back({m.triangles[3 * f], m.triangles[3 * f + 1], m.triangles[3 * f + 2]});
+    const uint32_t* t = &w.triangles[3 * f];
+    out.push_back({order[t[0]], order[t[1]], order[t[2]]});
+    const uint32_t smallest = std::min({key[t[0]], key[t[1]], key[t[2]]});
+    faces_sorted &= smallest >= last_smallest;
+    last_smallest = smallest;
+  }
+  CHECK(faces_sorted);
+  std::sort(in.begin(), in.end());
+  std::sort(out.begin(), out.end());
+  CHECK(in == out);
+  // Neighbours along the curve are near in space: the mean distance between consecutive
+  // vertices is a small fraction of the input order's.
+  auto mean_step = [&](const std::vector<float>& p) {
+    double sum = 0;
+    for (size_t i = 1; i + 1 < m.vertex_count(); ++i) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += (p[3 * i + a] - p[3 * i - 3 + a]) * (p[3 * i + a] - p[3 * i - 3 + a]);
+      sum += std::sqrt(d2);
+    }
+    return sum / double(m.vertex_count());
+  };
+  CHECK(mean_step(w.positions) < 0.1 * mean_step(m.positions));
+  // The curvature through the renumbering is the input order's to rounding, and a tile
+  // (here: the vertices with x < 0.3 and the triangles among them) gets the same bits at
+  // every vertex whose triangles it holds all of, with the same box.
+  const std::vector<double> H = mean_curvature_morton(m, box, 2);
+  const std::vector<double> plain = mean_curvature_faces(m, vertex_normals(m));
+  double top = 0, worst = 0;
+  for (size_t v = 0; v < H.size(); ++v) {
+    top = std::max(top, std::fabs(plain[v]));
+    worst = std::max(worst, std::fabs(H[v] - plain[v]));
+  }
+  CHECK(worst <= 1e-12 * top);
+  std::vector<uint32_t> keep;  // old -> tile index, UINT32_MAX where left out
+  Mesh tile;
+  std::vector<uint32_t> tile_of(m.vertex_count(), UINT32_MAX);
+  for (size_t v = 0; v < m.vertex_count(); ++v)
+    if (m.positions[3 * v] < 0.3f) {
+      tile_of[v] = uint32_t(keep.size());
+      keep.push_back(uint32_t(v));
+      tile.positions.insert(tile.positions.end(), &m.positions[3 * v], &m.positions[3 * v + 3]);
+    }
+  std::vector<uint8_t> whole_ring(m.vertex_count(), 1);  // every triangle of v is in the tile
+  for (size_t f = 0; f < m.triangle_count(); ++f) {
+    const uint32_t* t = &m.triangles[3 * f];
+    const bool in_tile = tile_of[t[0]] != UINT32_MAX && tile_of[t[1]] != UINT32_MAX && tile_of[t[2]] != UINT32_MAX;
+    if (in_tile)
+      tile.triangles.insert(tile.triangles.end(), {tile_of[t[0]], tile_of[t[1]], tile_of[t[2]]});
+    else
+      for (int c = 0; c < 3; ++c) whole_ring[t[c]] = 0;
+  }
+  const std::vector<double> H_tile = mean_curvature_morton(tile, box, 2);
+  size_t compared = 0;
+  bool same = true;
+  for (size_t i = 0; i < keep.size(); ++i)
+    if (whole_ring[keep[i]]) same &= H_tile[i] == H[keep[i]], compared++;
+  CHECK(same);
+  CHECK(compared > 10000);
+}
+
+TEST_CASE("fast pipeline: the parallel radix sort equals std::stable_sort", "[fast]") {
+  std::mt19937_64 rng(11);
+  for (uint64_t max_key : {uint64_t(0), uint64_t(1000), uint64_t(1) << 31, (uint64_t(1) << 45) + 17}) {
+    const size_t n = 300000;
+    std::vector<uint64_t> key(n);
+    for (uint64_t& k : key) k = max_key ? rng() % (max_key + 1) : 0;
+    std::vector<std::pair<uint64_t, uint32_t>> oracle;
+    for (size_t i = 0; i < n; ++i) oracle.push_back({key[i], uint32_t(i)});
+    std::stable_sort(oracle.begin(), oracle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (unsigned threads : {1u, 3u}) {
+      INFO("max key " << max_key << ", threads " << threads);
+      std::vector<uint64_t> k64 = key;
+      std::vector<uint32_t> v64(n);
+      for (size_t i = 0; i < n; ++i) v64[i] = uint32_t(i);
+      radix_sort(k64, v64, max_key, threads);
+      bool same = true;
+      for (size_t i = 0; i < n; ++i) same &= k64[i] == oracle[i].first && v64[i] == oracle[i].second;
+      CHECK(same);
+      if (max_key < (uint64_t(1) << 32)) {
+        std::vector<uint32_t> k32(key.begin(), key.end()), v32(n);
+        for (size_t i = 0; i < n; ++i) v32[i] = uint32_t(i);
+        radix_sort(k32, v32, max_key, threads);
+        bool same32 = true;
+        for (size_t i = 0; i < n; ++i) same32 &= k32[i] == oracle[i].first && v32[i] == oracle[i].second;
+        CHECK(same32);
+      }
+    }
+  }
+}
+
+TEST_CASE("fast pipeline: order statistics equal a sort's", "[fast]") {
+  std::mt19937 rng(5);
+  std::vector<double> values(10001);
+  for (double& x : values) x = double(rng() % 500) / 7.0;  // many repeats
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  const std::vector<size_t> ks = {9000, 0, 5000, 5000, 10000, 1, 9999};
+  std::vector<double> work = values;
+  const std::vector<double> got = kth_smallest(work, ks);
+  for (size_t i = 0; i < ks.size(); ++i) CHECK(got[i] == sorted[ks[i]]);
+  CHECK_THROWS_AS(kth_smallest(work, {10001}), Error);
+}
+
+TEST_CASE("fast pipeline: the scale order follows the chains k, 2k", "[fast]") {
+  CHECK(fast_scale_order({2, 3, 4, 5, 6}) == std::vector<size_t>{0, 2, 1, 4, 3});
+  CHECK(fast_scale_order({6, 5, 4, 3, 2}) == std::vector<size_t>{4, 2, 3, 0, 1});
+  CHECK(fast_scale_order({1.5, 3}) == std::vector<size_t>{0, 1});
+  CHECK(fast_scale_order({7}) == std::vector<size_t>{0});
+}
+
+TEST_CASE("fast pipeline: S is the same bits without the raw maps, and on any thread count", "[fast]") {
+  const Mesh m = make_bumpy_sphere(5);
+  SaliencyOptions o;
+  o.backend = Backend::Cpu;
+  o.method = Method::Fast;
+  o.threads = 1;
+  const SaliencyResult with = compute_saliency(m, o);
+  REQUIRE(with.raw.size() == 5);
+  o.raw_maps = false;
+  o.threads = 3;
+  const SaliencyResult without = compute_saliency(m, o);
+  CHECK(without.raw.empty());
+  CHECK(without.saliency == with.saliency);
+  CHECK(without.curvature == with.curvature);
+  CHECK(without.pairs == with.pairs);
+  // Each raw map is |G(k) - G(2k)| of that scale, in the scales' order, whatever order
+  // the pipeline ran them in: the exact path's maps are close to it at every scale.
+  o.method = Method::Exact;
+  o.raw_maps = true;
+  const SaliencyResult exact = compute_saliency(m, o);
+  for (size_t i = 0; i < 5; ++i) {
+    double top = 0, err = 0;
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      top = std::max(top, exact.raw[i][v]);
+      err += std::fabs(with.raw[i][v] - exact.raw[i][v]);
+    }
+    INFO("scale " << i);
+    CHECK(err / double(m.vertex_count()) < 0.01 * top);
+  }
+  // The exact path keeps no raw maps either when asked not to, and S does not change.
+  o.raw_maps = false;
+  const SaliencyResult exact_lean = compute_saliency(m, o);
+  CHECK(exact_lean.raw.empty());
+  CHECK(exact_lean.saliency == exact.saliency);
+}
+
+TEST_CASE("peak memory: a stage's mark restarts, the process's peak does not", "[fast]") {
+  const uint64_t before = peak_resident_bytes();
+  if (before == 0) {
+    WARN("no /proc/self/status here: skipped");
+    return;
+  }
+  {
+    std::vector<char> big(size_t(200) << 20, 1);  // 200 MB touched
+    CHECK(stage_peak_resident_bytes() >= big.size());
+  }
+  const uint64_t high = peak_resident_bytes();
+  CHECK(high >= (uint64_t(200) << 20));
+  if (!restart_peak_resident()) {
+    WARN("the kernel's high-water mark cannot be restarted here");
+    return;
+  }
+  CHECK(stage_peak_resident_bytes() < high);  // the 200 MB were freed before the restart
+  CHECK(peak_resident_bytes() >= high);        // but the process's peak remembers them
+}
