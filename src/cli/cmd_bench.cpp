@@ -134,18 +134,25 @@ Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read,
   opt.backend = a.backend == "gpu" ? meshsal::Backend::Gpu : meshsal::Backend::Cpu;
   opt.threads = a.threads;
   opt.method = meshsal::Method::Fast;
+  // Whether the exact reference will run (then the raw maps are compared): without it the
+  // fast run keeps no raw maps, as `meshsal saliency` without --dump-scales.
+  double exact_pairs = 0;
+  {
+    const std::vector<uint8_t> is_point = meshsal::referenced_vertices(mesh);
+    const double eps = meshsal::scale_unit(mesh, is_point, opt.eps_frac);
+    const double largest = *std::max_element(opt.scales.begin(), opt.scales.end());
+    exact_pairs = meshsal::estimate_sweep_pairs(mesh, is_point, 4 * largest * eps);
+  }
+  opt.raw_maps = exact_pairs <= kExactReferencePairLimit;
   Row row = bench_one(model, mesh, read, opt, a.repeat);
+  row.exact_pairs = exact_pairs;
   opt.backend = meshsal::Backend::Cpu;  // the exact reference runs on the CPU path
   {
     const meshsal::Timer t;
     meshsal::smooth_saliency(mesh, row.best.saliency, opt);
     row.smooth_fast = t.seconds();
   }
-  const std::vector<uint8_t> is_point = meshsal::referenced_vertices(mesh);
-  const double eps = meshsal::scale_unit(mesh, is_point, opt.eps_frac);
-  const double largest = *std::max_element(opt.scales.begin(), opt.scales.end());
-  row.exact_pairs = meshsal::estimate_sweep_pairs(mesh, is_point, 4 * largest * eps);
-  if (row.exact_pairs > kExactReferencePairLimit) {
+  if (!opt.raw_maps) {
     row.exact_total = row.exact_pairs / kExactPairsPerSecond;
     return row;
   }
@@ -215,6 +222,11 @@ void print_table(const std::vector<Row>& rows) {
     for (const auto& st : r.best.stages)
       std::printf("%-24s %-22.22s %-18s %8.3fs %10.1f %9.1f\n", r.model.c_str(), r.device.c_str(), st.name.c_str(),
                   st.seconds, double(st.peak_bytes) / 1e6, r.vertices ? double(st.peak_bytes) / double(r.vertices) : 0.0);
+  std::printf("(per stage: its time and the process's peak resident memory while it ran, the mesh and\n"
+              " what the heap kept from earlier stages included (meshsal keeps freed memory for reuse, so\n"
+              " a stage's peak is at least what the process held when it began); the CPU fast method\n"
+              " runs center-surround and suppression scale by scale inside the sweep: their peak is the\n"
+              " sweep's)\n");
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
               " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
               " in mixed precision, the double recheck of near ties; prec: the sweep's arithmetic;\n"

@@ -81,7 +81,8 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
     r.pairs += stats.pairs;
     return G[unit] = std::move(out[0]);
   };
-  r.saliency.assign(n, 0.0);
+  // S is allocated with the first suppressed map: the finest sigmas, the run's largest
+  // cell sets, are filtered before it exists.
   if (opt.raw_maps) r.raw.resize(opt.scales.size());
   for (size_t step = 0; step < scale_order.size(); ++step) {
     const size_t i = scale_order[step];
@@ -96,8 +97,12 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
       if (last_use[unit] == step) G.erase(unit);
     cs_seconds += part.seconds();
     part.restart();
-    const std::vector<double> s = suppress_faces(raw, r.is_point, mesh, opt.threads);
-    for (size_t v = 0; v < n; ++v) r.saliency[v] += s[v];
+    std::vector<double> s = suppress_faces(raw, r.is_point, mesh, opt.threads);
+    if (step == 0) {
+      r.saliency = std::move(s);  // s[v] >= 0, so 0 + s[v] == s[v]: adding to zeros' bits
+    } else {
+      for (size_t v = 0; v < n; ++v) r.saliency[v] += s[v];
+    }
     if (opt.raw_maps) r.raw[i] = std::move(raw);
     suppress_seconds += part.seconds();
   }
