@@ -34,6 +34,7 @@ SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool r
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
   options.smoothed = smoothed;
   options.tiles = tiles;
+  options.raw_maps = raw_maps;  // kept (8 bytes per vertex per scale) only when returned
   meshsal::SaliencyResult r;
   {
     const InterruptibleCall call;  // other Python threads run while it computes; Ctrl-C stops it

@@ -67,7 +67,9 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
                     std::to_string(mesh.vertex_count()) + " vertices");
       s = *saliency;
     } else {
-      s = compute_saliency(mesh, saliency_options).saliency;
+      SaliencyOptions so = saliency_options;
+      so.raw_maps = false;  // only S is carried down the chain
+      s = compute_saliency(mesh, so).saliency;
     }
   }
   std::vector<LodLevel> out;

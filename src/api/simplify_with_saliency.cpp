@@ -34,6 +34,7 @@ SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWei
   } else {
     SaliencyOptions so = saliency_options;
     so.smoothed = true;
+    so.raw_maps = false;  // only S and Sm are used
     SaliencyResult r = compute_saliency(mesh, so);
     smoothed = std::move(r.smoothed);
     out.device = r.backend_name;

@@ -30,7 +30,9 @@ std::vector<double> vertex_score(const Mesh& mesh, ViewScore kind, const std::st
     if (source) *source = saliency_from;
     return s;
   }
-  SaliencyResult r = compute_saliency(mesh, options);
+  SaliencyOptions so = options;
+  so.raw_maps = false;  // only S is scored
+  SaliencyResult r = compute_saliency(mesh, so);
   if (source) *source = "computed (" + r.backend_name + ")";
   return r.saliency;
 }

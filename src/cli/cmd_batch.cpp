@@ -441,6 +441,7 @@ int run(Options o) {
   p.saliency.eps_frac = o.eps_frac;
   p.saliency.scales = parse_scales(o.scales);
   p.saliency.threads = o.threads;
+  p.saliency.raw_maps = false;  // no command of batch writes them
   p.saliency.backend = p.backend;
   p.saliency.precision = parse_precision(o.precision);
   p.saliency.method = parse_method(o.method);

@@ -50,6 +50,7 @@ int run(const Args& a) {
     so.precision = meshsal::parse_precision(a.precision);
     so.method = meshsal::parse_method(a.method);
     so.threads = a.threads;
+    so.raw_maps = false;
     so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", printable(line).c_str()); };
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     SaliencyResult r = compute_saliency(original, so);

@@ -139,6 +139,7 @@ int run_lod(const Args& a, const meshsal::SaliencyWeightOptions& wo, Progress& p
   progress.update("reading", 0.0);
   Mesh mesh = load_input(a.input, a.quiet, nullptr, true);
   SaliencyOptions so = saliency_options(a, progress);
+  so.raw_maps = false;  // only S is used
   so.notice = [&](const std::string& line) {
     if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
   };

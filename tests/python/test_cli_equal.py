@@ -57,6 +57,26 @@ def test_saliency_options_equal_cli(mesh_path, cli, tmp_path):
     np.testing.assert_array_equal(r.saliency, r2.saliency)
 
 
+def test_fast_raw_maps_only_when_asked(mesh_path, cli, tmp_path):
+    # The fast CPU path keeps no raw maps unless they are returned (--dump-scales,
+    # raw_maps=True); S is the same either way, in the module and in the CLI's files.
+    path = mesh_path("bunny_36k.obj")
+    V, F = meshsal.load(str(path))
+    lean = meshsal.saliency(V, F, backend="cpu", method="fast")
+    full = meshsal.saliency(V, F, backend="cpu", method="fast", raw_maps=True)
+    assert lean.raw is None
+    assert full.raw.shape == (5, len(V))
+    assert full.raw.max() > 0
+    np.testing.assert_array_equal(lean.saliency, full.saliency)
+    cli("saliency", path, "-o", tmp_path / "a.ply", "--backend", "cpu", "--method", "fast", "-q")
+    cli("saliency", path, "-o", tmp_path / "b.ply", "--backend", "cpu", "--method", "fast", "--dump-scales", "-q")
+    _, _, a = meshsal.load(str(tmp_path / "a.ply"), properties=True)
+    _, _, b = meshsal.load(str(tmp_path / "b.ply"), properties=True)
+    np.testing.assert_array_equal(a["quality"], b["quality"])
+    np.testing.assert_array_equal(a["quality"], lean.saliency.astype(np.float32))
+    np.testing.assert_array_equal(b["saliency_raw_2"], full.raw[2].astype(np.float32))
+
+
 def test_tiled_saliency_equals_cli_and_untiled(mesh_path, cli, tmp_path):
     # tiles=N is `--tiles N`, and (exact method) the untiled map bit for bit; the CLI's
     # out-of-core run writes the same values.
