@@ -28,9 +28,9 @@ inline void face_normal(const float* p, const uint32_t* t, double fn[3]) {
 
 inline bool owns(uint32_t v, size_t lo, size_t hi) { return v >= lo && v < hi; }
 
-// Sums the face normals into normals[] (3 n, zeroed) for the vertices [lo, hi) and
-// normalises them: each vertex's sum runs in triangle order, whoever owns it.
-inline void vertex_normals_body(const Mesh& mesh, size_t lo, size_t hi, double* normals) {
+// Sums the face normals into normals[] (zeroed; vertex v at 3 (v - base)) for the vertices
+// [lo, hi) and normalises them: each vertex's sum runs in triangle order, whoever owns it.
+inline void vertex_normals_body(const Mesh& mesh, size_t lo, size_t hi, double* normals, size_t base) {
   const float* p = mesh.positions.data();
   for (size_t f = 0; f < mesh.triangle_count(); ++f) {
     if ((f & 0xffff) == 0) throw_if_cancelled();
@@ -40,10 +40,10 @@ inline void vertex_normals_body(const Mesh& mesh, size_t lo, size_t hi, double* 
     face_normal(p, t, fn);
     for (int c = 0; c < 3; ++c)
       if (owns(t[c], lo, hi))
-        for (int k = 0; k < 3; ++k) normals[3 * t[c] + k] += fn[k];
+        for (int k = 0; k < 3; ++k) normals[3 * (t[c] - base) + k] += fn[k];
   }
   for (size_t v = lo; v < hi; ++v) {
-    double* nv = &normals[3 * v];
+    double* nv = &normals[3 * (v - base)];
     double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
     if (len > 0 && std::isfinite(len)) {
       nv[0] /= len, nv[1] /= len, nv[2] /= len;
@@ -92,7 +92,7 @@ inline void mean_curvature_body(const Mesh& mesh, const Adjacency& adj, const do
 // sum; an edge's areas are thus added per triangle instead of first per edge. Triangles
 // with a repeated corner have area 0 and add nothing, as the 1-rings skip them.
 inline void curvature_sums_body(const Mesh& mesh, const double* normals, size_t lo, size_t hi,
-                                double* sum, double* area) {
+                                double* sum, double* area, size_t base) {
   const float* p = mesh.positions.data();
   for (size_t f = 0; f < mesh.triangle_count(); ++f) {
     if ((f & 0xffff) == 0) throw_if_cancelled();
@@ -106,19 +106,23 @@ inline void curvature_sums_body(const Mesh& mesh, const double* normals, size_t 
     for (int c = 0; c < 3; ++c) {
       const uint32_t i = t[c];
       if (!owns(i, lo, hi)) continue;
-      const double* ni = &normals[3 * size_t(i)];
-      area[i] += A + A;
+      const size_t at = i - base;
+      const double* ni = &normals[3 * at];
+      area[at] += A + A;
       const double k1 = edge_term(p, ni, i, t[(c + 1) % 3]), k2 = edge_term(p, ni, i, t[(c + 2) % 3]);
-      if (k1 != 0.0) sum[i] += A * k1;
-      if (k2 != 0.0) sum[i] += A * k2;
+      if (k1 != 0.0) sum[at] += A * k1;
+      if (k2 != 0.0) sum[at] += A * k2;
     }
   }
-  for (size_t i = lo; i < hi; ++i) sum[i] = area[i] > 0 ? sum[i] / area[i] : 0.0;
+  for (size_t at = 0; at < hi - lo; ++at) {
+    const size_t i = lo - base + at;
+    sum[i] = area[i] > 0 ? sum[i] / area[i] : 0.0;
+  }
 }
 
 MESHSAL_TARGET_BASELINE void vertex_normals_baseline(const Mesh& mesh, size_t lo, size_t hi,
-                                                     double* normals) {
-  vertex_normals_body(mesh, lo, hi, normals);
+                                                     double* normals, size_t base) {
+  vertex_normals_body(mesh, lo, hi, normals, base);
 }
 MESHSAL_TARGET_BASELINE void mean_curvature_baseline(const Mesh& mesh, const Adjacency& adj,
                                                      const double* normals, size_t begin,
@@ -127,12 +131,13 @@ MESHSAL_TARGET_BASELINE void mean_curvature_baseline(const Mesh& mesh, const Adj
 }
 MESHSAL_TARGET_BASELINE void curvature_sums_baseline(const Mesh& mesh, const double* normals,
                                                      size_t lo, size_t hi, double* sum,
-                                                     double* area) {
-  curvature_sums_body(mesh, normals, lo, hi, sum, area);
+                                                     double* area, size_t base) {
+  curvature_sums_body(mesh, normals, lo, hi, sum, area, base);
 }
 #if MESHSAL_HAVE_AVX2_COPIES
-MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, size_t lo, size_t hi, double* normals) {
-  vertex_normals_body(mesh, lo, hi, normals);
+MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, size_t lo, size_t hi, double* normals,
+                                             size_t base) {
+  vertex_normals_body(mesh, lo, hi, normals, base);
 }
 MESHSAL_TARGET_AVX2 void mean_curvature_avx2(const Mesh& mesh, const Adjacency& adj,
                                              const double* normals, size_t begin, size_t end,
@@ -140,8 +145,8 @@ MESHSAL_TARGET_AVX2 void mean_curvature_avx2(const Mesh& mesh, const Adjacency& 
   mean_curvature_body(mesh, adj, normals, begin, end, H);
 }
 MESHSAL_TARGET_AVX2 void curvature_sums_avx2(const Mesh& mesh, const double* normals, size_t lo,
-                                             size_t hi, double* sum, double* area) {
-  curvature_sums_body(mesh, normals, lo, hi, sum, area);
+                                             size_t hi, double* sum, double* area, size_t base) {
+  curvature_sums_body(mesh, normals, lo, hi, sum, area, base);
 }
 #endif
 
@@ -154,7 +159,7 @@ std::vector<double> vertex_normals(const Mesh& mesh, unsigned threads) {
   if (cpu_path() == CpuPath::avx2) body = vertex_normals_avx2;
 #endif
   parallel_for_owned(mesh.vertex_count(), threads,
-                     [&](size_t lo, size_t hi) { body(mesh, lo, hi, normals.data()); });
+                     [&](size_t lo, size_t hi) { body(mesh, lo, hi, normals.data(), 0); });
   return normals;
 }
 
@@ -180,25 +185,42 @@ std::vector<double> mean_curvature_faces(const Mesh& mesh, const std::vector<dou
   if (cpu_path() == CpuPath::avx2) body = curvature_sums_avx2;
 #endif
   parallel_for_owned(mesh.vertex_count(), threads, [&](size_t lo, size_t hi) {
-    body(mesh, normals.data(), lo, hi, H.data(), area.data());
+    body(mesh, normals.data(), lo, hi, H.data(), area.data(), 0);
   });
   return H;
 }
 
 std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& box, unsigned threads) {
   MortonOrder m = morton_order(mesh, box, threads);
-  std::vector<double> H_curve;
-  {
-    // The triangles by the Morton cell (32 per axis) of their lowest-coded corner, ties in
-    // input order: each vertex's triangles then come in an order that depends on the
-    // positions and the input order alone, the same in a tile as in the whole mesh.
-    for (uint32_t& c : m.code) c >>= 3 * (kMortonBits - 5);
-    const Mesh curve = renumbered_mesh(mesh, m.order, m.code, nullptr, threads);
-    std::vector<uint32_t>().swap(m.code);
-    H_curve = mean_curvature_faces(curve, vertex_normals(curve, threads), threads);
-  }
-  std::vector<double> H(H_curve.size());
-  for (size_t i = 0; i < H.size(); ++i) H[m.order[i]] = H_curve[i];
+  // The triangles by the Morton cell (32 per axis) of their lowest-coded corner, ties in
+  // input order: each vertex's triangles then come in an order that depends on the
+  // positions and the input order alone, the same in a tile as in the whole mesh.
+  for (uint32_t& c : m.code) c >>= 3 * (kMortonBits - 5);
+  const Mesh curve = renumbered_mesh(mesh, m.order, m.code, nullptr, threads);
+  std::vector<uint32_t>().swap(m.code);
+  // vertex_normals and mean_curvature_faces on the copy, a range of at most 2^20 vertices
+  // at a time with the range's own normals and sums: each range scans the triangles again
+  // (cheap: most are skipped), but the 40 bytes per vertex of whole-mesh normals and sums,
+  // on top of the copy, are the size of one range per thread (the same bits: each vertex is
+  // summed in the copy's triangle order either way).
+  auto normals_body = vertex_normals_baseline;
+  auto sums_body = curvature_sums_baseline;
+#if MESHSAL_HAVE_AVX2_COPIES
+  if (cpu_path() == CpuPath::avx2) normals_body = vertex_normals_avx2, sums_body = curvature_sums_avx2;
+#endif
+  const size_t n = curve.vertex_count();
+  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(resolve_threads(threads), n >> 16),
+                                          (n + (size_t(1) << 20) - 1) >> 20});
+  std::vector<double> H(n);
+  parallel_for(ranges, threads, 1, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      const size_t lo = n * r / ranges, hi = n * (r + 1) / ranges;
+      std::vector<double> normals(3 * (hi - lo), 0.0), sum(hi - lo, 0.0), area(hi - lo, 0.0);
+      normals_body(curve, lo, hi, normals.data(), lo);
+      sums_body(curve, normals.data(), lo, hi, sum.data(), area.data(), lo);
+      for (size_t i = lo; i < hi; ++i) H[m.order[i]] = sum[i - lo];
+    }
+  });
   return H;
 }
 
