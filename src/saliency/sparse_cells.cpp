@@ -27,14 +27,14 @@ void mark_cells(const std::vector<Key>& keys, SparseCells& s) {
 // Keys of Key bits (32 where the grid has fewer than 2^32 cells: half the memory and
 // traffic of the sort on a 10M-vertex scan).
 template <class Key>
-void sort_keys(const Mesh& mesh, const std::vector<uint32_t>& points, const BoundingBox& box, double cell,
+void sort_keys(const Mesh& mesh, std::vector<uint32_t>&& points, const BoundingBox& box, double cell,
                unsigned threads, SparseCells& s) {
   std::vector<Key> keys(points.size());
   parallel_for(points.size(), threads, 1 << 15, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
       keys[i] = Key(cell_key(box, cell, s.dims, &mesh.positions[3 * size_t(points[i])]));
   });
-  s.order = points;
+  s.order = std::move(points);
   radix_sort(keys, s.order, s.dims[0] * s.dims[1] * s.dims[2] - 1, threads);
   mark_cells(keys, s);
 }
@@ -57,15 +57,20 @@ uint64_t cell_key(const BoundingBox& box, double cell, const uint64_t dims[3], c
   return (c[2] * dims[1] + c[1]) * dims[0] + c[0];
 }
 
-SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& points,
-                            const BoundingBox& box, double cell, unsigned threads) {
+SparseCells sort_into_cells(const Mesh& mesh, std::vector<uint32_t>&& points, const BoundingBox& box,
+                            double cell, unsigned threads) {
   SparseCells s;
   cell_dims(box, cell, s.dims);
   if (s.dims[0] * s.dims[1] * s.dims[2] <= (uint64_t(1) << 32))
-    sort_keys<uint32_t>(mesh, points, box, cell, threads, s);
+    sort_keys<uint32_t>(mesh, std::move(points), box, cell, threads, s);
   else
-    sort_keys<uint64_t>(mesh, points, box, cell, threads, s);
+    sort_keys<uint64_t>(mesh, std::move(points), box, cell, threads, s);
   return s;
+}
+
+SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& points,
+                            const BoundingBox& box, double cell, unsigned threads) {
+  return sort_into_cells(mesh, std::vector<uint32_t>(points), box, cell, threads);
 }
 
 std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point) {

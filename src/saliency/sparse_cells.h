@@ -34,6 +34,9 @@ std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point);
 // are computed on `threads` threads and sorted by a stable radix sort (linear).
 SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& points,
                             const BoundingBox& box, double cell, unsigned threads = 0);
+// The same, taking the list over (it becomes the result's order: 4 bytes per point less).
+SparseCells sort_into_cells(const Mesh& mesh, std::vector<uint32_t>&& points, const BoundingBox& box,
+                            double cell, unsigned threads = 0);
 
 // The same with std::stable_sort: the oracle the tests hold sort_into_cells to.
 SparseCells sort_into_cells_reference(const Mesh& mesh, const std::vector<uint32_t>& points,
