@@ -2,8 +2,8 @@
 // meshsal: --method fast, GPU twin of sweep_cells() (gaussian_filter_fast.cpp): the sums
 // sum count*w and sum sum*w over the cell aggregates with |centroid - q| < 2 sigma (strict),
 // and in dense mode also their gradients in q (times sigma^2) for the extrapolation to a
-// cell's vertices. A lane per query point: a cell's centroid (dense) or a mesh point
-// (sparse), in sorted order. As in sweep_layout_rows.glsl, the lanes of a subgroup walk
+// query group's vertices. A lane per query point: a query group's centroid
+// (fast_group_centroids.comp; dense) or a mesh point (sparse), in sorted order. As in sweep_layout_rows.glsl, the lanes of a subgroup walk
 // the rows of cells around the box of those of the subgroup's query points that lie in
 // their own row of cells, so that they load the same candidates at once (lavapipe runs a
 // lane per SIMD slot: a gather per lane would cost ~8x); any box holding the lane's own
@@ -36,6 +36,8 @@ layout(push_constant) uniform Push {
   double cut2;                // (2 sigma)^2
   double radius;              // 2 sigma
   double coef;                // 1 / (2 sigma^2)
+  double shell2;              // dense: candidates with shell2 <= d^2 < cut2 add shell_w
+  double shell_w;             //   to their weight in the gradients (the cutoff's share)
 } pc;
 
 // exp_neg_cutoff(): exp(-x) for 0 <= x < 2, as exp_neg_cutoff() in src/core/exp_poly7.h.
@@ -98,9 +100,11 @@ void main() {
           den += wd;
           count += 1u;
           if (dense) {
-            // d/dq w(|x - q|) = w (x - q) / sigma^2; the 1/sigma^2 is applied with dv.
-            gn += wn * e;
-            gd += wd * e;
+            // d/dq w(|x - q|) = w (x - q) / sigma^2 (the 1/sigma^2 is applied with dv),
+            // and the cutoff's share from the shell (sweep_cells() explains it).
+            const double wg = w + (d2 >= pc.shell2 ? pc.shell_w : 0.0LF);
+            gn += (wg * x.w) * e;
+            gd += (wg * cell_count[sorted_cell[k]]) * e;
           }
         }
       }

@@ -12,10 +12,12 @@
 #include "gpu/gpu_sweep.h"
 #include "gpu/vk_compute.h"
 #include "saliency/gaussian_filter_fast.h"
+#include "saliency/query_groups.h"
 #include "saliency/sparse_cells.h"  // usable_cell(): the CPU path's cells, the same here
 
 #include "fast_center_surround_comp.h"
 #include "fast_finish_comp.h"
+#include "fast_group_centroids_comp.h"
 #include "fast_query_comp.h"
 #include "core/cancel.h"
 
@@ -26,9 +28,10 @@ namespace {
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
 struct QueryPush {
   uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
-  double h, cut2, radius, coef;
+  double h, cut2, radius, coef, shell2, shell_w;
 };
 struct FinishPush { uint32_t base, n, dense, offset; double s2; };
+struct RangePush { uint32_t base, n; };
 struct CenterSurroundPush { uint32_t base, n, map, has_b; };
 
 // The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
@@ -98,7 +101,37 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
   FastCells fc = aggregate_cells(ctx, in, job.nv, job.np, grid, box.min);
   const uint32_t m = fc.cells;
   const bool dense = double(job.np) >= params.points_per_query_cell * double(m);
-  const uint32_t queries = dense ? m : job.np;
+
+  // Dense: the queries are the query groups' centroids (grouped on the host, as the CPU
+  // groups its cells), and each cell knows its group for the extrapolation.
+  uint32_t groups = 0;
+  vk::Buffer group_pos, cell_group;
+  if (dense) {
+    const uint64_t dims[3] = {grid.nx, grid.ny, grid.nz};
+    const sweep::QueryGroups gr = group_cells(fc.cell_key, dims, params.query_factor);
+    groups = uint32_t(gr.start.size() - 1);
+    std::vector<uint32_t> of_cell(m);
+    for (uint32_t g = 0; g < groups; ++g)
+      for (uint32_t i = gr.start[g]; i < gr.start[g + 1]; ++i) of_cell[gr.cell[i]] = g;
+    vk::Buffer group_start(ctx, gr.start.size() * 4, "the fast method's query groups"),
+        group_cell(ctx, gr.cell.size() * 4, "the fast method's query groups");
+    group_start.upload(gr.start.data(), gr.start.size() * 4);
+    group_cell.upload(gr.cell.data(), gr.cell.size() * 4);
+    cell_group = vk::Buffer(ctx, size_t(m) * 4, "the fast method's query groups");
+    cell_group.upload(of_cell.data(), of_cell.size() * 4);
+    group_pos = vk::Buffer(ctx, size_t(groups) * 32, "the query groups' centroids");
+    auto& k_groups = vk::cached_kernel(ctx, spv_fast_group_centroids_comp,
+                                       sizeof spv_fast_group_centroids_comp, 5, sizeof(RangePush),
+                                       "fast_group_centroids");
+    vk::DescriptorPool gpool(ctx, 1, 5);
+    VkDescriptorSet s_groups =
+        gpool.bind(k_groups, {&fc.cell_pos, &fc.cell_count, &group_start, &group_cell, &group_pos});
+    vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
+      RangePush rp{0, 0};
+      vk::dispatch(ctx, cmd, k_groups, s_groups, &rp, 0, groups, kLocal);
+    });
+  }
+  const uint32_t queries = dense ? groups : job.np;
 
   // The aggregates on a grid of cells of a quarter of the cutoff radius (as on the CPU).
   vk::Buffer ones(ctx, size_t(m) * 4, "the fast method's cell flags");
@@ -120,19 +153,24 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
   vk::Buffer pairs(ctx, size_t(queries) * 4, "the pair counts");
   auto& k_query = vk::cached_kernel(ctx, spv_fast_query_comp, sizeof spv_fast_query_comp, 8,
                                     sizeof(QueryPush), "fast_query");
-  auto& k_finish = vk::cached_kernel(ctx, spv_fast_finish_comp, sizeof spv_fast_finish_comp, 7,
+  auto& k_finish = vk::cached_kernel(ctx, spv_fast_finish_comp, sizeof spv_fast_finish_comp, 8,
                                      sizeof(FinishPush), "fast_finish");
   vk::DescriptorPool pool(ctx, 4, 16);
   VkDescriptorSet s_query =
-      pool.bind(k_query, {&qsorted, &qcell, &qstarts, &fc.cell_count, dense ? &fc.cell_pos : &pos,
+      pool.bind(k_query, {&qsorted, &qcell, &qstarts, &fc.cell_count, dense ? &group_pos : &pos,
                           &fc.order, &sums, &pairs});
-  VkDescriptorSet s_finish = pool.bind(
-      k_finish, {&sums, &fc.cell_pos, &fc.piece_start, &fc.piece_cell, &fc.order, &pos, &g});
+  // (sparse: the group buffers are not read; the cell's stand in for the binding)
+  VkDescriptorSet s_finish =
+      pool.bind(k_finish, {&sums, dense ? &group_pos : &fc.cell_pos, &fc.piece_start, &fc.piece_cell,
+                           &fc.order, &pos, &g, dense ? &cell_group : &fc.piece_cell});
 
   // Submissions of a range of queries each: the first small and timed, the next ones
   // sized from the measured rate to about ctx.submission_target_s (gpu_slices.h).
+  // The cutoff's shell, as gaussian_filter_fast() sets it (params.shell_cells cells deep).
+  const double t = params.shell_cells * grid.cell;
   QueryPush qp{0, 0, qg.nx, qg.ny, qg.nz, dense ? 1u : 0u, 0, 0, qg.h, 4 * s * s, radius,
-               1.0 / (2 * s * s)};
+               1.0 / (2 * s * s), t > 0 ? (2 * s - t) * (2 * s - t) : INFINITY,
+               t > 0 ? s * s * std::exp(-2.0) / (2 * s * t) : 0.0};
   double budget = std::max(64.0, std::min(4096.0, double(queries) / 16));
   const double total = double(queries) * windows;
   double done = 0;
@@ -172,7 +210,9 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
 
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig) {
   const uint64_t grid_cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
-  return nv * 16 + nsig * nv * 8 + fast_cells_bytes(nv, np) + np * (4 + 36 + 64 + 4) +
+  // per point at most: the query grid (4 + 36), the sums (64), the pair counts (4), the
+  // query groups (start, cell, cell's group, centroid: 4 + 4 + 4 + 32)
+  return nv * 16 + nsig * nv * 8 + fast_cells_bytes(nv, np) + np * (4 + 36 + 64 + 4 + 44) +
          grid_cells * 4 + gpu_grid_scratch_bytes(np, grid_cells);
 }
 

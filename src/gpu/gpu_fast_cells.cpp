@@ -65,7 +65,7 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
   // The occupied cells and their pieces, from the sorted keys (linear in the points).
   std::vector<uint32_t> sorted_key(np);
   sort.sorted_keys().download(sorted_key.data(), size_t(np) * 4);
-  std::vector<uint32_t> piece_start, piece_cell, cell_piece;
+  std::vector<uint32_t> piece_start, piece_cell, cell_piece, cell_key;
   piece_start.reserve(np / 2 + 2);
   for (uint32_t i = 0; i < np;) {
     uint32_t e = i + 1;
@@ -74,6 +74,7 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
       throw Error("internal: the GPU fast method's cell sort left a vertex that is not a mesh point "
                   "among the mesh points");
     cell_piece.push_back(uint32_t(piece_start.size()));
+    cell_key.push_back(sorted_key[i]);
     for (uint32_t b = i; b < e; b += kFastPiece) {
       piece_start.push_back(b);
       piece_cell.push_back(uint32_t(cell_piece.size() - 1));
@@ -86,6 +87,7 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
   cell_piece.push_back(fc.pieces);
   piece_start.push_back(np);
 
+  fc.cell_key = std::move(cell_key);
   fc.order = std::move(sort.order());
   fc.piece_start = vk::Buffer(ctx, piece_start.size() * 4, "the fast method's pieces");
   fc.piece_cell = vk::Buffer(ctx, piece_cell.size() * 4, "the fast method's pieces");

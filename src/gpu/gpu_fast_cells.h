@@ -6,6 +6,7 @@
 // point count, value sum and centroid (rounded to float, as the CPU rounds it).
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_context.h"
@@ -25,6 +26,7 @@ struct FastCells {
   vk::Buffer piece_cell;   // pieces: the cell of piece p
   vk::Buffer cell_pos;     // dvec4 per cell: float centroid - bbox min (in double), value sum
   vk::Buffer cell_count;   // double per cell: its point count
+  std::vector<uint32_t> cell_key;  // per cell, on the host: its key (the CPU's cell_key())
 };
 
 // The device arrays the aggregation reads: pos (dvec4 per vertex: position - bbox min in

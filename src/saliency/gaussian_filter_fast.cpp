@@ -8,6 +8,7 @@
 
 #include "core/mesh_points.h"
 #include "core/parallel.h"
+#include "saliency/query_groups.h"
 #include "saliency/sparse_cells.h"
 #include "saliency/spatial_grid.h"
 #include "saliency/sweep_kernels.h"
@@ -154,21 +155,31 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     const double all_cells = scope ? double(scope->occupied_cells[k]) : double(m);
     // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
     const sweep::Kernels& kernels = sweep::kernels();
-    sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, values.data(), s, coef, cutoff2, o.data()};
+    sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2, INFINITY, 0.0, o.data()};
     if (all_points >= params.points_per_query_cell * all_cells) {
       // Dense cells: the sums and their gradients once at each centroid, extrapolated
       // linearly to the cell's vertices (cost per cell, not per vertex); a tile's only at
       // the cells holding a query vertex.
+      const sweep::QueryGroups groups = group_cells(cells.key, cells.dims, params.query_factor, threads);
+      args.groups = &groups;
+      // The cutoff's shell: params.shell_cells cells deep (0: none).
+      const double t = params.shell_cells * cell;
+      args.shell2 = t > 0 ? (2 * s - t) * (2 * s - t) : INFINITY;
+      args.shell_weight = t > 0 ? s * s * std::exp(-2.0) / (2 * s * t) : 0.0;
+      const size_t units = groups.start.size() - 1;
+      // A tile queries only the groups that hold one of its query vertices.
       std::vector<uint32_t> wanted;
       if (query)
-        for (size_t c = 0; c < m; ++c)
-          for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i)
-            if ((*query)[cells.order[i]]) {
-              wanted.push_back(uint32_t(c));
-              break;
-            }
-      const size_t count = query ? wanted.size() : m;
-      parallel_for(count, threads, 64, [&](size_t begin, size_t end) {
+        for (size_t u = 0; u < units; ++u) {
+          bool any = false;
+          for (uint32_t i = groups.start[u]; i < groups.start[u + 1] && !any; ++i) {
+            const uint32_t c = groups.cell[i];
+            for (uint32_t j = cells.start[c]; j < cells.start[c + 1] && !any; ++j) any = (*query)[cells.order[j]];
+          }
+          if (any) wanted.push_back(uint32_t(u));
+        }
+      const size_t count = query ? wanted.size() : units;
+      parallel_for(count, threads, 16, [&](size_t begin, size_t end) {
         uint64_t pairs = 0;
         size_t visited = 0;
         if (!query) {

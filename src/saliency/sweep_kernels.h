@@ -45,15 +45,26 @@ struct Aggregates {
   std::vector<float> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
 };
 
+// The occupied cells of a SparseCells in groups, each the cells inside one cell of
+// `factor` cells per axis (gaussian_filter_fast.cpp, group_cells): group g holds the cells
+// cell[start[g] .. start[g+1]-1], in ascending order.
+struct QueryGroups {
+  std::vector<uint32_t> start, cell;
+};
+
 // What the fast method's queries of one sigma read and write.
 struct QueryArgs {
   const Mesh* mesh;
   const Aggregates* ag;
   const SparseCells* cells;
-  const uint32_t* visit;  // sparse: the vertices in visiting order
+  const QueryGroups* groups;  // dense: the query groups
+  const uint32_t* visit;      // sparse: the vertices in visiting order
   const double* values;
   double s, coef, cutoff2;
-  double* out;            // per vertex
+  // Dense: the cutoff's share of the gradient (see sweep_cells in sweep_kernels.inc):
+  // candidates with shell2 <= d^2 < cutoff2 add shell_weight to their weight there.
+  double shell2, shell_weight;
+  double* out;                // per vertex
 };
 
 // One set of the hot loops. Each takes a range [begin, end) of the work a parallel_for
@@ -63,8 +74,8 @@ struct Kernels {
   // (KernelPlan::is_default) or any plan.
   void (*sweep_default)(const SweepArgs& a, size_t begin, size_t end, uint64_t* pairs);
   void (*sweep_generic)(const SweepArgs& a, size_t begin, size_t end, uint64_t* pairs);
-  // The fast method: per cell [begin, end) (dense; returns the vertices written) or per
-  // vertex visit[begin .. end) (sparse; returns end - begin).
+  // The fast method: per query group [begin, end) (dense; returns the vertices written) or
+  // per vertex visit[begin .. end) (sparse; returns end - begin).
   size_t (*query_cells)(const QueryArgs& a, size_t begin, size_t end, uint64_t* pairs);
   size_t (*query_vertices)(const QueryArgs& a, size_t begin, size_t end, uint64_t* pairs);
 };
