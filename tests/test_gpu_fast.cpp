@@ -244,10 +244,25 @@ TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vul
   CHECK(r.out.find("\"method\": \"fast\"") != std::string::npos);
   CHECK(r.out.find("\"device\": \"" + context().info.name) != std::string::npos);
   CHECK(r.out.find("\"exact_measured\": true") != std::string::npos);
-  // Exact already times every backend: --backend there is a usage error.
-  CliRun e = run_cli("bench " + input + " --repeat 1 --backend gpu");
-  CHECK(e.rc == 2);
-  CHECK(e.err == "error: bench: --backend applies to --method fast (exact times every backend) (see --help)\n");
+  // Exact times every backend; --backend keeps the Vulkan devices' rows or the CPU's.
+  auto count = [](const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  CliRun both = run_cli("bench " + input + " --repeat 1 --json");
+  CliRun gpu = run_cli("bench " + input + " --repeat 1 --json --backend gpu");
+  CliRun cpu = run_cli("bench " + input + " --repeat 1 --json --backend cpu");
+  REQUIRE(both.rc == 0);
+  REQUIRE(gpu.rc == 0);
+  REQUIRE(cpu.rc == 0);
+  const std::string on_device = "\"device\": \"" + context().info.name;
+  CHECK(count(both.out, "\"device\": \"cpu") == 1);
+  CHECK(count(both.out, on_device) == 2);  // mixed and double
+  CHECK(count(gpu.out, "\"device\": \"cpu") == 0);
+  CHECK(count(gpu.out, on_device) == 2);
+  CHECK(count(cpu.out, "\"device\": \"cpu") == 1);
+  CHECK(count(cpu.out, on_device) == 0);
 }
 
 TEST_CASE("gpu fast: cells past 32-bit keys are refused naming the CPU path", "[gpu][fast]") {
