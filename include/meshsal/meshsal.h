@@ -325,8 +325,10 @@ enum class Backend {
 // The GPU sweep's arithmetic. Mixed: distances and weights in float, sums folded into
 // doubles, cutoffs decided exactly and near ties of the local-maximum test rechecked in
 // double (the default scales; other scales run in double). Double: all in double.
-// Auto: mixed on GPUs (fp64 at 1/2..1/64 of the fp32 rate), double on CPU devices
-// (lavapipe), where the double sweep measured faster. The CPU path is always double.
+// Auto: mixed on GPUs whose doubles run at most a quarter as fast as floats (consumer GPUs:
+// 1/32..1/64; timed once per device by a short probe), double on the others (the H200,
+// 1/2: double measured 2.2x faster on igea_loop2) and on CPU devices (lavapipe), where the
+// double sweep measured faster too. The CPU path is always double.
 enum class Precision { Auto, Mixed, Double };
 
 // How the Gaussian-weighted averages are taken (SPEC section 5; docs/method.md).

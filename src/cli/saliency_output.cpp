@@ -180,7 +180,8 @@ Backend parse_backend(const std::string& name) {
 void add_precision_option(CLI::App& app, std::string* name) {
   app.add_option("--precision", *name,
                  "GPU sweep arithmetic: mixed (float distances and weights, sums and near ties "
-                 "in double), double, or auto (mixed on GPUs, double on CPU devices)")
+                 "in double), double, or auto (mixed on GPUs with slow doubles, timed once per device; "
+                 "double on the others, e.g. an H100/H200, and on CPU devices)")
       ->check(CLI::IsMember({"auto", "mixed", "double"}))
       ->capture_default_str();
 }

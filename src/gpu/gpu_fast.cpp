@@ -84,6 +84,15 @@ vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
   return b;
 }
 
+// Adds a phase's seconds to ctx.fast_phase_seconds and restarts the clock.
+void phase(vk::Context& ctx, const char* name, Timer& t) {
+  auto& list = ctx.fast_phase_seconds;
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& p) { return p.first == name; });
+  if (it == list.end()) it = list.insert(list.end(), {name, 0.0});
+  it->second += t.seconds();
+  t.restart();
+}
+
 // Everything one sigma needs besides the aggregates.
 struct SigmaJob {
   double sigma;
@@ -97,8 +106,10 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
                           const SaliencyOptions& options, const char* stage) {
   const double s = job.sigma;
   const FastFilterParams params;
+  Timer clock;
   const FastGrid grid = plan_fast_grid(job.extent, usable_cell(box, s / params.cells_per_sigma));
   FastCells fc = aggregate_cells(ctx, in, job.nv, job.np, grid, box.min);
+  phase(ctx, "cells", clock);
   const uint32_t m = fc.cells;
   const bool dense = double(job.np) >= params.points_per_query_cell * double(m);
 
@@ -132,6 +143,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
     });
   }
   const uint32_t queries = dense ? groups : job.np;
+  phase(ctx, "query groups", clock);
 
   // The aggregates on a grid of cells of a quarter of the cutoff radius (as on the CPU).
   vk::Buffer ones(ctx, size_t(m) * 4, "the fast method's cell flags");
@@ -148,6 +160,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
   const uint32_t fast_window_candidates = std::max<uint32_t>(1, ctx.fast_window_candidates);
   const uint64_t most = m <= fast_window_candidates ? m : most_candidates(qg, starts, radius);
   const uint32_t windows = uint32_t(std::max<uint64_t>(1, (most + fast_window_candidates - 1) / fast_window_candidates));
+  phase(ctx, "query grid", clock);
 
   vk::Buffer sums(ctx, size_t(queries) * (dense ? 8 : 2) * 8, "the fast method's sums");
   vk::Buffer pairs(ctx, size_t(queries) * 4, "the pair counts");
@@ -195,12 +208,14 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
       throw_if_cancelled();  // between submissions: nothing of this one is still running
     }
   }
+  phase(ctx, "queries", clock);
   vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
     FinishPush fp{0, 0, dense ? 1u : 0u, 0, s * s};
     vk::dispatch(ctx, cmd, k_finish, s_finish, &fp, 0, dense ? fc.pieces : job.np, kLocal);
   });
   std::vector<uint32_t> per_query(queries);
   pairs.download(per_query.data(), per_query.size() * 4);
+  phase(ctx, "finish", clock);
   // Every query counts at least its own cell (a centroid at distance 0, or the vertex's
   // own cell's centroid within sqrt(3)/6 sigma): 0 means it was never swept.
   return total_swept_pairs(per_query);
@@ -229,6 +244,8 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   if (bad)
     throw Error("internal: a GPU fast filter plan of " + std::to_string(nsig) + " sigmas and " +
                 std::to_string(nout) + " outputs");
+  ctx.fast_phase_seconds.clear();
+  Timer clock;
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
   vk::Buffer pos32 = upload_float_positions(ctx, mesh);
@@ -240,10 +257,12 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
     for (const vk::Buffer& b : g) vkCmdFillBuffer(cmd, b.handle(), 0, VK_WHOLE_SIZE, 0);
   });
   const FastInputs in{&pos, &flags, &pos32};
+  phase(ctx, "setup", clock);
   uint64_t pairs = 0;
   for (uint32_t k = 0; k < nsig; ++k)
     pairs += filter_one_sigma(ctx, pos, in, box, {plan.sigmas[k], k, nsig, nv, np, extent}, g[k],
                               options, stage);
+  clock.restart();
 
   auto& k_cs = vk::cached_kernel(ctx, spv_fast_center_surround_comp,
                                  sizeof spv_fast_center_surround_comp, 4,
@@ -260,6 +279,7 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
       vk::dispatch(ctx, cmd, k_cs, sets[o], &cp, 0, nv, kLocal);
     }
   });
+  phase(ctx, "center-surround", clock);
   return pairs;
 }
 

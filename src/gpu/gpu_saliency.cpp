@@ -8,6 +8,7 @@
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
+#include "gpu/gpu_fp64_rate.h"
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_fast.h"
 #include "gpu/gpu_grid.h"
@@ -276,12 +277,16 @@ SweepPlan plan_sweep(const std::vector<double>& scales, double eps) {
 }
 
 // Mixed precision where its accuracy is worked out (sweep.glsl): the default sigmas.
-// Auto takes it on GPUs; on CPU devices (lavapipe) the double sweep was faster (a float
-// lane costs lavapipe about what a double one does there: loads and masked stores of
-// the sums dominate, and the mixed sweep adds the bound sums and the cutoff check).
-bool use_mixed(const vk::Context& ctx, bool fast8, Precision precision) {
-  return fast8 && (precision == Precision::Mixed ||
-                   (precision == Precision::Auto && ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+// Auto takes it on GPUs whose doubles are slow (gpu_fp64_rate.h). On CPU devices
+// (lavapipe) the double sweep was faster (a float lane costs lavapipe about what a double
+// one does there: loads and masked stores of the sums dominate, and the mixed sweep adds
+// the bound sums and the cutoff check), and so it was on the H200, whose doubles run at
+// half the float rate.
+bool use_mixed(vk::Context& ctx, bool fast8, Precision precision) {
+  if (!fast8 || precision == Precision::Double) return false;
+  if (precision == Precision::Mixed) return true;
+  const bool cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  return !cpu_device && gpu::auto_takes_mixed(cpu_device, gpu::fp64_slowdown(ctx));
 }
 
 void check_device(const vk::Context& ctx) {
@@ -436,14 +441,19 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   const SweepPlan plan = plan_sweep(options.scales, eps);
   const uint32_t nsig = static_cast<uint32_t>(plan.units.size());
 
-  // --- upload ---------------------------------------------------------------------------
+  // --- the sweep's precision: --precision auto may time the device's doubles, once --------
   t0.restart();
   check_device(ctx);
   const bool fast = options.method == Method::Fast;
   if (options.method == Method::Auto) throw Error("internal: method auto not resolved");
   res.method = options.method;
+  const bool probed = ctx.fp64_slowdown != 0;
   const bool mixed = !fast && use_mixed(ctx, plan.fast8, options.precision);
   res.mixed_precision = mixed;
+  if (!probed && ctx.fp64_slowdown != 0) res.stages.push_back({"fp64 probe", t0.seconds()});
+
+  // --- upload ---------------------------------------------------------------------------
+  t0.restart();
   const BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];

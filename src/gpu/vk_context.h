@@ -95,6 +95,9 @@ class Context {
   // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
   // 0 shared rows, 1 subgroup per point. Tests run both.
   int sweep_variant = -1;
+  // Time of double over float arithmetic, measured on first need (gpu_fp64_rate.h); 0:
+  // not yet. Tests may set it to choose what --precision auto takes.
+  double fp64_slowdown = 0;
   // Candidate pairs per sweep submission; 0: sized by time (submission_target_s, see
   // gpu_slices.h). Tests set it small to split a small mesh.
   double sweep_pairs_per_submission = 0;
@@ -114,6 +117,9 @@ class Context {
   double submission_target_s = 0.15;
   uint64_t sweep_slices = 0;     // submissions of the last sweep
   double sweep_longest_s = 0;    // and the longest of them (host time, waits included)
+  // Host seconds of each phase of the last fast filter (gpu_fast.h), summed over its
+  // sigmas, in the order first seen: where its time goes (tools/bench_gpu_sweep.cpp).
+  std::vector<std::pair<std::string, double>> fast_phase_seconds;
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only once the destructor has seen their fences signal.

@@ -1,0 +1,128 @@
+// bench_gpu_sweep: the exact sweep's layouts and precisions, and the fast method's phases, on
+// one Vulkan device, to choose the defaults for it (docs/benchmarks.md, "NVIDIA").
+//   bench_gpu_sweep [--repeat N] [--device I] [--probe-lanes N] [--no-fast] [--no-exact] [MESH ...]
+// First the fp64 probe (gpu_fp64_rate.h: what --precision auto decides by; --probe-lanes:
+// its lanes, 0 = the library's default).
+// Per mesh: the exact method in each layout (shared rows: a lane per point; subgroup: a
+// subgroup per point) and precision (mixed, double), then the fast method with the host
+// seconds of each of its phases. Times are the fastest of the repeats, after one run that
+// compiles the pipelines. Default mesh: ../shared/data/meshes/igea_134k.ply.gz.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "gpu/gpu_fp64_rate.h"
+#include "gpu/gpu_saliency.h"
+#include "gpu/vk_context.h"
+#include "meshsal/meshsal.h"
+
+using namespace meshsal;
+
+namespace {
+
+double stage(const SaliencyResult& r, const std::string& name) {
+  double s = 0;
+  for (const auto& st : r.stages)
+    if (st.name == name) s += st.seconds;
+  return s;
+}
+
+double total(const SaliencyResult& r) {
+  double s = 0;
+  for (const auto& st : r.stages) s += st.seconds;
+  return s;
+}
+
+// The fastest of `repeat` runs (the context keeps its compiled pipelines between them).
+SaliencyResult best_of(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions& o, int repeat,
+                       std::vector<std::pair<std::string, double>>* phases) {
+  SaliencyResult best;
+  for (int i = 0; i < repeat; ++i) {
+    SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
+    if (i == 0 || total(r) < total(best)) {
+      best = std::move(r);
+      if (phases) *phases = ctx.fast_phase_seconds;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeat = 3, device = -1, lanes = 0;
+  bool fast = true, exact = true;
+  std::vector<std::string> meshes;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if ((a == "--repeat" || a == "--device" || a == "--probe-lanes") && i + 1 < argc) {
+      (a == "--repeat" ? repeat : a == "--device" ? device : lanes) = std::atoi(argv[++i]);
+    } else if (a == "--no-fast") {
+      fast = false;
+    } else if (a == "--no-exact") {
+      exact = false;
+    } else if (a == "-h" || a == "--help") {
+      std::printf("bench_gpu_sweep [--repeat N] [--device I] [--probe-lanes N] [--no-fast] [--no-exact] [MESH ...]\n");
+      return 0;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "unknown option %s (see --help)\n", a.c_str());
+      return 2;
+    } else {
+      meshes.push_back(a);
+    }
+  }
+  if (meshes.empty()) meshes = {"../shared/data/meshes/igea_134k.ply.gz"};
+  if (repeat < 1) repeat = 1;
+  try {
+    vk::Context ctx(device);
+    std::printf("device: %s, subgroup size %u\n", ctx.info.name.c_str(), ctx.subgroup_size);
+    const gpu::Fp64Probe probe = gpu::measure_fp64_rate(ctx, lanes);
+    std::printf("fp64 probe: %u lanes x %u fma steps x 4 chains: float %.3f ms, double %.3f ms, "
+                "slowdown %.2f (auto takes mixed above %.1f on GPUs)\n",
+                probe.lanes, probe.iterations, 1e3 * probe.float_seconds, 1e3 * probe.double_seconds,
+                probe.slowdown(), gpu::kMixedAboveFp64Slowdown);
+    std::printf("%-26s %9s %-9s %-7s %8s %8s %8s %8s %10s %8s\n", "mesh", "vertices", "layout", "prec",
+                "grid", "sweep", "recheck", "total", "pairs/s", "recheck%");
+    for (const std::string& path : meshes) {
+      const Mesh mesh = load_mesh(path);
+      const std::string name = path.substr(path.find_last_of('/') + 1);
+      SaliencyOptions o;
+      o.backend = Backend::Gpu;
+      o.raw_maps = false;
+      for (int variant : {0, 1}) {
+        if (!exact) break;
+        for (Precision p : {Precision::Mixed, Precision::Double}) {
+          ctx.sweep_variant = variant;
+          o.precision = p;
+          compute_saliency_gpu(ctx, mesh, o);  // the pipelines' first compile
+          const SaliencyResult r = best_of(ctx, mesh, o, repeat, nullptr);
+          const double sweep = stage(r, "gaussian sweep"), t = total(r);
+          std::printf("%-26s %9zu %-9s %-7s %7.3fs %7.3fs %7.3fs %7.3fs %10.3g %7.2f%%\n", name.c_str(),
+                      mesh.vertex_count(), variant == 0 ? "rows" : "subgroup",
+                      r.mixed_precision ? "mixed" : "double", stage(r, "grid"), sweep,
+                      stage(r, "near-tie recheck"), t, double(r.pairs) / sweep,
+                      100.0 * double(r.rechecked) / double(mesh.vertex_count()));
+          std::fflush(stdout);
+        }
+      }
+      ctx.sweep_variant = -1;
+      if (!fast) continue;
+      o.method = Method::Fast;
+      compute_saliency_gpu(ctx, mesh, o);
+      std::vector<std::pair<std::string, double>> phases;
+      const SaliencyResult r = best_of(ctx, mesh, o, repeat, &phases);
+      std::printf("%-26s fast: curvature %.3fs upload %.3fs sweep %.3fs suppression %.3fs download %.3fs total %.3fs\n",
+                  name.c_str(), stage(r, "curvature"), stage(r, "upload"), stage(r, "gaussian sweep"),
+                  stage(r, "suppression"), stage(r, "download"), total(r));
+      std::printf("%-26s fast sweep's phases:", name.c_str());
+      for (const auto& [phase, s] : phases) std::printf(" %s %.3fs;", phase.c_str(), s);
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
