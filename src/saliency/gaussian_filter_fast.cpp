@@ -24,31 +24,31 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
   const size_t m = cells.key.size();
   Mesh centroids;
   centroids.positions.resize(3 * m);
-  std::vector<double> count(m), sum(m);
   parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
-      double p[3] = {0, 0, 0}, s = 0;
-      for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) {
-        uint32_t v = cells.order[i];
-        for (int a = 0; a < 3; ++a) p[a] += mesh.positions[3 * v + a];
-        s += values[v];
-      }
+      double p[3] = {0, 0, 0};
+      for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i)
+        for (int a = 0; a < 3; ++a) p[a] += mesh.positions[3 * size_t(cells.order[i]) + a];
       const double n = cells.start[c + 1] - cells.start[c];
       for (int a = 0; a < 3; ++a) centroids.positions[3 * c + a] = float(p[a] / n);
-      count[c] = n;
-      sum[c] = s;
     }
   });
   Aggregates ag;
   // Query cells of a quarter of the cutoff radius, as in the exact sweep.
   ag.grid = build_spatial_grid(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
   ag.centroid = std::move(centroids.positions);
+  // Counts and value sums straight into the grid's slot order (no copy in cell order).
   ag.count.assign(m + 4, 0.0);
   ag.sum.assign(m + 4, 0.0);
-  for (size_t s = 0; s < m; ++s) {
-    ag.count[s] = count[ag.grid.order[s]];
-    ag.sum[s] = sum[ag.grid.order[s]];
-  }
+  parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
+    for (size_t slot = begin; slot < end; ++slot) {
+      const uint32_t c = ag.grid.order[slot];
+      double sum = 0;
+      for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) sum += values[cells.order[i]];
+      ag.count[slot] = cells.start[c + 1] - cells.start[c];
+      ag.sum[slot] = sum;
+    }
+  });
   return ag;
 }
 

@@ -64,21 +64,24 @@ SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_
   }
   const size_t ncells = size_t(g.dims[0]) * g.dims[1] * g.dims[2];
 
-  // Counting sort of the points by cell key.
-  std::vector<uint32_t> key(n);
-  g.cell_start.assign(ncells + 1, 0);
-  for (size_t v = 0; v < n; ++v) {
-    if (!is_point[v]) continue;
+  // Counting sort of the points by cell key, in place (no key or cursor arrays: the key is
+  // computed twice, and the points are placed from the back, each cell's end counting down
+  // to its start), stable: within a cell the points keep vertex order.
+  auto key_of = [&](size_t v) {
     int c[3];
     for (int a = 0; a < 3; ++a) c[a] = cell_of(v, a) - g.lo[a];
-    key[v] = uint32_t((size_t(c[2]) * g.dims[1] + c[1]) * g.dims[0] + c[0]);
-    g.cell_start[key[v] + 1]++;
-  }
-  for (size_t c = 0; c < ncells; ++c) g.cell_start[c + 1] += g.cell_start[c];
-  std::vector<uint32_t> fill(g.cell_start.begin(), g.cell_start.end() - 1);
-  g.order.resize(points);
+    return (size_t(c[2]) * g.dims[1] + c[1]) * g.dims[0] + c[0];
+  };
+  g.cell_start.assign(ncells + 1, 0);
   for (size_t v = 0; v < n; ++v)
-    if (is_point[v]) g.order[fill[key[v]]++] = uint32_t(v);
+    if (is_point[v]) g.cell_start[key_of(v) + 1]++;
+  for (size_t c = 0; c < ncells; ++c) g.cell_start[c + 1] += g.cell_start[c];
+  g.order.resize(points);
+  for (size_t v = n; v-- > 0;)
+    if (is_point[v]) g.order[--g.cell_start[key_of(v) + 1]] = uint32_t(v);
+  // cell_start[c + 1] now holds cell c's start: shift down by one, the end last.
+  std::copy(g.cell_start.begin() + 1, g.cell_start.end(), g.cell_start.begin());
+  g.cell_start[ncells] = uint32_t(points);
 
   const double far = 1e300;  // padding points never pass a distance test
   g.x.assign(points + 4, far);
