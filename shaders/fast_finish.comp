@@ -19,7 +19,7 @@ layout(push_constant) uniform Push {
   uint base; uint n;  // pieces (dense) or sorted mesh points (sparse)
   uint dense;
   uint offset;        // first entry of g to write (0: each sigma has its own buffer)
-  double s2;          // sigma^2
+  double inv_s2;      // 1 / sigma^2
 } pc;
 void main() {
   const uint i = pc.base + gl_GlobalInvocationID.x;
@@ -39,7 +39,7 @@ void main() {
   const uint b = piece_start[i], e = piece_start[i + 1u];
   for (uint t = b; t < e; ++t) {
     const uint v = order[t];
-    precise dvec3 dv = (pos[v].xyz - q) / pc.s2;
+    precise dvec3 dv = (pos[v].xyz - q) * pc.inv_s2;
     precise double num = num0 + gn.x * dv.x + gn.y * dv.y + gn.z * dv.z;
     precise double den = den0 + gd.x * dv.x + gd.y * dv.y + gd.z * dv.z;
     g[pc.offset + v] = den > 0.0LF ? num / den : num0 / den0;

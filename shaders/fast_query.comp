@@ -13,8 +13,11 @@
 // silently after 65,535 steps in all, so a dispatch visits only the candidates whose
 // ordinal (in the order the rows are walked) lies in [ord_lo, ord_hi): the host splits a
 // query's candidates into windows of at most 32768 and the sums are added up across them.
-// All in double: with cells of sigma/6 a cutoff decided by a float distance would move
-// whole cells in or out of a sum, and the sums of the two scales of a raw map are close.
+// The distances, weights and products in float, as the CPU takes them: the centroids and
+// the query point (relative to the box minimum, in double here) rounded to float, then the
+// same IEEE operations (`precise`: no fma), so that both decide every cutoff and shell
+// alike (a cell moved in or out of a sum would show: the sums of a raw map's two scales
+// are close); the sums are kept in double.
 #version 450
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_GOOGLE_include_directive : require
@@ -50,6 +53,9 @@ void main() {
   const uint g0 = pc.base + gid - gid % gl_SubgroupSize;
   const bool dense = pc.dense != 0u;
   const dvec3 q = query_pos[dense ? j : order[j]].xyz;
+  const vec3 qf = vec3(q);
+  const float cut2f = float(pc.cut2), coeff = float(pc.coef);
+  const float shell2f = float(pc.shell2), shell_wf = float(pc.shell_w);
   const double c = pc.h, R = pc.radius, R2 = pc.cut2;
   dvec3 lo = q, hi = q;
   const ivec2 my_row = ivec2(q.yz / c);
@@ -91,20 +97,23 @@ void main() {
       for (uint t = a; t < b; ++t) {
         const uint k = j0 + t;
         const dvec4 x = sorted_pos[k];
-        precise dvec3 e = x.xyz - q;
-        precise double d2 = e.x * e.x + e.y * e.y + e.z * e.z;
-        if (d2 < R2) {
-          const double w = exp_neg_cutoff(d2 * pc.coef);
-          const double wn = w * x.w, wd = w * cell_count[sorted_cell[k]];
-          num += wn;
-          den += wd;
+        precise vec3 e = vec3(x.xyz) - qf;
+        precise float d2 = e.x * e.x + e.y * e.y + e.z * e.z;
+        if (d2 < cut2f) {
+          const float sum = float(x.w), cnt = float(cell_count[sorted_cell[k]]);
+          precise float w = exp_neg_cutoff_f(d2 * coeff);
+          precise float wn = w * sum, wd = w * cnt;
+          num += double(wn);
+          den += double(wd);
           count += 1u;
           if (dense) {
             // d/dq w(|x - q|) = w (x - q) / sigma^2 (the 1/sigma^2 is applied with dv),
             // and the cutoff's share from the shell (sweep_cells() explains it).
-            const double wg = w + (d2 >= pc.shell2 ? pc.shell_w : 0.0LF);
-            gn += (wg * x.w) * e;
-            gd += (wg * cell_count[sorted_cell[k]]) * e;
+            precise float wg = w + (d2 >= shell2f ? shell_wf : 0.0);
+            precise float gwn = wg * sum, gwd = wg * cnt;
+            precise vec3 gne = gwn * e, gde = gwd * e;
+            gn += dvec3(gne);
+            gd += dvec3(gde);
           }
         }
       }

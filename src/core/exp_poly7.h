@@ -7,7 +7,8 @@
 //   - The fast method (gaussian_filter_fast.cpp, fast_query.comp) uses exp_neg_cutoff(x) =
 //     exp_neg_poly7(x/4)^4 on 0 <= x < 2 (inside the 2-sigma cutoff): largest relative error
 //     6.05e-7 (6.0512e-7 as x -> 2; tests/test_exp_poly7.cpp measures it over the range),
-//     far below the error of the method's cells.
+//     far below the error of the method's cells. The CPU queries evaluate it in float
+//     (float or v8f: 1.12e-6 at most, measured there).
 // Estrin's scheme (below), a multiply then an add per step (never an fma: the build has
 // -ffp-contract=off, and the GPU code marks the same steps `precise`).
 #pragma once
@@ -26,8 +27,14 @@ template <>
 inline double exp_poly7_splat<double>(double c) { return c; }
 template <>
 inline v4d exp_poly7_splat<v4d>(double c) { return v4d_splat(c); }
+// In float (the fast method's queries): the coefficients rounded to float.
+template <>
+inline float exp_poly7_splat<float>(double c) { return float(c); }
+template <>
+inline v8f exp_poly7_splat<v8f>(double c) { return v8f_splat(float(c)); }
 
-// sum_k kExpPoly7[k] x^k, for double or v4d (lane by lane, the same operations), by
+// sum_k kExpPoly7[k] x^k, for double or v4d, float or v8f (lane by lane, the same
+// operations), by
 // Estrin's scheme: pairs c_k + c_k+1 x, combined with x^2 and x^4. Its longest chain is 5
 // dependent operations, Horner's 14: without fma contraction, Horner left the exact sweep
 // of the default scales (latency-bound) ~40% slower than the -march=x86-64-v3 build with

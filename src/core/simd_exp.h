@@ -28,6 +28,19 @@ inline v4d v4d_load(const double* p) {
   return v;
 }
 
+// 8 floats (the fast method's queries, sweep_kernels.inc): one AVX register, or two SSE
+// ones on baseline x86-64, lane by lane the same IEEE operations either way.
+typedef float v8f __attribute__((vector_size(32)));
+typedef int32_t v8i __attribute__((vector_size(32)));
+
+inline v8f v8f_splat(float x) { return v8f{x, x, x, x, x, x, x, x}; }
+
+inline v8f v8f_load(const float* p) {
+  v8f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
 // exp(-x) for x >= 0 (x is clamped to 700, where exp(-x) ~ 1e-304 is as good as 0).
 // Cody-Waite reduction x*log2(e) = n + r/ln2, |r| <= ln2/2, then a degree-12 Taylor
 // polynomial (truncation < 2e-16) and 2^n put into the exponent bits directly.

@@ -30,7 +30,7 @@ struct QueryPush {
   uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
   double h, cut2, radius, coef, shell2, shell_w;
 };
-struct FinishPush { uint32_t base, n, dense, offset; double s2; };
+struct FinishPush { uint32_t base, n, dense, offset; double inv_s2; };
 struct RangePush { uint32_t base, n; };
 struct CenterSurroundPush { uint32_t base, n, map, has_b; };
 
@@ -210,7 +210,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
   }
   phase(ctx, "queries", clock);
   vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
-    FinishPush fp{0, 0, dense ? 1u : 0u, 0, s * s};
+    FinishPush fp{0, 0, dense ? 1u : 0u, 0, 1.0 / (s * s)};
     vk::dispatch(ctx, cmd, k_finish, s_finish, &fp, 0, dense ? fc.pieces : job.np, kLocal);
   });
   std::vector<uint32_t> per_query(queries);

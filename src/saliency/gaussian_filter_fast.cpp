@@ -19,10 +19,14 @@ namespace {
 
 using sweep::Aggregates;
 
+// The aggregates of `cells` on a query grid of cells of a quarter of the cutoff radius (as
+// in the exact sweep), their floats relative to `anchor`, and (groups, when not null) each
+// query group's centroid relative to it.
 Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* values,
-                     double query_radius, unsigned threads) {
+                     double query_radius, const double anchor[3], unsigned threads,
+                     sweep::QueryGroups* groups) {
   const size_t m = cells.key.size();
-  Mesh centroids;
+  Mesh centroids;  // of the cells, in cell order: what the grid sorts
   centroids.positions.resize(3 * m);
   parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
@@ -33,20 +37,45 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
       for (int a = 0; a < 3; ++a) centroids.positions[3 * c + a] = float(p[a] / n);
     }
   });
+  if (groups) {
+    // Each group's centroid: its cells' centroids weighted by their point counts.
+    const size_t units = groups->start.size() - 1;
+    groups->centroid.assign(3 * units, 0.0);
+    parallel_for(units, threads, 4096, [&](size_t begin, size_t end) {
+      for (size_t g = begin; g < end; ++g) {
+        double q[3] = {0, 0, 0}, n = 0;
+        for (uint32_t i = groups->start[g]; i < groups->start[g + 1]; ++i) {
+          const size_t c = groups->cell[i];
+          const double k = cells.start[c + 1] - cells.start[c];
+          for (int d = 0; d < 3; ++d) q[d] += k * (double(centroids.positions[3 * c + d]) - anchor[d]);
+          n += k;
+        }
+        for (int d = 0; d < 3; ++d) groups->centroid[3 * g + d] = q[d] / n;
+      }
+    });
+  }
   Aggregates ag;
-  // Query cells of a quarter of the cutoff radius, as in the exact sweep.
-  ag.grid = build_spatial_grid(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
-  ag.centroid = std::move(centroids.positions);
-  // Counts and value sums straight into the grid's slot order (no copy in cell order).
-  ag.count.assign(m + 4, 0.0);
-  ag.sum.assign(m + 4, 0.0);
+  ag.grid = build_grid_order(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
+  for (int a = 0; a < 3; ++a) ag.anchor[a] = anchor[a];
+  // Slot order, in float, padded with far-away empty cells (their squared distance is
+  // +inf: never inside the cutoff).
+  const size_t padded = m + sweep::kAggregatePad;
+  ag.x.assign(padded, 1e30f);
+  ag.y.assign(padded, 1e30f);
+  ag.z.assign(padded, 1e30f);
+  ag.count.assign(padded, 0.0f);
+  ag.sum.assign(padded, 0.0f);
+  const double* o = anchor;
   parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
     for (size_t slot = begin; slot < end; ++slot) {
       const uint32_t c = ag.grid.order[slot];
       double sum = 0;
       for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) sum += values[cells.order[i]];
-      ag.count[slot] = cells.start[c + 1] - cells.start[c];
-      ag.sum[slot] = sum;
+      ag.x[slot] = float(double(centroids.positions[3 * c]) - o[0]);
+      ag.y[slot] = float(double(centroids.positions[3 * c + 1]) - o[1]);
+      ag.z[slot] = float(double(centroids.positions[3 * c + 2]) - o[2]);
+      ag.count[slot] = float(cells.start[c + 1] - cells.start[c]);
+      ag.sum[slot] = float(sum);
     }
   });
   return ag;
@@ -142,7 +171,6 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     const SparseCells cells = hand_over ? sort_into_cells(mesh, std::move(point_list), box, cell, threads)
                                         : sort_into_cells(mesh, *sorted_points, box, cell, threads);
     if (hand_over) std::vector<uint32_t>().swap(point_list);  // empty for certain
-    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, threads);
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     std::atomic<size_t> done{0};
     std::vector<double>& o = out[k];
@@ -151,16 +179,20 @@ std::vector<std::vector<double>> gaussian_filter_fast(
       if (progress && std::this_thread::get_id() == caller)
         progress((k + double(finished) / points) / sigmas.size());
     };
-    const size_t m = ag.count.size() - 4;
+    const size_t m = cells.key.size();
     const double all_cells = scope ? double(scope->occupied_cells[k]) : double(m);
+    // Dense cells: the sums and their gradients once at each query group's centroid,
+    // extrapolated linearly to the group's vertices (cost per group, not per vertex); a
+    // tile's only at the groups holding a query vertex.
+    const bool dense = all_points >= params.points_per_query_cell * all_cells;
+    sweep::QueryGroups groups;
+    if (dense) groups = group_cells(cells.key, cells.dims, params.query_factor, threads);
+    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, box.min, threads, dense ? &groups : nullptr);
     // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
     const sweep::Kernels& kernels = sweep::kernels();
-    sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2, INFINITY, 0.0, o.data()};
-    if (all_points >= params.points_per_query_cell * all_cells) {
-      // Dense cells: the sums and their gradients once at each centroid, extrapolated
-      // linearly to the cell's vertices (cost per cell, not per vertex); a tile's only at
-      // the cells holding a query vertex.
-      const sweep::QueryGroups groups = group_cells(cells.key, cells.dims, params.query_factor, threads);
+    sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2,
+                          1.0 / (s * s), INFINITY, 0.0, o.data()};
+    if (dense) {
       args.groups = &groups;
       // The cutoff's shell: params.shell_cells cells deep (0: none).
       const double t = params.shell_cells * cell;

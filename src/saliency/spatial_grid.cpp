@@ -21,8 +21,8 @@ double grid_cell_size(const double extent[3], double min_cell, uint64_t points,
   }
 }
 
-SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                               double min_cell, const GridFrame* frame) {
+SpatialGrid build_grid_order(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                             double min_cell, const GridFrame* frame) {
   SpatialGrid g;
   size_t points = 0;
   for (uint8_t f : is_point) points += f;
@@ -82,7 +82,13 @@ SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_
   // cell_start[c + 1] now holds cell c's start: shift down by one, the end last.
   std::copy(g.cell_start.begin() + 1, g.cell_start.end(), g.cell_start.begin());
   g.cell_start[ncells] = uint32_t(points);
+  return g;
+}
 
+SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                               double min_cell, const GridFrame* frame) {
+  SpatialGrid g = build_grid_order(mesh, is_point, min_cell, frame);
+  const size_t points = g.order.size();
   const double far = 1e300;  // padding points never pass a distance test
   g.x.assign(points + 4, far);
   g.y.assign(points + 4, far);

@@ -75,4 +75,9 @@ struct GridFrame {
 SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_point,
                                double min_cell, const GridFrame* frame = nullptr);
 
+// The same grid without the sorted coordinates (x, y, z stay empty): for a caller that
+// keeps its own copy of them (the fast method's float aggregates).
+SpatialGrid build_grid_order(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                             double min_cell, const GridFrame* frame = nullptr);
+
 }  // namespace meshsal

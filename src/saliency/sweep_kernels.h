@@ -37,19 +37,29 @@ struct SweepArgs {
   double* const* out;    // out[plan slot] -> the per-vertex averages of that sigma
 };
 
-// One sigma's aggregates, in the query grid's slot order: centroid (relative to the grid
-// origin), point count and value sum, padded by 4 empty far-away cells for 4-wide loads.
+// One sigma's aggregates, in the query grid's slot order, in float: centroid (relative to
+// `anchor`), point count and value sum, padded by kAggregatePad empty far-away cells for
+// 8-wide loads. Floats: half the bytes of doubles and twice the lanes per instruction;
+// their rounding (6e-8 of the extent in a centroid, of a cell's value sum) is far below
+// the error of the cells themselves (docs/method.md, "Fast method"). The anchor is the
+// minimum of the filter's box (a tile's: the whole mesh's), so a tile, the whole mesh and
+// the Vulkan twin (fast_query.comp) round every centroid and query point to the same
+// floats and decide each cutoff alike.
+constexpr size_t kAggregatePad = 8;
 struct Aggregates {
-  SpatialGrid grid;  // over the centroids; grid.x/y/z are the centroids
-  std::vector<double> count, sum;
-  std::vector<float> centroid;  // x,y,z per cell in SparseCells order (model coordinates)
+  SpatialGrid grid;  // over the centroids: frame, order and cell starts (grid.x/y/z empty)
+  double anchor[3];  // model coordinates of the floats' zero
+  std::vector<float> x, y, z, count, sum;
 };
 
 // The occupied cells of a SparseCells in groups, each the cells inside one cell of
 // `factor` cells per axis (gaussian_filter_fast.cpp, group_cells): group g holds the cells
-// cell[start[g] .. start[g+1]-1], in ascending order.
+// cell[start[g] .. start[g+1]-1], in ascending order. centroid: x, y, z of each group
+// relative to the aggregates' anchor, its cells' centroids weighted by their point counts
+// (fast_group_centroids.comp's operations), set by the fast filter where it queries them.
 struct QueryGroups {
   std::vector<uint32_t> start, cell;
+  std::vector<double> centroid;
 };
 
 // What the fast method's queries of one sigma read and write.
@@ -61,6 +71,7 @@ struct QueryArgs {
   const uint32_t* visit;      // sparse: the vertices in visiting order
   const double* values;
   double s, coef, cutoff2;
+  double inv_s2;              // 1 / s^2: the gradients' scale
   // Dense: the cutoff's share of the gradient (see sweep_cells in sweep_kernels.inc):
   // candidates with shell2 <= d^2 < cutoff2 add shell_weight to their weight there.
   double shell2, shell_weight;
