@@ -40,7 +40,7 @@ TEST_CASE("fp64 probe on the device: results checked, both timings taken", "[gpu
   CHECK(vk::validation_message_count() == before);
 }
 
-TEST_CASE("--precision auto: mixed only on GPUs with slow doubles", "[gpu]") {
+TEST_CASE("precision auto: mixed only on GPUs with slow doubles", "[gpu]") {
   CHECK_FALSE(gpu::auto_takes_mixed(false, 1.7));  // the H200's measured slowdown
   CHECK_FALSE(gpu::auto_takes_mixed(false, 4.0));
   CHECK(gpu::auto_takes_mixed(false, 32.0));       // a consumer GPU's 1/32 rate

@@ -45,7 +45,7 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
   try {
     const Bytes bytes = read_file(path, access.limit, /*regular_only=*/true);
     if (bytes.size > access.limit) throw Error(path + ": larger than the input limit");
-    out->assign(bytes.data.get(), bytes.data.get() + bytes.size);
+    out->assign(bytes.data(), bytes.data() + bytes.size);
     return true;
   } catch (const Error& e) {
     if (err) *err += std::string(e.what()) + "\n";

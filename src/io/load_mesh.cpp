@@ -35,9 +35,11 @@ std::string check_extension(const std::string& name, bool& gz) {
 }
 
 // `folder`: where a .gltf's external buffers and images are looked up ("" = none may be read).
+// `raw_owner` (may be null): the block `raw` lies in, released once it is inflated (a gzip
+// file's bytes are not kept beside the inflated ones while they are parsed).
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
            VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes,
-           const std::string& folder) {
+           const std::string& folder, Bytes* raw_owner = nullptr) {
   Bytes inflated;
   std::string_view bytes = raw;
   if (has_gzip_magic(raw)) {
@@ -50,6 +52,7 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
       return limit ? limit : rule;
     });
     bytes = inflated.view();
+    if (raw_owner) raw_owner->release();
   } else if (gz_name) {
     throw Error(name + ": not a gzip file (the name ends in .gz but the data is not gzip)");
   }
@@ -95,10 +98,10 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
     const uint64_t limit = options.max_input_bytes;  // 0: the default rules
-    const Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
+    Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
     const size_t slash = path.find_last_of('/');
     const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
-    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes, folder);
+    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes, folder, &file);
   });
 }
 

@@ -2,6 +2,7 @@
 #include "io/read_bytes.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -20,14 +21,11 @@ namespace {
   throw Error(path + ": " + problem);
 }
 
-// Grows `b` to at least `want` bytes of capacity (realloc: in place where it can).
+// Grows `b` to at least `want` bytes of capacity (mremap: in place where it can).
 void grow(const std::string& path, Bytes& b, size_t& capacity, size_t want) {
   if (want <= capacity) return;
-  void* p = std::realloc(b.data.get(), want);
-  if (!p) fail(path, "out of memory (" + std::to_string(want >> 20) + " MB)");
-  b.data.release();
-  b.data.reset(static_cast<char*>(p));
-  capacity = want;
+  if (!b.reserve(want)) fail(path, "out of memory (" + std::to_string(want >> 20) + " MB)");
+  capacity = b.capacity();
 }
 
 const char* file_kind(mode_t mode) {
@@ -44,6 +42,32 @@ std::string mib(uint64_t bytes) {
 }
 
 }  // namespace
+
+Bytes& Bytes::operator=(Bytes&& o) noexcept {
+  if (this != &o) {
+    release();
+    data_ = o.data_, size = o.size, capacity_ = o.capacity_;
+    o.data_ = nullptr, o.size = o.capacity_ = 0;
+  }
+  return *this;
+}
+
+bool Bytes::reserve(size_t bytes) {
+  if (bytes <= capacity_) return true;
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  const size_t rounded = (bytes + page - 1) / page * page;
+  void* p = data_ ? ::mremap(data_, capacity_, rounded, MREMAP_MAYMOVE)
+                  : ::mmap(nullptr, rounded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) return false;
+  data_ = static_cast<char*>(p);
+  capacity_ = rounded;
+  return true;
+}
+
+void Bytes::release() {
+  if (data_) ::munmap(data_, capacity_);
+  data_ = nullptr, size = capacity_ = 0;
+}
 
 Bytes read_file(const std::string& path, uint64_t max_pipe_bytes, bool regular_only) {
   // A device (/dev/zero, /dev/urandom, a terminal) never ends or may block: look before
@@ -80,7 +104,7 @@ Bytes read_file(const std::string& path, uint64_t max_pipe_bytes, bool regular_o
     grow(path, b, capacity, regular ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16);
     for (;;) {
       if (b.size == capacity) grow(path, b, capacity, std::min<uint64_t>(capacity * 2, cap + 1));
-      ssize_t n = ::read(fd, b.data.get() + b.size, capacity - b.size);
+      ssize_t n = ::read(fd, b.data() + b.size, capacity - b.size);
       if (n < 0) {
         if (errno == EINTR) continue;
         fail(path, std::string("cannot read: ") + std::strerror(errno));
@@ -156,7 +180,7 @@ Bytes gunzip(std::string_view in, const std::string& path, const InflateLimit& l
       // zlib counts in 32 bits: feed at most 1 GiB at a time.
       zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data() + used));
       zs.avail_in = static_cast<uInt>(std::min<size_t>(in.size() - used, 1u << 30));
-      zs.next_out = reinterpret_cast<Bytef*>(out.data.get() + out.size);
+      zs.next_out = reinterpret_cast<Bytef*>(out.data() + out.size);
       zs.avail_out = static_cast<uInt>(std::min<uint64_t>({capacity - out.size, room, 1u << 30}));
       const uInt in_before = zs.avail_in, out_before = zs.avail_out;
       rc = inflate(&zs, Z_NO_FLUSH);

@@ -9,12 +9,35 @@
 
 namespace meshsal {
 
-// A file's bytes in a malloc'd block: unlike std::string it is not zero-filled before the
-// read (a real cost for 80 MB meshes), and realloc can grow it in place while gunzipping.
-struct Bytes {
-  std::unique_ptr<char, void (*)(void*)> data{nullptr, std::free};
-  size_t size = 0;
-  std::string_view view() const { return std::string_view(data.get(), size); }
+// A file's bytes in an anonymous memory mapping of their own: not zero-filled before the
+// read as a std::string would be (a real cost for 80 MB meshes), grown in place or moved
+// without a copy by mremap while gunzipping, and given back to the system when dropped.
+// From the heap, a large block stayed resident after the load where a program keeps freed
+// memory for reuse (keep_freed_memory_for_reuse, as the meshsal command does): a mesh file
+// as large as the mesh held in memory besides it all run long.
+class Bytes {
+ public:
+  Bytes() = default;
+  ~Bytes() { release(); }
+  Bytes(Bytes&& o) noexcept : size(o.size), data_(o.data_), capacity_(o.capacity_) {
+    o.data_ = nullptr, o.size = o.capacity_ = 0;
+  }
+  Bytes& operator=(Bytes&& o) noexcept;
+  Bytes(const Bytes&) = delete;
+  Bytes& operator=(const Bytes&) = delete;
+
+  char* data() const { return data_; }
+  size_t capacity() const { return capacity_; }
+  std::string_view view() const { return std::string_view(data_, size); }
+  // Room for at least `bytes` (the first `size` kept); false when the system has no memory.
+  bool reserve(size_t bytes);
+  void release();  // the mapping given back: empty again
+
+  size_t size = 0;  // bytes held
+
+ private:
+  char* data_ = nullptr;
+  size_t capacity_ = 0;
 };
 
 // Reads the file's raw bytes. Regular files are read whole; a FIFO (named pipe) is read
