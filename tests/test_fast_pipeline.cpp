@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "cli/synthetic.h"
@@ -120,6 +121,30 @@ TEST_CASE("fast pipeline: the Morton renumbering keeps the surface", "[fast]") {
     last_smallest = smallest;
   }
   CHECK(faces_sorted);
+  // Stable: triangles of one smallest key keep their input order, with 16-bit keys (as
+  // here) and wider ones (the 32-bit path).
+  auto check_stable = [&](const std::vector<uint32_t>& keys) {
+    const Mesh r = renumbered_mesh(m, order, keys, nullptr, 2);
+    std::map<std::array<uint32_t, 3>, size_t> input_index;
+    for (size_t f = 0; f < m.triangle_count(); ++f)
+      input_index[{m.triangles[3 * f], m.triangles[3 * f + 1], m.triangles[3 * f + 2]}] = f;
+    bool stable = true;
+    uint32_t last_key = 0;
+    size_t last_input = 0;
+    for (size_t f = 0; f < r.triangle_count(); ++f) {
+      const uint32_t* t = &r.triangles[3 * f];
+      const size_t at = input_index.at({order[t[0]], order[t[1]], order[t[2]]});
+      const uint32_t k = std::min({keys[t[0]], keys[t[1]], keys[t[2]]});
+      if (f > 0) stable &= k > last_key || (k == last_key && at > last_input);
+      last_key = k, last_input = at;
+    }
+    return stable;
+  };
+  CHECK(check_stable(key));
+  std::vector<uint32_t> wide(curve.code);
+  for (uint32_t& k : wide) k >>= 6;  // 24 bits
+  CHECK(*std::max_element(wide.begin(), wide.end()) >= (1u << 16));
+  CHECK(check_stable(wide));
   std::sort(in.begin(), in.end());
   std::sort(out.begin(), out.end());
   CHECK(in == out);
