@@ -198,18 +198,20 @@ std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& b
   for (uint32_t& c : m.code) c >>= 3 * (kMortonBits - 5);
   const Mesh curve = renumbered_mesh(mesh, m.order, m.code, nullptr, threads);
   std::vector<uint32_t>().swap(m.code);
-  // vertex_normals and mean_curvature_faces on the copy, a range of at most 2^20 vertices
-  // at a time with the range's own normals and sums: each range scans the triangles again
-  // (cheap: most are skipped), but the 40 bytes per vertex of whole-mesh normals and sums,
-  // on top of the copy, are the size of one range per thread (the same bits: each vertex is
-  // summed in the copy's triangle order either way).
+  // vertex_normals and mean_curvature_faces on the copy, a range of vertices at a time with
+  // the range's own normals and sums: each range scans the triangles again (cheap: most are
+  // skipped), but the 40 bytes per vertex of whole-mesh normals and sums, on top of the copy,
+  // are the size of one range per thread (the same bits: each vertex is summed in the copy's
+  // triangle order either way).
   auto normals_body = vertex_normals_baseline;
   auto sums_body = curvature_sums_baseline;
 #if MESHSAL_HAVE_AVX2_COPIES
   if (cpu_path() == CpuPath::avx2) normals_body = vertex_normals_avx2, sums_body = curvature_sums_avx2;
 #endif
   const size_t n = curve.vertex_count();
-  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(resolve_threads(threads), n >> 16),
+  // Four ranges a thread (each range's arrays are 40 bytes a vertex, held by every thread at
+  // once: 10 bytes a vertex in all), ranges of at least 2^16 vertices and at most 2^20.
+  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(4 * resolve_threads(threads), n >> 16),
                                           (n + (size_t(1) << 20) - 1) >> 20});
   std::vector<double> H(n);
   parallel_for(ranges, threads, 1, [&](size_t begin, size_t end) {

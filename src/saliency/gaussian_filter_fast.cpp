@@ -55,25 +55,34 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
     });
   }
   Aggregates ag;
-  ag.grid = build_grid_order(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius);
+  // At most a grid cell per centroid (grid_cell_size allows 4 per point): the cell starts
+  // were 16 bytes a centroid at the finest sigma's peak.
+  ag.grid = build_grid_order(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius, nullptr,
+                             std::max<double>(1 << 20, double(m)));
   for (int a = 0; a < 3; ++a) ag.anchor[a] = anchor[a];
   // Slot order, in float, padded with far-away empty cells (their squared distance is
-  // +inf: never inside the cutoff).
+  // +inf: never inside the cutoff). The positions first, then the centroids freed, then
+  // the counts and sums.
   const size_t padded = m + sweep::kAggregatePad;
   ag.x.assign(padded, 1e30f);
   ag.y.assign(padded, 1e30f);
   ag.z.assign(padded, 1e30f);
+  parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
+    for (size_t slot = begin; slot < end; ++slot) {
+      const uint32_t c = ag.grid.order[slot];
+      ag.x[slot] = float(double(centroids.positions[3 * c]) - anchor[0]);
+      ag.y[slot] = float(double(centroids.positions[3 * c + 1]) - anchor[1]);
+      ag.z[slot] = float(double(centroids.positions[3 * c + 2]) - anchor[2]);
+    }
+  });
+  std::vector<float>().swap(centroids.positions);
   ag.count.assign(padded, 0.0f);
   ag.sum.assign(padded, 0.0f);
-  const double* o = anchor;
   parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
     for (size_t slot = begin; slot < end; ++slot) {
       const uint32_t c = ag.grid.order[slot];
       double sum = 0;
       for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) sum += values[cells.order[i]];
-      ag.x[slot] = float(double(centroids.positions[3 * c]) - o[0]);
-      ag.y[slot] = float(double(centroids.positions[3 * c + 1]) - o[1]);
-      ag.z[slot] = float(double(centroids.positions[3 * c + 2]) - o[2]);
       ag.count[slot] = float(cells.start[c + 1] - cells.start[c]);
       ag.sum[slot] = float(sum);
     }

@@ -22,7 +22,7 @@ double grid_cell_size(const double extent[3], double min_cell, uint64_t points,
 }
 
 SpatialGrid build_grid_order(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                             double min_cell, const GridFrame* frame) {
+                             double min_cell, const GridFrame* frame, double cell_limit) {
   SpatialGrid g;
   size_t points = 0;
   for (uint8_t f : is_point) points += f;
@@ -31,7 +31,7 @@ SpatialGrid build_grid_order(const Mesh& mesh, const std::vector<uint8_t>& is_po
   const BoundingBox box = frame ? frame->box : mesh_points_bbox(mesh, is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
-  const double cell = grid_cell_size(extent, min_cell, frame ? frame->points : points);
+  const double cell = grid_cell_size(extent, min_cell, frame ? frame->points : points, cell_limit);
   g.cell = cell;
   int whole[3];
   for (int a = 0; a < 3; ++a) {

@@ -76,8 +76,10 @@ SpatialGrid build_spatial_grid(const Mesh& mesh, const std::vector<uint8_t>& is_
                                double min_cell, const GridFrame* frame = nullptr);
 
 // The same grid without the sorted coordinates (x, y, z stay empty): for a caller that
-// keeps its own copy of them (the fast method's float aggregates).
+// keeps its own copy of them (the fast method's float aggregates). cell_limit: at most this
+// many cells (grid_cell_size's).
 SpatialGrid build_grid_order(const Mesh& mesh, const std::vector<uint8_t>& is_point,
-                             double min_cell, const GridFrame* frame = nullptr);
+                             double min_cell, const GridFrame* frame = nullptr,
+                             double cell_limit = 1e300);
 
 }  // namespace meshsal
