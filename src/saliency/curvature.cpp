@@ -1,6 +1,10 @@
 #include "saliency/curvature.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <mutex>
+#include <vector>
 
 #include "core/cancel.h"
 #include "core/morton_order.h"
@@ -28,20 +32,48 @@ inline void face_normal(const float* p, const uint32_t* t, double fn[3]) {
 
 inline bool owns(uint32_t v, size_t lo, size_t hi) { return v >= lo && v < hi; }
 
+// The triangles a body visits, in index order: those in [begin, end) and those of the
+// sorted list `extra` outside it (mean_curvature_morton's ranges: their own block of the
+// Morton-sorted triangles and the few that cross into another range). {0, all, none}:
+// every triangle.
+struct TriangleSpan {
+  size_t begin, end;
+  const uint32_t* extra = nullptr;
+  size_t extra_count = 0;
+};
+
+TriangleSpan all_triangles(const Mesh& mesh) { return {0, mesh.triangle_count(), nullptr, 0}; }
+
+// Calls visit(f) for the span's triangles in increasing order, and checks for cancellation
+// every 65,536 of them.
+template <class Visit>
+inline void for_each_triangle(const TriangleSpan& s, Visit&& visit) {
+  size_t seen = 0;
+  auto one = [&](size_t f) {
+    if ((++seen & 0xffff) == 0) throw_if_cancelled();
+    visit(f);
+  };
+  size_t x = 0;
+  for (; x < s.extra_count && s.extra[x] < s.begin; ++x) one(s.extra[x]);
+  for (size_t f = s.begin; f < s.end; ++f) one(f);
+  for (; x < s.extra_count; ++x)
+    if (s.extra[x] >= s.end) one(s.extra[x]);
+}
+
 // Sums the face normals into normals[] (zeroed; vertex v at 3 (v - base)) for the vertices
 // [lo, hi) and normalises them: each vertex's sum runs in triangle order, whoever owns it.
-inline void vertex_normals_body(const Mesh& mesh, size_t lo, size_t hi, double* normals, size_t base) {
+inline void vertex_normals_body(const Mesh& mesh, const TriangleSpan& span, size_t lo, size_t hi,
+                                double* normals, size_t base) {
   const float* p = mesh.positions.data();
-  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
-    if ((f & 0xffff) == 0) throw_if_cancelled();
+  for_each_triangle(span, [&](size_t f) {
     const uint32_t* t = &mesh.triangles[3 * f];
-    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) continue;
+    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) return;
     double fn[3];
     face_normal(p, t, fn);
     for (int c = 0; c < 3; ++c)
       if (owns(t[c], lo, hi))
         for (int k = 0; k < 3; ++k) normals[3 * (t[c] - base) + k] += fn[k];
-  }
+  });
   for (size_t v = lo; v < hi; ++v) {
     double* nv = &normals[3 * (v - base)];
     double len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
@@ -91,14 +123,13 @@ inline void mean_curvature_body(const Mesh& mesh, const Adjacency& adj, const do
 // gives each corner i, for each of its two edges (i, j), A to the area and A k_ij to the
 // sum; an edge's areas are thus added per triangle instead of first per edge. Triangles
 // with a repeated corner have area 0 and add nothing, as the 1-rings skip them.
-inline void curvature_sums_body(const Mesh& mesh, const double* normals, size_t lo, size_t hi,
-                                double* sum, double* area, size_t base) {
+inline void curvature_sums_body(const Mesh& mesh, const TriangleSpan& span, const double* normals,
+                                size_t lo, size_t hi, double* sum, double* area, size_t base) {
   const float* p = mesh.positions.data();
-  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
-    if ((f & 0xffff) == 0) throw_if_cancelled();
+  for_each_triangle(span, [&](size_t f) {
     const uint32_t* t = &mesh.triangles[3 * f];
-    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) continue;
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    if (!owns(t[0], lo, hi) && !owns(t[1], lo, hi) && !owns(t[2], lo, hi)) return;
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return;
     double fn[3];
     face_normal(p, t, fn);
     // The area as build_adjacency() takes it.
@@ -113,40 +144,41 @@ inline void curvature_sums_body(const Mesh& mesh, const double* normals, size_t 
       if (k1 != 0.0) sum[at] += A * k1;
       if (k2 != 0.0) sum[at] += A * k2;
     }
-  }
+  });
   for (size_t at = 0; at < hi - lo; ++at) {
     const size_t i = lo - base + at;
     sum[i] = area[i] > 0 ? sum[i] / area[i] : 0.0;
   }
 }
 
-MESHSAL_TARGET_BASELINE void vertex_normals_baseline(const Mesh& mesh, size_t lo, size_t hi,
-                                                     double* normals, size_t base) {
-  vertex_normals_body(mesh, lo, hi, normals, base);
+MESHSAL_TARGET_BASELINE void vertex_normals_baseline(const Mesh& mesh, const TriangleSpan& span, size_t lo,
+                                                     size_t hi, double* normals, size_t base) {
+  vertex_normals_body(mesh, span, lo, hi, normals, base);
 }
 MESHSAL_TARGET_BASELINE void mean_curvature_baseline(const Mesh& mesh, const Adjacency& adj,
                                                      const double* normals, size_t begin,
                                                      size_t end, double* H) {
   mean_curvature_body(mesh, adj, normals, begin, end, H);
 }
-MESHSAL_TARGET_BASELINE void curvature_sums_baseline(const Mesh& mesh, const double* normals,
-                                                     size_t lo, size_t hi, double* sum,
-                                                     double* area, size_t base) {
-  curvature_sums_body(mesh, normals, lo, hi, sum, area, base);
+MESHSAL_TARGET_BASELINE void curvature_sums_baseline(const Mesh& mesh, const TriangleSpan& span,
+                                                     const double* normals, size_t lo, size_t hi,
+                                                     double* sum, double* area, size_t base) {
+  curvature_sums_body(mesh, span, normals, lo, hi, sum, area, base);
 }
 #if MESHSAL_HAVE_AVX2_COPIES
-MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, size_t lo, size_t hi, double* normals,
-                                             size_t base) {
-  vertex_normals_body(mesh, lo, hi, normals, base);
+MESHSAL_TARGET_AVX2 void vertex_normals_avx2(const Mesh& mesh, const TriangleSpan& span, size_t lo,
+                                             size_t hi, double* normals, size_t base) {
+  vertex_normals_body(mesh, span, lo, hi, normals, base);
 }
 MESHSAL_TARGET_AVX2 void mean_curvature_avx2(const Mesh& mesh, const Adjacency& adj,
                                              const double* normals, size_t begin, size_t end,
                                              double* H) {
   mean_curvature_body(mesh, adj, normals, begin, end, H);
 }
-MESHSAL_TARGET_AVX2 void curvature_sums_avx2(const Mesh& mesh, const double* normals, size_t lo,
-                                             size_t hi, double* sum, double* area, size_t base) {
-  curvature_sums_body(mesh, normals, lo, hi, sum, area, base);
+MESHSAL_TARGET_AVX2 void curvature_sums_avx2(const Mesh& mesh, const TriangleSpan& span,
+                                             const double* normals, size_t lo, size_t hi, double* sum,
+                                             double* area, size_t base) {
+  curvature_sums_body(mesh, span, normals, lo, hi, sum, area, base);
 }
 #endif
 
@@ -159,7 +191,7 @@ std::vector<double> vertex_normals(const Mesh& mesh, unsigned threads) {
   if (cpu_path() == CpuPath::avx2) body = vertex_normals_avx2;
 #endif
   parallel_for_owned(mesh.vertex_count(), threads,
-                     [&](size_t lo, size_t hi) { body(mesh, lo, hi, normals.data(), 0); });
+                     [&](size_t lo, size_t hi) { body(mesh, all_triangles(mesh), lo, hi, normals.data(), 0); });
   return normals;
 }
 
@@ -185,10 +217,69 @@ std::vector<double> mean_curvature_faces(const Mesh& mesh, const std::vector<dou
   if (cpu_path() == CpuPath::avx2) body = curvature_sums_avx2;
 #endif
   parallel_for_owned(mesh.vertex_count(), threads, [&](size_t lo, size_t hi) {
-    body(mesh, normals.data(), lo, hi, H.data(), area.data(), 0);
+    body(mesh, all_triangles(mesh), normals.data(), lo, hi, H.data(), area.data(), 0);
   });
   return H;
 }
+
+namespace {
+
+// For each of `ranges` vertex ranges [n r / ranges, n (r + 1) / ranges): the triangles that
+// touch it, as a span (TriangleSpan) holding them all. A triangle with every corner in one
+// range widens that range's block; one with corners in two ranges goes to the shared list
+// of crossing triangles, which every range visits (in index order with its block, so each
+// vertex still sees its triangles in index order). On Morton-sorted triangles a range's
+// block is the stretch of its own cells, and few triangles cross.
+std::vector<TriangleSpan> range_spans(const Mesh& mesh, size_t ranges, unsigned threads,
+                                      std::vector<uint32_t>* crossing) {
+  const size_t n = mesh.vertex_count(), nt = mesh.triangle_count();
+  const uint32_t* t = mesh.triangles.data();
+  const double scale = double(ranges) / double(n);
+  auto range_of = [&](uint32_t v) {
+    size_t r = std::min(ranges - 1, size_t(double(v) * scale));
+    while (r + 1 < ranges && n * (r + 1) / ranges <= v) ++r;
+    while (r > 0 && n * r / ranges > v) --r;
+    return r;
+  };
+  // Per chunk of triangles: each range's first and last whole triangle, the crossing ones.
+  struct Chunk {
+    size_t begin;
+    std::vector<size_t> first, last;
+    std::vector<uint32_t> cross;
+  };
+  std::vector<Chunk> chunks;
+  std::mutex lock;
+  parallel_for(nt, threads, 1 << 16, [&](size_t begin, size_t end) {
+    Chunk c{begin, std::vector<size_t>(ranges, SIZE_MAX), std::vector<size_t>(ranges, 0), {}};
+    for (size_t f = begin; f < end; ++f) {
+      const uint32_t* tf = &t[3 * f];
+      const size_t a = range_of(std::min({tf[0], tf[1], tf[2]})), b = range_of(std::max({tf[0], tf[1], tf[2]}));
+      if (a != b) {
+        c.cross.push_back(uint32_t(f));
+      } else {
+        c.first[a] = std::min(c.first[a], f);
+        c.last[a] = f;
+      }
+    }
+    std::lock_guard<std::mutex> hold(lock);
+    chunks.push_back(std::move(c));
+  });
+  std::sort(chunks.begin(), chunks.end(), [](const Chunk& x, const Chunk& y) { return x.begin < y.begin; });
+  std::vector<size_t> first(ranges, SIZE_MAX), last(ranges, 0);
+  crossing->clear();
+  for (const Chunk& c : chunks) {
+    for (size_t r = 0; r < ranges; ++r)
+      if (c.first[r] != SIZE_MAX) first[r] = std::min(first[r], c.first[r]), last[r] = std::max(last[r], c.last[r]);
+    crossing->insert(crossing->end(), c.cross.begin(), c.cross.end());
+  }
+  std::vector<TriangleSpan> spans(ranges);
+  for (size_t r = 0; r < ranges; ++r)
+    spans[r] = {first[r] == SIZE_MAX ? 0 : first[r], first[r] == SIZE_MAX ? 0 : last[r] + 1, crossing->data(),
+                crossing->size()};
+  return spans;
+}
+
+}  // namespace
 
 std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& box, unsigned threads) {
   MortonOrder m = morton_order(mesh, box, threads);
@@ -199,27 +290,29 @@ std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& b
   const Mesh curve = renumbered_mesh(mesh, m.order, m.code, nullptr, threads);
   std::vector<uint32_t>().swap(m.code);
   // vertex_normals and mean_curvature_faces on the copy, a range of vertices at a time with
-  // the range's own normals and sums: each range scans the triangles again (cheap: most are
-  // skipped), but the 40 bytes per vertex of whole-mesh normals and sums, on top of the copy,
-  // are the size of one range per thread (the same bits: each vertex is summed in the copy's
-  // triangle order either way).
+  // the range's own normals and sums (instead of whole-mesh normals and sums, 40 bytes per
+  // vertex on top of the copy), each range visiting only its block of the sorted triangles
+  // and those that cross into it from another range (range_spans): the same bits, each
+  // vertex summed in the copy's triangle order either way.
   auto normals_body = vertex_normals_baseline;
   auto sums_body = curvature_sums_baseline;
 #if MESHSAL_HAVE_AVX2_COPIES
   if (cpu_path() == CpuPath::avx2) normals_body = vertex_normals_avx2, sums_body = curvature_sums_avx2;
 #endif
   const size_t n = curve.vertex_count();
-  // Four ranges a thread (each range's arrays are 40 bytes a vertex, held by every thread at
-  // once: 10 bytes a vertex in all), ranges of at least 2^16 vertices and at most 2^20.
-  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(4 * resolve_threads(threads), n >> 16),
-                                          (n + (size_t(1) << 20) - 1) >> 20});
+  // Ranges of 2^16 to 2^18 vertices, at least 8 a thread: each range's arrays are 40 bytes a
+  // vertex, held by every thread at once (at most 5 bytes a vertex in all).
+  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(8 * resolve_threads(threads), n >> 16),
+                                          (n + (size_t(1) << 18) - 1) >> 18});
+  std::vector<uint32_t> crossing;
+  const std::vector<TriangleSpan> spans = range_spans(curve, ranges, threads, &crossing);
   std::vector<double> H(n);
   parallel_for(ranges, threads, 1, [&](size_t begin, size_t end) {
     for (size_t r = begin; r < end; ++r) {
       const size_t lo = n * r / ranges, hi = n * (r + 1) / ranges;
       std::vector<double> normals(3 * (hi - lo), 0.0), sum(hi - lo, 0.0), area(hi - lo, 0.0);
-      normals_body(curve, lo, hi, normals.data(), lo);
-      sums_body(curve, normals.data(), lo, hi, sum.data(), area.data(), lo);
+      normals_body(curve, spans[r], lo, hi, normals.data(), lo);
+      sums_body(curve, spans[r], normals.data(), lo, hi, sum.data(), area.data(), lo);
       for (size_t i = lo; i < hi; ++i) H[m.order[i]] = sum[i - lo];
     }
   });
