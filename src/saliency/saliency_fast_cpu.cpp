@@ -90,9 +90,10 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
     const std::vector<double>& fine = average(k);
     const std::vector<double>& coarse = average(2 * k);
     part.restart();
-    std::vector<double> raw(n, 0.0);
-    for (size_t v = 0; v < n; ++v)
-      if (r.is_point[v]) raw[v] = std::fabs(fine[v] - coarse[v]);
+    std::vector<double> raw(n);
+    parallel_for(n, opt.threads, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) raw[v] = r.is_point[v] ? std::fabs(fine[v] - coarse[v]) : 0.0;
+    });
     for (double unit : {k, 2 * k})
       if (last_use[unit] == step) G.erase(unit);
     cs_seconds += part.seconds();
@@ -101,7 +102,9 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
     if (step == 0) {
       r.saliency = std::move(s);  // s[v] >= 0, so 0 + s[v] == s[v]: adding to zeros' bits
     } else {
-      for (size_t v = 0; v < n; ++v) r.saliency[v] += s[v];
+      parallel_for(n, opt.threads, 1 << 16, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) r.saliency[v] += s[v];
+      });
     }
     if (opt.raw_maps) r.raw[i] = std::move(raw);
     suppress_seconds += part.seconds();

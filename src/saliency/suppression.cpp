@@ -10,11 +10,13 @@ namespace {
 
 // The suppression around a map's local maxima, whichever way they were found: normalise()
 // divides by the maximum, then finish() takes mbar over the flagged local maxima in vertex
-// order and scales the map.
+// order and scales the map. `threads` (0: all cores) share the element-wise passes; the
+// maximum and mbar's sum run in vertex order, so the bits are those of one thread.
 struct Suppression {
   SuppressionInfo si;
   size_t global;  // lowest-index mesh point attaining the maximum
   std::vector<double> out;
+  unsigned threads = 1;
 
   // False (and out all zero) when the map has no positive maximum.
   bool normalise(const std::vector<double>& map, const std::vector<uint8_t>& is_point) {
@@ -25,20 +27,23 @@ struct Suppression {
         si.max = map[v];
         global = v;
       }
-    out.assign(n, 0.0);
-    if (!(si.max > 0)) return false;
-    for (size_t v = 0; v < n; ++v)
-      if (is_point[v]) out[v] = map[v] / si.max;
-    return true;
+    const bool positive = si.max > 0;
+    out.resize(n);  // every entry written below
+    const double top = si.max;
+    parallel_for(n, threads, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) out[v] = positive && is_point[v] ? map[v] / top : 0.0;
+    });
+    return positive;
   }
 
   // mbar averages the local maxima other than the global one (which is 1 after
-  // normalisation).
-  void finish(const std::vector<uint8_t>& is_max) {
+  // normalisation). is_max(v): whether v is one.
+  template <class IsMax>
+  void finish(IsMax&& is_max) {
     double sum = 0;
     size_t others = 0;
     for (size_t v = 0; v < out.size(); ++v) {
-      if (!is_max[v]) continue;
+      if (!is_max(v)) continue;
       si.local_maxima++;
       if (v == global) continue;
       sum += out[v];
@@ -46,7 +51,9 @@ struct Suppression {
     }
     si.mbar = others > 0 ? sum / double(others) : 0.0;
     const double factor = (1.0 - si.mbar) * (1.0 - si.mbar);
-    for (double& x : out) x *= factor;
+    parallel_for(out.size(), threads, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) out[v] *= factor;
+    });
   }
 };
 
@@ -64,7 +71,7 @@ std::vector<double> suppress(const std::vector<double>& map, const std::vector<u
       for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1] && m; ++e) m = s.out[v] > s.out[adj.neighbors[e]];
       is_max[v] = m;
     }
-    s.finish(is_max);
+    s.finish([&](size_t v) { return is_max[v] != 0; });
   }
   if (info) *info = s.si;
   return std::move(s.out);
@@ -73,12 +80,15 @@ std::vector<double> suppress(const std::vector<double>& map, const std::vector<u
 std::vector<double> suppress_faces(const std::vector<double>& map, const std::vector<uint8_t>& is_point,
                                    const Mesh& mesh, unsigned threads, SuppressionInfo* info) {
   Suppression s;
+  s.threads = threads;
   if (s.normalise(map, is_point)) {
     // Every mesh point is a local maximum until an edge of a triangle shows a neighbour
     // at least as high: the 1-ring's test, edge by edge. Flags are only ever cleared, so
     // threads may clear the same one (relaxed atomics: no order is needed).
     std::vector<std::atomic<uint8_t>> flag(map.size());
-    for (size_t v = 0; v < map.size(); ++v) flag[v].store(is_point[v], std::memory_order_relaxed);
+    parallel_for(map.size(), threads, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) flag[v].store(is_point[v], std::memory_order_relaxed);
+    });
     const uint32_t* t = mesh.triangles.data();
     const double* out = s.out.data();
     parallel_for(mesh.triangle_count(), threads, 1 << 14, [&](size_t begin, size_t end) {
@@ -90,9 +100,7 @@ std::vector<double> suppress_faces(const std::vector<double>& map, const std::ve
           if (!(out[b] > out[a])) flag[b].store(0, std::memory_order_relaxed);
         }
     });
-    std::vector<uint8_t> is_max(map.size());
-    for (size_t v = 0; v < map.size(); ++v) is_max[v] = flag[v].load(std::memory_order_relaxed);
-    s.finish(is_max);
+    s.finish([&](size_t v) { return flag[v].load(std::memory_order_relaxed) != 0; });
   }
   if (info) *info = s.si;
   return std::move(s.out);
