@@ -1,5 +1,7 @@
 #include "io/colormap.h"
 
+#include "core/parallel.h"
+
 #include "core/kth_smallest.h"
 
 #include <algorithm>
@@ -47,8 +49,10 @@ double colour_position(double v, const ColorLimits& limits) {
 std::vector<uint8_t> colormap_values(const std::vector<double>& values, const std::vector<uint8_t>& mask,
                                      const ColorLimits& limits) {
   std::vector<uint8_t> rgb(3 * values.size());
-  for (size_t v = 0; v < values.size(); ++v)
-    colormap_rgb((mask.empty() || mask[v]) ? colour_position(values[v], limits) : 0.0, &rgb[3 * v]);
+  parallel_for(values.size(), 0, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v)
+      colormap_rgb((mask.empty() || mask[v]) ? colour_position(values[v], limits) : 0.0, &rgb[3 * v]);
+  });
   return rgb;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,33 @@ void append_le(std::vector<char>& buf, T value) {
 // PLY keeps colours as bytes: these channels are written as uchar (rounded, clamped).
 bool is_colour_channel(const std::string& name) {
   return name == "red" || name == "green" || name == "blue" || name == "alpha";
+}
+
+// Writes `count` records, formatted `per_chunk` at a time by format(begin, end, buf) (which
+// appends records [begin, end) to buf): the next chunk is formatted on a second thread
+// while this one goes to the file, so the formatting and the system's copy into the page
+// cache (as slow as the formatting on a VM: 1.1 s of 387 MB) overlap.
+void write_records(std::FILE* f, const std::string& path, size_t count, size_t per_chunk,
+                   const std::function<void(size_t, size_t, std::vector<char>&)>& format) {
+  if (count == 0) return;
+  std::vector<char> ready, next;
+  format(0, std::min(count, per_chunk), ready);
+  for (size_t begin = per_chunk; ; begin += per_chunk) {
+    std::future<void> formatting;
+    if (begin < count) {
+      next.clear();
+      formatting = std::async(std::launch::async, [&, begin] { format(begin, std::min(count, begin + per_chunk), next); });
+    }
+    try {
+      write_all(f, ready.data(), ready.size(), path);
+    } catch (...) {
+      if (formatting.valid()) formatting.wait();
+      throw;
+    }
+    if (!formatting.valid()) break;
+    formatting.get();
+    std::swap(ready, next);
+  }
 }
 
 }  // namespace
@@ -85,39 +113,34 @@ void write_ply(const std::string& path, const Mesh& mesh,
 
   write_file_atomically(path, [&](std::FILE* f) {
     write_all(f, header.data(), header.size(), path);
-    std::vector<char> buf;
-    const size_t chunk = 1 << 16;
-    buf.reserve(chunk * (12 + 4 * properties.size() + 3));
-    for (size_t v = 0; v < nv; ++v) {
-      double xyz[3];
-      model_position(mesh, v, xyz);
-      for (int k = 0; k < 3; ++k) {
-        if (wide) append_le(buf, xyz[k]);
-        else append_le(buf, static_cast<float>(xyz[k]));
+    const size_t vertex_bytes = (wide ? 24 : 12) + 4 * properties.size() + (rgb ? 3 : 0) + 4 * attrs.size();
+    write_records(f, path, nv, 1 << 16, [&](size_t begin, size_t end, std::vector<char>& buf) {
+      buf.reserve(buf.size() + (end - begin) * vertex_bytes);
+      for (size_t v = begin; v < end; ++v) {
+        double xyz[3];
+        model_position(mesh, v, xyz);
+        for (int k = 0; k < 3; ++k) {
+          if (wide) append_le(buf, xyz[k]);
+          else append_le(buf, static_cast<float>(xyz[k]));
+        }
+        for (const VertexAttribute* a : attrs) {
+          const float x = a->values[v];
+          if (is_colour_channel(a->name))
+            buf.push_back(char(uint8_t(x >= 255 ? 255 : x > 0 ? std::lround(x) : 0)));  // NaN -> 0
+          else
+            append_le(buf, x);
+        }
+        for (const PlyFloatProperty& p : properties) append_le(buf, static_cast<float>((*p.values)[v]));
+        if (rgb) buf.insert(buf.end(), rgb->begin() + 3 * v, rgb->begin() + 3 * v + 3);
       }
-      for (const VertexAttribute* a : attrs) {
-        const float x = a->values[v];
-        if (is_colour_channel(a->name))
-          buf.push_back(char(uint8_t(x >= 255 ? 255 : x > 0 ? std::lround(x) : 0)));  // NaN -> 0
-        else
-          append_le(buf, x);
+    });
+    write_records(f, path, mesh.triangle_count(), 1 << 16, [&](size_t begin, size_t end, std::vector<char>& buf) {
+      buf.reserve(buf.size() + (end - begin) * 13);
+      for (size_t t = 3 * begin; t < 3 * end; t += 3) {
+        buf.push_back(3);
+        for (int k = 0; k < 3; ++k) append_le(buf, static_cast<int32_t>(mesh.triangles[t + k]));
       }
-      for (const PlyFloatProperty& p : properties) append_le(buf, static_cast<float>((*p.values)[v]));
-      if (rgb) buf.insert(buf.end(), rgb->begin() + 3 * v, rgb->begin() + 3 * v + 3);
-      if (buf.size() >= chunk * 12) {
-        write_all(f, buf.data(), buf.size(), path);
-        buf.clear();
-      }
-    }
-    for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
-      buf.push_back(3);
-      for (int k = 0; k < 3; ++k) append_le(buf, static_cast<int32_t>(mesh.triangles[t + k]));
-      if (buf.size() >= chunk * 12) {
-        write_all(f, buf.data(), buf.size(), path);
-        buf.clear();
-      }
-    }
-    write_all(f, buf.data(), buf.size(), path);
+    });
   });
 }
 
