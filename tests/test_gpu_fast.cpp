@@ -55,9 +55,10 @@ SaliencyOptions fast_options() {
   return opt;
 }
 
-// The GPU fast path against the CPU fast path on `ctx`; returns the GPU result.
+// The GPU fast path against the CPU fast path on `ctx`; returns the GPU result. s_tol: for
+// S and Sm (default 1e-4, as the raw maps).
 SaliencyResult compare(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions& opt,
-                       const std::string& what) {
+                       const std::string& what, double s_tol = 1e-4) {
   INFO(what);
   const uint64_t before = vk::validation_message_count();
   SaliencyResult cpu = compute_saliency_cpu(mesh, opt);
@@ -67,7 +68,7 @@ SaliencyResult compare(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions
   CHECK(gpu.method == Method::Fast);
   CHECK(!gpu.mixed_precision);
   CHECK(gpu.eps == cpu.eps);
-  check_maps_match(cpu, gpu, opt.scales, 1e-4);
+  check_maps_match(cpu, gpu, opt.scales, 1e-4, s_tol);
   // (query, cell) pairs: the same cells within the same strict cutoffs.
   CHECK(cpu.pairs > mesh.vertex_count());
   CHECK(gpu.pairs == cpu.pairs);
@@ -190,7 +191,12 @@ TEST_CASE("gpu fast matches the cpu fast path on real meshes", "[gpu][fast]") {
   const SaliencyOptions opt = fast_options();
   for (const char* name : {"bunny_3k.off", "spot_3k.obj", "max_planck_5k.obj", "fandisk_6k.obj"}) {
     MESHSAL_MESH_OR_CONTINUE(path, name);
-    compare(context(), load_mesh(path), opt, name);
+    // fandisk's flat faces give exact ties between neighbours in the raw maps; the CPU's
+    // float partial sums and the GPU's double ones (the raw maps agree to 9e-8) can decide
+    // one of them either way: measured 445 local maxima against 446 in the first map, mbar
+    // 6e-4 apart, S and Sm 3.8e-4 and 2.6e-4.
+    const bool ties = std::string(name) == "fandisk_6k.obj";
+    compare(context(), load_mesh(path), opt, name, ties ? 1e-3 : 1e-4);
   }
 }
 

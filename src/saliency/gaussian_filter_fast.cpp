@@ -20,11 +20,14 @@ namespace {
 using sweep::Aggregates;
 
 // The aggregates of `cells` on a query grid of cells of a quarter of the cutoff radius (as
-// in the exact sweep), their floats relative to `anchor`, and (groups, when not null) each
-// query group's centroid relative to it.
+// in the exact sweep), their floats relative to the frame box's minimum, and (groups, when
+// not null) each query group's centroid relative to it. `frame`: the whole mesh's box and
+// occupied cells (a tile's grid is then a window of the whole mesh's, so that a query walks
+// the same candidates in the same rows and lanes there: the same float sums, the same bits).
 Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* values,
-                     double query_radius, const double anchor[3], unsigned threads,
+                     double query_radius, const GridFrame& frame, unsigned threads,
                      sweep::QueryGroups* groups) {
+  const double* anchor = frame.box.min;
   const size_t m = cells.start.size() - 1;
   Mesh centroids;  // of the cells, in cell order: what the grid sorts
   centroids.positions.resize(3 * m);
@@ -57,8 +60,8 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
   Aggregates ag;
   // At most a grid cell per centroid (grid_cell_size allows 4 per point): the cell starts
   // were 16 bytes a centroid at the finest sigma's peak.
-  ag.grid = build_grid_order(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius, nullptr,
-                             std::max<double>(1 << 20, double(m)));
+  ag.grid = build_grid_order(centroids, std::vector<uint8_t>(m, 1), 0.25 * query_radius, &frame,
+                             std::max<double>(1 << 20, double(frame.points)));
   for (int a = 0; a < 3; ++a) ag.anchor[a] = anchor[a];
   // Slot order, in float, padded with far-away empty cells (their squared distance is
   // +inf: never inside the cutoff). The positions first, then the centroids freed, then
@@ -197,7 +200,8 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     sweep::QueryGroups groups;
     if (dense) groups = group_cells(cells.key, cells.dims, params.query_factor, threads);
     std::vector<uint64_t>().swap(cells.key);  // grouped: 8 bytes a cell less from here on
-    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, box.min, threads, dense ? &groups : nullptr);
+    const GridFrame cell_frame{box, uint64_t(all_cells)};
+    const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, cell_frame, threads, dense ? &groups : nullptr);
     // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
     const sweep::Kernels& kernels = sweep::kernels();
     sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2,
