@@ -263,6 +263,34 @@ TEST_CASE("fast pipeline: the parallel radix sort equals std::stable_sort", "[fa
   }
 }
 
+TEST_CASE("fast pipeline: the radix sort's top-digit buckets, skewed or single", "[fast]") {
+  // Keys of 30 bits go top digit first, then each bucket by its low digits: keys crowded
+  // into a few buckets (a surface in few z slabs), a single bucket, and buckets of one key.
+  std::mt19937_64 rng(12);
+  const uint64_t max_key = (uint64_t(1) << 30) - 1;
+  for (int layout = 0; layout < 3; ++layout) {
+    const size_t n = 200000;
+    std::vector<uint32_t> key(n);
+    for (uint32_t& k : key) {
+      if (layout == 0) k = uint32_t((rng() % 3) << 27 | (rng() % 5000));  // 3 buckets
+      if (layout == 1) k = uint32_t(12345u | (rng() % 2) << 3);             // 1 bucket, 2 keys
+      if (layout == 2) k = uint32_t(rng() % (max_key + 1));                 // spread thin
+    }
+    std::vector<std::pair<uint32_t, uint32_t>> oracle;
+    for (size_t i = 0; i < n; ++i) oracle.push_back({key[i], uint32_t(i)});
+    std::stable_sort(oracle.begin(), oracle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (unsigned threads : {1u, 2u}) {
+      INFO("layout " << layout << ", threads " << threads);
+      std::vector<uint32_t> k = key, v(n);
+      for (size_t i = 0; i < n; ++i) v[i] = uint32_t(i);
+      radix_sort(k, v, max_key, threads);
+      bool same = true;
+      for (size_t i = 0; i < n; ++i) same &= k[i] == oracle[i].first && v[i] == oracle[i].second;
+      CHECK(same);
+    }
+  }
+}
+
 TEST_CASE("fast pipeline: order statistics equal a sort's", "[fast]") {
   std::mt19937 rng(5);
   std::vector<double> values(10001);
