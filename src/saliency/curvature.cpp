@@ -300,10 +300,10 @@ std::vector<double> mean_curvature_morton(const Mesh& mesh, const BoundingBox& b
   if (cpu_path() == CpuPath::avx2) normals_body = vertex_normals_avx2, sums_body = curvature_sums_avx2;
 #endif
   const size_t n = curve.vertex_count();
-  // Ranges of 2^16 to 2^18 vertices, at least 8 a thread: each range's arrays are 40 bytes a
-  // vertex, held by every thread at once (at most 5 bytes a vertex in all).
-  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(8 * resolve_threads(threads), n >> 16),
-                                          (n + (size_t(1) << 18) - 1) >> 18});
+  // Ranges of 2^16 to 2^17 vertices, at least 16 a thread: each range's arrays are 40 bytes
+  // a vertex, held by every thread at once (at most 2.5 bytes a vertex in all).
+  const size_t ranges = std::max<size_t>({size_t(1), std::min<size_t>(16 * resolve_threads(threads), n >> 16),
+                                          (n + (size_t(1) << 17) - 1) >> 17});
   std::vector<uint32_t> crossing;
   const std::vector<TriangleSpan> spans = range_spans(curve, ranges, threads, &crossing);
   std::vector<double> H(n);
