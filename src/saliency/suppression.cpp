@@ -101,7 +101,9 @@ std::vector<double> suppress_faces(const std::vector<double>& map, const std::ve
     });
     const float* r = rounded.data();
     parallel_for(mesh.triangle_count(), threads, 1 << 14, [&](size_t begin, size_t end) {
-      for (size_t f = begin; f < end; ++f)
+      for (size_t f = begin; f < end; ++f) {
+        if (f + 16 < end)  // the corners of the triangles ahead, fetched now
+          for (int c = 0; c < 3; ++c) __builtin_prefetch(&r[t[3 * (f + 16) + c]]);
         for (int e = 0; e < 3; ++e) {
           const uint32_t a = t[3 * f + e], b = t[3 * f + (e + 1) % 3];
           if (a == b) continue;
@@ -112,6 +114,7 @@ std::vector<double> suppress_faces(const std::vector<double>& map, const std::ve
           if (!a_higher) flag[a].store(0, std::memory_order_relaxed);
           if (!b_higher) flag[b].store(0, std::memory_order_relaxed);
         }
+      }
     });
     s.finish([&](size_t v) { return flag[v].load(std::memory_order_relaxed) != 0; });
   }
