@@ -61,6 +61,7 @@ Mesh renumbered_mesh(const Mesh& mesh, const std::vector<uint32_t>& order,
   out.positions.resize(3 * n);
   parallel_for(n, threads, 1 << 15, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
+      if (i + 32 < end) __builtin_prefetch(&mesh.positions[3 * size_t(order[i + 32])]);  // scattered reads
       new_of[order[i]] = uint32_t(i);
       for (int a = 0; a < 3; ++a) out.positions[3 * i + a] = mesh.positions[3 * size_t(order[i]) + a];
     }
@@ -82,8 +83,11 @@ Mesh renumbered_mesh(const Mesh& mesh, const std::vector<uint32_t>& order,
     // 2 bytes per triangle instead of 4 at the curvature's peak).
     auto sort_by = [&](auto key) {
       parallel_for(nt, threads, 1 << 14, [&](size_t begin, size_t end) {
-        for (size_t f = begin; f < end; ++f)
+        for (size_t f = begin; f < end; ++f) {
+          if (f + 16 < end)
+            for (int c = 0; c < 3; ++c) __builtin_prefetch(&new_of[t[3 * (f + 16) + c]]);
           key[f] = std::min({face_key[new_of[t[3 * f]]], face_key[new_of[t[3 * f + 1]]], face_key[new_of[t[3 * f + 2]]]});
+        }
       });
       // A stable counting sort on a share of the triangles per thread: each share counts
       // its keys, then places its triangles after the earlier shares' of the same key.

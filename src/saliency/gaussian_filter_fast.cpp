@@ -86,6 +86,7 @@ Aggregates aggregate(const Mesh& mesh, const SparseCells& cells, const double* v
   ag.sum.assign(padded, 0.0f);
   parallel_for(m, threads, 4096, [&](size_t begin, size_t end) {
     for (size_t slot = begin; slot < end; ++slot) {
+      if (slot + 8 < end) __builtin_prefetch(&values[cells.order[cells.start[ag.grid.order[slot + 8]]]]);
       const uint32_t c = ag.grid.order[slot];
       double sum = 0;
       for (uint32_t i = cells.start[c]; i < cells.start[c + 1]; ++i) sum += values[cells.order[i]];
