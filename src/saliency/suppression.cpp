@@ -18,7 +18,8 @@ struct Suppression {
   std::vector<double> out;
   unsigned threads = 1;
 
-  // False (and out all zero) when the map has no positive maximum.
+  // False (and out all zero) when the map has no positive maximum. `map` may be `out`
+  // itself (moved in): every entry is read before it is written.
   bool normalise(const std::vector<double>& map, const std::vector<uint8_t>& is_point) {
     const size_t n = map.size();
     global = n;
@@ -28,7 +29,7 @@ struct Suppression {
         global = v;
       }
     const bool positive = si.max > 0;
-    out.resize(n);  // every entry written below
+    if (&out != &map) out.resize(n);  // every entry written below
     const double top = si.max;
     parallel_for(n, threads, 1 << 16, [&](size_t begin, size_t end) {
       for (size_t v = begin; v < end; ++v) out[v] = positive && is_point[v] ? map[v] / top : 0.0;
@@ -77,9 +78,12 @@ std::vector<double> suppress(const std::vector<double>& map, const std::vector<u
   return std::move(s.out);
 }
 
-std::vector<double> suppress_faces(const std::vector<double>& map, const std::vector<uint8_t>& is_point,
-                                   const Mesh& mesh, unsigned threads, SuppressionInfo* info) {
-  Suppression s;
+namespace {
+
+// suppress_faces on `s`, whose map is `map` (s.out itself, or another array).
+std::vector<double> suppress_faces_into(Suppression& s, const std::vector<double>& map,
+                                        const std::vector<uint8_t>& is_point, const Mesh& mesh,
+                                        unsigned threads, SuppressionInfo* info) {
   s.threads = threads;
   if (s.normalise(map, is_point)) {
     // Every mesh point is a local maximum until an edge of a triangle shows a neighbour
@@ -120,6 +124,21 @@ std::vector<double> suppress_faces(const std::vector<double>& map, const std::ve
   }
   if (info) *info = s.si;
   return std::move(s.out);
+}
+
+}  // namespace
+
+std::vector<double> suppress_faces(const std::vector<double>& map, const std::vector<uint8_t>& is_point,
+                                   const Mesh& mesh, unsigned threads, SuppressionInfo* info) {
+  Suppression s;
+  return suppress_faces_into(s, map, is_point, mesh, threads, info);
+}
+
+std::vector<double> suppress_faces(std::vector<double>&& map, const std::vector<uint8_t>& is_point,
+                                   const Mesh& mesh, unsigned threads, SuppressionInfo* info) {
+  Suppression s;
+  s.out = std::move(map);
+  return suppress_faces_into(s, s.out, is_point, mesh, threads, info);
 }
 
 }  // namespace meshsal
