@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/counting_sort.h"
 #include "core/parallel.h"
 #include "core/radix_sort.h"
 
@@ -89,29 +90,14 @@ Mesh renumbered_mesh(const Mesh& mesh, const std::vector<uint32_t>& order,
           key[f] = std::min({face_key[new_of[t[3 * f]]], face_key[new_of[t[3 * f + 1]]], face_key[new_of[t[3 * f + 2]]]});
         }
       });
-      // A stable counting sort on a share of the triangles per thread: each share counts
-      // its keys, then places its triangles after the earlier shares' of the same key.
-      const size_t keys = size_t(top) + 1;
+      // A stable counting sort on a share of the triangles per thread.
       const size_t shares = std::max<size_t>(1, std::min<size_t>(resolve_threads(threads), nt >> 16));
-      std::vector<size_t> at(shares * keys, 0);
-      parallel_for(shares, unsigned(shares), 1, [&](size_t sb, size_t se) {
-        for (size_t i = sb; i < se; ++i)
-          for (size_t f = nt * i / shares; f < nt * (i + 1) / shares; ++f) at[i * keys + key[f]]++;
-      });
-      size_t sum = 0;
-      for (size_t k = 0; k < keys; ++k)
-        for (size_t i = 0; i < shares; ++i) {
-          const size_t here = at[i * keys + k];
-          at[i * keys + k] = sum;
-          sum += here;
-        }
-      parallel_for(shares, unsigned(shares), 1, [&](size_t sb, size_t se) {
-        for (size_t i = sb; i < se; ++i)
-          for (size_t f = nt * i / shares; f < nt * (i + 1) / shares; ++f) {
-            const size_t to = at[i * keys + key[f]]++;
+      std::vector<size_t> counters;
+      counting_sort_place(
+          nt, size_t(top) + 1, shares, counters, [&](size_t f) { return size_t(key[f]); },
+          [&](size_t f, size_t to) {
             for (int c = 0; c < 3; ++c) out.triangles[3 * to + c] = new_of[t[3 * f + c]];
-          }
-      });
+          });
     };
     if (top < (1u << 16)) {
       std::vector<uint16_t> key(nt);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/counting_sort.h"
 #include "core/parallel.h"
 
 namespace meshsal {
@@ -10,41 +11,17 @@ namespace {
 
 // One stable counting pass of `count` keys from (key, val) to (key2, val2) on the digit
 // (key >> shift) & (buckets - 1), on `shares` contiguous shares of the input (one per
-// thread; each share's keys of a digit go after the earlier shares' keys of that digit).
+// thread). Afterwards the last share's counters hold each digit's end.
 template <class Key>
 void counting_pass(const Key* key, const uint32_t* val, Key* key2, uint32_t* val2, size_t count, int shift,
                    size_t buckets, size_t shares, std::vector<size_t>& counters) {
   const Key mask = Key(buckets - 1);
-  counters.assign(shares * buckets, 0);
-  auto share_range = [&](size_t t, size_t& b, size_t& e) { b = count * t / shares, e = count * (t + 1) / shares; };
-  parallel_for(shares, unsigned(shares), 1, [&](size_t tb, size_t te) {
-    for (size_t t = tb; t < te; ++t) {
-      size_t* c = &counters[t * buckets];
-      size_t b, e;
-      share_range(t, b, e);
-      for (size_t i = b; i < e; ++i) c[(key[i] >> shift) & mask]++;
-    }
-  });
-  // Where each share's keys of each digit go: digit by digit, share by share (stable).
-  size_t sum = 0;
-  for (size_t d = 0; d < buckets; ++d)
-    for (size_t t = 0; t < shares; ++t) {
-      const size_t here = counters[t * buckets + d];
-      counters[t * buckets + d] = sum;
-      sum += here;
-    }
-  parallel_for(shares, unsigned(shares), 1, [&](size_t tb, size_t te) {
-    for (size_t t = tb; t < te; ++t) {
-      size_t* c = &counters[t * buckets];
-      size_t b, e;
-      share_range(t, b, e);
-      for (size_t i = b; i < e; ++i) {
-        const size_t to = c[(key[i] >> shift) & mask]++;
+  counting_sort_place(
+      count, buckets, shares, counters, [&](size_t i) { return size_t((key[i] >> shift) & mask); },
+      [&](size_t i, size_t to) {
         key2[to] = key[i];
         val2[to] = val[i];
-      }
-    }
-  });
+      });
 }
 
 // Linear, where std::sort of (key, vertex) pairs took a third of a second per sigma on
