@@ -269,6 +269,9 @@ TEST_CASE("cli: bench --method fast --backend gpu times the fast method on a Vul
   CHECK(count(gpu.out, on_device) == 2);
   CHECK(count(cpu.out, "\"device\": \"cpu") == 1);
   CHECK(count(cpu.out, on_device) == 0);
+  // Stage peaks where they are measured (the CPU path's), none claimed for the devices'.
+  CHECK(count(cpu.out, "\"stage_peak_bytes\": {\"curvature\": ") == 1);
+  CHECK(count(gpu.out, "\"stage_peak_bytes\": {}") == 2);
 }
 
 TEST_CASE("gpu fast: cells past 32-bit keys are refused naming the CPU path", "[gpu][fast]") {

@@ -223,14 +223,20 @@ void print_table(const std::vector<Row>& rows) {
   // Each stage's time and peak resident memory (the process's, the mesh included).
   std::printf("\n%-24s %-22s %-18s %9s %10s %9s\n", "model", "device", "stage", "seconds", "peak MB", "peak B/v");
   for (const Row& r : rows)
-    for (const auto& st : r.best.stages)
+    for (const auto& st : r.best.stages) {
+      if (st.peak_bytes == 0) {  // not measured (the Vulkan path's stages): no figure, not 0
+        std::printf("%-24s %-22.22s %-18s %8.3fs %10s %9s\n", r.model.c_str(), r.device.c_str(), st.name.c_str(),
+                    st.seconds, "-", "-");
+        continue;
+      }
       std::printf("%-24s %-22.22s %-18s %8.3fs %10.1f %9.1f\n", r.model.c_str(), r.device.c_str(), st.name.c_str(),
                   st.seconds, double(st.peak_bytes) / 1e6, r.vertices ? double(st.peak_bytes) / double(r.vertices) : 0.0);
+    }
   std::printf("(per stage: its time and the process's peak resident memory while it ran, the mesh and\n"
               " what the heap kept from earlier stages included (meshsal keeps freed memory for reuse, so\n"
               " a stage's peak is at least what the process held when it began); the CPU fast method\n"
               " runs center-surround and suppression scale by scale inside the sweep: their peak is the\n"
-              " sweep's)\n");
+              " sweep's; '-': not measured, as on Vulkan devices)\n");
   std::printf("(saliency only, file reading excluded; best of the repeats; on Vulkan devices the\n"
               " center-surround maps come out of the sweep, and `other` is upload, grid, download and,\n"
               " in mixed precision, the double recheck of near ties (and a device's first run its\n"
@@ -246,7 +252,7 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
     JsonObject stage_peaks;
     for (const auto& st : r.best.stages) {
       stages.number(json_key(st.name), st.seconds);
-      stage_peaks.count(json_key(st.name), st.peak_bytes);
+      if (st.peak_bytes) stage_peaks.count(json_key(st.name), st.peak_bytes);  // measured ones only
     }
     JsonObject j;
     j.text("mesh", r.path).text("name", r.model).count("subdivisions", uint64_t(a.subdivide))
