@@ -34,8 +34,7 @@ template <>
 inline v8f exp_poly7_splat<v8f>(double c) { return v8f_splat(float(c)); }
 
 // sum_k kExpPoly7[k] x^k, for double or v4d, float or v8f (lane by lane, the same
-// operations), by
-// Estrin's scheme: pairs c_k + c_k+1 x, combined with x^2 and x^4. Its longest chain is 5
+// operations), by Estrin's scheme: pairs c_k + c_k+1 x, combined with x^2 and x^4. Its longest chain is 5
 // dependent operations, Horner's 14: without fma contraction, Horner left the exact sweep
 // of the default scales (latency-bound) ~40% slower than the -march=x86-64-v3 build with
 // contraction had been.

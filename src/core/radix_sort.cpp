@@ -43,11 +43,12 @@ void radix_sort_keys(std::vector<Key>& key, std::vector<uint32_t>& val, uint64_t
   std::vector<uint32_t> val2(n);
   std::vector<size_t> counters;
   // Passes of equal width, at most 11 bits (2048 counters a share: they stay in cache).
+  auto passes_for = [](int digit_bits) { return (digit_bits + 10) / 11; };
   auto lsd = [&](Key* k, uint32_t* v, Key* k2, uint32_t* v2, size_t count, int low_bits, size_t parts,
                  std::vector<size_t>& c) {
     // Returns whether the result ended in (k2, v2).
     if (low_bits == 0) return false;
-    const int passes = (low_bits + 10) / 11, digit = (low_bits + passes - 1) / passes;
+    const int passes = passes_for(low_bits), digit = (low_bits + passes - 1) / passes;
     bool in_second = false;
     for (int shift = 0; shift < low_bits; shift += digit) {
       if (!in_second)
@@ -74,7 +75,7 @@ void radix_sort_keys(std::vector<Key>& key, std::vector<uint32_t>& val, uint64_t
   for (size_t d = 0; d < buckets; ++d) start[d + 1] = counters[(shares - 1) * buckets + d];
   // Each bucket on one thread, its low digits in place between the two arrays. Every
   // bucket takes the same number of passes, so all end in the same array.
-  const int passes = (low + 10) / 11;
+  const int passes = passes_for(low);
   parallel_for(buckets, threads, 16, [&](size_t db, size_t de) {
     std::vector<size_t> c;
     for (size_t d = db; d < de; ++d) {

@@ -285,8 +285,9 @@ SweepPlan plan_sweep(const std::vector<double>& scales, double eps) {
 bool use_mixed(vk::Context& ctx, bool fast8, Precision precision) {
   if (!fast8 || precision == Precision::Double) return false;
   if (precision == Precision::Mixed) return true;
+  // A CPU device is never probed: the rule takes double there whatever the slowdown.
   const bool cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  return !cpu_device && gpu::auto_takes_mixed(cpu_device, gpu::fp64_slowdown(ctx));
+  return gpu::auto_takes_mixed(cpu_device, cpu_device ? 0.0 : gpu::fp64_slowdown(ctx));
 }
 
 void check_device(const vk::Context& ctx) {

@@ -1,8 +1,7 @@
 #include "io/colormap.h"
 
-#include "core/parallel.h"
-
 #include "core/kth_smallest.h"
+#include "core/parallel.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -99,8 +99,9 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
     cs_seconds += part.seconds();
     part.restart();
     // A raw map not kept is normalised where it lies (8 bytes a vertex less at the peak).
-    if (opt.raw_maps) r.raw[i] = raw;
-    std::vector<double> s = suppress_faces(std::move(raw), r.is_point, mesh, opt.threads);
+    std::vector<double> s = opt.raw_maps ? suppress_faces(raw, r.is_point, mesh, opt.threads)
+                                         : suppress_faces(std::move(raw), r.is_point, mesh, opt.threads);
+    if (opt.raw_maps) r.raw[i] = std::move(raw);
     if (step == 0) {
       r.saliency = std::move(s);  // s[v] >= 0, so 0 + s[v] == s[v]: adding to zeros' bits
     } else {
