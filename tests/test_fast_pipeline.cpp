@@ -365,6 +365,8 @@ TEST_CASE("peak memory: a stage's mark restarts, the process's peak does not", "
     WARN("the kernel's high-water mark cannot be restarted here");
     return;
   }
-  CHECK(stage_peak_resident_bytes() < high);  // the 200 MB were freed before the restart
+  // The 200 MB were freed before the restart (under AddressSanitizer its quarantine keeps
+  // freed blocks resident: tools/sanitize.sh saw the mark 20 KB above the old peak).
+  if (!meshsal_test::kAddressSanitizer) CHECK(stage_peak_resident_bytes() < high);
   CHECK(peak_resident_bytes() >= high);        // but the process's peak remembers them
 }
