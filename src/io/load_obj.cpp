@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/mesh_io_internal.h"
+#include "io/model_reference.h"
 #include "io/text_scan.h"
 
 namespace meshsal {
@@ -165,8 +166,13 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
     line = strip_comment(line);
     const std::string_view key = next_token(line);
     if (key == "mtllib") {
-      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line))
+      // Carried into outputs (and read once materials are), so held to the rule of every
+      // file a model names: in its folder or below (io/model_reference.h).
+      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
+        if (const std::string problem = reference_text_problem(std::string(tok), /*uri=*/false); !problem.empty())
+          throw fail("mtllib " + quoted(tok, 200) + ": " + problem);
         mesh.material_libraries.emplace_back(tok);
+      }
     } else if (key == "usemtl") {
       // The name is the rest of the line (without surrounding blanks): "usemtl" alone is "".
       while (!line.empty() && is_space(line.front())) line.remove_prefix(1);

@@ -123,13 +123,13 @@ inline bool parse_int_prefix(std::string_view tok, int64_t& out) {
   return r.ec == std::errc() && (r.ptr == tok.data() + tok.size() || *r.ptr == '/');
 }
 
-// A token for an error message: at most 40 characters, anything but printable ASCII as
+// A token for an error message: at most `max` characters, anything but printable ASCII as
 // '?' (a message is one printable line, whatever bytes the file holds).
-inline std::string quoted(std::string_view tok) {
-  std::string s(tok.substr(0, 40));
+inline std::string quoted(std::string_view tok, size_t max = 40) {
+  std::string s(tok.substr(0, max));
   for (char& c : s)
     if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  return "'" + s + (tok.size() > 40 ? "...'" : "'");
+  return "'" + s + (tok.size() > max ? "...'" : "'");
 }
 
 // Reads the next three coordinates of `line` (consumed from it) onto `out`. Returns what
