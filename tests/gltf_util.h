@@ -67,3 +67,19 @@ inline int validate_gltf(const std::string& file, std::string* report) {
 }
 
 }  // namespace meshsal_test
+
+namespace meshsal_test {
+
+// A GLB file: `json` as its JSON chunk (padded with blanks), `bin` (may be empty) as its
+// BIN chunk (padded with zeros).
+inline std::string glb_file(std::string json, std::vector<uint8_t> bin = {}) {
+  while (json.size() % 4) json += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const uint32_t total = uint32_t(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size()));
+  std::string out = "glTF" + u32(2) + u32(total) + u32(uint32_t(json.size())) + "JSON" + json;
+  if (!bin.empty()) out += u32(uint32_t(bin.size())) + "BIN" + std::string(1, '\0') + std::string(bin.begin(), bin.end());
+  return out;
+}
+
+}  // namespace meshsal_test

@@ -16,19 +16,26 @@
 
 #include "io/gltf_assets.h"
 #include "io/gltf_frame.h"
+#include "io/json_nesting.h"
 #include "io/mesh_io_internal.h"
+#include "io/model_reference.h"
 #include "io/read_bytes.h"
 #include "io/seam_twins.h"
+#include "io/text_scan.h"
 
 namespace meshsal {
 namespace {
 
-// What tinygltf may read besides the file itself: external buffers and images, only
-// regular files (a FIFO named as a buffer would block), each at most `limit` bytes, and
-// none at all when the glTF came from memory (no folder to resolve names in).
+// What tinygltf may read besides the file itself: the files its buffer and image URIs name,
+// under the rule of io/model_reference.h (in the model's folder or below, regular files),
+// all of them together within one budget; none at all when the glTF came from memory.
 struct FileAccess {
-  bool allowed = false;
-  uint64_t limit = 0;
+  std::string folder;   // the model's folder; "" = loaded from memory
+  uint64_t budget = 0;  // bytes left for the model's external files together
+  // The first reference refused, in our words: the load fails with it even where tinygltf
+  // only warns (an image it cannot read), and tinygltf's own message would name the
+  // path it tried and, for a buffer, the size it found.
+  std::string refusal;
 };
 
 // Every name "exists": read_whole_file then says what is wrong with it.
@@ -37,18 +44,19 @@ bool file_exists(const std::string&, void*) { return true; }
 std::string expand_path(const std::string& path, void*) { return path; }  // no shell expansion
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  const FileAccess& access = *static_cast<FileAccess*>(user);
-  if (!access.allowed) {
-    if (err) *err += "refers to an external file '" + path + "' (only a .gltf file on disk may)\n";
-    return false;
-  }
+  FileAccess& access = *static_cast<FileAccess*>(user);
+  // tinygltf passes the model's folder joined with the percent-decoded URI (JoinPath).
+  const std::string prefix = access.folder.empty() || access.folder.back() == '/' ? access.folder : access.folder + "/";
+  const std::string reference = path.compare(0, prefix.size(), prefix) == 0 ? path.substr(prefix.size()) : path;
   try {
-    const Bytes bytes = read_file(path, access.limit, /*regular_only=*/true);
-    if (bytes.size > access.limit) throw Error(path + ": larger than the input limit");
-    out->assign(bytes.data(), bytes.data() + bytes.size);
+    if (access.folder.empty())
+      throw Error(quoted(reference, 200) + ": refers to an external file (only a glTF file on disk may; this one came from memory)");
+    *out = read_model_reference(access.folder, reference, /*uri=*/true, access.budget);
+    access.budget -= out->size();
     return true;
   } catch (const Error& e) {
-    if (err) *err += std::string(e.what()) + "\n";
+    if (access.refusal.empty()) access.refusal = e.what();
+    if (err) *err += "refused\n";
     return false;
   }
 }
@@ -127,58 +135,82 @@ const unsigned char* view_span(const tinygltf::Model& model, int index, size_t o
   return data.data() + view.byteOffset + offset;
 }
 
-// An accessor's values as doubles, `components` per element (checked against its type),
-// sparse substitutions applied.
-std::vector<double> read_accessor(const tinygltf::Model& model, int index, size_t components, const std::string& what) {
+// Where an accessor's data lies, checked without reading it: its bufferView span, and
+// for a sparse one its indices' and values' spans. Nothing is sized by a count before this
+// says the file holds that count: an accessor without a bufferView (zeros, then sparse
+// substitutions) may not declare more elements than the file's bytes could hold dense,
+// so that a 5 KB file cannot ask for gigabytes of zeros.
+struct AccessorData {
+  const tinygltf::Accessor* accessor = nullptr;
+  size_t bytes = 0;     // per component
+  size_t element = 0;   // bytes per element
+  const unsigned char* base = nullptr;  // first element (null: no bufferView, zeros)
+  size_t step = 0;
+  size_t sparse = 0;    // substitutions
+  int index_type = 0;
+  const unsigned char* indices = nullptr;
+  const unsigned char* values = nullptr;
+  size_t index_step = 0, value_step = 0;
+};
+
+AccessorData locate_accessor(const tinygltf::Model& model, int index, size_t components, const std::string& what,
+                             uint64_t input_bytes) {
   if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor " + std::to_string(index) + " does not exist");
   const tinygltf::Accessor& a = model.accessors[size_t(index)];
-  const size_t bytes = component_bytes(a.componentType);
-  if (bytes == 0) fail(what + ": unsupported component type " + std::to_string(a.componentType));
+  AccessorData d;
+  d.accessor = &a;
+  d.bytes = component_bytes(a.componentType);
+  if (d.bytes == 0) fail(what + ": unsupported component type " + std::to_string(a.componentType));
   if (type_components(a.type) != components) fail(what + ": expected " + std::to_string(components) + " components per element");
-  const size_t element = bytes * components;
-  std::vector<double> out;
-  // Sizes are checked against the buffers before anything is allocated.
-  size_t step = 0;
-  const unsigned char* base = nullptr;
+  d.element = d.bytes * components;
   if (a.bufferView >= 0) {
     const size_t stride = size_t(a.bufferView) < model.bufferViews.size() ? model.bufferViews[size_t(a.bufferView)].byteStride : 0;
-    base = view_span(model, a.bufferView, a.byteOffset, a.count, element, stride, what, &step);
+    d.base = view_span(model, a.bufferView, a.byteOffset, a.count, d.element, stride, what, &d.step);
   } else if (!a.sparse.isSparse) {
     fail(what + ": accessor " + std::to_string(index) + " has no data (no bufferView and not sparse)");
-  } else if (a.count > (uint64_t(1) << 28)) {
-    fail(what + ": a sparse accessor of " + std::to_string(a.count) + " zeros is too large");
+  } else if ((unsigned __int128)a.count * d.element > input_bytes) {
+    fail(what + ": accessor " + std::to_string(index) + " declares " + std::to_string(a.count) +
+         " elements with no bufferView, more than the file's " + std::to_string(input_bytes) + " bytes could hold");
   }
-  out.assign(a.count * components, 0.0);
-  if (base)
-    for (size_t i = 0; i < a.count; ++i)
-      for (size_t c = 0; c < components; ++c)
-        out[i * components + c] = component(base + i * step + c * bytes, a.componentType, a.normalized);
   if (a.sparse.isSparse) {
-    const size_t n = size_t(std::max(a.sparse.count, 0));
-    if (a.sparse.count < 1 || n > a.count) fail(what + ": sparse count " + std::to_string(a.sparse.count) + " out of range");
-    const int itype = a.sparse.indices.componentType;
-    const size_t ibytes = itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-                                  itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
-                              ? component_bytes(itype) : 0;
+    d.sparse = size_t(std::max(a.sparse.count, 0));
+    if (a.sparse.count < 1 || d.sparse > a.count) fail(what + ": sparse count " + std::to_string(a.sparse.count) + " out of range");
+    d.index_type = a.sparse.indices.componentType;
+    const size_t ibytes = d.index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || d.index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                                  d.index_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
+                              ? component_bytes(d.index_type) : 0;
     if (ibytes == 0) fail(what + ": sparse indices of an unsupported type");
-    size_t istep = 0, vstep = 0;
-    const unsigned char* ip = view_span(model, a.sparse.indices.bufferView, size_t(std::max(a.sparse.indices.byteOffset, 0)),
-                                        n, ibytes, 0, what + " (sparse indices)", &istep);
-    const unsigned char* vp = view_span(model, a.sparse.values.bufferView, size_t(std::max(a.sparse.values.byteOffset, 0)),
-                                        n, element, 0, what + " (sparse values)", &vstep);
-    for (size_t k = 0; k < n; ++k) {
-      const double target = component(ip + k * istep, itype, false);
-      if (target >= double(a.count)) fail(what + ": sparse index " + std::to_string(uint64_t(target)) + " out of range");
-      for (size_t c = 0; c < components; ++c)
-        out[size_t(target) * components + c] = component(vp + k * vstep + c * bytes, a.componentType, a.normalized);
-    }
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+      fail(what + ": a negative sparse byteOffset");
+    d.indices = view_span(model, a.sparse.indices.bufferView, size_t(a.sparse.indices.byteOffset), d.sparse, ibytes, 0,
+                          what + " (sparse indices)", &d.index_step);
+    d.values = view_span(model, a.sparse.values.bufferView, size_t(a.sparse.values.byteOffset), d.sparse, d.element, 0,
+                         what + " (sparse values)", &d.value_step);
   }
-  return out;
+  return d;
 }
 
-size_t accessor_count(const tinygltf::Model& model, int index, const std::string& what) {
-  if (index < 0 || size_t(index) >= model.accessors.size()) fail(what + ": accessor " + std::to_string(index) + " does not exist");
-  return model.accessors[size_t(index)].count;
+// An accessor's values as doubles, `components` per element (checked against its type),
+// sparse substitutions applied. `count`: the element count it must have (POSITION's, for
+// the other vertex attributes), checked before anything is allocated; SIZE_MAX: any.
+std::vector<double> read_accessor(const tinygltf::Model& model, int index, size_t components, const std::string& what,
+                                  uint64_t input_bytes, size_t count = SIZE_MAX) {
+  if (count != SIZE_MAX && index >= 0 && size_t(index) < model.accessors.size() && model.accessors[size_t(index)].count != count)
+    fail(what + ": " + std::to_string(model.accessors[size_t(index)].count) + " elements where POSITION has " + std::to_string(count));
+  const AccessorData d = locate_accessor(model, index, components, what, input_bytes);
+  const tinygltf::Accessor& a = *d.accessor;
+  std::vector<double> out(a.count * components, 0.0);
+  if (d.base)
+    for (size_t i = 0; i < a.count; ++i)
+      for (size_t c = 0; c < components; ++c)
+        out[i * components + c] = component(d.base + i * d.step + c * d.bytes, a.componentType, a.normalized);
+  for (size_t k = 0; k < d.sparse; ++k) {
+    const double target = component(d.indices + k * d.index_step, d.index_type, false);
+    if (target >= double(a.count)) fail(what + ": sparse index " + std::to_string(uint64_t(target)) + " out of range");
+    for (size_t c = 0; c < components; ++c)
+      out[size_t(target) * components + c] = component(d.values + k * d.value_step + c * d.bytes, a.componentType, a.normalized);
+  }
+  return out;
 }
 
 // A node's own transform (matrix, or translation * rotation * scale), column-major.
@@ -252,9 +284,23 @@ struct Channels {
   bool normal = false, uv = false, color = false;
 };
 
-bool geometry_extension(const std::string& ext) {
-  return ext == "KHR_mesh_quantization" || ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
-         ext == "KHR_meshopt_compression" || ext == "EXT_mesh_gpu_instancing" || ext == "MSFT_lod";
+// Extensions of the geometry that meshsal refuses by name (it cannot decode them).
+bool unreadable_extension(const std::string& ext) {
+  return ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression" ||
+         ext == "EXT_mesh_gpu_instancing";
+}
+
+// Extensions that live in the materials, textures and images meshsal carries over
+// unchanged: the output uses them as the input did.
+bool carried_extension(const std::string& ext) {
+  return ext.rfind("KHR_materials_", 0) == 0 || ext == "KHR_texture_transform" || ext == "KHR_texture_basisu" ||
+         ext == "EXT_texture_webp" || ext == "EXT_texture_avif";
+}
+
+// A reader must refuse a file that requires an extension it does not support (glTF 2.0,
+// 3.12): those meshsal reads (quantised attributes) or carries are known.
+bool known_required_extension(const std::string& ext) {
+  return ext == "KHR_mesh_quantization" || carried_extension(ext);
 }
 
 // The image's file type from its first bytes (a bufferView image must name it).
@@ -266,43 +312,174 @@ std::string image_mime(const std::vector<unsigned char>& b) {
   return "";
 }
 
-// The input's materials and what they use, for write_gltf (GltfAssets).
-std::shared_ptr<const GltfAssets> carry_assets(tinygltf::Model& model, const std::map<int, uint32_t>& material_slot) {
-  if (model.materials.empty()) return nullptr;
-  auto a = std::make_shared<GltfAssets>();
-  for (tinygltf::Image& im : model.images) {
-    if (im.bufferView >= 0) {
-      size_t step = 0;
-      const size_t len = size_t(im.bufferView) < model.bufferViews.size() ? model.bufferViews[size_t(im.bufferView)].byteLength : 0;
-      const unsigned char* p = view_span(model, im.bufferView, 0, len ? 1 : 0, len, 0, "image '" + im.name + "'", &step);
-      im.image.assign(p, p + len);
+// `index` names one of `count` items (-1: none).
+bool dangling(int index, size_t count) { return index < -1 || (index >= 0 && size_t(index) >= count); }
+
+// Old texture index -> new (-1: dropped), with why a dropped one is gone.
+struct TextureMap {
+  std::vector<int> to;
+  std::string why(int index) const {
+    return index >= 0 && size_t(index) < to.size() ? "which has no image left" : "which does not exist";
+  }
+  int operator()(int index) const { return index >= 0 && size_t(index) < to.size() ? to[size_t(index)] : -1; }
+};
+
+// A material's texture references (the index of a textureInfo) inside its extensions,
+// e.g. KHR_materials_clearcoat's clearcoatTexture: renumbered, and removed with a note
+// where the texture is gone. Values nest no deeper than the JSON they came from
+// (kMaxJsonNesting), so the recursion is bounded.
+tinygltf::Value renumber_textures(const tinygltf::Value& v, const TextureMap& map, const std::string& where,
+                                  std::set<std::string>* notes) {
+  if (!v.IsObject()) return v;
+  tinygltf::Value::Object o = v.Get<tinygltf::Value::Object>();
+  for (auto it = o.begin(); it != o.end();) {
+    const bool info = it->first.size() > 7 && it->first.compare(it->first.size() - 7, 7, "Texture") == 0 &&
+                      it->second.IsObject() && it->second.Get("index").IsInt();
+    if (!info) {
+      it->second = renumber_textures(it->second, map, where, notes);
+      ++it;
+      continue;
     }
-    if (!im.image.empty()) {
+    const int old = it->second.Get("index").Get<int>();
+    if (map(old) < 0) {
+      notes->insert(where + "'s " + it->first + " names texture " + std::to_string(old) + ", " + map.why(old) + ": dropped");
+      it = o.erase(it);
+      continue;
+    }
+    tinygltf::Value::Object textureInfo = it->second.Get<tinygltf::Value::Object>();
+    textureInfo["index"] = tinygltf::Value(map(old));
+    it->second = tinygltf::Value(std::move(textureInfo));
+    ++it;
+  }
+  return tinygltf::Value(std::move(o));
+}
+
+// References between the carried materials, textures, images and samplers: each one
+// naming nothing is dropped with a note, so that no output is invalid glTF. A texture left
+// with no image (its source and its extensions' sources all dangling) is removed and the
+// others renumbered (glTF has no empty texture).
+void drop_dangling_references(tinygltf::Model& model, std::set<std::string>* notes) {
+  const size_t images = model.images.size(), samplers = model.samplers.size();
+  TextureMap map;
+  std::vector<tinygltf::Texture> kept;
+  for (size_t t = 0; t < model.textures.size(); ++t) {
+    tinygltf::Texture& tex = model.textures[t];
+    const std::string where = "texture " + std::to_string(t);
+    if (dangling(tex.source, images)) notes->insert(where + " names image " + std::to_string(tex.source) + ", which does not exist: dropped"), tex.source = -1;
+    if (dangling(tex.sampler, samplers)) notes->insert(where + " names sampler " + std::to_string(tex.sampler) + ", which does not exist: dropped"), tex.sampler = -1;
+    for (auto it = tex.extensions.begin(); it != tex.extensions.end();) {
+      const tinygltf::Value& source = it->second.Get("source");
+      if (source.IsInt() && dangling(source.Get<int>(), images)) {
+        notes->insert(where + "'s " + it->first + " names image " + std::to_string(source.Get<int>()) + ", which does not exist: dropped");
+        it = tex.extensions.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    if (tex.source < 0 && tex.extensions.empty()) {
+      map.to.push_back(-1);
+      continue;
+    }
+    map.to.push_back(int(kept.size()));
+    kept.push_back(std::move(tex));
+  }
+  model.textures = std::move(kept);
+  for (size_t m = 0; m < model.materials.size(); ++m) {
+    tinygltf::Material& mat = model.materials[m];
+    const std::string where = "material " + std::to_string(m);
+    auto renumber = [&](int& index, const char* name) {
+      if (index == -1) return;
+      if (map(index) < 0) notes->insert(where + "'s " + name + " names texture " + std::to_string(index) + ", " + map.why(index) + ": dropped");
+      index = map(index);
+    };
+    renumber(mat.pbrMetallicRoughness.baseColorTexture.index, "baseColorTexture");
+    renumber(mat.pbrMetallicRoughness.metallicRoughnessTexture.index, "metallicRoughnessTexture");
+    renumber(mat.normalTexture.index, "normalTexture");
+    renumber(mat.occlusionTexture.index, "occlusionTexture");
+    renumber(mat.emissiveTexture.index, "emissiveTexture");
+    for (auto& [name, value] : mat.extensions) value = renumber_textures(value, map, where + "'s " + name, notes);
+  }
+}
+
+// The input's materials and what they use, for write_gltf (GltfAssets). Each image's bytes
+// are taken once per distinct source: images that share a bufferView share one copy.
+std::shared_ptr<const GltfAssets> carry_assets(tinygltf::Model& model, const std::map<int, uint32_t>& material_slot,
+                                               std::set<std::string>* notes) {
+  if (model.materials.empty()) return nullptr;
+  drop_dangling_references(model, notes);
+  auto a = std::make_shared<GltfAssets>();
+  std::map<int, int> source_of_view;
+  for (tinygltf::Image& im : model.images) {
+    int source = -1;
+    if (im.bufferView >= 0) {
+      const auto known = source_of_view.find(im.bufferView);
+      if (known != source_of_view.end()) {
+        source = known->second;
+      } else {
+        size_t step = 0;
+        const size_t len = size_t(im.bufferView) < model.bufferViews.size() ? model.bufferViews[size_t(im.bufferView)].byteLength : 0;
+        const unsigned char* p = view_span(model, im.bufferView, 0, len ? 1 : 0, len, 0, "image '" + im.name + "'", &step);
+        source = int(a->image_bytes.size());
+        a->image_bytes.emplace_back(p, p + len);
+        source_of_view[im.bufferView] = source;
+      }
+    } else if (!im.image.empty()) {
+      source = int(a->image_bytes.size());
+      a->image_bytes.push_back(std::move(im.image));
+    }
+    im.image.clear();
+    im.image.shrink_to_fit();
+    if (source >= 0) {
       im.uri.clear();
-      if (im.mimeType.empty()) im.mimeType = image_mime(im.image);
+      if (im.mimeType.empty()) im.mimeType = image_mime(a->image_bytes[size_t(source)]);
       if (im.mimeType.empty()) im.mimeType = "image/png";
     }
     im.bufferView = -1;
+    a->image_source.push_back(source);
   }
   a->materials = std::move(model.materials);
   a->textures = std::move(model.textures);
   a->images = std::move(model.images);
   a->samplers = std::move(model.samplers);
   for (const std::string& e : model.extensionsUsed)
-    if (!geometry_extension(e)) a->extensions_used.push_back(e);
+    if (carried_extension(e)) a->extensions_used.push_back(e);
   for (const std::string& e : model.extensionsRequired)
-    if (!geometry_extension(e)) a->extensions_required.push_back(e);
+    if (carried_extension(e)) a->extensions_required.push_back(e);
   a->slot_material.assign(material_slot.size(), -1);
   for (const auto& [material, slot] : material_slot) a->slot_material[slot] = material;
   return a;
+}
+
+// The JSON of a glTF file: the whole text, or a GLB's first chunk (clipped to the bytes
+// there are; tinygltf checks the header itself).
+std::string_view json_text(std::string_view bytes, bool binary) {
+  if (!binary) return bytes;
+  if (bytes.size() < 20) return {};
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return bytes.substr(20, length);
+}
+
+// tinygltf's first error line, without what it says of a file's size (a refused or
+// mismatched external file must not tell its size).
+std::string loader_error(std::string err) {
+  while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  const size_t nl = err.find('\n');
+  if (nl != std::string::npos) err.resize(nl);
+  if (err.rfind("File size mismatch", 0) == 0) return "an external buffer's file is not as long as its byteLength";
+  return err;
 }
 
 }  // namespace
 
 Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_named prefixes it*/, bool binary, const std::string& folder,
                      uint64_t limit, bool attributes, std::vector<std::string>* unread) {
+  // No parser recurses into JSON nested deeper than we read (tinygltf's conversion of
+  // extras and extensions recurses once per level).
+  if (json_nesting(json_text(bytes, binary)) > kMaxJsonNesting)
+    fail("its JSON nests deeper than " + std::to_string(kMaxJsonNesting) + " levels, the most meshsal reads");
   tinygltf::TinyGLTF loader;
-  FileAccess access{!folder.empty(), limit ? limit : kNoHeaderLimitBytes};
+  FileAccess access{folder, limit ? limit : kNoHeaderLimitBytes, ""};
   loader.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &write_whole_file, &access});
   loader.SetImageLoader(&keep_image_bytes, nullptr);
   tinygltf::Model model;
@@ -311,27 +488,23 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
                                                        unsigned(std::min<size_t>(bytes.size(), UINT32_MAX)), folder)
                          : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                                       unsigned(std::min<size_t>(bytes.size(), UINT32_MAX)), folder);
+  if (!access.refusal.empty()) fail(access.refusal);
   if (!ok) {
     // A compressed file (gltfpack -cc, Draco) fails tinygltf's buffer checks before its
     // extensions are known (its fallback buffer has no data): name the extension instead.
-    std::string_view json = bytes;
-    if (binary && bytes.size() >= 20) {
-      uint32_t length = 0;
-      std::memcpy(&length, bytes.data() + 12, 4);
-      json = bytes.substr(20, length);
-    }
+    const std::string_view json = json_text(bytes, binary);
     for (const char* ext : {"EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_draco_mesh_compression"})
       if (json.find(ext) != std::string_view::npos)
         fail(std::string("uses the extension ") + ext +
              ", which meshsal does not read (decompress it first, e.g. with gltfpack -noq)");
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    const size_t nl = err.find('\n');
-    fail("not a valid glTF file: " + (nl == std::string::npos ? err : err.substr(0, nl)));
+    fail("not a valid glTF file: " + loader_error(err));
   }
-  for (const std::string& ext : model.extensionsRequired)
-    if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression" ||
-        ext == "EXT_mesh_gpu_instancing")
+  for (const std::string& ext : model.extensionsRequired) {
+    if (unreadable_extension(ext))
       fail("requires the extension " + ext + ", which meshsal does not read (decompress it first, e.g. with gltfpack -noq)");
+    if (!known_required_extension(ext))
+      fail("requires the extension " + quoted(ext, 80) + ", which meshsal does not know (a reader must refuse what it cannot honour)");
+  }
 
   const std::vector<Instance> instances = scene_instances(model);
   if (instances.empty()) fail("the scene holds no mesh");
@@ -349,6 +522,8 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
   }
   // The memory bound: instancing lets a small file name a large mesh many times, so the
   // vertices and indices to build are counted and held to the other loaders' rule first.
+  // Each accessor's count is first held to the bytes the file has for it (locate_accessor),
+  // so a count no file could back is named as such, not as instancing.
   const uint64_t input_bytes = bytes.size() + [&] {
     uint64_t b = 0;
     for (const tinygltf::Buffer& buf : model.buffers) b += buf.data.size();
@@ -356,10 +531,14 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
   }();
   unsigned __int128 need = 0;
   for (const Instance& in : instances)
-    for (const tinygltf::Primitive& p : model.meshes[size_t(in.mesh)].primitives) {
+    for (size_t pi = 0; pi < model.meshes[size_t(in.mesh)].primitives.size(); ++pi) {
+      const tinygltf::Primitive& p = model.meshes[size_t(in.mesh)].primitives[pi];
+      const std::string what = "mesh " + std::to_string(in.mesh) + " primitive " + std::to_string(pi);
       const auto pos = p.attributes.find("POSITION");
-      if (pos != p.attributes.end()) need += (unsigned __int128)accessor_count(model, pos->second, "POSITION") * 64;
-      if (p.indices >= 0) need += (unsigned __int128)accessor_count(model, p.indices, "indices") * 12;
+      if (pos != p.attributes.end())
+        need += (unsigned __int128)locate_accessor(model, pos->second, 3, what + " POSITION", input_bytes).accessor->count * 64;
+      if (p.indices >= 0)
+        need += (unsigned __int128)locate_accessor(model, p.indices, 1, what + " indices", input_bytes).accessor->count * 12;
     }
   if (need > (unsigned __int128)counts_limit(input_bytes, input_bytes))
     fail("its instances would build a mesh far larger than the file (a mesh named by many nodes): refused");
@@ -398,7 +577,7 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
       if (range != vertex_ranges.end()) {
         first = range->second.first, nv = range->second.second;
       } else {
-        const std::vector<double> local = read_accessor(model, pos->second, 3, what + " POSITION");
+        const std::vector<double> local = read_accessor(model, pos->second, 3, what + " POSITION", input_bytes);
         nv = local.size() / 3, first = xyz.size() / 3;
         if (first + nv > UINT32_MAX) fail("more than 2^32 - 1 vertices");
         for (size_t v = 0; v < nv; ++v) {
@@ -413,8 +592,7 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
           if (!kept) skipped.insert("vertex attribute '" + attr + "'");
         }
         if (channels.normal) {
-          const std::vector<double> n = read_accessor(model, p.attributes.at("NORMAL"), 3, what + " NORMAL");
-          if (n.size() != local.size()) fail(what + ": NORMAL and POSITION counts differ");
+          const std::vector<double> n = read_accessor(model, p.attributes.at("NORMAL"), 3, what + " NORMAL", input_bytes, nv);
           for (size_t v = 0; v < nv; ++v) {
             double w[3];
             transform_direction(normal_frame, &n[3 * v], w);
@@ -423,16 +601,14 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
           }
         }
         if (channels.uv) {
-          const std::vector<double> t = read_accessor(model, p.attributes.at("TEXCOORD_0"), 2, what + " TEXCOORD_0");
-          if (t.size() != 2 * nv) fail(what + ": TEXCOORD_0 and POSITION counts differ");
+          const std::vector<double> t = read_accessor(model, p.attributes.at("TEXCOORD_0"), 2, what + " TEXCOORD_0", input_bytes, nv);
           // glTF's v runs down the image, OBJ's (and every other loader's) up.
           for (size_t v = 0; v < nv; ++v) uv.push_back(float(t[2 * v])), uv.push_back(float(1.0 - t[2 * v + 1]));
         }
         if (channels.color) {
           const int acc = p.attributes.at("COLOR_0");
           const size_t comps = acc >= 0 && size_t(acc) < model.accessors.size() && model.accessors[size_t(acc)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-          const std::vector<double> c = read_accessor(model, acc, comps, what + " COLOR_0");
-          if (c.size() != comps * nv) fail(what + ": COLOR_0 and POSITION counts differ");
+          const std::vector<double> c = read_accessor(model, acc, comps, what + " COLOR_0", input_bytes, nv);
           for (size_t v = 0; v < nv; ++v) {
             for (size_t k = 0; k < 4; ++k) {
               // Linear in glTF; sRGB bytes in meshsal (alpha stays linear).
@@ -450,7 +626,7 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
         if (ia && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
           fail(what + ": indices must be unsigned integers");
-        const std::vector<double> idx = read_accessor(model, p.indices, 1, what + " indices");
+        const std::vector<double> idx = read_accessor(model, p.indices, 1, what + " indices", input_bytes);
         corners.reserve(idx.size());
         for (double x : idx) {
           if (x >= double(nv)) fail(what + ": index " + std::to_string(uint64_t(x)) + " out of range (" + std::to_string(nv) + " vertices)");
@@ -498,7 +674,7 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
   }
   if (any_material) {
     mesh.triangle_material = std::move(tri_material);
-    mesh.gltf_assets = carry_assets(model, material_slot);
+    mesh.gltf_assets = carry_assets(model, material_slot, &skipped);
   } else {
     mesh.materials.clear();
   }

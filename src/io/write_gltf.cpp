@@ -223,12 +223,18 @@ void add_materials(tinygltf::Model& model, const Mesh& mesh) {
     model.textures = a->textures;
     model.samplers = a->samplers;
     model.images = a->images;
-    for (tinygltf::Image& im : model.images) {
-      if (im.image.empty()) continue;  // unread external file: its uri stays
-      Builder b{model};
-      im.bufferView = b.view(im.image.data(), im.image.size(), 0);
-      im.uri.clear();
-      im.image.clear();
+    // Each distinct image source once, as one bufferView the images that shared it share.
+    std::vector<int> view_of(a->image_bytes.size(), -1);
+    for (size_t i = 0; i < model.images.size(); ++i) {
+      const int source = i < a->image_source.size() ? a->image_source[i] : -1;
+      if (source < 0) continue;  // unread external file: its uri stays
+      if (view_of[size_t(source)] < 0) {
+        Builder b{model};
+        const std::vector<unsigned char>& bytes = a->image_bytes[size_t(source)];
+        view_of[size_t(source)] = b.view(bytes.data(), bytes.size(), 0);
+      }
+      model.images[i].bufferView = view_of[size_t(source)];
+      model.images[i].uri.clear();
     }
     for (const std::string& e : a->extensions_used) model.extensionsUsed.push_back(e);
     for (const std::string& e : a->extensions_required) model.extensionsRequired.push_back(e);
