@@ -16,6 +16,7 @@
 
 #include <vector>
 
+#include "io/gltf_assets.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -80,14 +81,81 @@ inline std::string read_stream(const uint8_t* data, size_t size) {
   return outcome;
 }
 
+// A folder the glTF targets load their input from, so that the files a glTF names are
+// really looked up: model/ holds what a model may read (mesh.bin: one triangle's positions
+// and indices; sub/mesh.bin; tex.png) and links out of it (up -> .., out.bin ->
+// ../secret.bin); beside model/ lie secret.bin (a valid buffer whose coordinates are all
+// 4242) and secret.png (holding "SECRET-MARKER"). Made once per process, removed at exit.
+struct ReferenceFixture {
+  std::string root, model;
+  ReferenceFixture() {
+    root = "/tmp/meshsal_fuzz_refs_" + std::to_string(::getpid());
+    model = root + "/model";
+    std::string cmd = "rm -rf '" + root + "' && mkdir -p '" + model + "/sub'";
+    if (std::system(cmd.c_str()) != 0) std::abort();
+    const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, secret[9] = {4242, 4242, 4242, 4242, 4242, 4242, 4242, 4242, 4242};
+    const uint32_t idx[3] = {0, 1, 2};
+    put(model + "/mesh.bin", std::string(reinterpret_cast<const char*>(tri), 36) + std::string(reinterpret_cast<const char*>(idx), 12));
+    put(model + "/sub/mesh.bin", std::string(reinterpret_cast<const char*>(tri), 36) + std::string(reinterpret_cast<const char*>(idx), 12));
+    put(model + "/tex.png", std::string("\x89PNG\r\n\x1a\n", 8) + "meshsal-fuzz-texture");
+    put(root + "/secret.bin", std::string(reinterpret_cast<const char*>(secret), 36) + std::string(reinterpret_cast<const char*>(idx), 12));
+    put(root + "/secret.png", std::string("\x89PNG\r\n\x1a\n", 8) + "SECRET-MARKER");
+    if (::symlink("..", (model + "/up").c_str()) != 0 || ::symlink("../secret.bin", (model + "/out.bin").c_str()) != 0) std::abort();
+  }
+  ~ReferenceFixture() {
+    const std::string cmd = "rm -rf '" + root + "'";
+    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", root.c_str());
+  }
+  static void put(const std::string& path, const std::string& bytes) {
+    FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f || std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size()) std::abort();
+    std::fclose(f);
+  }
+};
+
+// Loads `data` as the file model/fuzz.EXT of the fixture, with attributes, and aborts when
+// anything of the secret files reached the mesh. Returns "" or the Error, the folder taken
+// off its start (so that it names "fuzz.EXT" as the other targets' messages do).
+inline std::string load_in_folder(const uint8_t* data, size_t size, const std::string& ext) {
+  static ReferenceFixture fixture;
+  const std::string path = fixture.model + "/fuzz." + ext;
+  ReferenceFixture::put(path, std::string(reinterpret_cast<const char*>(data), size));
+  meshsal::LoadOptions options;
+  options.max_input_bytes = 8u << 20;
+  options.attributes = true;
+  try {
+    const meshsal::Mesh mesh = meshsal::load_mesh(path, nullptr, options);
+    for (double x : meshsal::model_positions(mesh))
+      if (x == 4242) std::fprintf(stderr, "read secret.bin from outside the model's folder\n"), std::abort();
+    if (mesh.gltf_assets)
+      for (const auto& bytes : mesh.gltf_assets->image_bytes)
+        if (std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()).find("SECRET-MARKER") != std::string_view::npos)
+          std::fprintf(stderr, "read secret.png from outside the model's folder\n"), std::abort();
+    return "";
+  } catch (const meshsal::Error& e) {
+    std::string what = e.what();
+    const std::string folder = fixture.model + "/";
+    if (what.rfind(folder, 0) == 0) what.erase(0, folder.size());
+    return what;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: not a meshsal::Error: %s\n", path.c_str(), e.what());
+    std::abort();
+  }
+}
+
 // The targets: plystream (read_stream), obj, off, ply, stl, gltf, glb (the bytes are the file), gz (the first byte picks the format
 // inside, the rest is the .gz file) and saliency (the first byte picks the format; small
 // meshes that load go through the CPU saliency pipeline). Returns load's result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
   if (target == "plystream") return read_stream(data, size);
-  if (target == "obj" || target == "off" || target == "ply" || target == "stl" || target == "gltf" || target == "glb") {
-    if (target == "obj" || target == "ply" || target == "gltf" || target == "glb") {  // the attribute paths too (what simplify reads)
+  if (target == "gltf" || target == "glb") {
+    // From memory (no file may be named), then as a file among others (the references).
+    load(data, size, "fuzz." + target, mesh);
+    return load_in_folder(data, size, target);
+  }
+  if (target == "obj" || target == "off" || target == "ply" || target == "stl") {
+    if (target == "obj" || target == "ply") {  // the attribute paths too (what simplify reads)
       meshsal::Mesh with_attributes;
       load(data, size, "fuzz." + target, with_attributes, true);
     }
