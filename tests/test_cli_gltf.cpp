@@ -32,17 +32,24 @@ TEST_CASE("cli gltf: saliency -o x.glb holds the PLY's saliency, validator-clean
   LoadReport lr;
   const Mesh glb = load_mesh((dir / "m.glb").string(), nullptr, o, &lr);
   CHECK(glb.vertex_count() == ply["quality"].size());
-  CHECK(lr.unread == std::vector<std::string>{"vertex attribute '_CURVATURE'", "vertex attribute '_SALIENCY'",
-                                              "vertex attribute '_SALIENCY_RAW_0'", "vertex attribute '_SALIENCY_RAW_1'",
-                                              "vertex attribute '_SALIENCY_RAW_2'", "vertex attribute '_SALIENCY_RAW_3'",
-                                              "vertex attribute '_SALIENCY_RAW_4'"});
-  // The GLB read back gives the same saliency as the OBJ.
-  REQUIRE(run_cli("saliency " + quoted((dir / "m.glb").string()) + " -o " + quoted((dir / "again.ply").string()) +
-                      " -q --backend cpu",
-                  dir).rc == 0);
-  VertexProperties again;
-  load_mesh((dir / "again.ply").string(), &again);
-  CHECK(again["quality"] == ply["quality"]);
+  // Every channel comes back: S (_SALIENCY) as the saliency attribute, the raw maps and
+  // the curvature under their names; S read back from the GLB is the PLY's.
+  CHECK(lr.unread.empty());
+  std::vector<std::string> names;
+  for (const VertexAttribute& a : glb.attributes) names.push_back(a.name);
+  CHECK(names == std::vector<std::string>{"red", "green", "blue", "alpha", "quality", "curvature", "saliency_raw_0",
+                                          "saliency_raw_1", "saliency_raw_2", "saliency_raw_3", "saliency_raw_4"});
+  CHECK(load_saliency((dir / "m.glb").string(), glb) == load_saliency((dir / "m.ply").string(), glb));
+  // The GLB read back gives the saliency of the PLY read back (both hold the model's
+  // coordinates as floats), to the bit.
+  for (const char* from : {"m.glb", "m.ply"})
+    REQUIRE(run_cli("saliency " + quoted((dir / from).string()) + " -o " + quoted((dir / (std::string("again_") + from + ".ply")).string()) +
+                        " -q --backend cpu",
+                    dir).rc == 0);
+  VertexProperties again_glb, again_ply;
+  load_mesh((dir / "again_m.glb.ply").string(), &again_glb);
+  load_mesh((dir / "again_m.ply.ply").string(), &again_ply);
+  CHECK(again_glb["quality"] == again_ply["quality"]);
   // What glTF output does not go with.
   const auto r = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "x.glb").string()) + " --memory-limit 100M", dir);
   CHECK(r.rc == 2);

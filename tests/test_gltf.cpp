@@ -272,16 +272,22 @@ TEST_CASE("gltf: OBJ -> GLB -> saliency equals the OBJ's at every vertex, transf
   write_obj(dir.file("m.obj"), obj_mesh);
   const Mesh obj = load_mesh(dir.file("m.obj"));
   const SaliencyResult want = compute_saliency(obj, cpu_exact());
-  // Straight through: the same local floats (glTF stores float: the node carries the
-  // origin), the same saliency bit for bit.
+  // Straight through: the model's coordinates as floats under no node transform, as a
+  // float PLY holds them (a reader that ignores nodes sees the model where the PLY puts it):
+  // the positions and saliency of the PLY route bit for bit, the OBJ's to float rounding.
   write_gltf(dir.file("m.glb"), obj, &want.saliency);
-  const Mesh glb = load_mesh(dir.file("m.glb"));
+  write_ply(dir.file("m.ply"), obj, {});
+  const Mesh glb = load_mesh(dir.file("m.glb")), ply = load_mesh(dir.file("m.ply"));
   REQUIRE(glb.vertex_count() == obj.vertex_count());
-  CHECK(glb.positions == obj.positions);
+  CHECK(glb.frame.empty());
+  CHECK(glb.positions == ply.positions);
   const std::vector<double> gw = world(glb), ow0 = world(obj);
   for (size_t i = 0; i < gw.size(); ++i) CHECK(gw[i] == Approx(ow0[i]).margin(1e-7));
   CHECK(glb.triangles == obj.triangles);
-  CHECK(compute_saliency(glb, cpu_exact()).saliency == want.saliency);
+  const std::vector<double> via_glb = compute_saliency(glb, cpu_exact()).saliency;
+  CHECK(via_glb == compute_saliency(ply, cpu_exact()).saliency);
+  const double s_max = *std::max_element(want.saliency.begin(), want.saliency.end());
+  for (size_t v = 0; v < via_glb.size(); ++v) CHECK(via_glb[v] == Approx(want.saliency[v]).margin(1e-5 * s_max));
   // Under a node turned a quarter, scaled by 2 and moved (a file made elsewhere; a transform
   // exact in binary, so the saliency can be compared closely: it is invariant to
   // similarity transforms), and undoing the transform gives the positions back.
@@ -344,9 +350,23 @@ TEST_CASE("gltf: what we write keeps attributes, materials and survey coordinate
   REQUIRE(red.size() == 4);
   CHECK(red[3] > 100);
   CHECK(blue[0] > red[0]);
+  // _SALIENCY comes back as the saliency attribute (kSaliencyAttribute), nothing unread.
   LoadReport report;
   load_mesh(dir.file("m.glb"), nullptr, o, &report);
-  CHECK(report.unread == std::vector<std::string>{"vertex attribute '_SALIENCY'"});
+  CHECK(report.unread.empty());
+  const std::vector<float> s = attr(back, kSaliencyAttribute);
+  CHECK(s == std::vector<float>{0.1f, 0.2f, 0.3f, 0.4f});
+  // These coordinates are floats: written as they are, under no node transform. Where
+  // floats would move them (a tenth of a millimetre at 500 km), a translation node keeps them.
+  CHECK(back.frame.empty());
+  Mesh survey = m;
+  std::vector<double> xyz = world(m);
+  xyz[0] += 0.0001;
+  set_model_positions(survey, xyz.data(), m.vertex_count());
+  REQUIRE(positions_need_double(survey));
+  write_gltf(dir.file("survey.glb"), survey);
+  const std::vector<double> survey_back = world(load_mesh(dir.file("survey.glb"), nullptr, o));
+  for (size_t i = 0; i < xyz.size(); ++i) CHECK(survey_back[i] == Approx(xyz[i]).margin(1e-6));
 }
 
 TEST_CASE("gltf: every file we write passes the Khronos glTF-Validator", "[io][gltf][validator]") {

@@ -299,18 +299,84 @@ void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels);
 // One mesh, with its saliency when given.
 void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
 
-// The writer a file name picks, for every front end's -o: ".obj", ".ply", ".glb" or ".gltf"
-// (case-insensitive), "" for none of them.
+// ---- One mesh document, every format -----------------------------------------------------
+// A Mesh is the one document every reader fills and every writer writes. Its per-vertex
+// attributes are known by name; attribute_role() is the one table of what a name holds,
+// and each format's MeshFormat says which of those it can keep. What a format cannot keep
+// is named once, by mesh_output_note().
+
+// What a per-vertex attribute holds.
+enum class AttributeKind {
+  Normal,    // nx ny nz
+  TexCoord,  // u v (also s t, texture_u texture_v: PLY's names) = set 0; u1 v1 .. u7 v7 = sets 1..7
+  Color,     // red green blue alpha, 0..255 (sRGB bytes, as PLY's uchar colours)
+  Saliency,  // quality: meshsal's S (PLY's `quality`, glTF's _SALIENCY)
+  Scalar     // any other name: one float per vertex
+};
+
+struct AttributeRole {
+  AttributeKind kind = AttributeKind::Scalar;
+  int set = 0;        // TexCoord: the UV set (glTF's TEXCOORD_<set>)
+  int component = 0;  // Normal: x y z = 0 1 2; TexCoord: u v = 0 1; Color: r g b a = 0..3
+};
+
+// The role of an attribute name (above).
+AttributeRole attribute_role(const std::string& name);
+
+// The attribute S travels under in a Mesh: PLY's `quality` (MeshLab reads it as such). The
+// glTF reader names its _SALIENCY so, and the glTF writer writes it back as _SALIENCY;
+// simplify_mesh carries it as any attribute.
+constexpr const char* kSaliencyAttribute = "quality";
+
+// How much of S a format keeps: the value (PLY quality, glTF _SALIENCY, with colours
+// beside it), only the colours of the pictures' scale (OBJ `v x y z r g b`, OFF's COFF), or
+// nothing (STL).
+enum class SaliencyKept { Value, Colors, None };
+
+// A mesh file format and what its files hold besides positions and triangles.
+struct MeshFormat {
+  std::string suffix;      // ".ply" (lower case; the writer a name ending so picks)
+  std::string name;        // "PLY"
+  bool normals = false;    // Normal attributes
+  int texcoord_sets = 0;   // TexCoord sets kept (OBJ: 1, its vt; PLY and glTF: all 8)
+  bool colors = false;     // Color attributes
+  bool scalars = false;    // Scalar attributes
+  bool materials = false;  // per-triangle materials (OBJ: usemtl, with an .mtl written beside)
+  SaliencyKept saliency = SaliencyKept::None;
+};
+
+// Every format meshsal reads and writes: PLY, glTF, GLB, OBJ, OFF, STL (the order messages
+// name them in).
+const std::vector<MeshFormat>& mesh_formats();
+
+// The format a file name picks by its suffix (case-insensitive; not .gz), null for none.
+const MeshFormat* mesh_format(const std::string& path);
+
+// The writer a file name picks, for every front end's -o: ".ply", ".gltf", ".glb", ".obj",
+// ".off" or ".stl" (case-insensitive), "" for none of them.
 std::string mesh_output_format(const std::string& path);
-// Writes `mesh` in the format its name gives: OBJ (write_obj; no saliency), PLY (write_ply,
-// or write_saliency_ply with the saliency), GLB or glTF (write_gltf). Error otherwise.
+
+// One line naming what writing `mesh` to `path` loses (with S when `saliency`), from the
+// table above, "" when its format keeps everything, e.g. "out.obj keeps S as vertex colours
+// only, and not the attribute 'curvature' (.ply, .gltf and .glb keep them)". Front ends
+// print it once, as a note. Error for an unknown format.
+std::string mesh_output_note(const std::string& path, const Mesh& mesh, bool saliency);
+
+// Writes `mesh` in the format its name gives (mesh_output_format), keeping what the format
+// can hold (above): PLY (write_ply, or write_saliency_ply with S), glTF and GLB
+// (write_gltf), OBJ (write_obj; S as vertex colours), OFF (COFF with S's colours, or the
+// mesh's own), STL (binary; positions only). S given for an STL is an Error naming the
+// formats that keep it, as is an unknown suffix. Atomic as write_ply.
 void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
 
-// Reads the saliency S back from a PLY written by `meshsal saliency` (its `quality` vertex
-// property) for `mesh`. Throws Error when the file has no quality property, a quality is
+// Reads the saliency S back for `mesh` from a file that keeps its value: a PLY's `quality`
+// (as `meshsal saliency` writes it) or a glTF's _SALIENCY. Throws Error when the file holds
+// no S (an OBJ, OFF or STL: their colours cannot be turned back into values), a value is
 // not finite or negative (S >= 0: a quality from another program), or the file belongs to
 // another mesh: another vertex count, or a vertex at another position (beyond float
 // precision: 1e-6 of the bounding-box diagonal), named.
+std::vector<double> load_saliency(const std::string& path, const Mesh& mesh);
+// The same (its name before glTF could hold S).
 std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh);
 
 // ------------------------------------------------------------------------------------------

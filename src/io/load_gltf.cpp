@@ -278,11 +278,100 @@ std::vector<Instance> scene_instances(const tinygltf::Model& model) {
   return out;
 }
 
-// The vertex channels read with LoadOptions::attributes, in the names the other loaders
-// use (write_obj writes u v as vt, nx ny nz as vn; red green blue alpha are colours).
-struct Channels {
-  bool normal = false, uv = false, color = false;
+// A vertex channel read with LoadOptions::attributes: a glTF attribute and the Mesh
+// attributes it fills, under the names every reader uses (attribute_role): NORMAL as nx ny
+// nz, TEXCOORD_0 as u v and TEXCOORD_n as un vn, COLOR_0 as red green blue alpha (sRGB
+// bytes), _SALIENCY as quality (S), any other scalar _NAME as name in lower case.
+struct Channel {
+  std::string semantic;
+  std::vector<VertexAttribute> attributes;
 };
+
+// The channels of the primitives: every one that some primitive has (a primitive without
+// it gets neutral values: a zero normal, which a writer replaces by the faces' normal, UV
+// 0 0, white, 0), so that a material that needs TEXCOORD_n on one primitive keeps it. What
+// is not read is named in `skipped`.
+std::vector<Channel> vertex_channels(const tinygltf::Model& model, const std::vector<Instance>& instances,
+                                     std::set<std::string>* skipped) {
+  std::set<std::string> semantics;
+  for (const Instance& in : instances)
+    for (const tinygltf::Primitive& p : model.meshes[size_t(in.mesh)].primitives)
+      for (const auto& [semantic, accessor] : p.attributes)
+        if (semantic != "POSITION") {
+          const bool scalar = accessor >= 0 && size_t(accessor) < model.accessors.size() &&
+                              model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_SCALAR;
+          const bool texcoord = semantic.size() == 10 && semantic.compare(0, 9, "TEXCOORD_") == 0 && semantic[9] >= '0' && semantic[9] <= '7';
+          if (semantic == "NORMAL" || semantic == "COLOR_0" || texcoord || (semantic[0] == '_' && scalar && semantic.size() > 1))
+            semantics.insert(semantic);
+          else
+            skipped->insert("vertex attribute '" + semantic + "'");
+        }
+  std::vector<Channel> out;
+  std::set<std::string> taken;
+  auto add = [&](const std::string& semantic, std::vector<std::string> names) {
+    if (!semantics.count(semantic)) return;
+    for (const std::string& n : names)
+      if (taken.count(n)) {
+        skipped->insert("vertex attribute '" + semantic + "' (its name '" + n + "' is taken)");
+        return;
+      }
+    Channel c{semantic, {}};
+    for (std::string& n : names) taken.insert(n), c.attributes.push_back({std::move(n), {}});
+    out.push_back(std::move(c));
+  };
+  add("NORMAL", {"nx", "ny", "nz"});
+  add("TEXCOORD_0", {"u", "v"});
+  for (char set = '1'; set <= '7'; ++set) add(std::string("TEXCOORD_") + set, {std::string("u") + set, std::string("v") + set});
+  add("COLOR_0", {"red", "green", "blue", "alpha"});
+  add("_SALIENCY", {kSaliencyAttribute});
+  for (const std::string& semantic : semantics)
+    if (semantic[0] == '_' && semantic != "_SALIENCY") {
+      std::string name = semantic.substr(1);
+      std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+      add(semantic, {name});
+    }
+  return out;
+}
+
+// Appends one primitive's values of `c` (nv vertices) to its attributes, converted to the
+// Mesh's conventions, or neutral values where the primitive lacks the channel.
+void read_channel(const tinygltf::Model& model, const tinygltf::Primitive& p, Channel& c, size_t nv, const Frame& normal_frame,
+                  const std::string& what, uint64_t input_bytes) {
+  const auto found = p.attributes.find(c.semantic);
+  std::vector<VertexAttribute>& a = c.attributes;
+  if (found == p.attributes.end()) {
+    const float neutral = c.semantic == "COLOR_0" ? 255.0f : 0.0f;
+    for (VertexAttribute& x : a) x.values.insert(x.values.end(), nv, neutral);
+    return;
+  }
+  const std::string where = what + " " + c.semantic;
+  if (c.semantic == "NORMAL") {
+    const std::vector<double> n = read_accessor(model, found->second, 3, where, input_bytes, nv);
+    for (size_t v = 0; v < nv; ++v) {
+      double w[3];
+      transform_direction(normal_frame, &n[3 * v], w);
+      const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      for (size_t k = 0; k < 3; ++k) a[k].values.push_back(float(len > 0 ? w[k] / len : w[k]));
+    }
+  } else if (c.semantic.compare(0, 9, "TEXCOORD_") == 0) {
+    const std::vector<double> t = read_accessor(model, found->second, 2, where, input_bytes, nv);
+    // glTF's v runs down the image, OBJ's (and every other loader's) up.
+    for (size_t v = 0; v < nv; ++v) a[0].values.push_back(float(t[2 * v])), a[1].values.push_back(float(1.0 - t[2 * v + 1]));
+  } else if (c.semantic == "COLOR_0") {
+    const int acc = found->second;
+    const size_t comps = acc >= 0 && size_t(acc) < model.accessors.size() && model.accessors[size_t(acc)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    const std::vector<double> col = read_accessor(model, acc, comps, where, input_bytes, nv);
+    for (size_t v = 0; v < nv; ++v)
+      for (size_t k = 0; k < 4; ++k) {
+        // Linear in glTF; sRGB bytes in meshsal (alpha stays linear).
+        const double x = std::clamp(k < comps ? col[comps * v + k] : 1.0, 0.0, 1.0);
+        a[k].values.push_back(float(std::nearbyint((k == 3 ? x : linear_to_srgb(x)) * 255.0)));
+      }
+  } else {
+    const std::vector<double> x = read_accessor(model, found->second, 1, where, input_bytes, nv);
+    for (double value : x) a[0].values.push_back(float(value));
+  }
+}
 
 // Extensions of the geometry that meshsal refuses by name (it cannot decode them).
 bool unreadable_extension(const std::string& ext) {
@@ -508,18 +597,9 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
 
   const std::vector<Instance> instances = scene_instances(model);
   if (instances.empty()) fail("the scene holds no mesh");
-  Channels channels;
-  if (attributes) {
-    // A channel is kept when every triangle primitive has it (else its values would be
-    // made up where a primitive lacks it).
-    channels = {true, true, true};
-    for (const Instance& in : instances)
-      for (const tinygltf::Primitive& p : model.meshes[size_t(in.mesh)].primitives) {
-        channels.normal &= p.attributes.count("NORMAL") > 0;
-        channels.uv &= p.attributes.count("TEXCOORD_0") > 0;
-        channels.color &= p.attributes.count("COLOR_0") > 0;
-      }
-  }
+  std::set<std::string> skipped;
+  std::vector<Channel> channels;
+  if (attributes) channels = vertex_channels(model, instances, &skipped);
   // The memory bound: instancing lets a small file name a large mesh many times, so the
   // vertices and indices to build are counted and held to the other loaders' rule first.
   // Each accessor's count is first held to the bytes the file has for it (locate_accessor),
@@ -545,10 +625,8 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
 
   Mesh mesh;
   std::vector<double>& xyz = mesh.source_positions;
-  std::vector<float> nrm, uv, rgba;
   std::map<int, uint32_t> material_slot;  // glTF material index (-1: none) -> Mesh::materials
   std::vector<uint32_t> tri_material;
-  std::set<std::string> skipped;
   bool any_material = false;
   std::vector<Frame> worlds;
   std::map<std::pair<size_t, std::map<std::string, int>>, std::pair<size_t, size_t>> vertex_ranges;
@@ -585,38 +663,7 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
           transform_point(in.world, &local[3 * v], w);
           xyz.insert(xyz.end(), w, w + 3);
         }
-        for (const auto& [attr, index] : p.attributes) {
-          (void)index;
-          const bool kept = (attr == "POSITION") || (attr == "NORMAL" && channels.normal) ||
-                            (attr == "TEXCOORD_0" && channels.uv) || (attr == "COLOR_0" && channels.color);
-          if (!kept) skipped.insert("vertex attribute '" + attr + "'");
-        }
-        if (channels.normal) {
-          const std::vector<double> n = read_accessor(model, p.attributes.at("NORMAL"), 3, what + " NORMAL", input_bytes, nv);
-          for (size_t v = 0; v < nv; ++v) {
-            double w[3];
-            transform_direction(normal_frame, &n[3 * v], w);
-            const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-            for (int k = 0; k < 3; ++k) nrm.push_back(float(len > 0 ? w[k] / len : w[k]));
-          }
-        }
-        if (channels.uv) {
-          const std::vector<double> t = read_accessor(model, p.attributes.at("TEXCOORD_0"), 2, what + " TEXCOORD_0", input_bytes, nv);
-          // glTF's v runs down the image, OBJ's (and every other loader's) up.
-          for (size_t v = 0; v < nv; ++v) uv.push_back(float(t[2 * v])), uv.push_back(float(1.0 - t[2 * v + 1]));
-        }
-        if (channels.color) {
-          const int acc = p.attributes.at("COLOR_0");
-          const size_t comps = acc >= 0 && size_t(acc) < model.accessors.size() && model.accessors[size_t(acc)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
-          const std::vector<double> c = read_accessor(model, acc, comps, what + " COLOR_0", input_bytes, nv);
-          for (size_t v = 0; v < nv; ++v) {
-            for (size_t k = 0; k < 4; ++k) {
-              // Linear in glTF; sRGB bytes in meshsal (alpha stays linear).
-              const double x = std::clamp(k < comps ? c[comps * v + k] : 1.0, 0.0, 1.0);
-              rgba.push_back(float(std::nearbyint((k == 3 ? x : linear_to_srgb(x)) * 255.0)));
-            }
-          }
-        }
+        for (Channel& c : channels) read_channel(model, p, c, nv, normal_frame, what, input_bytes);
         vertex_ranges[{ii, p.attributes}] = {first, nv};
       }
       // The corners: indexed or in vertex order; strips and fans become triangles.
@@ -678,27 +725,8 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
   } else {
     mesh.materials.clear();
   }
-  const size_t n = xyz.size() / 3;
-  if (attributes) {
-    if (channels.normal) mesh.attributes.push_back({"nx", {}}), mesh.attributes.push_back({"ny", {}}), mesh.attributes.push_back({"nz", {}});
-    const size_t normal_at = 0;
-    for (size_t v = 0; channels.normal && v < n; ++v)
-      for (int k = 0; k < 3; ++k) mesh.attributes[normal_at + size_t(k)].values.push_back(nrm[3 * v + size_t(k)]);
-    if (channels.uv) {
-      VertexAttribute u{"u", {}}, w{"v", {}};
-      for (size_t v = 0; v < n; ++v) u.values.push_back(uv[2 * v]), w.values.push_back(uv[2 * v + 1]);
-      mesh.attributes.push_back(std::move(u));
-      mesh.attributes.push_back(std::move(w));
-    }
-    if (channels.color) {
-      const char* names[4] = {"red", "green", "blue", "alpha"};
-      for (size_t k = 0; k < 4; ++k) {
-        VertexAttribute c{names[k], {}};
-        for (size_t v = 0; v < n; ++v) c.values.push_back(rgba[4 * v + k]);
-        mesh.attributes.push_back(std::move(c));
-      }
-    }
-  }
+  for (Channel& c : channels)
+    for (VertexAttribute& a : c.attributes) mesh.attributes.push_back(std::move(a));
   // One frame for the whole scene when every instance has the same one: a writer puts the
   // positions back in it (see Frame).
   if (worlds[0] != identity_frame() &&

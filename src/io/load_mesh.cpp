@@ -58,7 +58,7 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
   }
   Mesh mesh;
   if (ext == ".obj") mesh = load_obj_text(bytes, name, attributes);
-  else if (ext == ".off") mesh = load_off_text(bytes, name);
+  else if (ext == ".off") mesh = load_off_text(bytes, name, attributes);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
   else if (ext == ".gltf" || ext == ".glb")
     mesh = load_gltf_bytes(bytes, name, ext == ".glb", folder, limit, attributes, report ? &report->unread : nullptr);

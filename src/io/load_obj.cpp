@@ -141,6 +141,23 @@ void split_corners(Mesh& mesh, const std::vector<Corner>& corners, const std::ve
   }
 }
 
+// Vertex colours of the v lines (r g b in [0, 1], or 0..255 when any is above 1) as the
+// red green blue attributes, in bytes; twins take their v's, a v without colour is white.
+void add_vertex_colours(Mesh& mesh, std::vector<float> colours) {
+  const size_t n = mesh.source_positions.size() / 3;
+  const bool bytes = *std::max_element(colours.begin(), colours.end()) > 1.0f;
+  static const char* names[3] = {"red", "green", "blue"};
+  for (int k = 0; k < 3; ++k) {
+    VertexAttribute a{names[k], std::vector<float>(n, 255.0f)};
+    for (size_t v = 0; v < n; ++v) {
+      const size_t line = mesh.position_vertex.empty() ? v : mesh.position_vertex[v];
+      const float x = 3 * line + size_t(k) < colours.size() ? colours[3 * line + size_t(k)] : -1.0f;
+      if (x >= 0) a.values[v] = float(std::clamp(std::nearbyint(bytes ? double(x) : x * 255.0), 0.0, 255.0));
+    }
+    mesh.attributes.push_back(std::move(a));
+  }
+}
+
 }  // namespace
 
 Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes) {
@@ -151,6 +168,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
   std::vector<uint32_t> poly;
   std::vector<Corner> face, corners;  // with attributes: this face's, and every triangle's
   std::vector<float> texcoords, normals;
+  std::vector<float> colours;  // r g b per v line up to the last one with colours (-1: none)
   bool any_vt = false, any_vn = false;
   // Face indices beyond the vertices defined so far (forward references, legal) and their
   // lines: checked against the final count at the end, named as the file writes them.
@@ -192,7 +210,17 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
         if (!std::isfinite(mesh.source_positions[k]))
           throw fail("vertex " + std::to_string(mesh.source_positions.size() / 3) + " has a non-finite coordinate (" +
                      std::to_string(mesh.source_positions[k]) + ")");
-      // Optional w or r g b columns follow; they are not needed.
+      // Optional columns follow: w, or r g b (MeshLab's vertex colours, kept with attributes).
+      if (attributes) {
+        float rgb[3];
+        int got = 0;
+        for (std::string_view tok = next_token(line); !tok.empty() && got < 4; tok = next_token(line), ++got)
+          if (got < 3 && (!parse_coord(tok, rgb[got]) || !std::isfinite(rgb[got]))) got = 4;
+        if (got == 3) {
+          colours.resize(mesh.source_positions.size() - 3, -1.0f);
+          colours.insert(colours.end(), rgb, rgb + 3);
+        }
+      }
     } else if (attributes && key == "vt") {
       const std::string problem = take_floats(line, 1, 2, texcoords);  // u [v [w]]
       if (!problem.empty()) throw fail("texture coordinate " + problem);
@@ -258,6 +286,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
                   " is beyond the file's " + std::to_string(mesh.source_positions.size() / 3) +
                   " vertices (OBJ indices start at 1)");
   if (any_vt || any_vn) split_corners(mesh, corners, texcoords, normals, any_vt, any_vn, name);
+  if (!colours.empty()) add_vertex_colours(mesh, colours);
   localize_read_positions(mesh);
   return mesh;
 }

@@ -1,10 +1,14 @@
-// meshsal: OFF reader. Accepts the OFF / COFF / NOFF / CNOFF / STOFF... header keywords
-// (extra vertex columns such as normals or colours are ignored), '#' comments, counts on
-// the header line or the next, and optional colour columns after a face's indices.
-// One vertex or face per line, as every OFF writer does.
+// meshsal: OFF reader. Accepts the OFF / COFF / NOFF / CNOFF / STOFF... header keywords,
+// '#' comments, counts on the header line or the next, and optional colour columns after a
+// face's indices. One vertex or face per line, as every OFF writer does. With attributes,
+// the vertex columns the keyword announces are kept (x y z [nx ny nz] [r g b [a]] [s t], in
+// the order of the OFF format): normals, colours (integers 0..255, or numbers in [0, 1]
+// when any has a point or exponent) and texture coordinates.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "io/mesh_io_internal.h"
 #include "io/text_scan.h"
@@ -26,8 +30,13 @@ Error line_error(const TextScan& scan, const std::string& problem) {
   return Error(scan.name + ": line " + std::to_string(scan.line_no) + ": " + problem);
 }
 
+// The vertex columns a keyword announces (its letters before "OFF").
+struct OffColumns {
+  bool normals = false, colours = false, texcoords = false;
+};
+
 // Reads the keyword and the vertex / face counts; leaves `scan` after the counts line.
-void parse_off_header(TextScan& scan, uint64_t counts[2]) {
+void parse_off_header(TextScan& scan, uint64_t counts[2], OffColumns* columns = nullptr) {
   std::string_view line;
   scan.skip_bom();
   if (!content_line(scan, line)) throw Error(scan.name + ": empty file");
@@ -37,6 +46,12 @@ void parse_off_header(TextScan& scan, uint64_t counts[2]) {
   for (char c : keyword.substr(0, keyword.size() - 3))
     if (c != 'C' && c != 'N' && c != 'S' && c != 'T')
       throw line_error(scan, "unsupported OFF variant " + quoted(keyword));
+  if (columns) {
+    const std::string_view prefix = keyword.substr(0, keyword.size() - 3);
+    columns->normals = prefix.find('N') != std::string_view::npos;
+    columns->colours = prefix.find('C') != std::string_view::npos;
+    columns->texcoords = prefix.find("ST") != std::string_view::npos;
+  }
   if (line.find_first_not_of(" \t") != std::string_view::npos) {
     std::string_view peek = line;
     if (next_token(peek) == "BINARY") throw line_error(scan, "binary OFF is not supported");
@@ -47,6 +62,63 @@ void parse_off_header(TextScan& scan, uint64_t counts[2]) {
     std::string_view tok = next_token(line);
     if (!parse_number(tok, counts[k])) throw line_error(scan, "bad count " + quoted(tok) + " in the header");
   }
+}
+
+// The extra vertex columns as read, in file order.
+struct OffExtra {
+  std::vector<float> normals, colours, texcoords;  // 3, 4 and 2 per vertex
+  bool float_colours = false;                      // a colour written as a fraction of 1
+};
+
+// Takes the columns after x y z of one vertex line. A colour has 3 or 4 numbers: 4 when the
+// line holds that many before its texture coordinates (alpha 255, or 1, otherwise).
+std::string take_off_columns(std::string_view& line, const OffColumns& columns, OffExtra& extra) {
+  std::vector<std::string_view> tokens;
+  for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) tokens.push_back(tok);
+  size_t at = 0;
+  auto take = [&](size_t n, std::vector<float>& out, const char* what) -> std::string {
+    for (size_t k = 0; k < n; ++k, ++at) {
+      float x;
+      if (at >= tokens.size()) return std::string("vertex needs its ") + what;
+      if (!parse_coord(tokens[at], x) || !std::isfinite(x)) return std::string("bad ") + what + " " + quoted(tokens[at]);
+      out.push_back(x);
+    }
+    return "";
+  };
+  if (columns.normals)
+    if (std::string p = take(3, extra.normals, "normal"); !p.empty()) return p;
+  if (columns.colours) {
+    const size_t left = tokens.size() - std::min(tokens.size(), at) - (columns.texcoords ? 2 : 0);
+    const size_t n = left >= 4 ? 4 : 3;
+    for (size_t k = at; k < at + n && k < tokens.size(); ++k)
+      if (tokens[k].find_first_of(".eE") != std::string_view::npos) extra.float_colours = true;
+    if (std::string p = take(n, extra.colours, "colour"); !p.empty()) return p;
+    if (n == 3) extra.colours.push_back(-1);  // no alpha: opaque, whatever the scale
+  }
+  if (columns.texcoords)
+    if (std::string p = take(2, extra.texcoords, "texture coordinate"); !p.empty()) return p;
+  return "";
+}
+
+// The columns as the attributes every format shares: nx ny nz, red green blue alpha (bytes
+// 0..255), u v.
+void add_off_attributes(Mesh& mesh, const OffColumns& columns, OffExtra extra) {
+  const size_t n = mesh.source_positions.size() / 3;
+  auto add = [&](const char* name, const std::vector<float>& values, size_t stride, size_t k, auto convert) {
+    VertexAttribute a{name, std::vector<float>(n)};
+    for (size_t v = 0; v < n; ++v) a.values[v] = convert(values[stride * v + k]);
+    mesh.attributes.push_back(std::move(a));
+  };
+  const auto same = [](float x) { return x; };
+  if (columns.normals)
+    for (size_t k = 0; k < 3; ++k) add(k == 0 ? "nx" : k == 1 ? "ny" : "nz", extra.normals, 3, k, same);
+  if (columns.colours) {
+    const double scale = extra.float_colours ? 255.0 : 1.0;
+    const auto byte = [&](float x) { return x < 0 ? 255.0f : float(std::clamp(std::nearbyint(x * scale), 0.0, 255.0)); };
+    for (size_t k = 0; k < 4; ++k) add(k == 0 ? "red" : k == 1 ? "green" : k == 2 ? "blue" : "alpha", extra.colours, 4, k, byte);
+  }
+  if (columns.texcoords)
+    for (size_t k = 0; k < 2; ++k) add(k == 0 ? "u" : "v", extra.texcoords, 2, k, same);
 }
 
 // Every vertex takes at least 6 bytes ("0 0 0\n") and every face 8 ("3 0 1 2\n").
@@ -62,12 +134,14 @@ uint64_t off_input_limit(std::string_view head, const std::string& name) {
                                     static_cast<unsigned __int128>(counts[1]) * kMinFaceBytes);
 }
 
-Mesh load_off_text(std::string_view text, const std::string& name) {
+Mesh load_off_text(std::string_view text, const std::string& name, bool attributes) {
   TextScan scan(text, name);
   std::string_view line;
   auto fail = [&](const std::string& problem) { return line_error(scan, problem); };
   uint64_t counts[2];
-  parse_off_header(scan, counts);
+  OffColumns columns;
+  parse_off_header(scan, counts, &columns);
+  if (!attributes) columns = OffColumns();
   // Counts beyond the file size are rejected before anything is allocated.
   const uint64_t left = text.size() - std::min(text.size(), scan.pos);
   if (counts[0] > left / kMinVertexBytes || counts[1] > left / kMinFaceBytes || counts[0] > 0xFFFFFFFFull)
@@ -77,12 +151,17 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
   Mesh mesh;
   mesh.source_positions.reserve(counts[0] * 3);
   mesh.triangles.reserve(counts[1] * 3);
+  OffExtra extra;
   for (uint64_t v = 0; v < counts[0]; ++v) {
     if (!content_line(scan, line))
       throw Error(name + ": truncated: the header says " + std::to_string(counts[0]) +
                   " vertices but the file ends after " + std::to_string(v));
     const std::string problem = take_xyz(line, mesh.source_positions);
     if (!problem.empty()) throw fail(problem);
+    if (columns.normals || columns.colours || columns.texcoords) {
+      const std::string more = take_off_columns(line, columns, extra);
+      if (!more.empty()) throw fail(more);
+    }
   }
   std::vector<uint32_t> poly;
   for (uint64_t f = 0; f < counts[1]; ++f) {
@@ -110,6 +189,7 @@ Mesh load_off_text(std::string_view text, const std::string& name) {
   if (content_line(scan, line))
     throw fail("more data after the " + std::to_string(counts[1]) +
                " faces the header announces");
+  add_off_attributes(mesh, columns, std::move(extra));
   localize_read_positions(mesh);
   return mesh;
 }

@@ -15,7 +15,8 @@ namespace meshsal {
 
 // `attributes`: also vt, vn and v/vt/vn corners (LoadOptions::attributes).
 Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false);
-Mesh load_off_text(std::string_view text, const std::string& name);
+// `attributes`: the vertex columns COFF, NOFF and STOFF announce (normals, colours, u v).
+Mesh load_off_text(std::string_view text, const std::string& name, bool attributes = false);
 // `attributes`: the extra scalar vertex properties also go to Mesh::attributes, in file order.
 // `unread` (may be null) gets what no option keeps (LoadReport::unread).
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
@@ -109,6 +110,26 @@ inline void check_mesh(const std::string& path, const Mesh& mesh) {
       throw Error(path + ": cannot write: a triangle uses vertex " + std::to_string(i) +
                   " but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
 }
+
+// The 1-based line of each vertex in a text writer (OBJ's v, OFF's vertices, the latter
+// from 0) where split twins (Mesh::position_vertex) share one line, so that a seam stays one
+// surface in the file; empty when the mesh has no twins (vertex v is line v + 1).
+std::vector<uint64_t> welded_lines(const std::string& path, const Mesh& mesh);
+
+// The mesh's vertex colours as 3 bytes per vertex (red green blue attributes, rounded and
+// clamped), empty when it has none.
+std::vector<uint8_t> vertex_colour_bytes(const Mesh& mesh);
+
+// The colours a text writer (OBJ, OFF) writes: S on the pictures' scale when given, else
+// the mesh's own (vertex_colour_bytes); empty for none.
+std::vector<uint8_t> written_colours(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency);
+
+// OFF (COFF with `rgb`, 3 bytes per vertex, when not empty), text (write_off.cpp).
+void write_off(const std::string& path, const Mesh& mesh, const std::vector<uint8_t>& rgb);
+// Binary STL (write_stl.cpp): positions in the model's coordinates as float.
+void write_stl(const std::string& path, const Mesh& mesh);
+// OBJ with `rgb` as `v x y z r g b` when not empty (write_obj.cpp).
+void write_obj_colours(const std::string& path, const Mesh& mesh, const std::vector<uint8_t>& rgb);
 
 inline const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
   for (const VertexAttribute& a : mesh.attributes)

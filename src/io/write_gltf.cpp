@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/mesh_points.h"
+#include "core/model_frame.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
 #include "io/gltf_assets.h"
@@ -107,7 +108,7 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
   if (inverse) {
     for (size_t v = 0; v < n; ++v) {
       double p[3], q[3];
-      for (int k = 0; k < 3; ++k) p[k] = mesh.origin[k] + double(mesh.positions[3 * v + size_t(k)]);
+      model_position(mesh, v, p);  // as read where unmoved: no rounding through the local floats
       transform_point(*inverse, p, q);
       for (int k = 0; k < 3; ++k) xyz[3 * v + size_t(k)] = float(q[k]);
     }
@@ -142,14 +143,20 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     prim.attributes["NORMAL"] = b.accessor(normals.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, kArrayBuffer);
     used.insert(used.end(), nrm, nrm + 3);
   }
-  for (auto names : {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"}}) {
-    const VertexAttribute* u = find_attribute(mesh, names.first);
-    const VertexAttribute* w = find_attribute(mesh, names.second);
-    if (!u || !w || prim.attributes.count("TEXCOORD_0")) continue;
+  // TEXCOORD_<set> from each texture-coordinate set (attribute_role: u v, s t, texture_u
+  // texture_v for set 0; u1 v1 .. u7 v7), the first pair found of each set.
+  for (int set = 0; set < 8; ++set) {
+    const VertexAttribute* uv_pair[2] = {nullptr, nullptr};
+    for (const VertexAttribute& a : mesh.attributes) {
+      const AttributeRole r = attribute_role(a.name);
+      if (r.kind == AttributeKind::TexCoord && r.set == set && !uv_pair[r.component]) uv_pair[r.component] = &a;
+    }
+    if (!uv_pair[0] || !uv_pair[1]) continue;
     std::vector<float> uv(2 * n);
-    for (size_t v = 0; v < n; ++v) uv[2 * v] = u->values[v], uv[2 * v + 1] = 1.0f - w->values[v];  // glTF's v runs down
-    prim.attributes["TEXCOORD_0"] = b.accessor(uv.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 8, kArrayBuffer);
-    used.push_back(u), used.push_back(w);
+    for (size_t v = 0; v < n; ++v) uv[2 * v] = uv_pair[0]->values[v], uv[2 * v + 1] = 1.0f - uv_pair[1]->values[v];  // glTF's v runs down
+    prim.attributes["TEXCOORD_" + std::to_string(set)] =
+        b.accessor(uv.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 8, kArrayBuffer);
+    used.push_back(uv_pair[0]), used.push_back(uv_pair[1]);
   }
   // COLOR_0: the saliency on the pictures' colour scale, else the input's colours. glTF's
   // vertex colours are linear (the spec): our sRGB bytes go in converted, 16 bits a channel
@@ -169,6 +176,13 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
       for (int k = 0; k < 4; ++k)
         if (rgba[k]) colour[4 * v + size_t(k)] = uint8_t(std::clamp(std::nearbyint(double(rgba[k]->values[v])), 0.0, 255.0));
     used.insert(used.end(), rgba, rgba + 4);
+  }
+  // S carried on the mesh (kSaliencyAttribute, e.g. read from a saliency PLY or a glTF's
+  // _SALIENCY) goes back as _SALIENCY; S given beside the mesh replaces it.
+  if (const VertexAttribute* carried = find_attribute(mesh, kSaliencyAttribute)) {
+    if (!level.saliency)
+      prim.attributes["_SALIENCY"] = b.accessor(carried->values.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
+    used.push_back(carried);
   }
   if (level.saliency || (rgba[0] && rgba[1] && rgba[2])) {
     uint16_t table[256];
@@ -259,8 +273,11 @@ std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel
   model.buffers.resize(1);
   add_materials(model, *levels[0].mesh);
   Builder b{model};
-  // The frame: the input's shared node transform, else a translation to the origin of the
-  // local coordinates (the floats stay exactly as computed).
+  // The frame: the input's shared node transform; else the model's own coordinates as
+  // floats under no transform, so that a reader that ignores nodes sees the model where the
+  // PLY and OBJ put it; else, where floats would move the model's coordinates (the PLY
+  // rule, positions_need_double: survey coordinates), a translation to the origin of the
+  // local coordinates, whose floats stay exactly as computed.
   const Mesh& first = *levels[0].mesh;
   Frame frame = identity_frame(), inverse{};
   bool use_inverse = false;
@@ -269,6 +286,10 @@ std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel
     inverse = inverse_affine(frame);
     use_inverse = determinant3(frame) != 0 && std::isfinite(determinant3(frame));
     if (!use_inverse) frame = identity_frame();
+  }
+  if (!use_inverse && !positions_need_double(first)) {
+    inverse = identity_frame();
+    use_inverse = true;
   }
   std::vector<int> nodes;
   for (size_t i = 0; i < levels.size(); ++i) {
@@ -279,7 +300,7 @@ std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel
     node.name = level.name;
     node.mesh = add_level(b, level, use_inverse ? &inverse : nullptr, path);
     if (use_inverse) {
-      node.matrix.assign(frame.begin(), frame.end());
+      if (frame != identity_frame()) node.matrix.assign(frame.begin(), frame.end());
     } else if (m.origin[0] != 0 || m.origin[1] != 0 || m.origin[2] != 0) {
       node.translation = {m.origin[0], m.origin[1], m.origin[2]};
     }

@@ -1,6 +1,5 @@
 // meshsal: saliency weights for simplification: the paper's threshold curve, the continuous
 // and rank curves, and the named presets of --weights.
-#include "core/model_frame.h"
 #include "simplify/saliency_weights.h"
 
 #include <algorithm>
@@ -46,48 +45,6 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
   const double eps = scale_unit(mesh, is_point, eps_frac);
   return gaussian_filter(mesh, is_point, saliency, {3 * eps}, threads)[0];
-}
-
-std::vector<double> load_saliency_ply(const std::string& path, const Mesh& mesh) {
-  VertexProperties props;
-  const Mesh m = load_mesh(path, &props);
-  auto it = props.find("quality");
-  if (it == props.end())
-    throw Error("'" + path + "' has no per-vertex `quality` property (write it with `meshsal saliency`)");
-  const size_t n = mesh.vertex_count();
-  if (m.vertex_count() != n || it->second.size() != n)
-    throw Error("saliency file '" + path + "' has " + std::to_string(m.vertex_count()) +
-                " vertices but the mesh has " + std::to_string(n));
-  // Same count is not enough: the saliency of another mesh would be silently misapplied.
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (size_t i = 0; i < 3 * n; ++i) {
-    lo[i % 3] = std::min(lo[i % 3], double(mesh.positions[i]));
-    hi[i % 3] = std::max(hi[i % 3], double(mesh.positions[i]));
-  }
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const double tol = 1e-6 * diag;
-  // In the model's own coordinates: each file has its own origin.
-  for (size_t v = 0; v < n; ++v) {
-    double a[3], b[3];
-    model_position(m, v, a);
-    model_position(mesh, v, b);
-    for (int k = 0; k < 3; ++k)
-      if (!(std::fabs(a[k] - b[k]) <= tol)) {
-        char buf[256];
-        std::snprintf(buf, sizeof buf, "vertex %zu is at (%.9g, %.9g, %.9g) there but at (%.9g, %.9g, %.9g) in the mesh",
-                      v, a[0], a[1], a[2], b[0], b[1], b[2]);
-        throw Error("saliency file '" + path + "' belongs to another mesh: " + buf);
-      }
-  }
-  for (size_t v = 0; v < n; ++v) {
-    if (!std::isfinite(it->second[v]))
-      throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is not finite");
-    if (it->second[v] < 0)  // every command reads S through here: one rule for all of them
-      throw Error("saliency file '" + path + "': the quality of vertex " + std::to_string(v) + " is " +
-                  std::to_string(it->second[v]) + ", but a saliency is >= 0 (not a file `meshsal saliency` wrote?)");
-  }
-  return std::vector<double>(it->second.begin(), it->second.end());
 }
 
 Weighting parse_weighting(const std::string& name) {
