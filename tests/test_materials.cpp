@@ -124,12 +124,19 @@ TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]
   const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
   write_obj(dir.file("out.obj"), m);
   const std::string text = read_file(dir.file("out.obj"));
-  CHECK(text.rfind("# written by meshsal\nmtllib grid.mtl\nmtllib extra.mtl\nv ", 0) == 0);
+  // The materials go into one library beside the output, named after it: here (the grid
+  // came from memory, its libraries unread) an entry per material so that every usemtl
+  // resolves.
+  CHECK(text.rfind("# written by meshsal\nmtllib out.mtl\nv ", 0) == 0);
+  CHECK(mesh_side_files(dir.file("out.obj"), m) == std::vector<std::string>{dir.file("out.mtl")});
+  CHECK(read_file(dir.file("out.mtl")) ==
+        "# written by meshsal from grid.mtl, extra.mtl\n\nnewmtl left side\n\nnewmtl B\n");
   CHECK(count(text, "usemtl left side\nf ") == 1);
   CHECK(count(text, "usemtl B\nf ") == 1);
   CHECK(count(text, "usemtl") == 2);
   const Mesh back = load_mesh(dir.file("out.obj"), nullptr, lo);
-  CHECK(back.material_libraries == std::vector<std::string>{"grid.mtl", "extra.mtl"});
+  CHECK(back.material_libraries == std::vector<std::string>{"out.mtl"});
+  CHECK(back.material_library_text == std::vector<std::string>{read_file(dir.file("out.mtl"))});
   CHECK(back.materials == m.materials);
   CHECK(back.triangle_material == m.triangle_material);
   CHECK(back.triangles == m.triangles);
@@ -160,6 +167,8 @@ TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]
   none.triangle_material.clear();
   write_obj(dir.file("none.obj"), none);
   CHECK(read_file(dir.file("none.obj")).find("mtl") == std::string::npos);
+  CHECK(mesh_side_files(dir.file("none.obj"), none).empty());
+  CHECK_FALSE(fs::exists(dir.file("none.mtl")));
 
   // Wrong sizes or indices are refused by validate_mesh and write_obj.
   Mesh bad = hand;
@@ -185,36 +194,42 @@ TEST_CASE("OBJ materials: simplify_mesh keeps each surviving triangle's material
   CHECK_NOTHROW(validate_mesh(out));
 }
 
-TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep mtllib and usemtl", "[materials][cli]") {
+TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep the materials beside their outputs", "[materials][cli]") {
   const fs::path dir = scratch_dir("materials");
   fs::create_directories(dir / "in");
   const fs::path in = dir / "in" / "grid.obj";
   {
     std::ofstream f(in, std::ios::binary);
     f << grid_obj();
+    std::ofstream(dir / "in" / "grid.mtl", std::ios::binary) << "newmtl left side\nKd 1 0 0\nmap_Kd wood.png\n";
+    std::ofstream(dir / "in" / "extra.mtl", std::ios::binary) << "newmtl B\nKd 0 0 1\n";
   }
+  const std::string library = "# written by meshsal from grid.mtl, extra.mtl\n\nnewmtl left side\nKd 1 0 0\nmap_Kd wood.png\n\nnewmtl B\nKd 0 0 1\n";
   LoadOptions lo;
   lo.attributes = true;
 
-  // Beside the input: no note.
+  // Beside the input: OUT.mtl holds the input's libraries; no note.
   CliRun r = run_cli("simplify " + quoted(in.string()) + " -o " + quoted((dir / "in" / "small.obj").string()) +
                          " --ratio 0.2 --backend cpu",
                      dir);
   REQUIRE(r.rc == 0);
   CHECK(r.err.find("material") == std::string::npos);
+  CHECK(r.err.find("texture") == std::string::npos);
   std::string text = read_file((dir / "in" / "small.obj").string());
-  CHECK(text.find("\nmtllib grid.mtl\nmtllib extra.mtl\n") != std::string::npos);
+  CHECK(text.find("\nmtllib small.mtl\n") != std::string::npos);
+  CHECK(read_file((dir / "in" / "small.mtl").string()) == library);
   CHECK(count(text, "usemtl left side\n") == 1);
   CHECK(count(text, "usemtl B\n") == 1);
   check_halves(load_mesh((dir / "in" / "small.obj").string(), nullptr, lo));
 
-  // Elsewhere: the same file, and a note to copy the .mtl files.
+  // Elsewhere: the same files, and a note to copy the texture the materials name.
   r = run_cli("simplify " + quoted(in.string()) + " -o " + quoted((dir / "small.obj").string()) +
                   " --ratio 0.2 --backend cpu",
               dir);
   REQUIRE(r.rc == 0);
-  CHECK(r.err.find("grid.mtl extra.mtl") != std::string::npos);
+  CHECK(r.err.find("names the input's textures wood.png relative to the input's folder") != std::string::npos);
   CHECK(read_file((dir / "small.obj").string()) == text);
+  CHECK(read_file((dir / "small.mtl").string()) == library);
 
   // batch --simplify: the same mesh (simplify's options), the same materials.
   r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
@@ -222,11 +237,37 @@ TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep mtllib and 
               dir);
   INFO(r.out << r.err);
   REQUIRE(r.rc == 0);
-  CHECK(r.err.find("copy the .mtl files") != std::string::npos);
+  CHECK(r.err.find("see \"output_note\" in the log") != std::string::npos);
   const std::string batch_text = read_file((dir / "out" / "grid_simplified.obj").string());
-  CHECK(count(batch_text, "mtllib grid.mtl\n") == 1);
+  CHECK(count(batch_text, "mtllib grid_simplified.mtl\n") == 1);
+  CHECK(read_file((dir / "out" / "grid_simplified.mtl").string()) == library);
   CHECK(count(batch_text, "usemtl left side\n") == 1);
   CHECK(count(batch_text, "usemtl B\n") == 1);
+  CHECK(read_file((dir / "out" / "batch.jsonl").string()).find("wood.png") != std::string::npos);
   check_halves(load_mesh((dir / "out" / "grid_simplified.obj").string(), nullptr, lo));
   fs::remove_all(dir);
+}
+
+TEST_CASE("OBJ materials: the input's libraries are read from its folder and written beside the output", "[materials]") {
+  TempDir dir;
+  fs::create_directories(dir.file("in"));
+  fs::create_directories(dir.file("out"));
+  const std::string lib = "# the grid's colours\nnewmtl left side\nKd 1 0 0\nmap_Kd wood.png\n";
+  dir.write("in/grid.mtl", lib);  // extra.mtl is missing: named in the report, its material made plain
+  dir.write("in/grid.obj", grid_obj());
+  LoadReport report;
+  LoadOptions lo;
+  lo.attributes = true;
+  const Mesh m = load_mesh(dir.file("in/grid.obj"), nullptr, lo, &report);
+  CHECK(m.material_library_text == std::vector<std::string>{lib, ""});
+  CHECK(report.unread == std::vector<std::string>{"material library 'extra.mtl': no such file in the model's folder"});
+  write_mesh(dir.file("out/small.obj"), m);
+  CHECK(read_file(dir.file("out/small.mtl")) ==
+        "# written by meshsal from grid.mtl, extra.mtl\n\n" + lib + "\n\nnewmtl B\n");
+  // An output named like the input's library is refused before it replaces it.
+  Mesh renamed = m;
+  renamed.material_libraries = {"grid_copy.mtl"};
+  dir.write("in/grid_copy.mtl", lib);
+  CHECK_THROWS_WITH(write_mesh(dir.file("in/grid_copy.obj"), renamed), Catch::Contains("a material library of the input"));
+  CHECK(read_file(dir.file("in/grid_copy.mtl")) == lib);
 }

@@ -103,17 +103,26 @@ struct Mesh {
   // simplifier keeps seams closed (see simplify_mesh).
   std::vector<uint32_t> position_vertex;
 
-  // Optional: an OBJ's materials (read by load_obj always, whatever LoadOptions::attributes
-  // says; other formats leave them empty). material_libraries: the file names of every
-  // mtllib line, in order, as written (relative to the OBJ's folder; the .mtl files and
-  // their textures are not read). materials: the names of the usemtl lines, each once, in
-  // order of first use; "" stands for "no material" (the faces before the first usemtl).
-  // triangle_material: empty = no usemtl in the file; else one index into materials per
-  // triangle (a polygon's fan triangles all take the polygon's). simplify_mesh keeps each
-  // surviving triangle's material (a collapse never changes it); write_obj writes the
-  // mtllib lines after its header and a usemtl line before each run of triangles with
-  // another material than the previous one ("usemtl" with no name for "" after a named run).
+  // Optional: per-triangle materials. materials: their names, each once (an OBJ's usemtl
+  // names in order of first use, "" standing for "no material": the faces before the first
+  // usemtl; a glTF's material names, made unique). triangle_material: empty = no
+  // materials; else one index into materials per triangle (a polygon's fan triangles all
+  // take the polygon's). simplify_mesh keeps each surviving triangle's material (a collapse
+  // never changes it). An OBJ's are read by load_obj always, whatever
+  // LoadOptions::attributes says.
+  // material_libraries: the file names of an OBJ's mtllib lines, in order, as written
+  // (relative to its folder, held to the rule of the files a model may name: README);
+  // material_library_text: the text of each as read from the model's folder by load_mesh
+  // ("" where it could not be read, or loaded from memory), and material_library_folder
+  // that folder (so that no output replaces a library of its input). write_obj writes the
+  // materials into one .mtl beside its output (OUT.mtl: the libraries' text, or the glTF
+  // materials in MTL terms, their images beside it as OUT_texN.EXT; mesh_side_files names
+  // them), an mtllib line naming it after its header and a usemtl line before each run of
+  // triangles with another material than the previous one ("usemtl" with no name for ""
+  // after a named run).
   std::vector<std::string> material_libraries;
+  std::vector<std::string> material_library_text;
+  std::string material_library_folder;
   std::vector<std::string> materials;
   std::vector<uint32_t> triangle_material;
 
@@ -361,6 +370,12 @@ std::string mesh_output_format(const std::string& path);
 // only, and not the attribute 'curvature' (.ply, .gltf and .glb keep them)". Front ends
 // print it once, as a note. Error for an unknown format.
 std::string mesh_output_note(const std::string& path, const Mesh& mesh, bool saliency);
+
+// The files besides `path` that write_mesh writes for `mesh`: for an OBJ with materials,
+// its material library OUT.mtl and the images of a glTF input's materials as OUT_texN.EXT
+// (OUT: `path` without .obj); none for the other formats. For the output checks before any
+// work, and for the list of outputs a command prints.
+std::vector<std::string> mesh_side_files(const std::string& path, const Mesh& mesh);
 
 // Writes `mesh` in the format its name gives (mesh_output_format), keeping what the format
 // can hold (above): PLY (write_ply, or write_saliency_ply with S), glTF and GLB

@@ -174,11 +174,13 @@ JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult&
   }
   const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
   write_obj(out, s);
-  // Once per run (the notice prints each line once), not once per model.
-  if (!material_files_note(m.path, out, s.material_libraries).empty() && p.saliency.notice)
-    p.saliency.notice("note: simplified OBJs name their inputs' material files (mtllib) as the inputs do: "
-                      "copy the .mtl files and textures beside them");
+  // What the output cannot hold: in the model's record, and once per run on the terminal
+  // (the notice prints each line once), not once per model.
+  const std::string lost = mesh_output_note(out, s, false);
+  if (!lost.empty() && p.saliency.notice)
+    p.saliency.notice("note: some simplified outputs cannot hold all their input holds: see \"output_note\" in the log");
   JsonObject j;
+  if (!lost.empty()) j.text("output_note", lost);
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
       .number("error_percent", 100 * rep.error);

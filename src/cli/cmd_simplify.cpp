@@ -253,9 +253,8 @@ int run(const Args& a) {
     progress.update("writing", 0.0);
     write_simplified(a.output, mesh);
     progress.finish();
-    if (const std::string note = material_files_note(a.input, a.output, mesh.material_libraries);
-        obj && !a.quiet && !note.empty())
-      std::fprintf(stderr, "%s\n", printable(note).c_str());
+    if (const std::string note = mesh_output_note(a.output, mesh, false); !a.quiet && !note.empty())
+      std::fprintf(stderr, "note: %s\n", printable(note).c_str());
     if (a.json)
       JsonObject()
           .text("mesh", a.input).text("output", a.output).count("input_vertices", mesh.vertex_count())
@@ -306,9 +305,8 @@ int run(const Args& a) {
   progress.update("writing", 0.0);
   write_simplified(a.output, out);
   progress.finish();
-  if (const std::string note = material_files_note(a.input, a.output, out.material_libraries);
-      obj && !a.quiet && !note.empty())
-    std::fprintf(stderr, "%s\n", printable(note).c_str());
+  if (const std::string note = mesh_output_note(a.output, out, false); !a.quiet && !note.empty())
+    std::fprintf(stderr, "note: %s\n", printable(note).c_str());
   // With only an error bound there is no face target to miss.
   if (!rep.warning.empty() && !told_precision && !a.quiet && rep.note.find(rep.warning) == std::string::npos)
     std::fprintf(stderr, "warning: %s\n", printable(rep.warning).c_str());

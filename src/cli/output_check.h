@@ -28,10 +28,4 @@ void remove_stale_temporaries_of(const std::string& file);
 // is writable. Throws Error.
 void prepare_output_folder(const std::string& dir);
 
-// "" unless `mesh` names material files (mtllib, relative names) and `output` is in another
-// folder than `input`: then a note that the OBJ written there names them as the input
-// does, so they (and their textures) need copying beside it.
-std::string material_files_note(const std::string& input, const std::string& output,
-                                const std::vector<std::string>& material_libraries);
-
 }  // namespace meshsal_cli

@@ -8,6 +8,8 @@ namespace meshsal {
 
 inline void copy_mesh_context(const Mesh& from, Mesh& to) {
   to.material_libraries = from.material_libraries;
+  to.material_library_text = from.material_library_text;
+  to.material_library_folder = from.material_library_folder;
   to.materials = from.materials;
   to.gltf_assets = from.gltf_assets;
   to.frame = from.frame;

@@ -709,6 +709,9 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
         std::string mname;
         if (p.material >= 0 && size_t(p.material) < model.materials.size()) mname = model.materials[size_t(p.material)].name;
         if (p.material >= 0 && mname.empty()) mname = "material_" + std::to_string(p.material);
+        // Unique, as an OBJ's usemtl names must be to tell materials apart.
+        if (std::find(mesh.materials.begin(), mesh.materials.end(), mname) != mesh.materials.end())
+          mname += "_" + std::to_string(p.material);
         mesh.materials.push_back(mname);
       }
       for (auto t : tris) {

@@ -57,7 +57,11 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
     throw Error(name + ": not a gzip file (the name ends in .gz but the data is not gzip)");
   }
   Mesh mesh;
-  if (ext == ".obj") mesh = load_obj_text(bytes, name, attributes);
+  if (ext == ".obj") {
+    mesh = load_obj_text(bytes, name, attributes);
+    if (!folder.empty() && !mesh.material_libraries.empty())
+      read_material_libraries(mesh, folder, limit ? limit : kNoHeaderLimitBytes, report ? &report->unread : nullptr);
+  }
   else if (ext == ".off") mesh = load_off_text(bytes, name, attributes);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
   else if (ext == ".gltf" || ext == ".glb")

@@ -2,10 +2,12 @@
 // format keeps (mesh_formats), and the one note of what a write loses (mesh_output_note).
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "io/mesh_io_internal.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -34,6 +36,15 @@ std::string formats_keeping(Keeps keeps) {
   for (const MeshFormat& f : mesh_formats())
     if (keeps(f)) out.push_back(f.suffix);
   return listed(out);
+}
+
+// True when the file `path` lies in `folder` (both resolved as far as they exist).
+bool same_folder(const std::string& path, const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path a = fs::weakly_canonical(fs::absolute(fs::path(path), ec).parent_path(), ec);
+  const fs::path b = fs::weakly_canonical(fs::absolute(fs::path(folder), ec), ec);
+  return a == b;
 }
 
 }  // namespace
@@ -112,6 +123,16 @@ std::string mesh_output_note(const std::string& path, const Mesh& mesh, bool sal
   if (!lost.empty()) {
     note += std::string(note.empty() ? "has" : ", and has") + " no place for " + listed(lost);
     note += scalar_lost ? " (" + formats_keeping([](const MeshFormat& g) { return g.scalars; }) + " keep every attribute)" : "";
+  }
+  // An OBJ's libraries go into OUT.mtl beside the output; the textures they name stay
+  // where the input's folder has them.
+  if (f->suffix == ".obj" && !mesh.triangle_material.empty() && !mesh.gltf_assets && !mesh.material_library_folder.empty()) {
+    const std::vector<std::string> textures = library_textures(mesh);
+    if (!textures.empty() && !same_folder(path, mesh.material_library_folder)) {
+      const std::string copy = "names the input's textures " + listed(textures) +
+                               " relative to the input's folder, as its materials do: copy them beside it";
+      note = note.empty() ? copy : note + "; it " + copy;
+    }
   }
   return note.empty() ? "" : path + " " + note;
 }

@@ -131,6 +131,17 @@ void write_stl(const std::string& path, const Mesh& mesh);
 // OBJ with `rgb` as `v x y z r g b` when not empty (write_obj.cpp).
 void write_obj_colours(const std::string& path, const Mesh& mesh, const std::vector<uint8_t>& rgb);
 
+// An OBJ's material libraries (Mesh::material_libraries) read from the model's folder into
+// Mesh::material_library_text, together within `budget` bytes; what cannot be read goes to
+// `unread` (material_library.cpp).
+void read_material_libraries(Mesh& mesh, const std::string& folder, uint64_t budget, std::vector<std::string>* unread);
+// The texture files an OBJ's libraries name (map_Kd, bump, norm, ...), each once, as written.
+std::vector<std::string> library_textures(const Mesh& mesh);
+// The name of the .mtl an OBJ output gets (OUT.mtl's file name), for its mtllib line.
+std::string material_library_name(const std::string& obj_path);
+// Writes the side files of an OBJ output (mesh_side_files): OUT.mtl and the textures.
+void write_material_files(const std::string& obj_path, const Mesh& mesh);
+
 inline const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
   for (const VertexAttribute& a : mesh.attributes)
     if (a.name == name) return &a;

@@ -67,7 +67,8 @@ void write_obj_colours(const std::string& path, const Mesh& mesh, const std::vec
       out.end_line();
     };
     out << "# written by meshsal\n";
-    for (const std::string& lib : mesh.material_libraries) out << "mtllib " << lib << "\n";
+    // The materials go into one library beside the output (write_material_files).
+    if (!tm.empty()) out << "mtllib " << material_library_name(path) << "\n";
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
       if (welded && mesh.position_vertex[v] != v) continue;
       double xyz[3];
@@ -112,6 +113,7 @@ void write_obj_colours(const std::string& path, const Mesh& mesh, const std::vec
     }
     out.flush();
   });
+  write_material_files(path, mesh);
 }
 
 void write_obj(const std::string& path, const Mesh& mesh) { write_obj_colours(path, mesh, vertex_colour_bytes(mesh)); }
