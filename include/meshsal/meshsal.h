@@ -1100,7 +1100,8 @@ class Device {
  public:
   // Opens device `index` of list_devices(); -1 picks as Backend::Gpu does (the best
   // device: discrete, integrated, virtual, then a CPU device such as lavapipe). Throws Error
-  // when built without Vulkan, the index does not exist or the device cannot be opened.
+  // when built without Vulkan, the index does not exist (below -1, or not listed) or the
+  // device cannot be opened.
   explicit Device(int index = -1);
   ~Device();
   Device(Device&& other) noexcept;
