@@ -155,3 +155,17 @@ TEST_CASE("device session: threads sharing one Device take turns and agree", "[g
   for (std::thread& t : threads) t.join();
   for (const SaliencyResult& r : results) CHECK(r.saliency == alone.saliency);
 }
+
+TEST_CASE("device session: an index below -1 is refused, not taken for 'choose'", "[device]") {
+  // Issue 36: the device layer took any negative index as -1, so Device(-5) opened device 0.
+  for (int index : {-2, -5, -2147483647 - 1}) {
+    INFO(index);
+    try {
+      Device d(index);
+      FAIL("Device(" << index << ") opened '" << d.info().name << "'");
+    } catch (const Error& e) {
+      CHECK(std::string(e.what()) == "no Vulkan device " + std::to_string(index) +
+                                         " (-1 chooses one, else a list_devices() index)");
+    }
+  }
+}

@@ -384,6 +384,32 @@ std::vector<std::string> mesh_side_files(const std::string& path, const Mesh& me
 // formats that keep it, as is an unknown suffix. Atomic as write_ply.
 void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
 
+// One file a call is about to write (check_outputs).
+struct OutputFile {
+  std::string path;                     // as given; "" = not requested (skipped)
+  std::string option;                   // what names it in messages: "-o", "--map", "path"
+  std::vector<std::string> extensions;  // accepted endings, lower case (".png"), matched
+                                        // case-insensitively; empty = any name
+};
+
+// The check every front end makes on the files it will write, before any work (loading,
+// saliency, rendering): a typo costs nothing and an input is never lost. The meshsal
+// command checks every output with it, Python's save() its path, and saliency_file() and
+// simplify_file() their output against their input. Throws Error "PATH: problem" (PATH as
+// given) when an output's name has none of its `extensions` ("PATH: OPTION must be a .ply
+// or .glb file"), it cannot be written by the writers' rule (an empty name, a folder, a
+// block device, a socket, a missing or unwritable folder; symlinks are followed, and a
+// character device or named pipe is written in place), two outputs are the same file
+// ("given for both -o and --map"), or an output is the same file as one of `inputs` ("-o
+// is the input file 'IN'"): the same device and inode, so through a symbolic or hard link
+// too, since the writers' rename would replace the input whatever its permissions. Inputs
+// that are "" or do not exist are skipped (loading them fails later with its own message);
+// outputs that do not exist yet are fine. Then removes the temporaries (NAME.tmp.XXXXXX)
+// that a writer killed while writing one of these outputs left beside it; a live writer's
+// are kept. Checks, it does not reserve: a file made between this check and the write is
+// not seen.
+void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std::string>& inputs);
+
 // Reads the saliency S back for `mesh` from a file that keeps its value: a PLY's `quality`
 // (as `meshsal saliency` writes it) or a glTF's _SALIENCY. Throws Error when the file holds
 // no S (an OBJ, OFF or STL: their colours cannot be turned back into values), a value is
@@ -555,7 +581,10 @@ struct OutOfCoreReport {
 // whole mesh: binary PLY is streamed (other formats are loaded once and converted to a
 // temporary binary PLY). options.method Auto is taken as Fast; tiles run on the CPU.
 // With options.exchange, every process passes the same arguments, the temporary folder
-// must be on a disk they share, and only rank 0 writes `output`.
+// must be on a disk they share, and only rank 0 writes `output`. Before any work, `output`
+// must end in .ply (Error "OUTPUT: saliency_file writes a binary PLY: ..." for a .obj or
+// .glb name) and pass check_outputs against `input`: it is never the input file, not
+// through a symbolic or hard link either.
 OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
                               const SaliencyOptions& options, const OutOfCoreOptions& out_of_core);
 
@@ -835,7 +864,9 @@ struct OutOfCoreSimplifyReport {
 // the fewest that fit it (an Error names the smallest workable limit when none does).
 // Writes the bytes that simplify_mesh_tiled with the same tile count, weights from the
 // same saliency (S as `quality`) and write_ply give. Positions and S only: other vertex
-// properties, materials and seams are not read. Throws Error as simplify_mesh_tiled does.
+// properties, materials and seams are not read. Throws Error as simplify_mesh_tiled does,
+// and, before any work, for an output as saliency_file() refuses it (not a .ply name, or
+// the input file itself, through a link too).
 OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
                                       const SimplifyOptions& options, const SaliencyWeightOptions* weights,
                                       const SaliencyOptions& saliency_options, const OutOfCoreOptions& out_of_core,
@@ -1150,7 +1181,8 @@ class Device {
  public:
   // Opens device `index` of list_devices(); -1 picks as Backend::Gpu does (the best
   // device: discrete, integrated, virtual, then a CPU device such as lavapipe). Throws Error
-  // when built without Vulkan, the index does not exist or the device cannot be opened.
+  // when built without Vulkan, the index does not exist (below -1, or not listed) or the
+  // device cannot be opened.
   explicit Device(int index = -1);
   ~Device();
   Device(Device&& other) noexcept;

@@ -69,9 +69,9 @@ def _short_value(value):
     return ""
 
 
-def _mismatch(name, declared, value, ranges):
-    """Why `value` is not a `declared`, or None when it looks like one. With `ranges`, an
-    integer outside a 32-bit count (a negative thread count) is named too."""
+def _mismatch(name, declared, value):
+    """Why `value` is not a `declared`, or None when it looks like one. (Integers are taken
+    by the module itself, out of range as ValueError: a C++ int argument is never left.)"""
     got = type(value).__name__
     if getattr(value, "shape", ()) != ():  # an array where a scalar belongs
         if declared in ("float", "int", "bool", "str"):
@@ -83,8 +83,6 @@ def _mismatch(name, declared, value, ranges):
     elif declared == "int":
         if isinstance(value, bool) or not hasattr(value, "__index__"):
             return f"{name} must be an integer, got {got}{_short_value(value)}"
-        if ranges and not 0 <= value.__index__() < 2 ** 31:
-            return f"{name} is out of range, got{_short_value(value)}"
     elif declared == "bool":
         if not isinstance(value, bool) and got != "bool_":
             return f"{name} must be True or False, got {got}{_short_value(value)}"
@@ -102,12 +100,11 @@ def _explain(f, sig, args, kwargs, message):
         except TypeError as e:  # unknown keyword, missing or extra argument
             return f"{name}(): {e}"
         declared = _declared_types(message)
-        for ranges in (False, True):  # wrong types first, then integers out of range
-            for arg, value in bound.arguments.items():
-                if arg in declared:
-                    why = _mismatch(arg, declared[arg], value, ranges)
-                    if why:
-                        return f"{name}(): {why}"
+        for arg, value in bound.arguments.items():
+            if arg in declared:
+                why = _mismatch(arg, declared[arg], value)
+                if why:
+                    return f"{name}(): {why}"
     types = ", ".join([type(a).__name__ for a in args] + [f"{k}={type(v).__name__}" for k, v in kwargs.items()])
     return f"{name}(): incompatible arguments ({types}); see help(meshsal.{name})"
 

@@ -5,6 +5,7 @@
 
 #include "bindings.h"
 #include "meshsal/meshsal.h"
+#include "saliency_args.h"
 
 namespace meshsal_py {
 
@@ -26,7 +27,8 @@ release_cached_devices() empties.
     with meshsal.Device(0) as gpu:
         r = meshsal.saliency(V, F, device=gpu)
 )")
-      .def(py::init([](int index) {
+      .def(py::init([](const py::object& index_arg) {
+             const int index = device_index(index_arg);  // -1, or one that exists (not -5 for "choose")
              py::gil_scoped_release unlocked;  // opening a device takes a while
              return std::make_unique<meshsal::Device>(index);
            }),

@@ -11,7 +11,7 @@ namespace meshsal_py {
 
 void bind_heap(py::module_& m) {
   m.def("keep_freed_memory", [](bool on) { return meshsal::keep_freed_memory_for_reuse(on); },
-        py::arg("on") = true,
+        py::arg("on").noconvert() = true,
         R"(keep_freed_memory(on=True) -> bool
 
 Makes this process's C heap (glibc's malloc) keep memory it frees for reuse (on=True), as the

@@ -1,9 +1,12 @@
 // meshsal Python module: load() and the device list.
 #include <cctype>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "arg_values.h"
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "mesh_args.h"
@@ -15,8 +18,11 @@ namespace meshsal_py {
 
 namespace {
 
-py::object load(const py::object& path_obj, bool properties, bool attributes, unsigned long long max_input_bytes) {
+py::object load(const py::object& path_obj, bool properties, bool attributes, const py::object& max_input_bytes) {
   const std::string path = path_bytes(path_obj);
+  meshsal::LoadOptions options;
+  options.max_input_bytes = unsigned_arg(max_input_bytes, "max_input_bytes", 0, std::numeric_limits<uint64_t>::max());
+  options.attributes = attributes;
   if (properties && attributes)
     throw py::value_error("give properties=True or attributes=True, not both (attributes has the PLY's "
                           "properties too)");
@@ -24,9 +30,6 @@ py::object load(const py::object& path_obj, bool properties, bool attributes, un
   meshsal::VertexProperties props;
   try {
     py::gil_scoped_release unlocked;
-    meshsal::LoadOptions options;
-    options.max_input_bytes = max_input_bytes;
-    options.attributes = attributes;
     mesh = meshsal::load_mesh(path, properties ? &props : nullptr, options);
   } catch (const meshsal::Cancelled&) {
     throw;
@@ -48,9 +51,14 @@ py::object load(const py::object& path_obj, bool properties, bool attributes, un
 void save(const py::object& path_obj, const py::object& vertices, const py::object& faces,
           const py::object& saliency, const py::object& attributes, const py::object& position_vertex) {
   const std::string path = path_bytes(path_obj);
-  const std::string format = meshsal::mesh_output_format(path);
-  const bool obj = format == ".obj";
-  if (format.empty()) throw py::value_error("path must end in .ply, .obj, .glb or .gltf (the formats meshsal writes)");
+  // The library's check of every front end's outputs, before the arrays are read: a name
+  // the writers know (the format comes from it), a place they can write.
+  try {
+    meshsal::check_outputs({{path, "path", {".ply", ".obj", ".glb", ".gltf"}}}, {});
+  } catch (const meshsal::Error& e) {
+    raise_file_error(e, path_obj);
+  }
+  const bool obj = meshsal::mesh_output_format(path) == ".obj";
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   std::vector<double> s;
   if (!saliency.is_none()) {
@@ -83,8 +91,8 @@ py::list devices() {
 }  // namespace
 
 void bind_io(py::module_& m) {
-  m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("properties") = false,
-        py::arg("attributes") = false, py::arg("max_input_bytes") = 0ULL,
+  m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("properties").noconvert() = false,
+        py::arg("attributes").noconvert() = false, py::arg("max_input_bytes") = 0ULL,
         R"(load(path, *, properties=False, attributes=False, max_input_bytes=0)
     -> (V, F), (V, F, props) or (V, F, attributes, position_vertex)
 
@@ -118,8 +126,10 @@ file meshsal.Error with the CLI's message.)");
 Writes a mesh with the library's writers, the bytes the CLI writes for the same mesh:
 
   path             str, bytes or os.PathLike ending in .ply (binary little-endian PLY),
-                   .obj (v, vt, vn and f lines), .glb or .gltf (glTF 2.0); written to a
-                   temporary file and renamed, so a failure never leaves a half-written file
+                   .obj (v, vt, vn and f lines), .glb or .gltf (glTF 2.0), the format
+                   the name gives (another ending raises meshsal.Error before anything is
+                   read); checked as the CLI checks its -o, then written to a temporary
+                   file and renamed, so a failure never leaves a half-written file
   vertices, faces  as in saliency()
   saliency         S per vertex (not for .obj): written as `meshsal saliency -o OUT` writes
                    it; PLY: the property quality = S and red/green/blue its colour scale;

@@ -4,6 +4,7 @@
 
 #include <pybind11/stl.h>
 
+#include "arg_values.h"
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "numpy_in.h"
@@ -25,15 +26,15 @@ struct SaliencyOut {
 };
 
 SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool raw_maps, bool smoothed,
-                     const py::object& scales, double eps_frac, const std::string& method,
-                     const std::string& backend, const std::string& precision, const py::object& device, unsigned threads,
-                     unsigned tiles) {
+                     const py::object& scales, const py::object& eps_frac, const std::string& method,
+                     const std::string& backend, const std::string& precision, const py::object& device,
+                     const py::object& threads, const py::object& tiles) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   std::vector<std::string> notices;
   meshsal::SaliencyOptions options =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
   options.smoothed = smoothed;
-  options.tiles = tiles;
+  options.tiles = count_arg(tiles, "tiles");
   options.raw_maps = raw_maps;  // kept (8 bytes per vertex per scale) only when returned
   meshsal::SaliencyResult r;
   {
@@ -98,7 +99,7 @@ void bind_saliency(py::module_& m) {
                r.backend + "', method " + r.method + ">";
       });
   m.def("saliency", &saliency, py::arg("vertices"), py::arg("faces"), py::kw_only(),
-        py::arg("raw_maps") = false, py::arg("smoothed") = false, py::arg("scales") = py::none(),
+        py::arg("raw_maps").noconvert() = false, py::arg("smoothed").noconvert() = false, py::arg("scales") = py::none(),
         py::arg("eps_frac") = 0.003, py::arg("method") = "exact", py::arg("backend") = "auto",
         py::arg("precision") = "auto", py::arg("device") = -1, py::arg("threads") = 0u, py::arg("tiles") = 0u,
         (std::string(R"(saliency(vertices, faces, *, raw_maps=False, smoothed=False, scales=None, eps_frac=0.003,

@@ -6,6 +6,7 @@
 
 #include <pybind11/stl.h>
 
+#include "arg_values.h"
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "numpy_in.h"
@@ -43,13 +44,7 @@ struct SimplifyOut {
 
 // A number argument that may be None: the value, or `fallback` for None.
 double number_or(const py::object& value, double fallback, const char* name) {
-  if (value.is_none()) return fallback;
-  const std::string type = py::str(value.get_type().attr("__name__"));
-  if (py::isinstance<py::bool_>(value) || !PyNumber_Check(value.ptr()) || py::isinstance<py::str>(value))
-    throw py::type_error(std::string(name) + " must be a number, got " + type);
-  if (py::hasattr(value, "shape") && py::len(value.attr("shape")) != 0)  // an array, not its values
-    throw py::type_error(std::string(name) + " must be a single number, got " + type);
-  return py::float_(value).cast<double>();
+  return value.is_none() ? fallback : number_arg(value, name);
 }
 
 // A SimplifyOut from one simplified mesh and its report (simplify() and each lod level).
@@ -86,27 +81,25 @@ void fill_result(SimplifyOut& out, meshsal::Mesh result, meshsal::SimplifyReport
 
 namespace {
 
-// lod=: a str as --lod reads it, or a sequence of ints (face counts) and floats (ratios).
+// lod=: a str as --lod reads it, or a sequence (list, tuple, range, array, generator) of
+// ints (face counts) and floats (ratios); bytes are no str here (b'0.5' is three ints).
 std::vector<meshsal::SimplifyOptions> lod_levels(const py::object& lod) {
   if (py::isinstance<py::str>(lod)) return meshsal::parse_lod_levels(lod.cast<std::string>());
-  if (!py::isinstance<py::sequence>(lod)) throw py::type_error("lod must be a list of ratios and face counts, or a str");
+  const std::vector<py::object> items =
+      sequence_items(lod, "lod", "a list of ratios (float) and face counts (int), or a str such as '0.5,0.2'", 16);
+  if (items.empty() || items.size() > 16) throw py::value_error("lod must list 1 to 16 levels");
   std::vector<meshsal::SimplifyOptions> levels;
-  for (const py::handle item : lod.cast<py::sequence>()) {
+  for (const py::object& item : items) {
     meshsal::SimplifyOptions o;
-    if (py::isinstance<py::bool_>(item) || !PyNumber_Check(item.ptr()))
-      throw py::type_error("lod items must be ratios (float) or face counts (int), got " +
-                           std::string(py::str(item.get_type().attr("__name__"))));
-    if (py::isinstance<py::int_>(item) || (PyIndex_Check(item.ptr()) && !PyFloat_Check(item.ptr()))) {
-      const long long t = py::reinterpret_borrow<py::object>(item).cast<long long>();
-      if (t < 1 || t > 4000000000LL) throw py::value_error("lod face counts must be in [1, 4000000000], got " + std::to_string(t));
-      o.target_faces = size_t(t);
+    // An integer (numpy's too) is a face count; anything else must be a real ratio.
+    if (is_integer(item)) {
+      o.target_faces = size_t(integer_arg(item, "lod face counts", 1, 4000000000LL));
     } else {
-      o.ratio = py::reinterpret_borrow<py::object>(item).cast<double>();
+      o.ratio = number_arg(item, "lod items");
       if (!(o.ratio > 0 && o.ratio < 1)) throw py::value_error("lod ratios must be in (0, 1), got " + std::string(py::str(item)));
     }
     levels.push_back(o);
   }
-  if (levels.empty() || levels.size() > 16) throw py::value_error("lod must list 1 to 16 levels");
   return levels;
 }
 
@@ -114,9 +107,9 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
                      const py::object& ratio, const py::object& target_error, bool lock_border,
                      const py::object& weights, const py::object& saliency, const py::object& lambda_arg,
                      const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
-                     const py::object& position_vertex, const py::object& scales, double eps_frac,
+                     const py::object& position_vertex, const py::object& scales, const py::object& eps_frac,
                      const std::string& method, const std::string& backend, const std::string& precision,
-                     const py::object& device, unsigned threads, std::vector<SimplifyOut>* lod_out,
+                     const py::object& device, const py::object& threads, std::vector<SimplifyOut>* lod_out,
                      const std::vector<meshsal::SimplifyOptions>* lod) {
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   const size_t n = mesh.vertex_count();
@@ -131,23 +124,10 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (!lod && target_faces.is_none() && ratio.is_none() && error_percent == 0)
     throw py::value_error("give target_faces, ratio or target_error");
   meshsal::SimplifyOptions options;
-  options.threads = threads;
   options.target_error = error_percent / 100;
   options.lock_border = lock_border;
   if (!target_faces.is_none()) {
-    // Any integer (numpy's too), as Python's operator.index takes it.
-    PyObject* index = PyNumber_Index(target_faces.ptr());
-    if (!index) {
-      PyErr_Clear();
-      throw py::type_error("target_faces must be an integer, got " +
-                           std::string(py::str(target_faces.get_type().attr("__name__"))));
-    }
-    int overflow = 0;
-    const long long t = PyLong_AsLongLongAndOverflow(index, &overflow);  // 2**70 is no C++ integer
-    const std::string given = py::str(py::reinterpret_steal<py::object>(index));
-    if (overflow || t < 1 || t > 4000000000LL)
-      throw py::value_error("target_faces must be in [1, 4000000000], got " + given);
-    options.target_faces = size_t(t);
+    options.target_faces = size_t(integer_arg(target_faces, "target_faces", 1, 4000000000LL));
   } else if (!ratio.is_none()) {
     const double r = number_or(ratio, 0, "ratio");
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1], got " + std::string(py::str(ratio)));
@@ -182,6 +162,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
+  options.threads = so.threads;
 
   SimplifyOut out;
   const double diagonal = mesh_diagonal(mesh);  // for the error in model units, as the CLI's JSON
@@ -191,7 +172,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     {
       const InterruptibleCall call;
       std::vector<meshsal::SimplifyOptions> levels = *lod;
-      for (meshsal::SimplifyOptions& o : levels) o.lock_border = lock_border, o.threads = threads, o.cancel = call.flag();
+      for (meshsal::SimplifyOptions& o : levels) o.lock_border = lock_border, o.threads = so.threads, o.cancel = call.flag();
       so.cancel = call.flag();
       chain = meshsal::simplify_lod(mesh, levels, computed ? &wo : nullptr, so, s.empty() ? nullptr : &s);
     }
@@ -230,9 +211,9 @@ py::object simplify_any(const py::object& vertices, const py::object& faces, con
                         const py::object& ratio, const py::object& target_error, bool lock_border,
                         const py::object& weights, const py::object& saliency, const py::object& lambda_arg,
                         const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
-                        const py::object& position_vertex, const py::object& scales, double eps_frac,
+                        const py::object& position_vertex, const py::object& scales, const py::object& eps_frac,
                         const std::string& method, const std::string& backend, const std::string& precision,
-                        const py::object& device, unsigned threads, const py::object& lod) {
+                        const py::object& device, const py::object& threads, const py::object& lod) {
   if (lod.is_none())
     return py::cast(simplify(vertices, faces, target_faces, ratio, target_error, lock_border, weights, saliency,
                              lambda_arg, alpha_arg, floor_arg, attributes, position_vertex, scales, eps_frac, method,
@@ -296,7 +277,7 @@ void bind_simplify(py::module_& m) {
   const std::string default_weights = meshsal::weighting_name(meshsal::kDefaultWeighting);
   m.def("simplify", &simplify_any, py::arg("vertices"), py::arg("faces"), py::arg("target_faces") = py::none(),
         py::kw_only(), py::arg("ratio") = py::none(), py::arg("target_error") = py::none(),
-        py::arg("lock_border") = false, py::arg("weights") = default_weights,
+        py::arg("lock_border").noconvert() = false, py::arg("weights") = default_weights,
         py::arg("saliency") = py::none(), py::arg("lambda_") = py::none(), py::arg("alpha_percentile") = py::none(),
         py::arg("weight_floor") = meshsal::kDefaultWeightFloor, py::arg("attributes") = py::none(),
         py::arg("position_vertex") = py::none(), py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,

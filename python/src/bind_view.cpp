@@ -1,10 +1,14 @@
 // meshsal Python module: best_view() and render().
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <pybind11/stl.h>
 
+#include "arg_values.h"
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "numpy_in.h"
@@ -39,29 +43,41 @@ py::dict view_dict(const meshsal::ViewAngles& a, const double direction[3], doub
   return v;
 }
 
+// A pair of values (elevation, color_range): ValueError naming how many were given.
+std::vector<py::object> pair_items(const py::object& value, const char* name, const char* expected) {
+  std::vector<py::object> t = sequence_items(value, name, expected, 2);
+  if (t.size() != 2)
+    throw py::value_error(std::string(name) + " must be " + expected + ", got " +
+                          (t.size() > 2 ? std::string("more than 2") : std::to_string(t.size())) + " values");
+  return t;
+}
+
 // elevation=(min, max) in degrees, or None (the whole sphere); the library checks the range.
 meshsal::ElevationRange elevation_range(const py::object& elevation) {
   meshsal::ElevationRange r;
   if (elevation.is_none()) return r;
   if (py::isinstance<py::str>(elevation)) return meshsal::parse_elevation_range(elevation.cast<std::string>());
-  const py::tuple t = py::tuple(elevation);
-  if (t.size() != 2) throw py::value_error("elevation must be (min, max) in degrees, or None");
-  r.min = t[0].cast<double>();
-  r.max = t[1].cast<double>();
+  const std::vector<py::object> t = pair_items(elevation, "elevation", "(min, max) in degrees, a str such as '0,60', or None");
+  r.min = number_arg(t[0], "elevation");
+  r.max = number_arg(t[1], "elevation");
   return r;
 }
 
-py::dict best_view(const py::object& vertices, const py::object& faces, const py::object& score, int restarts,
-                   unsigned long long seed, int views, int resolution, double depth_tol, const std::string& up,
-                   const py::object& elevation, const py::object& scales, double eps_frac, const std::string& method,
-                   const std::string& backend, const std::string& precision, const py::object& device, unsigned threads) {
+py::dict best_view(const py::object& vertices, const py::object& faces, const py::object& score,
+                   const py::object& restarts_arg, const py::object& seed_arg, const py::object& views_arg,
+                   const py::object& resolution_arg, const py::object& depth_tol_arg, const std::string& up,
+                   const py::object& elevation, const py::object& scales, const py::object& eps_frac,
+                   const std::string& method, const std::string& backend, const std::string& precision,
+                   const py::object& device, const py::object& threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   // The CLI's ranges (the library checks resolution and depth_tol itself).
-  if (restarts < 1 || restarts > 1000) throw py::value_error("restarts must be in [1, 1000], got " + std::to_string(restarts));
-  if (views < 0 || views > 1000000) throw py::value_error("views must be in [0, 1000000], got " + std::to_string(views));
-  if (resolution < 16 || resolution > 8192)
-    throw py::value_error("resolution must be in [16, 8192], got " + std::to_string(resolution));
-  if (!(depth_tol >= 0 && depth_tol <= 1000)) throw py::value_error("depth_tol must be in [0, 1000]");
+  const int restarts = int(integer_arg(restarts_arg, "restarts", 1, 1000));
+  const int views = int(integer_arg(views_arg, "views", 0, 1000000));
+  const int resolution = int(integer_arg(resolution_arg, "resolution", 16, 8192));
+  const uint64_t seed = unsigned_arg(seed_arg, "seed", 0, std::numeric_limits<uint64_t>::max());
+  const double depth_tol = number_arg(depth_tol_arg, "depth_tol");
+  if (!(depth_tol >= 0 && depth_tol <= 1000))
+    throw py::value_error("depth_tol must be in [0, 1000], got " + std::string(py::str(depth_tol_arg)));
   meshsal::ViewpointOptions vo;
   vo.up = meshsal::parse_up_axis(up);
   vo.elevation = elevation_range(elevation);
@@ -76,7 +92,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   vo.views = views;
   vo.resolution = resolution;
   vo.depth_tol_px = depth_tol;
-  vo.threads = threads;
+  vo.threads = so.threads;
   use_saliency_device(vo, so);
   meshsal::Viewpoint b;
   meshsal::ViewCamera map_best;
@@ -109,19 +125,23 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   return out;
 }
 
-py::array render(const py::object& vertices, const py::object& faces, const py::object& values, double theta,
-                 double phi, bool best, const std::string& up, const py::object& elevation, int size, const py::object& color_range,
-                 bool grey, bool flat, bool edges, int supersample, const py::object& scales, double eps_frac,
-                 const std::string& method, const std::string& backend, const std::string& precision,
-                 const py::object& device, unsigned threads) {
+py::array render(const py::object& vertices, const py::object& faces, const py::object& values,
+                 const py::object& theta_arg, const py::object& phi_arg, bool best, const std::string& up,
+                 const py::object& elevation, const py::object& size, const py::object& color_range, bool grey,
+                 bool flat, bool edges, const py::object& supersample, const py::object& scales,
+                 const py::object& eps_frac, const std::string& method, const std::string& backend,
+                 const std::string& precision, const py::object& device, const py::object& threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
-  if (!(theta >= -360 && theta <= 360)) throw py::value_error("theta must be in [-360, 360] degrees");
-  if (!(phi >= -90 && phi <= 90)) throw py::value_error("phi must be in [-90, 90] degrees");
+  const double theta = number_arg(theta_arg, "theta"), phi = number_arg(phi_arg, "phi");
+  if (!(theta >= -360 && theta <= 360))
+    throw py::value_error("theta must be in [-360, 360] degrees, got " + std::string(py::str(theta_arg)));
+  if (!(phi >= -90 && phi <= 90)) throw py::value_error("phi must be in [-90, 90] degrees, got " + std::string(py::str(phi_arg)));
   meshsal::RenderStyle style;
-  style.size = size;
+  // Beyond an int: ValueError here; within, the library's own range check (meshsal.Error).
+  style.size = int(integer_arg(size, "size", INT_MIN, INT_MAX));
   style.smooth = !flat;
   style.edges = edges;
-  style.supersample = supersample;
+  style.supersample = int(integer_arg(supersample, "supersample", INT_MIN, INT_MAX));
   style.up = meshsal::parse_up_axis(up);
   const meshsal::ElevationRange band = elevation_range(elevation);
   if (!best && !elevation.is_none()) throw py::value_error("elevation needs best=True");
@@ -130,9 +150,11 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
     if (py::isinstance<py::str>(color_range)) {
       text = color_range.cast<std::string>();
     } else {
-      py::tuple t = py::tuple(color_range);
-      if (t.size() != 2) throw py::value_error("color_range must be 'LO,HI' or a pair (lo, hi)");
-      text = std::string(py::str(t[0])) + "," + std::string(py::str(t[1]));
+      // Each end a value or a percentile such as '5%': the library reads the text.
+      for (const py::object& end : pair_items(color_range, "color_range", "'LO,HI' or a pair (lo, hi)")) {
+        if (!py::isinstance<py::str>(end)) number_arg(end, "color_range");
+        text += (text.empty() ? "" : ",") + std::string(py::str(end));
+      }
     }
     style.range = meshsal::parse_color_range(text);
   }
@@ -151,7 +173,7 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       meshsal::ViewpointOptions vo;
       vo.up = style.up;
       vo.elevation = band;
-      vo.threads = threads;
+      vo.threads = so.threads;
       use_saliency_device(vo, so);
       vo.cancel = so.cancel;
       const meshsal::Viewpoint b = meshsal::best_viewpoint(mesh, score, vo);
@@ -194,9 +216,9 @@ the front view was returned: no direction saw any score).
 The GIL is released while it computes.
 )") + kSaliencyArgsDoc).c_str());
   m.def("render", &render, py::arg("vertices"), py::arg("faces"), py::arg("values") = py::none(),
-        py::kw_only(), py::arg("theta") = 0.0, py::arg("phi") = 0.0, py::arg("best") = false,
+        py::kw_only(), py::arg("theta") = 0.0, py::arg("phi") = 0.0, py::arg("best").noconvert() = false,
         py::arg("up") = "y", py::arg("elevation") = py::none(), py::arg("size") = 512, py::arg("color_range") = py::none(),
-        py::arg("grey") = false, py::arg("flat") = false, py::arg("edges") = false,
+        py::arg("grey").noconvert() = false, py::arg("flat").noconvert() = false, py::arg("edges").noconvert() = false,
         py::arg("supersample") = 2, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
         py::arg("device") = -1, py::arg("threads") = 0u,

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "arg_values.h"
+
 namespace meshsal_py {
 
 namespace {
@@ -165,12 +167,10 @@ std::vector<double> vertex_values(const py::handle& obj, size_t count, const cha
 
 std::vector<double> scales_from(const py::handle& scales) {
   if (py::isinstance<py::str>(scales)) return meshsal::parse_scales(scales.cast<std::string>());
+  // More than the library's 16 are read only to be refused by its check.
   std::vector<double> out;
-  try {
-    for (py::handle s : scales) out.push_back(s.cast<double>());
-  } catch (py::cast_error&) {
-    throw py::type_error("scales must be a sequence of numbers or a string such as '2,3,4,5,6'");
-  }
+  for (const py::object& s : sequence_items(scales, "scales", "a sequence of numbers or a str such as '2,3,4,5,6'", 16))
+    out.push_back(number_arg(s, "scales"));
   return out;
 }
 

@@ -1,13 +1,36 @@
 #include "saliency_args.h"
 
+#include <limits>
+
+#include "arg_values.h"
 #include "numpy_in.h"
 
 namespace meshsal_py {
 
+int device_index(const py::handle& device) {
+  const int index = int(integer_arg(device, "device", -1, std::numeric_limits<int>::max()));
+  if (index < 0) return index;
+  // An index no device has: said here, for backend 'auto' would run on the CPU after a
+  // notice, and 'cpu' would not read it at all.
+  size_t count = 0;
+  std::string why;
+  try {
+    py::gil_scoped_release unlocked;  // enumerating the devices takes a moment
+    count = meshsal::list_devices().size();
+  } catch (const meshsal::Cancelled&) {
+    throw;
+  } catch (const meshsal::Error& e) {
+    why = e.what();
+  }
+  if (size_t(index) < count) return index;
+  throw meshsal::Error("no Vulkan device " + std::to_string(index) + " (" +
+                       (why.empty() ? "there are " + std::to_string(count) + "; see meshsal.devices()" : why) + ")");
+}
+
 meshsal::SaliencyOptions saliency_options(const SaliencyArgs& a, std::vector<std::string>* notices) {
   meshsal::SaliencyOptions o;
   if (!a.scales.is_none()) o.scales = scales_from(a.scales);
-  o.eps_frac = a.eps_frac;
+  o.eps_frac = number_arg(a.eps_frac, "eps_frac");
   o.method = meshsal::parse_method(a.method);  // the library's parsers (meshsal.Error is a ValueError)
   o.backend = meshsal::parse_backend(a.backend);
   o.precision = meshsal::parse_precision(a.precision);
@@ -17,12 +40,12 @@ meshsal::SaliencyOptions saliency_options(const SaliencyArgs& a, std::vector<std
   } else if (py::isinstance<meshsal::Device>(a.device)) {
     o.session = a.device.cast<meshsal::Device*>();
   } else if (PyIndex_Check(a.device.ptr())) {
-    o.device = a.device.cast<int>();
+    o.device = device_index(a.device);
   } else {
     throw py::type_error("device must be an int (a devices() index, -1 = choose) or a meshsal.Device, got " +
                          std::string(py::str(a.device.get_type().attr("__name__"))));
   }
-  o.threads = a.threads;
+  o.threads = count_arg(a.threads, "threads");  // the library uses at most 1024
   if (notices) o.notice = [notices](const std::string& line) { notices->push_back(line); };
   return o;
 }

@@ -16,17 +16,23 @@ namespace py = pybind11;
 
 struct SaliencyArgs {
   py::object scales;             // None: 2,3,4,5,6
-  double eps_frac = 0.003;
+  py::object eps_frac;           // a number
   std::string method = "exact";
   std::string backend = "auto";
   std::string precision = "auto";
   py::object device;             // an int (a devices() index, -1 = choose) or a meshsal.Device
-  unsigned threads = 0;
+  py::object threads;            // an integer >= 0 (0 = all cores)
 };
 
 // SaliencyOptions from the arguments: device= goes to options.device (an int) or
 // options.session (a meshsal.Device, which the caller's argument keeps alive for the call).
+// Numbers as arg_values.h takes them; a device index that does not exist raises
+// meshsal.Error (a ValueError) instead of running elsewhere.
 meshsal::SaliencyOptions saliency_options(const SaliencyArgs& args, std::vector<std::string>* notices);
+
+// device=N or Device(N): -1 (choose), else the index of a device list_devices() has.
+// ValueError below -1 or beyond an int, meshsal.Error for an index no device has.
+int device_index(const py::handle& device);
 
 // The ViewpointOptions fields the saliency arguments decide (backend, device or session,
 // notices), as for saliency: best_view and render share them.

@@ -19,7 +19,11 @@ void release_cached_devices() {
   if (const GpuBackend* linked = linked_gpu_backend()) linked->release_cached_devices();
 }
 
-Device::Device(int index) { handle_ = gpu_backend().open_device(index, &info_); }
+Device::Device(int index) {
+  // The device layer takes any negative index as "choose": -5 would open the best device.
+  if (index < -1) throw Error("no Vulkan device " + std::to_string(index) + " (-1 chooses one, else a list_devices() index)");
+  handle_ = gpu_backend().open_device(index, &info_);
+}
 
 Device::~Device() = default;
 

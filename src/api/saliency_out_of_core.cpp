@@ -11,6 +11,7 @@
 #include "core/stage_clock.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
+#include "io/output_check.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "saliency/tile_bytes.h"
@@ -102,7 +103,9 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   auto progress = [&](const char* stage, double f) {
     if (options.progress) options.progress(stage, f);
   };
-  if (rank == 0) output_target(output);  // a bad output path fails before the work
+  // Before the work: a .ply name (PLY bytes in a .obj would mislead), never the input
+  // (through a link either: the rename would replace it).
+  if (rank == 0) check_ply_output("saliency_file", output, input);
 
   // The store: built by rank 0 (an error there reaches every rank through the exchange as
   // an empty description), described to the others.

@@ -16,6 +16,7 @@
 #include "core/stage_clock.h"
 #include "core/timer.h"
 #include "io/atomic_write.h"
+#include "io/output_check.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
@@ -203,7 +204,8 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   auto progress = [&](const char* stage, double f) {
     if (so.progress) so.progress(stage, f);
   };
-  output_target(output);  // a bad output path fails before the work
+  // Before the work: a .ply name, never the input (as saliency_file).
+  check_ply_output("simplify_file", output, input);
 
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
