@@ -271,3 +271,25 @@ TEST_CASE("OBJ materials: the input's libraries are read from its folder and wri
   CHECK_THROWS_WITH(write_mesh(dir.file("in/grid_copy.obj"), renamed), Catch::Contains("a material library of the input"));
   CHECK(read_file(dir.file("in/grid_copy.mtl")) == lib);
 }
+
+TEST_CASE("OBJ materials: a usemtl name that is not UTF-8 reaches a glTF output as its visible form", "[materials][cli]") {
+  // glTF's JSON is UTF-8: the writer threw "[json.exception.type_error.316] invalid UTF-8
+  // byte" and every .glb/.gltf output of such an OBJ failed.
+  const fs::path dir = scratch_dir("materials_latin1");
+  const fs::path in = dir / "m.obj";
+  {
+    std::ofstream f(in, std::ios::binary);
+    f << "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+         "usemtl caf\xe9\nf 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\n"
+         "usemtl B \xe2\x80\xae ok\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
+  }
+  for (const std::string out : {"s.glb", "s.gltf"}) {
+    const CliRun r = run_cli("saliency " + quoted(in.string()) + " -o " + quoted((dir / out).string()) + " --backend cpu", dir);
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const Mesh back = load_mesh((dir / out).string());
+    REQUIRE(back.materials.size() == 2);
+    CHECK(back.materials[0] == "caf\\xe9");
+    CHECK(back.materials[1] == "B \xe2\x80\xae ok");  // valid UTF-8: the name as it is
+  }
+}

@@ -33,3 +33,14 @@ TEST_CASE("printable: one line, no escape sequences, UTF-8 names untouched", "[c
   CHECK(printable("caf\xe9") == "caf\\xe9");
   CHECK(printable("tab\there") == "tab\\x09here");
 }
+
+TEST_CASE("json_string and printable: bidirectional controls are escaped, other UTF-8 kept", "[cli]") {
+  // U+202E RIGHT-TO-LEFT OVERRIDE would show "evil<RLO>gnp.obj" as "evilobj.png".
+  CHECK(json_string("evil\xe2\x80\xaegnp.obj") == "\"evil\\u202egnp.obj\"");
+  CHECK(printable("evil\xe2\x80\xaegnp.obj") == "evil\\u202egnp.obj");
+  CHECK(json_string("\xd8\x9c\xe2\x80\x8e\xe2\x80\x8f\xe2\x81\xa6\xe2\x81\xa9") ==
+        "\"\\u061c\\u200e\\u200f\\u2066\\u2069\"");
+  CHECK(printable("\xe2\x80\xaa\xe2\x80\xad") == "\\u202a\\u202d");
+  CHECK(json_string("\xe2\x80\x8b\xe2\x80\xaf") == "\"\xe2\x80\x8b\xe2\x80\xaf\"");  // U+200B, U+202F: not bidi
+  CHECK(printable("\xe2\x81\xa5\xe2\x81\xaa") == "\xe2\x81\xa5\xe2\x81\xaa");         // U+2065, U+206A
+}

@@ -1,14 +1,20 @@
 // `meshsal view`: the page opens in headless Chromium (SwiftShader's WebGL), draws its first
 // frame with no error, and shows the model in the saliency colours; a mesh over --max-faces
 // is shown as a simplified copy and the page says so. One browser test for the suite.
+// Issue 36 (8): the template filled in one pass, names shown escaped, the faces reported
+// the faces shown.
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
 
+#include "api/page_template.h"
 #include "cli/synthetic.h"
+#include "core/html_text.h"
+#include "core/utf8.h"
 #include "cli_run.h"
 #include "meshsal/meshsal.h"
 #include "png_check.h"
@@ -122,4 +128,165 @@ TEST_CASE("view: batch --html writes each model's page and a gallery, failed mod
   r = run_cli(args, dir);
   CHECK(r.out.find("0 computed, 1 skipped, 1 failed") != std::string::npos);
   CHECK(text_of(dir / "out" / "index.html").find("<a href=\"ball_view.html\">") != std::string::npos);
+}
+
+namespace {
+
+std::string base64_decoded(const std::string& in) {
+  std::string out;
+  uint32_t bits = 0;
+  int n = 0;
+  for (char c : in) {
+    const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char* at = c ? std::strchr(t, c) : nullptr;
+    if (!at) continue;  // '=' padding
+    bits = bits << 6 | uint32_t(at - t);
+    if ((n += 6) >= 8) out += char((bits >> (n -= 8)) & 0xff);
+  }
+  return out;
+}
+
+// The faces of the mesh a page shows: its embedded GLB, read back by meshsal.
+size_t faces_shown(const std::string& html, const std::filesystem::path& dir) {
+  const std::string key = "{\"glb\":\"";
+  const size_t at = html.find(key);
+  REQUIRE(at != std::string::npos);
+  const size_t end = html.find('"', at + key.size());
+  const std::filesystem::path glb = dir / "shown.glb";
+  std::ofstream(glb, std::ios::binary) << base64_decoded(html.substr(at + key.size(), end - at - key.size()));
+  return load_mesh(glb.string()).triangle_count();
+}
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = 0; (at = text.find(what, at)) != std::string::npos; at += what.size()) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("view: the faces --json reports are the faces the page shows, budget reached or not", "[cli][view]") {
+  const auto dir = scratch_dir("view_max_faces");
+  const std::string in = (dir / "m.obj").string(), page = (dir / "m.html").string();
+  write_obj(in, make_bumpy_sphere(3));  // 1280 faces, closed: never fewer than 4
+  auto r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu --max-faces 1 --json", dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  std::string html = text_of(page);
+  const size_t shown = faces_shown(html, dir);
+  CHECK(shown >= 4);
+  CHECK(shown < 1280);
+  CHECK(r.out.find("\"shown_faces\": " + std::to_string(shown) + ",") != std::string::npos);
+  CHECK(r.out.find("\"max_faces\": 1,") != std::string::npos);
+  CHECK(r.out.find("\"max_faces_reached\": false") != std::string::npos);
+  CHECK(html.find("The page shows a copy simplified to " + std::to_string(shown) + " faces, as far as the simplifier "
+                  "could go towards the 1 asked (plain quadrics, the saliency carried): the mesh has 1280.") !=
+        std::string::npos);
+  // The summary says so too.
+  r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu --max-faces 1", dir);
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("note       the page shows a copy simplified to " + std::to_string(shown) +
+                   " faces, not the 1 of --max-faces: the simplifier could go no further (the mesh has 1280)\n") !=
+        std::string::npos);
+  // A budget it reaches: the count asked, shown and reported.
+  r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu --max-faces 300 --json", dir);
+  REQUIRE(r.rc == 0);
+  html = text_of(page);
+  CHECK(faces_shown(html, dir) == 300);
+  CHECK(r.out.find("\"shown_faces\": 300,") != std::string::npos);
+  CHECK(r.out.find("\"max_faces_reached\": true") != std::string::npos);
+  // The whole mesh: its own count.
+  r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu --json", dir);
+  REQUIRE(r.rc == 0);
+  CHECK(faces_shown(text_of(page), dir) == 1280);
+  CHECK(r.out.find("\"simplified_copy\": false, \"shown_faces\": 1280,") != std::string::npos);
+}
+
+TEST_CASE("view: the template is filled in one pass: a name holding placeholders stays that text", "[cli][view]") {
+  // The filler alone: a value is never searched again; a missing placeholder is an error.
+  CHECK(fill_template("<h1>@A@</h1>@B@", {{"@A@", "@B@ and @A@"}, {"@B@", "b"}}) == "<h1>@B@ and @A@</h1>b");
+  CHECK(fill_template("a@b @X@@", {{"@X@", "x"}}) == "a@b x@");
+  CHECK_THROWS_WITH(fill_template("@A@", {{"@A@", "a"}, {"@B@", "b"}}), "the page template has no placeholder @B@");
+
+  const auto dir = scratch_dir("view_placeholders");
+  const std::string name = "@BUNDLE@ @DATA@ @TITLE@ @NOTE@ @STATS@.obj";
+  const std::string in = (dir / name).string(), page = (dir / "m.html").string();
+  write_obj(in, make_sphere(1.0, 2));
+  const auto r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu", dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  const std::string html = text_of(page);
+  CHECK(html.find("<title>meshsal: " + name + "</title>") != std::string::npos);
+  CHECK(html.find("<h1>" + name + "</h1>") != std::string::npos);
+  CHECK(count_of(html, "Copyright 2010-2026 Three.js Authors") == 1);  // the bundle once, in its <script>
+  CHECK(count_of(html, "{\"glb\":\"") == 1);
+  CHECK(count_of(html, "@BUNDLE@") == 2);  // the title and the heading, nothing else
+  CHECK(count_of(html, "@DATA@") == 2);
+  CHECK(html.find("<script id=\"meshsal-data\" type=\"application/json\">{\"glb\":\"") != std::string::npos);
+  CHECK(faces_shown(html, dir) == 320);
+}
+
+TEST_CASE("view and batch --html: names not UTF-8 and bidi controls are shown escaped in pages and the gallery",
+          "[cli][view][batch]") {
+  // The rule (core/utf8.h): every bidirectional control shown as \uXXXX, other bytes as \xXX.
+  for (unsigned code : {0x061cu, 0x200eu, 0x200fu, 0x202au, 0x202bu, 0x202cu, 0x202du, 0x202eu, 0x2066u, 0x2067u,
+                        0x2068u, 0x2069u}) {
+    std::string utf8;
+    if (code < 0x800) utf8 = {char(0xc0 | (code >> 6)), char(0x80 | (code & 0x3f))};
+    else utf8 = {char(0xe0 | (code >> 12)), char(0x80 | ((code >> 6) & 0x3f)), char(0x80 | (code & 0x3f))};
+    char want[16];
+    std::snprintf(want, sizeof want, "a\\u%04xb", code);
+    CHECK(html_escaped("a" + utf8 + "b") == want);
+  }
+  CHECK(html_escaped("<caf\xe9 \"\xc3\xa9\">&\x1b") == "&lt;caf\\xe9 &quot;\xc3\xa9&quot;&gt;&amp;\\x1b");
+  CHECK(html_escaped("\xe2\x80\x8b zero width space, \xd7\x90 alef") == "\xe2\x80\x8b zero width space, \xd7\x90 alef");
+
+  const auto dir = scratch_dir("view_names");
+  std::filesystem::create_directories(dir / "in");
+  const std::string rlo = "\xe2\x80\xae", lri = "\xe2\x81\xa6";  // U+202E, U+2066
+  const std::string evil = "evil" + rlo + "gnp.obj", latin1 = "caf\xe9.obj", broken = "bad" + lri + ".obj";
+  write_obj((dir / "in" / evil).string(), make_sphere(1.0, 2));
+  write_obj((dir / "in" / latin1).string(), make_sphere(1.0, 1));
+  std::ofstream(dir / "in" / broken) << "v 0 0 0\nf 1 2 3\n";
+  // view: the title, the heading, and the statistics' --saliency-from name.
+  const std::string page = (dir / "p.html").string();
+  auto r = run_cli("view " + quoted((dir / "in" / evil).string()) + " -o " + quoted(page) + " --backend cpu", dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  std::string html = text_of(page);
+  CHECK(html.find("<title>meshsal: evil\\u202egnp.obj</title>") != std::string::npos);
+  CHECK(html.find("<h1>evil\\u202egnp.obj</h1>") != std::string::npos);
+  CHECK(html.find(rlo) == std::string::npos);
+  CHECK(meshsal::valid_utf8(html));
+  const std::string s_ply = (dir / ("s" + rlo + "\xff.ply")).string();
+  r = run_cli("saliency " + quoted((dir / "in" / latin1).string()) + " -o " + quoted(s_ply) + " --backend cpu -q", dir);
+  REQUIRE(r.rc == 0);
+  r = run_cli("view " + quoted((dir / "in" / latin1).string()) + " -o " + quoted(page) + " --saliency-from " +
+                  quoted(s_ply) + " --backend cpu",
+              dir);
+  REQUIRE(r.rc == 0);
+  html = text_of(page);
+  CHECK(html.find("<title>meshsal: caf\\xe9.obj</title>") != std::string::npos);
+  CHECK(html.find("<td>saliency</td><td>" + meshsal::visible_text(s_ply) + "</td>") != std::string::npos);
+  CHECK(html.find("s\\u202e\\xff.ply</td>") != std::string::npos);
+  CHECK(meshsal::valid_utf8(html));
+  // batch --html: each page's title and the gallery's cards (a failed one's message too).
+  r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
+                  " --html --backend cpu -q",
+              dir);
+  CHECK(r.rc == 1);  // the broken one
+  const std::string gallery = text_of(dir / "out" / "index.html");
+  CHECK(meshsal::valid_utf8(gallery));
+  CHECK(gallery.find(rlo) == std::string::npos);
+  CHECK(gallery.find(lri) == std::string::npos);
+  CHECK(gallery.find("alt=\"evil\\u202egnp.obj\"></a><div class=\"name\"><a href=\"evil%E2%80%AEgnp_view.html\">"
+                     "evil\\u202egnp.obj</a>") != std::string::npos);
+  CHECK(gallery.find("<a href=\"caf%E9_view.html\"><img src=\"caf%E9_view.png\" alt=\"caf\\xe9.obj\">") !=
+        std::string::npos);
+  CHECK(gallery.find("<div class=\"name\">bad\\u2066.obj: failed</div><div class=\"why\">") != std::string::npos);
+  CHECK(gallery.find("bad\\u2066.obj: ") != std::string::npos);
+  const std::string evil_page = text_of(dir / "out" / ("evil" + rlo + "gnp_view.html"));
+  CHECK(evil_page.find("<title>meshsal: evil\\u202egnp.obj</title>") != std::string::npos);
+  CHECK(meshsal::valid_utf8(evil_page));
+  CHECK(meshsal::valid_utf8(text_of(dir / "out" / "caf\xe9_view.html")));
 }

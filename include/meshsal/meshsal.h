@@ -1072,7 +1072,8 @@ struct ViewPageOptions {
   std::vector<std::pair<std::string, std::string>> stats;  // rows of the statistics table
   std::string note;                                         // a line the page shows ("" = none)
   // A mesh with more faces is shown as a copy simplified to this many (plain quadrics,
-  // the saliency carried along), and the page says so; 0 = never.
+  // the saliency carried along; or as close as the simplifier gets, ViewPageReport), and
+  // the page says so; 0 = never.
   size_t max_faces = 2000000;
 };
 
@@ -1080,14 +1081,25 @@ struct ViewPageOptions {
 // tools/setup.sh installs what it needs): write_view_page works.
 bool built_with_viewer();
 
+// What write_view_page drew.
+struct ViewPageReport {
+  size_t shown_faces = 0;         // the faces of the mesh the page shows
+  bool simplified = false;        // a copy simplified towards ViewPageOptions::max_faces
+  // shown_faces <= max_faces; false when the simplifier could go no further (a closed
+  // surface keeps at least 4 faces; refused collapses), which the page's note then says.
+  bool within_max_faces = true;
+};
+
 // Writes one self-contained HTML page (no network needed to open it): the mesh coloured by
 // `saliency` (one value per vertex) on the pictures' colour scale with its colour bar and
 // scale, orbit controls from `camera` (best_viewpoint's Viewpoint::camera for this mesh),
 // a toggle between saliency, plain shading and wireframe, and options.stats. The mesh is
 // embedded as a GLB (write_gltf's, in local coordinates), three.js (MIT licence, kept in
-// the page) inline. Atomic as write_ply. Error when built without the viewer.
-void write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
-                     const ViewCamera& camera, const ViewPageOptions& options = {});
+// the page) inline. The title, statistics and note are shown as their bytes are (no markup,
+// bytes that are not UTF-8 and bidirectional controls escaped). Atomic as write_ply. Error
+// when built without the viewer.
+ViewPageReport write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                               const ViewCamera& camera, const ViewPageOptions& options = {});
 
 // An 8-bit RGB image, rows top to bottom.
 struct Image {

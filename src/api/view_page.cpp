@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "api/page_template.h"
 #include "core/html_text.h"
 #include "core/mesh_points.h"
 #include "io/atomic_write.h"
@@ -59,8 +60,8 @@ bool built_with_viewer() {
 #endif
 }
 
-void write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
-                     const ViewCamera& camera, const ViewPageOptions& options) {
+ViewPageReport write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
+                               const ViewCamera& camera, const ViewPageOptions& options) {
 #ifndef MESHSAL_WITH_VIEWER
   (void)mesh, (void)saliency, (void)camera, (void)options;
   throw Error(path + ": cannot write: this meshsal was built without the web viewer (web/node_modules was "
@@ -75,6 +76,7 @@ void write_view_page(const std::string& path, const Mesh& mesh, const std::vecto
   Mesh shown;
   std::vector<double> shown_s;
   std::string note = options.note;
+  ViewPageReport report;
   if (options.max_faces > 0 && mesh.triangle_count() > options.max_faces) {
     Mesh with_s = mesh;
     set_vertex_attribute(with_s, "\x01meshsal page saliency", saliency);
@@ -82,14 +84,24 @@ void write_view_page(const std::string& path, const Mesh& mesh, const std::vecto
     so.target_faces = options.max_faces;
     shown = simplify_mesh(with_s, so);
     shown_s = take_vertex_attribute(shown, "\x01meshsal page saliency");
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "The page shows a copy simplified to %zu faces (plain quadrics, the saliency "
-                  "carried): the mesh has %zu.", shown.triangle_count(), mesh.triangle_count());
+    report.simplified = true;
+    // A closed surface keeps at least a tetrahedron's 4 faces, and a collapse may be refused
+    // (a flip, the link condition): the count shown is the count said, budget or not.
+    report.within_max_faces = shown.triangle_count() <= options.max_faces;
+    char buf[300];
+    if (report.within_max_faces)
+      std::snprintf(buf, sizeof buf, "The page shows a copy simplified to %zu faces (plain quadrics, the saliency "
+                    "carried): the mesh has %zu.", shown.triangle_count(), mesh.triangle_count());
+    else
+      std::snprintf(buf, sizeof buf, "The page shows a copy simplified to %zu faces, as far as the simplifier could "
+                    "go towards the %zu asked (plain quadrics, the saliency carried): the mesh has %zu.",
+                    shown.triangle_count(), options.max_faces, mesh.triangle_count());
     note += std::string(note.empty() ? "" : " ") + buf;
   } else {
     shown = mesh;
     shown_s = saliency;
   }
+  report.shown_faces = shown.triangle_count();
   shown.attributes.clear();  // the page colours by saliency; nothing else is drawn
   shown.gltf_assets = nullptr;
   shown.triangle_material.clear();
@@ -133,16 +145,16 @@ void write_view_page(const std::string& path, const Mesh& mesh, const std::vecto
   std::string bundle = kViewerBundle;
   replace_all(bundle, "</script", "<\\/script");  // the bundle sits inside a <script> element
   const std::string title = html_escaped(options.title.empty() ? "mesh" : options.title);
-  // Placeholders filled once each, the bundle last (its text is never searched).
-  replace_all(page, "@TITLE@", title);
-  replace_all(page, "@GRADIENT@", gradient);
-  replace_all(page, "@TICKS@", ticks);
-  replace_all(page, "@STATS@", stats);
-  replace_all(page, "@NOTE@", note.empty() ? "" : "<div class=\"note\">" + html_escaped(note) + "</div>");
-  replace_all(page, "@DATA@", data);
-  const size_t at = page.find("@BUNDLE@");
-  page.replace(at, 8, bundle);
+  // One pass: a value (a title holding "@BUNDLE@", the bundle's own text) is never searched.
+  page = fill_template(page, {{"@TITLE@", title},
+                              {"@GRADIENT@", gradient},
+                              {"@TICKS@", ticks},
+                              {"@STATS@", stats},
+                              {"@NOTE@", note.empty() ? "" : "<div class=\"note\">" + html_escaped(note) + "</div>"},
+                              {"@DATA@", data},
+                              {"@BUNDLE@", bundle}});
   write_file_atomically(path, [&](std::FILE* f) { write_all(f, page.data(), page.size(), path); });
+  return report;
 #endif
 }
 

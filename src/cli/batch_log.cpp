@@ -68,6 +68,14 @@ uint64_t torn_last_line(const std::string& path) {
 }
 
 void BatchLog::add(const std::string& json_line) {
+  // The log stays JSON Lines whatever went wrong before: a line that is not one JSON value
+  // on one line is never written (every line comes from JsonObject, or a state file's
+  // record load_state checked).
+  if (!is_json_line(json_line)) {
+    ++lost_;
+    failed("a log line that is not one JSON value was left out of " + file_->path());
+    return;
+  }
   try {
     file_->append(json_line);
   } catch (const meshsal::Error& e) {

@@ -42,8 +42,15 @@ void save_state(const std::string& path, const ModelState& state);
 // knows them for outputs, should the run stop before save_state). Throws Error.
 void mark_started(const std::string& path);
 
-// The record at `path`; false when there is none or it cannot be read as one.
+// The record at `path`; false when there is none or it is not one save_state wrote: not a
+// regular file (a link, a FIFO, a device), larger than 1 MiB, torn (no last newline), or
+// any line out of save_state's form (whole numbers in full, the record valid_record). The caller computes the model again; nothing of a bad file
+// reaches the log.
 bool load_state(const std::string& path, ModelState* state);
+
+// True when `record` can be a skipped model's log line: one JSON object (json_valid.h),
+// valid UTF-8 without control characters (one line), with its "status": "done" member.
+bool valid_record(const std::string& record);
 
 // True when `saved` describes outputs made from `input` with `options`, and each of
 // `outputs` exists as a regular file of its recorded size.

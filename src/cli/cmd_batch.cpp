@@ -23,6 +23,7 @@
 #include "batch_loader.h"
 #include "core/peak_memory.h"
 #include "batch_log.h"
+#include "batch_output_clash.h"
 #include "batch_outputs.h"
 #include "batch_progress.h"
 #include "batch_ranks.h"
@@ -430,8 +431,8 @@ int run(Options o) {
     throw UsageError("--lod simplifies each model in memory: not with --memory-limit");
   // Out of core the mesh is never whole in memory: the saliency PLY, and with --simplify
   // NAME_simplified.ply as `simplify --memory-limit` writes it, are all a model gets.
-  if (!o.memory_limit.empty() && (o.view || !o.contact_sheet.empty() || o.target_error > 0))
-    throw UsageError("--memory-limit computes each model out of core: it takes no --view, --contact-sheet "
+  if (!o.memory_limit.empty() && (o.view || o.html || !o.contact_sheet.empty() || o.target_error > 0))
+    throw UsageError("--memory-limit computes each model out of core: it takes no --view, --html, --contact-sheet "
                      "(they need the mesh in memory) or --target-error (give --simplify RATIO|FACES)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
 
@@ -482,7 +483,19 @@ int run(Options o) {
   }
   const std::string log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
   const std::string gallery = o.html ? o.out_dir + "/index.html" : "";
-  check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {gallery, "--html", {}}}, inputs);
+  const std::vector<std::string> names = output_names(inputs);
+  std::vector<ModelOutputs> outs;
+  for (size_t i = 0; i < inputs.size(); ++i)
+    outs.push_back(
+        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html, !p.lod.empty()));
+  check_batch_outputs_apart(o.out_dir, {{log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {gallery, "--html's gallery"}},
+                            inputs, names, outs);
+  // The list files are inputs too: the log appended to one would be read as models next time.
+  std::vector<std::string> read = inputs;
+  if (!o.list_file.empty() && o.list_file != "-") read.push_back(o.list_file);
+  for (const std::string& item : o.inputs)
+    if (item.size() > 1 && item[0] == '@') read.push_back(item.substr(1));
+  check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {gallery, "--html", {}}}, read);
   if (o.html && !built_with_viewer())
     throw Error("--html: this meshsal was built without the web viewer (web/node_modules was missing at build "
                 "time: run tools/setup.sh, then build again)");
@@ -506,13 +519,9 @@ int run(Options o) {
   // Each model: not read (refused, not a regular file), up to date (skipped) or computed.
   // Under MPI every rank makes the same choices here, before any rank writes (the barrier).
   const std::string options = options_line(o);
-  const std::vector<std::string> names = output_names(inputs);
-  std::vector<ModelOutputs> outs;
   std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
   std::vector<size_t> to_compute;  // model indices, in order
   for (size_t i = 0; i < inputs.size(); ++i) {
-    outs.push_back(
-        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html, !p.lod.empty()));
     refused[i] = output_is_an_input(outs[i], input_ids);
     if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
     if (!refused[i].empty() || !not_read[i].empty()) continue;
@@ -777,20 +786,25 @@ RunFn setup(CLI::App& sub) {
       "the message. A last line an interrupted run left torn (not JSON) is noted and stays; the\n"
       "new lines start on a line of their own. Names that are not UTF-8 appear with \\udcXX\n"
       "escapes for their odd bytes (Python: os.fsencode(json.loads(line)['mesh'])).\n"
-      "Resume: DIR/.meshsal-batch/NAME.state records what made each model's outputs; a model\n"
-      "is skipped when its input (size, time and a content hash) and these options are the same\n"
-      "and its outputs are in place (its line repeats the earlier numbers); otherwise it is\n"
-      "computed again (--force: always). DIR may be an input folder too: the outputs earlier\n"
-      "runs wrote there (NAME_saliency.ply, NAME_simplified.obj of a model with a state file)\n"
-      "are not taken as inputs. Only regular files are read: a named pipe or a device among the\n"
-      "inputs is skipped with its reason. A failing model is logged and the others go on; the\n"
-      "exit status is 1 when any failed or a log line could not be written. --contact-sheet\n"
-      "shows every model: a thumbnail, or a grey tile with a red cross, \"failed\" and the error\n"
-      "(\"skipped\" and the reason for an input not read). Inputs: files, folders (the mesh files\n"
-      "inside with a mesh extension: .obj .ply .off .stl .gltf .glb, optionally .gz; sorted by\n"
-      "name), quoted globs ('scans/*.ply'), @LIST or --list LIST (a regular\n"
-      "file or - for standard input: one item per line, # comments, relative items taken from\n"
-      "the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000 items).\n"
+      "Resume: DIR/.meshsal-batch/NAME.state records what made each model's outputs; a model is\n"
+      "skipped when its input (size, time and a content hash) and these options are the same and\n"
+      "its outputs are in place (its line repeats the earlier numbers); otherwise it is computed\n"
+      "again (--force: always), as it is when its state file is not one batch wrote (not a\n"
+      "regular file, over 1 MiB, torn or edited: nothing of it goes into the log). Refused before\n"
+      "any work (usage error, exit status 2): --log, --contact-sheet or the gallery\n"
+      "DIR/index.html being the same file as another of them or as a model's output or state file\n"
+      "(also through a link); --html, --view or --contact-sheet with --memory-limit. DIR may be\n"
+      "an input folder too: the outputs earlier runs wrote there (NAME_saliency.ply,\n"
+      "NAME_simplified.obj of a model with a state file) are not taken as inputs. Only regular\n"
+      "files are read: a named pipe or a device among the inputs is skipped with its reason. A\n"
+      "failing model is logged and the others go on; the exit status is 1 when any failed or a\n"
+      "log line could not be written. --contact-sheet shows every model: a thumbnail, or a grey\n"
+      "tile with a red cross, \"failed\" and the error (\"skipped\" and the reason for an input\n"
+      "not read). Inputs: files, folders (the mesh files inside with a mesh extension: .obj .ply\n"
+      ".off .stl .gltf .glb, optionally .gz; sorted by name), quoted globs ('scans/*.ply'), @LIST\n"
+      "or --list LIST (a regular file or - for standard input: one item per line, # comments,\n"
+      "relative items taken from the list's folder; at most 64 MiB, 4096 bytes a line, 1,000,000\n"
+      "items).\n"
       "MPI: `mpirun -np N meshsal batch ...` (a build with MPI) shares the models to compute\n"
       "over the N ranks (the k-th to rank k % N); rank 0 writes the one log, in model order,\n"
       "and the summary; resume as above. Every rank needs the same command and sees the same\n"
@@ -807,7 +821,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_flag("--html", o->html,
                "Also write NAME_view.html per model (the page `meshsal view` writes: the model in the browser,\n"
                "from its best view) and DIR/index.html, a gallery of every model's thumbnail (NAME_view.png,\n"
-               "implied) opening its page, failed models marked");
+               "implied) opening its page, failed models marked; not with --memory-limit");
   sub.add_option("--simplify", o->simplify,
                  "Also write NAME_simplified.obj with saliency weights: a ratio of the faces in (0, 1], "
                  "or a face count above 1 (as simplify --ratio / --target-faces)")->check(finite_in(0, 1e12, true));
@@ -830,7 +844,7 @@ RunFn setup(CLI::App& sub) {
                  "marked with its error; the name under it (implies --view)");
   sub.add_option("--memory-limit", o->memory_limit,
                  "Compute each model's saliency out of core under this peak resident memory (e.g. "
-                 "700M, 2G), as `saliency --memory-limit` does; no --view, --contact-sheet or --simplify");
+                 "700M, 2G), as `saliency --memory-limit` does; no --view, --html, --contact-sheet or --target-error");
   sub.add_option("--temp-dir", o->temp_dir, "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")

@@ -69,16 +69,22 @@ int run(const Options& o) {
   po.title = std::filesystem::path(o.input).filename().string();
   po.max_faces = size_t(o.max_faces);
   po.stats = view_page_stats(mesh, s, source.empty() ? "computed" : source, t0.seconds());
-  write_view_page(o.output, mesh, s, best.camera, po);
+  const ViewPageReport page = write_view_page(o.output, mesh, s, best.camera, po);
   progress.finish();
-  const bool simplified = po.max_faces > 0 && mesh.triangle_count() > po.max_faces;
   if (o.json) {
-    JsonObject().text("mesh", o.input).text("output", o.output).count("vertices", mesh.vertex_count())
-        .count("faces", mesh.triangle_count()).flag("simplified_copy", simplified)
-        .count("shown_faces", simplified ? po.max_faces : mesh.triangle_count()).number("seconds", t0.seconds()).print();
+    JsonObject j;
+    j.text("mesh", o.input).text("output", o.output).count("vertices", mesh.vertex_count())
+        .count("faces", mesh.triangle_count()).flag("simplified_copy", page.simplified)
+        .count("shown_faces", page.shown_faces);
+    if (page.simplified) j.count("max_faces", po.max_faces).flag("max_faces_reached", page.within_max_faces);
+    j.number("seconds", t0.seconds()).print();
   } else if (!o.quiet) {
-    if (simplified)
-      std::printf("note       the page shows a copy simplified to %lld faces (the mesh has %zu)\n", o.max_faces,
+    if (page.simplified && page.within_max_faces)
+      std::printf("note       the page shows a copy simplified to %zu faces (the mesh has %zu)\n", page.shown_faces,
+                  mesh.triangle_count());
+    else if (page.simplified)
+      std::printf("note       the page shows a copy simplified to %zu faces, not the %zu of --max-faces: the "
+                  "simplifier could go no further (the mesh has %zu)\n", page.shown_faces, po.max_faces,
                   mesh.triangle_count());
     std::printf("wrote      %s\n", printable(o.output).c_str());
   }
@@ -91,8 +97,9 @@ RunFn setup(CLI::App& sub) {
       "Write one self-contained HTML page (no network needed to open it) that shows IN coloured by\n"
       "saliency in the browser: the colour bar and its scale, orbit controls, the best view as the\n"
       "starting camera, a toggle between saliency, plain shading and wireframe, and the statistics.\n"
-      "The mesh is embedded as GLB; a mesh over --max-faces faces is shown as a simplified copy and\n"
-      "the page says so. A saliency PLY (from `meshsal saliency`) brings its own saliency.");
+      "The mesh is embedded as GLB; a mesh over --max-faces faces is shown as a copy simplified to\n"
+      "that many (or as few as the simplifier reaches: a closed surface keeps 4) and the page and\n"
+      "the summary say how many. A saliency PLY (from `meshsal saliency`) brings its own saliency.");
   sub.add_option("IN", o->input, "mesh (OBJ, PLY, OFF, STL, glTF, GLB, optionally .gz)")->required();
   sub.add_option("-o,--output", o->output, "the page (.html)")->required();
   sub.add_option("--saliency-from", o->saliency_from, "Reuse S from this saliency PLY (`quality` property)");

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <string>
 
+#include "core/utf8.h"
+
 namespace meshsal_cli {
 namespace {
 
@@ -103,5 +105,11 @@ class JsonCheck {
 }  // namespace
 
 bool is_json(const std::string& text) { return JsonCheck(text).whole(); }
+
+bool is_json_line(const std::string& text) {
+  for (unsigned char c : text)
+    if (c < 0x20 || c == 0x7f) return false;
+  return meshsal::valid_utf8(text) && is_json(text);
+}
 
 }  // namespace meshsal_cli

@@ -9,4 +9,8 @@ namespace meshsal_cli {
 // allowed; nesting deeper than 64 is refused).
 bool is_json(const std::string& text);
 
+// True when `text` is one line of a JSON Lines file: is_json, valid UTF-8, and no control
+// character (no newline, no CR) anywhere.
+bool is_json_line(const std::string& text);
+
 }  // namespace meshsal_cli

@@ -1,7 +1,6 @@
 // meshsal CLI: the checks on what a command writes. The check of output files is the
 // library's (meshsal::check_outputs, meshsal.h), shared with Python and the library's own
-// file-to-file calls; the folder a command fills and the note on OBJ material files are
-// the command's.
+// file-to-file calls; the folder a command fills is the command's.
 #pragma once
 #include <string>
 #include <vector>

@@ -12,6 +12,7 @@
 
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
+#include "core/utf8.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
 #include "io/gltf_assets.h"
@@ -256,7 +257,9 @@ void add_materials(tinygltf::Model& model, const Mesh& mesh) {
   }
   for (const std::string& name : mesh.materials) {
     tinygltf::Material m;
-    m.name = name.empty() ? "default" : name;
+    // glTF's JSON is UTF-8 (its writer throws on other bytes): an OBJ's usemtl name in
+    // another encoding is written as its visible form, "caf\xe9".
+    m.name = name.empty() ? "default" : valid_utf8(name) ? name : visible_text(name);
     model.materials.push_back(m);
   }
 }
