@@ -478,8 +478,11 @@ struct OutOfCoreReport {
 OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
                               const SaliencyOptions& options, const OutOfCoreOptions& out_of_core);
 
-// "700M", "2G", "1.5G", "512K", "1000000" (bytes; K M G T are powers of 1024); throws
-// Error on anything else.
+// A size as every front end reads it ("700M", "2G", "1.5G", "512K", "700MB", "2000000"): a
+// decimal number with an optional K, M, G or T (powers of 1024, either case, a B after it
+// allowed), truncated to whole bytes. Error on anything else: 0 bytes after truncation, more
+// than 64 bits hold, hex, inf, a sign, an exponent, and a bare number under 1M (surely a
+// forgotten unit: the message suggests it).
 uint64_t parse_memory_size(const std::string& text);
 
 // "auto", "mixed" or "double"; throws Error on anything else.

@@ -828,7 +828,9 @@ RunFn setup(CLI::App& sub) {
                  "marked with its error; the name under it (implies --view)");
   sub.add_option("--memory-limit", o->memory_limit,
                  "Compute each model's saliency out of core under this peak resident memory (e.g. "
-                 "700M, 2G), as `saliency --memory-limit` does; no --view, --contact-sheet or --simplify");
+                 "700M, 2G), as `saliency --memory-limit` does; no --view, --contact-sheet or --simplify. " +
+                     std::string(kSizeSyntax))
+      ->check(memory_size());
   sub.add_option("--temp-dir", o->temp_dir, "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp)");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")

@@ -171,7 +171,8 @@ RunFn setup(CLI::App& sub) {
                  "Keep the peak resident memory under SIZE (e.g. 700M, 2G): the input (binary "
                  "PLY is streamed; other formats are read once and converted) goes to tiles on "
                  "disk, computed one at a time; too small a limit is an error naming the "
-                 "smallest workable one. CPU only");
+                 "smallest workable one. CPU only. " + std::string(kSizeSyntax))
+      ->check(memory_size());
   sub.add_option("--temp-dir", a->temp_dir,
                  "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
   sub.add_flag("--dump-scales", a->dump_scales,

@@ -404,7 +404,8 @@ RunFn setup(CLI::App& sub) {
                  "streamed; other formats are read once and converted) goes to tiles on disk; the saliency\n"
                  "and then the tiled simplification (as --tiles, at least that many tiles) run a tile at a\n"
                  "time. Writes a binary PLY with positions and S; too small a limit is an error naming the\n"
-                 "smallest workable one. CPU only");
+                 "smallest workable one. CPU only. " + std::string(kSizeSyntax))
+      ->check(memory_size());
   sub.add_option("--temp-dir", a->temp_dir,
                  "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
   sub.add_option("--weights", a->weights,

@@ -102,6 +102,19 @@ CLI::Validator lod_list() {
       "LIST");
 }
 
+CLI::Validator memory_size() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          meshsal::parse_memory_size(text);
+        } catch (const meshsal::Error& e) {
+          return without_option_name(e.what(), "memory size");
+        }
+        return "";
+      },
+      "SIZE");
+}
+
 CLI::Validator scales_list() {
   return CLI::Validator(
       [](std::string& text) -> std::string {

@@ -23,6 +23,12 @@ CLI::Validator scales_list();
 // --lod: ratios and face counts as meshsal::parse_lod_levels reads them.
 CLI::Validator lod_list();
 
+// Every size option (--memory-limit): a size as meshsal::parse_memory_size reads it.
+CLI::Validator memory_size();
+
+// What a size option's help says of the syntax (parse_memory_size's).
+constexpr const char* kSizeSyntax = "SIZE: bytes, or a number with K, M, G or T (powers of 1024), e.g. 700M, 1.5G";
+
 // --color-range: LO,HI as meshsal::parse_color_range reads it.
 CLI::Validator color_range_check();
 
