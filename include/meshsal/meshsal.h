@@ -683,7 +683,10 @@ struct LodLevel {
 
 // Levels of detail in one call: each level's face target from `levels` (target_faces, or
 // ratio of the INPUT's faces; lock_border and the rest as simplify_mesh reads them; no
-// target_error), each below the one before (Error otherwise). With weight_options, the
+// target_error), as parse_lod_levels would read them: all counts or all ratios, each below
+// the one before (Error otherwise). A level at or above the faces of the level it starts
+// from is that level unchanged (report.unchanged), as simplify_mesh leaves a mesh whose
+// face count is at or below the target. With weight_options, the
 // saliency is computed once on `mesh` (saliency_options; or taken from `saliency`) and
 // carried down the chain as a vertex attribute, interpolated along each collapse; each
 // level is simplified from the level before with weights from S on that mesh
@@ -695,7 +698,9 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
                                    const std::vector<double>* saliency = nullptr);
 
 // The levels of "0.5,0.2,0.05" or "20000,5000" (--lod): a number with a decimal point or
-// an exponent is a ratio in (0, 1), a whole number a face count; at most 16. Error otherwise.
+// an exponent is a ratio in (0, 1), a whole number a face count; all ratios or all counts
+// (which of 0.5 and 300 has fewer faces depends on the mesh), each below the one before, at
+// most 16. Error otherwise, so a bad list is found before any mesh is read.
 std::vector<SimplifyOptions> parse_lod_levels(const std::string& text);
 
 // Writes a chain: a .glb or .gltf holds `mesh` (with its saliency, may be null) as LOD0 and

@@ -185,8 +185,9 @@ int run_lod(const Args& a, const meshsal::SaliencyWeightOptions& wo, Progress& p
     }
     std::printf("wrote      %s\n", printable(gltf ? a.output + " (LOD0 = the input, MSFT_lod)" : a.output).c_str());
   }
-  for (const LodLevel& l : chain)
-    if (!l.report.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", printable(l.report.note).c_str());
+  for (size_t i = 0; i < chain.size() && !a.quiet; ++i)
+    if (!chain[i].report.reached || chain[i].report.unchanged)
+      std::fprintf(stderr, "note: LOD%zu: %s\n", i + 1, printable(chain[i].report.note).c_str());
   return 0;
 }
 

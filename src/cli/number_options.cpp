@@ -95,7 +95,7 @@ CLI::Validator lod_list() {
         try {
           meshsal::parse_lod_levels(text);
         } catch (const meshsal::Error& e) {
-          return e.what();
+          return without_option_name(e.what(), "lod");
         }
         return "";
       },

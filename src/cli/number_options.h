@@ -20,7 +20,8 @@ CLI::Validator whole_in(long long lo, long long hi);
 // --scales: a comma-separated list of numbers in (0, 100] (meshsal::parse_scales).
 CLI::Validator scales_list();
 
-// --lod: ratios and face counts as meshsal::parse_lod_levels reads them.
+// --lod: ratios or face counts as meshsal::parse_lod_levels reads them (their order too),
+// so a bad list is a usage error before the input is read.
 CLI::Validator lod_list();
 
 // Every size option (--memory-limit): a size as meshsal::parse_memory_size reads it.
