@@ -88,3 +88,14 @@ TEST_CASE("cli: a limit too small is said as given (1K, not 1M)", "[outofcore][c
     CHECK(!std::filesystem::exists(dir / "o.ply"));
   }
 }
+
+TEST_CASE("cli: --help says the size syntax and what a stale temporary folder is", "[cli][outofcore]") {
+  for (const char* command : {"saliency", "simplify", "batch"}) {
+    const CliRun r = run_cli(std::string(command) + " --help");
+    INFO(command << " --help:\n" << r.out);
+    CHECK(r.rc == 0);
+    CHECK(r.out.find("K, M, G or T (powers of 1024)") != std::string::npos);
+    CHECK(r.out.find("meshsal-tiles-XXXXXX") != std::string::npos);
+    CHECK(r.out.find("is stale") != std::string::npos);
+  }
+}

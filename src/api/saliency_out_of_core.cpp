@@ -85,6 +85,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   // The store: built by rank 0 (an error there reaches every rank through the exchange as
   // an empty description), described to the others.
   TileStore store(ooc.temp_dir);
+  if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
   {
     TileBytes mine;
     std::string failure;

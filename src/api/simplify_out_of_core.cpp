@@ -208,6 +208,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
 
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
+  if (so.notice && !store.dir.note().empty()) so.notice(store.dir.note());
   build_tile_store(store, input, so, weights ? ooc.memory_limit : 0, weights ? std::max(1u, so.tiles) : 1, progress);
   clock.lap("tiling");
   report.saliency.vertices = store.vertices;

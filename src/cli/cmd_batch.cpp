@@ -831,7 +831,7 @@ RunFn setup(CLI::App& sub) {
                  "700M, 2G), as `saliency --memory-limit` does; no --view, --contact-sheet or --simplify. " +
                      std::string(kSizeSyntax))
       ->check(memory_size());
-  sub.add_option("--temp-dir", o->temp_dir, "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp)");
+  add_temp_dir_option(sub, &o->temp_dir);
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));

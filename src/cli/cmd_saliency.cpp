@@ -173,8 +173,7 @@ RunFn setup(CLI::App& sub) {
                  "disk, computed one at a time; too small a limit is an error naming the "
                  "smallest workable one. CPU only. " + std::string(kSizeSyntax))
       ->check(memory_size());
-  sub.add_option("--temp-dir", a->temp_dir,
-                 "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
+  add_temp_dir_option(sub, &a->temp_dir);
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");

@@ -128,6 +128,15 @@ CLI::Validator scales_list() {
       "list");
 }
 
+CLI::Option* add_temp_dir_option(CLI::App& app, std::string* dir) {
+  return app.add_option("--temp-dir", *dir,
+                        "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp): a folder meshsal-tiles-XXXXXX,\n"
+                        "locked while the run lives and removed at its end (an error or a signal such as Ctrl-C,\n"
+                        "SIGTERM or SIGHUP included). One that a crashed or kill -9'd run left is stale: its lock\n"
+                        "is free, and the next run with that --temp-dir removes it (not on NFS and other network\n"
+                        "file systems, whose locks cannot be trusted: there it says so and leaves it)");
+}
+
 CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help) {
   return app.add_option("--threads", threads, help)
       ->capture_default_str()

@@ -30,6 +30,10 @@ CLI::Validator memory_size();
 // What a size option's help says of the syntax (parse_memory_size's).
 constexpr const char* kSizeSyntax = "SIZE: bytes, or a number with K, M, G or T (powers of 1024), e.g. 700M, 1.5G";
 
+// Adds `--temp-dir DIR` bound to `dir`: where --memory-limit keeps its tiles, and what
+// becomes of a folder a killed run left (the same words for every command).
+CLI::Option* add_temp_dir_option(CLI::App& app, std::string* dir);
+
 // --color-range: LO,HI as meshsal::parse_color_range reads it.
 CLI::Validator color_range_check();
 
