@@ -527,6 +527,7 @@ int run(Options o) {
   const meshsal::cli::MpiWorld& world = meshsal::cli::mpi_world();
   const int ranks = world.active ? world.size : 1, rank = world.active ? world.rank : 0;
   const bool writer = rank == 0;  // the log, the messages, the summary, the sheet
+  meshsal::cli::mpi_begin_work();  // the first collective: a rank that failed before stops all alike
   check_same_models(inputs, options, to_compute);
   meshsal::cli::mpi_barrier();
   // This rank's models: the (round * ranks + rank)-th to compute.
@@ -860,7 +861,7 @@ RunFn setup(CLI::App& sub) {
   return [o] { return run(*o); };
 }
 
-const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup});
+const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup, true});
 
 }  // namespace
 }  // namespace meshsal_cli
