@@ -44,16 +44,28 @@ std::vector<std::string> entries(int fd) {
 }
 
 // Everything in the folder open as `fd`, but `keep` ("" = nothing kept); sub-folders too.
-void remove_contents(int fd, const char* keep) {
+// Whether all of it went.
+bool remove_contents(int fd, const char* keep) {
+  bool all = true;
   for (const std::string& name : entries(fd)) {
-    if (name == keep) continue;
-    if (::unlinkat(fd, name.c_str(), 0) == 0) continue;
+    if (name == keep || ::unlinkat(fd, name.c_str(), 0) == 0) continue;
     const int sub = ::openat(fd, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (sub < 0) continue;
-    remove_contents(sub, "");
-    ::close(sub);
-    ::unlinkat(fd, name.c_str(), AT_REMOVEDIR);
+    if (sub >= 0) {
+      remove_contents(sub, "");
+      ::close(sub);
+    }
+    all = ::unlinkat(fd, name.c_str(), AT_REMOVEDIR) == 0 && all;
   }
+  return all;
+}
+
+// The folder `name` in `parent_fd`, open as `fd`: its contents, then (only when they all
+// went, so that what stays is still locked against the next run's judgement) its lock file
+// and the folder itself. Whether the folder is gone.
+bool remove_folder(int parent_fd, const std::string& name, int fd) {
+  if (!remove_contents(fd, kLockName)) return false;
+  ::unlinkat(fd, kLockName, 0);
+  return ::unlinkat(parent_fd, name.c_str(), AT_REMOVEDIR) == 0;
 }
 
 // `dir` split into the folder that holds it and its name.
@@ -84,9 +96,7 @@ bool remove_if_stale(int parent_fd, const std::string& name) {
     if (::flock(lock, LOCK_EX | LOCK_NB) == 0 && ::fstat(lock, &held) == 0 &&
         ::fstatat(fd, kLockName, &named, AT_SYMLINK_NOFOLLOW) == 0 && held.st_dev == named.st_dev &&
         held.st_ino == named.st_ino) {
-      remove_contents(fd, kLockName);
-      ::unlinkat(fd, kLockName, 0);
-      removed = ::unlinkat(parent_fd, name.c_str(), AT_REMOVEDIR) == 0;
+      removed = remove_folder(parent_fd, name, fd);
     }
     ::close(lock);
   }
@@ -114,10 +124,8 @@ void remove_scratch_dir(const std::string& dir) {
   if (parent_fd < 0) return;
   const int fd = ::openat(parent_fd, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd >= 0) {
-    remove_contents(fd, kLockName);
-    ::unlinkat(fd, kLockName, 0);
+    remove_folder(parent_fd, name, fd);
     ::close(fd);
-    ::unlinkat(parent_fd, name.c_str(), AT_REMOVEDIR);
   }
   ::close(parent_fd);
 }

@@ -22,9 +22,9 @@ constexpr const char* kScratchPrefix = "meshsal-tiles-";
 // refuses the lock: the folder then has no lock file and no other run takes it for stale.
 int lock_scratch_dir(const std::string& dir);
 
-// Removes `dir`: everything in it but its lock file, then the lock file, then the folder,
-// so that a removal cut short leaves nothing a later run would take for a live folder's.
-// Never follows a link; errors are ignored (what cannot be removed stays).
+// Removes `dir`: everything in it but its lock file, then (when all of that went) the lock
+// file and the folder, so that what a removal cut short or refused leaves is still judged by
+// its lock. Never follows a link; what cannot be removed stays.
 void remove_scratch_dir(const std::string& dir);
 
 // Whether flock on the file system that holds `path` can be trusted (a local one); when
