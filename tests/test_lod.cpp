@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -43,7 +44,7 @@ TEST_CASE("lod: the chain reaches each target, each level from the one before", 
   std::vector<SimplifyOptions> levels(3);
   levels[0].ratio = 0.5;
   levels[1].ratio = 0.2;
-  levels[2].target_faces = 300;
+  levels[2].ratio = 300.0 / 5120;  // all ratios or all counts
   const SaliencyWeightOptions wo = weight_preset(Weighting::Balanced);
   const std::vector<LodLevel> chain = simplify_lod(m, levels, &wo, cpu());
   REQUIRE(chain.size() == 3);
@@ -79,14 +80,22 @@ TEST_CASE("lod: the chain reaches each target, each level from the one before", 
   std::vector<SimplifyOptions> bad(2);
   bad[0].ratio = 0.2;
   bad[1].ratio = 0.5;
-  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), Catch::Contains("not fewer than level 1's"));
-  CHECK_THROWS_WITH(parse_lod_levels("0.5,x"), Catch::Contains("comma-separated list of ratios in (0, 1) or face counts"));
+  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), "lod: level 2 (0.5) is not below level 1 (0.2): list the "
+                                                           "levels from the most faces to the fewest");
+  bad[1].ratio = 0;
+  bad[1].target_faces = 300;
+  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), Catch::Contains("not both"));
+  CHECK_THROWS_WITH(parse_lod_levels("0.5,x"), Catch::Contains("comma-separated list of ratios in (0, 1) or of face counts"));
   CHECK_THROWS_WITH(parse_lod_levels("1.5"), Catch::Contains("ratios in (0, 1)"));
-  const std::vector<SimplifyOptions> parsed = parse_lod_levels("0.5,2000,1e-2");
+  const std::vector<SimplifyOptions> parsed = parse_lod_levels("0.5,0.125,1e-2");
   REQUIRE(parsed.size() == 3);
   CHECK(parsed[0].ratio == 0.5);
-  CHECK(parsed[1].target_faces == 2000);
+  CHECK(parsed[1].ratio == 0.125);
   CHECK(parsed[2].ratio == 0.01);
+  const std::vector<SimplifyOptions> counts = parse_lod_levels("20000,5000");
+  REQUIRE(counts.size() == 2);
+  CHECK(counts[0].target_faces == 20000);
+  CHECK(counts[1].target_faces == 5000);
 }
 
 TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file per level", "[cli][lod][gltf][validator]") {
@@ -94,7 +103,7 @@ TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file pe
   const std::string in = (dir / "m.obj").string();
   write_obj(in, make_bumpy_sphere(4));
   const std::string glb = (dir / "m.glb").string();
-  auto r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.5,0.2,300 --backend cpu --json", dir);
+  auto r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 2560,1024,300 --backend cpu --json", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("\"output_faces\": 2560") != std::string::npos);
@@ -110,7 +119,7 @@ TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file pe
   // The scene shows LOD0, the input, whole.
   CHECK(load_mesh(glb).triangle_count() == 5120);
   // OBJ: one file per level, the input not written again.
-  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.obj").string()) + " --lod 0.5,300 --backend cpu -q", dir);
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.obj").string()) + " --lod 2560,300 --backend cpu -q", dir);
   REQUIRE(r.rc == 0);
   CHECK(load_mesh((dir / "out_lod1.obj").string()).triangle_count() == 2560);
   CHECK(load_mesh((dir / "out_lod2.obj").string()).triangle_count() == 300);
@@ -126,8 +135,8 @@ TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file pe
   CHECK(r.rc == 2);
   CHECK(r.err.find("--lod names every level") != std::string::npos);
   r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.2,0.5 --backend cpu", dir);
-  CHECK(r.rc != 0);
-  CHECK(r.err.find("not fewer than level 1's") != std::string::npos);
+  CHECK(r.rc == 2);
+  CHECK(r.err.find("error: --lod: level 2 (0.5) is not below level 1 (0.2)") == 0);
 }
 
 TEST_CASE("lod: batch --lod writes the file simplify --lod writes, byte for byte", "[cli][lod][batch]") {
@@ -136,11 +145,11 @@ TEST_CASE("lod: batch --lod writes the file simplify --lod writes, byte for byte
   const std::string in = (dir / "in" / "ball.obj").string();
   write_obj(in, make_bumpy_sphere(3));
   auto r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
-                       " --lod 0.5,100 --backend cpu -q",
+                       " --lod 0.5,0.1 --backend cpu -q",
                    dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
-  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "one.glb").string()) + " --lod 0.5,100 --backend cpu -q", dir);
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "one.glb").string()) + " --lod 0.5,0.1 --backend cpu -q", dir);
   REQUIRE(r.rc == 0);
   std::ifstream a(dir / "out" / "ball_lod.glb", std::ios::binary), b(dir / "one.glb", std::ios::binary);
   std::stringstream sa, sb;
@@ -150,7 +159,79 @@ TEST_CASE("lod: batch --lod writes the file simplify --lod writes, byte for byte
   CHECK(sa.str() == sb.str());
   // A rerun in the output folder does not take the GLB for an input.
   r = run_cli("batch " + quoted((dir / "out").string()) + " " + quoted((dir / "in").string()) + " -o " +
-                  quoted((dir / "out").string()) + " --lod 0.5,100 --backend cpu",
+                  quoted((dir / "out").string()) + " --lod 0.5,0.1 --backend cpu",
               dir);
   CHECK(r.out.find("1 models: 0 computed, 1 skipped") != std::string::npos);
+}
+
+// Issue 36 (9): a bad --lod list is a usage error found before the input is read (the
+// order, a level twice, ratios mixed with counts), in simplify and batch alike.
+TEST_CASE("lod: a bad list is a usage error before the input is read, in simplify and batch", "[cli][lod][batch]") {
+  const auto dir = scratch_dir("lod_usage");
+  const std::string in = quoted((dir / "missing.obj").string());  // never read
+  std::string seventeen;
+  for (int n = 17; n >= 1; --n) seventeen += std::to_string(n * 100) + (n > 1 ? "," : "");
+  for (const std::string& list : std::vector<std::string>{"0.2,0.5", "0.5,0.5", "500,500", "300,2000", "0.5,300", "300,0.5", "0.5,", ",0.5",
+                                 "0.5,,0.2", "0x10", "0.5,inf", "nan", "1.5", "0", "-5", "+5", " 5", "0.5 ", "1e", seventeen}) {
+    for (const std::string command : {"simplify " + in + " -o " + quoted((dir / "o.glb").string()),
+                                      "batch " + in + " -o " + quoted((dir / "out").string())}) {
+      INFO(command << " --lod='" << list << "'");
+      meshsal_test::check_usage_error(command + " --lod='" + list + "'", "--lod: ", dir);
+    }
+  }
+  const auto said = [&](const std::string& list) {
+    return run_cli("simplify " + in + " -o " + quoted((dir / "o.glb").string()) + " --lod " + list, dir).err;
+  };
+  CHECK(said("0.2,0.5") == "error: --lod: level 2 (0.5) is not below level 1 (0.2): list the levels from the most "
+                           "faces to the fewest (see --help)\n");
+  CHECK(said("500,500") == "error: --lod: level 2 repeats level 1 (500): each level has fewer faces than the one "
+                           "before (see --help)\n");
+  CHECK(said("0.5,300") == "error: --lod: give ratios (e.g. 0.5,0.2) or face counts (e.g. 20000,5000), not both: "
+                           "level 1 is 0.5, level 2 300 (see --help)\n");
+  CHECK(said(seventeen) == "error: --lod: at most 16 levels, got 17 (see --help)\n");
+}
+
+// A level at or above the faces of the mesh it starts from is that mesh unchanged, as plain
+// `simplify --target-faces N` writes a mesh of N faces or fewer unchanged.
+TEST_CASE("lod: a level above the face count keeps the mesh, as plain simplify does", "[simplify][lod][cli][batch]") {
+  const Mesh m = make_bumpy_sphere(4);  // 5120 faces
+  std::vector<SimplifyOptions> levels(3);
+  levels[0].target_faces = 9000;
+  levels[1].target_faces = 5120;
+  levels[2].target_faces = 2000;
+  const SaliencyWeightOptions wo = weight_preset(Weighting::Balanced);
+  const std::vector<LodLevel> chain = simplify_lod(m, levels, &wo, cpu());
+  REQUIRE(chain.size() == 3);
+  for (int i : {0, 1}) {
+    INFO("level " << i + 1);
+    CHECK(chain[size_t(i)].report.unchanged);
+    CHECK(chain[size_t(i)].mesh.triangles == m.triangles);
+    CHECK(chain[size_t(i)].mesh.positions == m.positions);
+    CHECK(chain[size_t(i)].saliency.size() == m.vertex_count());
+  }
+  CHECK(chain[0].saliency == compute_saliency(m, cpu()).saliency);
+  CHECK(chain[2].mesh.triangle_count() == 2000);
+  CHECK_FALSE(chain[2].report.unchanged);
+
+  const auto dir = scratch_dir("lod_above");
+  const std::string in = (dir / "m.obj").string();
+  write_obj(in, m);
+  auto r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "plain.obj").string()) +
+                       " --target-faces 9000 --backend cpu", dir);
+  REQUIRE(r.rc == 0);
+  r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.obj").string()) + " --lod 9000,300 --backend cpu", dir);
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  CHECK(r.err.find("note: LOD1: the target is at or above the mesh's 5120 faces") != std::string::npos);
+  const Mesh level1 = load_mesh((dir / "out_lod1.obj").string());
+  CHECK(level1.triangles == load_mesh((dir / "plain.obj").string()).triangles);
+  CHECK(level1.triangle_count() == 5120);
+  CHECK(load_mesh((dir / "out_lod2.obj").string()).triangle_count() == 300);
+  std::filesystem::create_directories(dir / "in");
+  write_obj((dir / "in" / "m.obj").string(), m);
+  r = run_cli("batch " + quoted((dir / "in").string()) + " -o " + quoted((dir / "out").string()) +
+                  " --lod 9000,300 --backend cpu -q", dir);
+  INFO(r.err);
+  CHECK(r.rc == 0);
+  CHECK(std::filesystem::exists(dir / "out" / "m_lod.glb"));
 }

@@ -588,8 +588,11 @@ struct OutOfCoreReport {
 OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
                               const SaliencyOptions& options, const OutOfCoreOptions& out_of_core);
 
-// "700M", "2G", "1.5G", "512K", "1000000" (bytes; K M G T are powers of 1024); throws
-// Error on anything else.
+// A size as every front end reads it ("700M", "2G", "1.5G", "512K", "700MB", "2000000"): a
+// decimal number with an optional K, M, G or T (powers of 1024, either case, a B after it
+// allowed), truncated to whole bytes. Error on anything else: 0 bytes after truncation, more
+// than 64 bits hold, hex, inf, a sign, an exponent, and a bare number under 1M (surely a
+// forgotten unit: the message suggests it).
 uint64_t parse_memory_size(const std::string& text);
 
 // "auto", "mixed" or "double"; throws Error on anything else.
@@ -790,7 +793,10 @@ struct LodLevel {
 
 // Levels of detail in one call: each level's face target from `levels` (target_faces, or
 // ratio of the INPUT's faces; lock_border and the rest as simplify_mesh reads them; no
-// target_error), each below the one before (Error otherwise). With weight_options, the
+// target_error), as parse_lod_levels would read them: all counts or all ratios, each below
+// the one before (Error otherwise). A level at or above the faces of the level it starts
+// from is that level unchanged (report.unchanged), as simplify_mesh leaves a mesh whose
+// face count is at or below the target. With weight_options, the
 // saliency is computed once on `mesh` (saliency_options; or taken from `saliency`) and
 // carried down the chain as a vertex attribute, interpolated along each collapse; each
 // level is simplified from the level before with weights from S on that mesh
@@ -802,7 +808,9 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
                                    const std::vector<double>* saliency = nullptr);
 
 // The levels of "0.5,0.2,0.05" or "20000,5000" (--lod): a number with a decimal point or
-// an exponent is a ratio in (0, 1), a whole number a face count; at most 16. Error otherwise.
+// an exponent is a ratio in (0, 1), a whole number a face count; all ratios or all counts
+// (which of 0.5 and 300 has fewer faces depends on the mesh), each below the one before, at
+// most 16. Error otherwise, so a bad list is found before any mesh is read.
 std::vector<SimplifyOptions> parse_lod_levels(const std::string& text);
 
 // Writes a chain: a .glb or .gltf holds `mesh` (with its saliency, may be null) as LOD0 and

@@ -66,28 +66,6 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
 
 }  // namespace
 
-uint64_t parse_memory_size(const std::string& text) {
-  const std::string what = "memory size must be a number of bytes with an optional K, M, G or T (e.g. 700M, 2G), got '" + text + "'";
-  if (text.empty()) throw Error(what);
-  size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(text, &used);
-  } catch (...) {
-    throw Error(what);
-  }
-  std::string unit = text.substr(used);
-  if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
-  double scale = 1;
-  if (unit == "K" || unit == "k") scale = 1024.0;
-  else if (unit == "M" || unit == "m") scale = 1024.0 * 1024;
-  else if (unit == "G" || unit == "g") scale = 1024.0 * 1024 * 1024;
-  else if (unit == "T" || unit == "t") scale = 1024.0 * 1024 * 1024 * 1024;
-  else if (!unit.empty()) throw Error(what);
-  if (!(x > 0) || !std::isfinite(x) || x * scale > 1.8e19) throw Error(what);
-  return uint64_t(x * scale);
-}
-
 OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
                               const SaliencyOptions& options_in, const OutOfCoreOptions& ooc) {
   const CancelScope cancel(options_in.cancel);
@@ -110,6 +88,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   // The store: built by rank 0 (an error there reaches every rank through the exchange as
   // an empty description), described to the others.
   TileStore store(ooc.temp_dir);
+  if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
   {
     TileBytes mine;
     std::string failure;

@@ -6,8 +6,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-
+#include "api/scratch_lock.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -24,27 +23,31 @@ ScratchDir::ScratchDir(const std::string& parent) {
     const char* t = std::getenv("TMPDIR");
     base = t && *t ? t : "/tmp";
   }
-  std::string pattern = base + "/meshsal-tiles-XXXXXX";
+  // What runs that died left here (removed where the locks can be trusted).
+  std::string file_system;
+  const bool trusted = scratch_locks_trusted(base, &file_system);
+  note_ = stale_scratch_note(base, remove_stale_scratch_dirs(base, trusted), file_system);
+  std::string pattern = base + "/" + kScratchPrefix + "XXXXXX";
   std::vector<char> buf(pattern.begin(), pattern.end());
   buf.push_back('\0');
   if (!mkdtemp(buf.data())) fail(base, "cannot create a temporary folder for the tiles");
   path_ = buf.data();
+  lock_ = lock_scratch_dir(path_);
+}
+
+void ScratchDir::remove() {
+  if (owner_ && !path_.empty()) remove_scratch_dir(path_);
+  if (lock_ >= 0) ::close(lock_);  // after the folder is gone: no run sees it unlocked
+  lock_ = -1;
 }
 
 void ScratchDir::borrow(const std::string& path) {
-  if (owner_) {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
+  remove();
   path_ = path;
   owner_ = false;
 }
 
-ScratchDir::~ScratchDir() {
-  if (!owner_ || path_.empty()) return;
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
+ScratchDir::~ScratchDir() { remove(); }
 
 ScratchWriter::ScratchWriter(const std::string& path, bool append) : path_(path) {
   f_ = std::fopen(path.c_str(), append ? "ab" : "wb");

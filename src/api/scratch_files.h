@@ -1,6 +1,7 @@
 // meshsal: the out-of-core path's files on disk: a private temporary folder removed with
-// everything in it when the run ends (an error or Ctrl-C included), and plain binary
-// readers and writers with every failure named.
+// everything in it when the run ends (an error or Ctrl-C included), locked while it lives so
+// that a later run removes it should the process die without doing so (scratch_lock.h), and
+// plain binary readers and writers with every failure named.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -11,7 +12,8 @@ namespace meshsal {
 
 class ScratchDir {
  public:
-  // A new folder meshsal-tiles-XXXXXX in `parent` ("" = $TMPDIR or /tmp).
+  // A new folder meshsal-tiles-XXXXXX in `parent` ("" = $TMPDIR or /tmp), locked; first
+  // the stale ones there are removed (note() says what was found).
   explicit ScratchDir(const std::string& parent);
   // Use another process's folder instead (MPI ranks on a shared disk): this one is
   // removed now, that one never by us.
@@ -21,10 +23,15 @@ class ScratchDir {
   ScratchDir& operator=(const ScratchDir&) = delete;
   std::string file(const std::string& name) const { return path_ + "/" + name; }
   const std::string& path() const { return path_; }
+  // One line for a person about stale folders found in the parent ("" when none): for the
+  // call's notice.
+  const std::string& note() const { return note_; }
 
  private:
-  std::string path_;
+  void remove();
+  std::string path_, note_;
   bool owner_ = true;
+  int lock_ = -1;  // held open (and locked) while the folder is ours
 };
 
 // Appends to a file through a buffer.

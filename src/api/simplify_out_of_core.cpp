@@ -11,6 +11,7 @@
 #include "core/streamed_percentile.h"
 #include "api/tile_saliency.h"
 #include "api/tile_store.h"
+#include "api/memory_size.h"
 #include "core/cancel.h"
 #include "core/model_frame.h"
 #include "core/stage_clock.h"
@@ -209,6 +210,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
 
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
+  if (so.notice && !store.dir.note().empty()) so.notice(store.dir.note());
   build_tile_store(store, input, so, weights ? ooc.memory_limit : 0, weights ? std::max(1u, so.tiles) : 1, progress);
   clock.lap("tiling");
   report.saliency.vertices = store.vertices;
@@ -302,7 +304,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     report.tile_estimate = uint64_t(double(largest_cell(store, TileGrid(store.box, t, 0))) * kSimplifyBytesPerVertex);
     if (!ooc.memory_limit || fixed + report.tile_estimate <= ooc.memory_limit) break;
     if (t == kMaxSimplifyTiles)
-      throw Error("memory limit " + mib_text(ooc.memory_limit) + " is too small to simplify " + input +
+      throw Error("memory limit " + memory_size_text(ooc.memory_limit) + " is too small to simplify " + input +
                   ": the smallest tile needs about " + mib_text(report.tile_estimate) +
                   "; the smallest workable limit is about " + mib_text(fixed + report.tile_estimate));
     t = std::min(kMaxSimplifyTiles, t + std::max(1u, t / 4));

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <map>
 
+#include "api/memory_size.h"
 #include "core/model_frame.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
@@ -200,7 +201,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
       best = std::min(best, cost.largest);
     }
     if (kBaseBytes + cost.largest > memory_limit)
-      throw Error("memory limit " + mib_text(memory_limit) + " is too small for " + input_path +
+      throw Error("memory limit " + memory_size_text(memory_limit) + " is too small for " + input_path +
                   ": the smallest tile with its halo (the filter's reach around it) needs about " +
                   mib_text(best) + "; the smallest workable limit is about " + mib_text(kBaseBytes + best));
   }

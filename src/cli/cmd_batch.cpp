@@ -538,6 +538,7 @@ int run(Options o) {
   const meshsal::cli::MpiWorld& world = meshsal::cli::mpi_world();
   const int ranks = world.active ? world.size : 1, rank = world.active ? world.rank : 0;
   const bool writer = rank == 0;  // the log, the messages, the summary, the sheet
+  meshsal::cli::mpi_begin_work();  // the first collective: a rank that failed before stops all alike
   check_same_models(inputs, options, to_compute);
   meshsal::cli::mpi_barrier();
   // This rank's models: the (round * ranks + rank)-th to compute.
@@ -844,8 +845,10 @@ RunFn setup(CLI::App& sub) {
                  "marked with its error; the name under it (implies --view)");
   sub.add_option("--memory-limit", o->memory_limit,
                  "Compute each model's saliency out of core under this peak resident memory (e.g. "
-                 "700M, 2G), as `saliency --memory-limit` does; no --view, --html, --contact-sheet or --target-error");
-  sub.add_option("--temp-dir", o->temp_dir, "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp)");
+                 "700M, 2G), as `saliency --memory-limit` does; no --view, --html, --contact-sheet or --target-error. " +
+                     std::string(kSizeSyntax))
+      ->check(memory_size());
+  add_temp_dir_option(sub, &o->temp_dir);
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
   sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
       ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
@@ -874,7 +877,7 @@ RunFn setup(CLI::App& sub) {
   return [o] { return run(*o); };
 }
 
-const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup});
+const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup, true});
 
 }  // namespace
 }  // namespace meshsal_cli

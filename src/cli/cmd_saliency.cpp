@@ -49,6 +49,21 @@ uint64_t peak_over_ranks() {
 
 bool is_rank0() { return meshsal::cli::mpi_world().rank == 0; }
 
+// Under mpirun, once this rank's own checks are done: the ranks meet (mpi_begin_work: one
+// that failed before stops all, quietly), then every rank must run the same computation:
+// rank 0's arguments are the run's.
+void begin_work(const Args& a) {
+  if (!meshsal::cli::mpi_world().active) return;
+  meshsal::cli::mpi_begin_work();
+  const std::string mine = a.input + "\n" + a.output + "\n" + a.method + "\n" + a.scales + "\n" +
+                           std::to_string(a.eps_frac) + "\n" + std::to_string(a.tiles) + "\n" + a.memory_limit +
+                           "\n" + std::to_string(a.dump_scales);
+  const auto all = meshsal::cli::mpi_all_gather(std::vector<uint8_t>(mine.begin(), mine.end()));
+  if (std::string(all[0].begin(), all[0].end()) != mine)
+    throw meshsal::Error("the ranks were started with other arguments than rank 0's (this rank: " +
+                         printable(a.input) + " -o " + printable(a.output) + ")");
+}
+
 // --memory-limit: the library streams the file through tiles on disk (saliency_file).
 int run_out_of_core(const Args& a, const meshsal::SaliencyOptions& opt, Progress& progress) {
   using namespace meshsal;
@@ -105,25 +120,21 @@ int run(const Args& a) {
   // Under mpirun the ranks share the tiles; rank 0 writes and reports.
   MpiTileExchange exchange;
   if (meshsal::cli::mpi_world().active) {
-    // Every rank must run the same computation: rank 0's arguments are the run's.
-    const std::string mine = a.input + "\n" + a.output + "\n" + a.method + "\n" + a.scales + "\n" +
-                             std::to_string(a.eps_frac) + "\n" + std::to_string(a.tiles) + "\n" + a.memory_limit +
-                             "\n" + std::to_string(a.dump_scales);
-    const auto all = meshsal::cli::mpi_all_gather(std::vector<uint8_t>(mine.begin(), mine.end()));
-    if (std::string(all[0].begin(), all[0].end()) != mine)
-      throw meshsal::Error("the ranks were started with other arguments than rank 0's (this rank: " +
-                           printable(a.input) + " -o " + printable(a.output) + ")");
     opt.exchange = &exchange;
     if (opt.tiles == 0 && a.memory_limit.empty()) opt.tiles = default_mpi_tiles(meshsal::cli::mpi_world().size);
   }
   check_saliency_options(opt);
-  if (!a.memory_limit.empty()) return run_out_of_core(a, opt, progress);
+  if (!a.memory_limit.empty()) {
+    begin_work(a);
+    return run_out_of_core(a, opt, progress);
+  }
 
   const meshsal::Timer t0;
   progress.update("reading", 0.0);
   // A glTF output carries the input's normals, UVs and colours (and a glTF input's materials).
   Mesh mesh = load_input(a.input, quiet, nullptr, gltf_out);
   double load = t0.seconds();
+  begin_work(a);  // after each rank read the input: one that cannot stops every rank alike
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.update("writing", 0.0);
   if (is_rank0()) write_saliency_ply(a.output, mesh, r, a.dump_scales);
@@ -171,9 +182,9 @@ RunFn setup(CLI::App& sub) {
                  "Keep the peak resident memory under SIZE (e.g. 700M, 2G): the input (binary "
                  "PLY is streamed; other formats are read once and converted) goes to tiles on "
                  "disk, computed one at a time; too small a limit is an error naming the "
-                 "smallest workable one. CPU only");
-  sub.add_option("--temp-dir", a->temp_dir,
-                 "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
+                 "smallest workable one. CPU only. " + std::string(kSizeSyntax))
+      ->check(memory_size());
+  add_temp_dir_option(sub, &a->temp_dir);
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties");
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
@@ -184,7 +195,7 @@ RunFn setup(CLI::App& sub) {
   return [a] { return run(*a); };
 }
 
-const bool registered = register_command({"saliency", "Compute the saliency map of a mesh file", 10, setup});
+const bool registered = register_command({"saliency", "Compute the saliency map of a mesh file", 10, setup, true});
 
 }  // namespace
 }  // namespace meshsal_cli

@@ -74,6 +74,9 @@ meshsal::SaliencyOptions saliency_options(const Args& a, Progress& progress) {
   // tile at a time).
   if (a.tiles > 1) so.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
   so.progress = [&progress](const char* stage, double f) { progress.update(stage, f); };
+  so.notice = [quiet = a.quiet](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
+  };
   return so;
 }
 
@@ -140,9 +143,6 @@ int run_lod(const Args& a, const meshsal::SaliencyWeightOptions& wo, Progress& p
   Mesh mesh = load_input(a.input, a.quiet, nullptr, true);
   SaliencyOptions so = saliency_options(a, progress);
   so.raw_maps = false;  // only S is used
-  so.notice = [&](const std::string& line) {
-    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
-  };
   const bool weighted = a.weights != "none";
   std::vector<double> s;
   if (weighted) {
@@ -185,8 +185,9 @@ int run_lod(const Args& a, const meshsal::SaliencyWeightOptions& wo, Progress& p
     }
     std::printf("wrote      %s\n", printable(gltf ? a.output + " (LOD0 = the input, MSFT_lod)" : a.output).c_str());
   }
-  for (const LodLevel& l : chain)
-    if (!l.report.reached && !a.quiet) std::fprintf(stderr, "note: %s\n", printable(l.report.note).c_str());
+  for (size_t i = 0; i < chain.size() && !a.quiet; ++i)
+    if (!chain[i].report.reached || chain[i].report.unchanged)
+      std::fprintf(stderr, "note: LOD%zu: %s\n", i + 1, printable(chain[i].report.note).c_str());
   return 0;
 }
 
@@ -402,9 +403,9 @@ RunFn setup(CLI::App& sub) {
                  "streamed; other formats are read once and converted) goes to tiles on disk; the saliency\n"
                  "and then the tiled simplification (as --tiles, at least that many tiles) run a tile at a\n"
                  "time. Writes a binary PLY with positions and S; too small a limit is an error naming the\n"
-                 "smallest workable one. CPU only");
-  sub.add_option("--temp-dir", a->temp_dir,
-                 "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp); removed at the end");
+                 "smallest workable one. CPU only. " + std::string(kSizeSyntax))
+      ->check(memory_size());
+  add_temp_dir_option(sub, &a->temp_dir);
   sub.add_option("--weights", a->weights,
                  "balanced (the paper's curve with alpha at the 50th percentile and lambda 3: salient "
                  "detail at little cost elsewhere), saliency (the paper's recipe, lambda 100 above the "

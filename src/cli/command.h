@@ -18,6 +18,9 @@ struct Command {
   int order;           // position in `meshsal --help`
   // Adds the command's options to `sub` (bound to state the returned RunFn captures).
   std::function<RunFn(CLI::App& sub)> setup;
+  // Shares its work over MPI ranks (saliency, batch). Under mpirun any other command runs
+  // on rank 0 alone, as one process; the other ranks end at once (main.cpp).
+  bool uses_ranks = false;
 };
 
 // A wrong combination of options, found after parsing: like a bad number, a usage error

@@ -52,13 +52,37 @@ static std::string suggestion(const std::string& given, const std::vector<std::s
   return best.empty() ? "" : ", did you mean '" + best + "'?";
 }
 
+// Whether the command argv names shares its work over MPI ranks (Command::uses_ranks).
+static bool uses_ranks(int argc, char** argv) {
+  if (argc < 2) return false;
+  for (const Command& c : registry())
+    if (argv[1] == std::string(c.name)) return c.uses_ranks;
+  return false;
+}
+
 }  // namespace meshsal_cli
 
-// Under MPI a rank that fails ends every rank (mpi_abort), so that none waits forever in a
-// collective for it; else the error line and the status, as always.
+// How this process ends after a thrown error or a usage line: under MPI before the work
+// every rank agrees (the line printed once, by rank 0; no MPI_Abort); during the work a
+// rank that fails ends every rank (mpi_abort), so that none waits forever in a collective
+// for it; else the line and the status, as always.
 static int fail(int status, const std::string& line) {
-  if (meshsal::cli::mpi_world().active) meshsal::cli::mpi_abort(status, line);
-  std::fprintf(stderr, "%s\n", line.c_str());
+  using namespace meshsal::cli;
+  if (mpi_world().active && !mpi_work_begun()) {
+    const RanksStopped all = mpi_stop_before_work(status, line);
+    if (!all.line.empty()) std::fprintf(stderr, "%s\n", all.line.c_str());
+    return all.status;
+  }
+  if (mpi_world().active) mpi_abort(status, line);
+  if (!line.empty()) std::fprintf(stderr, "%s\n", line.c_str());
+  return status;
+}
+
+// A command's own return (batch's agreed status included): never an abort; under MPI a
+// rank that never met the others before the work meets them now.
+static int done(int status) {
+  using namespace meshsal::cli;
+  if (mpi_world().active && !mpi_work_begun()) return fail(status, "");
   return status;
 }
 
@@ -95,21 +119,28 @@ static int run_main(int argc, char** argv) {
                          " (see meshsal --help)");
     }
   }
+  // Help and the version: printed by rank 0 alone under MPI.
+  const auto say = [&app](const CLI::ParseError& e) {
+    return done(meshsal::cli::mpi_world().rank == 0 ? app.exit(e) : 0);
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return say(e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return say(e);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return say(e);
   } catch (const CLI::ParseError& e) {
     // Usage errors: one line, exit status 2 (bad input files exit with 1).
     return fail(2, "error: " + printable(e.what()) + " (see --help)");
   }
   try {
     for (auto& [sub, run] : runs)
-      if (sub->parsed()) return run();
+      if (sub->parsed()) return done(run());
+  } catch (const meshsal::cli::RanksStopped& stop) {
+    if (!stop.line.empty()) std::fprintf(stderr, "%s\n", stop.line.c_str());
+    return stop.status;
   } catch (const UsageError& e) {
     return fail(2, "error: " + printable(e.what()) + " (see --help)");
   } catch (const meshsal::Cancelled&) {
@@ -125,8 +156,12 @@ static int run_main(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  // MPI_Init only under mpirun/srun (mpi_world.h); it may take its arguments out of argv.
-  meshsal::cli::mpi_start(&argc, &argv);
+  // Under mpirun (or srun) only a command that shares its work over the ranks starts MPI
+  // (MPI_Init, which may take its own arguments out of argv: mpi_world.h). Any other runs
+  // on rank 0 alone, as one process; the other ranks end at once, silently, with 0, rather
+  // than each do the whole work and write the same files.
+  if (meshsal_cli::uses_ranks(argc, argv)) meshsal::cli::mpi_start(&argc, &argv);
+  else if (meshsal::cli::mpi_launcher_rank() > 0) return 0;
   const int status = run_main(argc, argv);
   meshsal::cli::mpi_stop();
   return status;

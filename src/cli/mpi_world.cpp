@@ -24,7 +24,46 @@ MpiWorld& world() {
   return w;
 }
 
+bool work_begun = false;
+
+// The meeting before the work: every rank's [stopped, status, line...], in rank order; how
+// the ranks end when one stopped.
+bool meet_before_work(bool stopped, int status, const std::string& line, RanksStopped* out) {
+  work_begun = true;
+  std::vector<uint8_t> mine{uint8_t(stopped), uint8_t(status)};
+  mine.insert(mine.end(), line.begin(), line.end());
+  const std::vector<std::vector<uint8_t>> all = mpi_all_gather(mine);
+  int first = -1;
+  bool alike = true;
+  for (size_t r = 0; r < all.size(); ++r) {
+    const bool s = all[r].size() >= 2 && all[r][0];
+    if (s && first < 0) first = int(r);
+    alike = alike && s && all[r] == all[0];
+  }
+  if (first < 0) return false;
+  const std::vector<uint8_t>& f = all[size_t(first)];
+  std::string said(f.begin() + 2, f.end());
+  if (!alike && !said.empty()) said = "meshsal (rank " + std::to_string(first) + "): " + said;
+  out->status = f[1];
+  out->line = world().rank == 0 ? said : "";
+  return true;
+}
+
 }  // namespace
+
+void mpi_begin_work() {
+  if (!world().active || work_begun) return;
+  RanksStopped stop;
+  if (meet_before_work(false, 0, "", &stop)) throw stop;
+}
+
+bool mpi_work_begun() { return work_begun; }
+
+RanksStopped mpi_stop_before_work(int status, const std::string& line) {
+  RanksStopped stop{status, line};
+  if (world().active && !work_begun) meet_before_work(true, status, line, &stop);
+  return stop;
+}
 
 const MpiWorld& mpi_world() { return world(); }
 
@@ -35,6 +74,13 @@ int mpi_launcher_size() {
     if (const char* n = std::getenv(v)) return std::max(1, std::atoi(n));
   for (const char* v : {"PMIX_RANK", "PMI_RANK"})
     if (std::getenv(v)) return 1;
+  return 0;
+}
+
+int mpi_launcher_rank() {
+  if (mpi_launcher_size() == 0) return 0;
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* n = std::getenv(v)) return std::max(0, std::atoi(n));
   return 0;
 }
 

@@ -26,6 +26,31 @@ void mpi_start(int* argc, char*** argv);
 // MPI_Finalize when mpi_start() started MPI; else nothing.
 void mpi_stop();
 
+// How the ranks end when one stopped before the work (mpi_begin_work): the status every
+// rank exits with, and the line this rank prints ("" on every rank but 0: printed once).
+struct RanksStopped {
+  int status = 0;
+  std::string line;
+};
+
+// The ranks' one meeting before their work: a command that uses the ranks calls it once,
+// before its first collective, when each rank has done alone the checks every rank makes
+// alike (options, outputs, an input read). Returns when every rank goes on; throws
+// RanksStopped when one stopped before it (main met the others here for it with
+// mpi_stop_before_work), so that all end alike, quietly, without MPI_Abort. Not active:
+// nothing.
+void mpi_begin_work();
+
+// Whether this rank has been to mpi_begin_work.
+bool mpi_work_begun();
+
+// From main, for a rank that stopped before mpi_begin_work (a usage error, --help, an error,
+// or a command that never calls it) with `status` and the `line` it would print: meets the
+// others there and returns how every rank ends: the first stopped rank's status and line
+// ("meshsal (rank R): " in front unless every rank stopped with that line), the line for
+// rank 0 alone.
+RanksStopped mpi_stop_before_work(int status, const std::string& line);
+
 // A rank that fails ends every rank, never leaving the others waiting in a collective:
 // prints "meshsal (rank R): MESSAGE" on stderr and calls MPI_Abort(status), which ends the
 // whole job with that status. When not active it prints "meshsal: MESSAGE" and exits with
@@ -44,5 +69,10 @@ void mpi_barrier();
 // set); 0 when none started this one. A build without MPI uses it to refuse a batch that N
 // copies of itself would each run whole.
 int mpi_launcher_size();
+
+// This process's rank as mpirun or srun's environment says (OMPI_COMM_WORLD_RANK,
+// PMIX_RANK, PMI_RANK), without MPI_Init; 0 when none started it. A command that does not
+// use the ranks runs on rank 0 alone by it.
+int mpi_launcher_rank();
 
 }  // namespace meshsal::cli

@@ -95,11 +95,24 @@ CLI::Validator lod_list() {
         try {
           meshsal::parse_lod_levels(text);
         } catch (const meshsal::Error& e) {
-          return e.what();
+          return without_option_name(e.what(), "lod");
         }
         return "";
       },
       "LIST");
+}
+
+CLI::Validator memory_size() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          meshsal::parse_memory_size(text);
+        } catch (const meshsal::Error& e) {
+          return without_option_name(e.what(), "memory size");
+        }
+        return "";
+      },
+      "SIZE");
 }
 
 CLI::Validator scales_list() {
@@ -113,6 +126,15 @@ CLI::Validator scales_list() {
         return "";
       },
       "list");
+}
+
+CLI::Option* add_temp_dir_option(CLI::App& app, std::string* dir) {
+  return app.add_option("--temp-dir", *dir,
+                        "Where --memory-limit keeps its tiles (default $TMPDIR or /tmp): a folder meshsal-tiles-XXXXXX,\n"
+                        "locked while the run lives and removed at its end (an error or a signal such as Ctrl-C,\n"
+                        "SIGTERM or SIGHUP included). One that a crashed or kill -9'd run left is stale: its lock\n"
+                        "is free, and the next run with that --temp-dir removes it (not on NFS and other network\n"
+                        "file systems, whose locks cannot be trusted: there it says so and leaves it)");
 }
 
 CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help) {

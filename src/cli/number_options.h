@@ -20,8 +20,19 @@ CLI::Validator whole_in(long long lo, long long hi);
 // --scales: a comma-separated list of numbers in (0, 100] (meshsal::parse_scales).
 CLI::Validator scales_list();
 
-// --lod: ratios and face counts as meshsal::parse_lod_levels reads them.
+// --lod: ratios or face counts as meshsal::parse_lod_levels reads them (their order too),
+// so a bad list is a usage error before the input is read.
 CLI::Validator lod_list();
+
+// Every size option (--memory-limit): a size as meshsal::parse_memory_size reads it.
+CLI::Validator memory_size();
+
+// What a size option's help says of the syntax (parse_memory_size's).
+constexpr const char* kSizeSyntax = "SIZE: bytes, or a number with K, M, G or T (powers of 1024), e.g. 700M, 1.5G";
+
+// Adds `--temp-dir DIR` bound to `dir`: where --memory-limit keeps its tiles, and what
+// becomes of a folder a killed run left (the same words for every command).
+CLI::Option* add_temp_dir_option(CLI::App& app, std::string* dir);
 
 // --color-range: LO,HI as meshsal::parse_color_range reads it.
 CLI::Validator color_range_check();
