@@ -211,7 +211,8 @@ def test_best_view_curvature_score_equals_cli(mesh_path, cli):
 
 def test_gltf_save_equals_cli(mesh_path, cli, tmp_path):
     # `meshsal saliency -o x.glb` and meshsal.save(x.glb, V, F, S): the same bytes; the GLB
-    # reads back with the same saliency as its source.
+    # holds the model's coordinates as floats (no added node transform), as a float PLY does:
+    # it reads back as the PLY does, with the same saliency.
     path = mesh_path("bunny_3k.off")
     cli.json("saliency", path, "-o", tmp_path / "cli.glb", "--backend", "cpu", "--json")
     V, F = meshsal.load(str(path))
@@ -221,7 +222,13 @@ def test_gltf_save_equals_cli(mesh_path, cli, tmp_path):
     V2, F2 = meshsal.load(str(tmp_path / "py.glb"))
     np.testing.assert_array_equal(F2, F)
     np.testing.assert_allclose(V2, V, rtol=0, atol=1e-6)
-    np.testing.assert_array_equal(meshsal.saliency(V2, F2, backend="cpu").saliency, r.saliency)
+    meshsal.save(str(tmp_path / "py.ply"), V, F)
+    V3, F3 = meshsal.load(str(tmp_path / "py.ply"))
+    np.testing.assert_array_equal(V2, V3)
+    np.testing.assert_array_equal(meshsal.saliency(V2, F2, backend="cpu").saliency,
+                                  meshsal.saliency(V3, F3, backend="cpu").saliency)
+    np.testing.assert_allclose(meshsal.saliency(V2, F2, backend="cpu").saliency, r.saliency, rtol=0,
+                               atol=1e-4 * r.saliency.max())
 
 
 def test_lod_equals_cli(mesh_path, cli, tmp_path):
