@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli/synthetic.h"
 #include "cli_run.h"
 #include "gltf_util.h"
 #include "io/gltf_assets.h"
@@ -172,4 +173,35 @@ TEST_CASE("gltf limits: images sharing one bufferView are carried once", "[io][g
   REQUIRE(back.gltf_assets != nullptr);
   CHECK(back.gltf_assets->image_bytes.size() == 1);
   CHECK(back.gltf_assets->image_source[1999] == 0);
+}
+
+TEST_CASE("gltf limits: a deeply nested glTF fails alone in every front end", "[io][gltf][cli]") {
+  // 20,000 levels of extras in 40 KB: batch logged nothing and died on every resume; under
+  // --memory-limit the temporary folder stayed. Now the model fails with its message.
+  TempDir dir;
+  std::string deep = triangle();
+  deep.replace(deep.find("\"2.0\"}"), 6, "\"2.0\",\"extras\":" + nested_arrays(20000) + "}");
+  std::filesystem::create_directories(dir.file("in"));
+  dir.write("in/deep.gltf", deep);
+  write_mesh(dir.file("in/good.ply"), make_bumpy_sphere(1));
+  const std::string batch = "batch " + meshsal_test::quoted(dir.file("in")) + " -o " + meshsal_test::quoted(dir.file("out")) +
+                            " --backend cpu -q";
+  for (int run = 0; run < 2; ++run) {  // the second run resumes: the good model skipped, the bad one failing again
+    const meshsal_test::CliRun r = meshsal_test::run_cli(batch, dir.path);
+    INFO(r.err);
+    CHECK(r.rc == 1);
+    const std::string log = meshsal_test::read_file(dir.file("out/batch.jsonl"));
+    CHECK(log.find("its JSON nests deeper than 64 levels") != std::string::npos);
+    CHECK(log.find(run == 0 ? "\"status\": \"done\"" : "\"status\": \"skipped\"") != std::string::npos);
+  }
+  CHECK(std::filesystem::exists(dir.file("out/good_saliency.ply")));
+  // Out of core: the error, and no temporary folder left behind.
+  std::filesystem::create_directories(dir.file("tmp"));
+  const meshsal_test::CliRun ooc = meshsal_test::run_cli(
+      "saliency " + meshsal_test::quoted(dir.file("in/deep.gltf")) + " -o " + meshsal_test::quoted(dir.file("o.ply")) +
+          " --memory-limit 100M --temp-dir " + meshsal_test::quoted(dir.file("tmp")),
+      dir.path);
+  CHECK(ooc.rc == 1);
+  CHECK(ooc.err.find("nests deeper than 64 levels") != std::string::npos);
+  CHECK(std::filesystem::is_empty(dir.file("tmp")));
 }

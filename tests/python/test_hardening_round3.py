@@ -247,3 +247,20 @@ def test_a_device_index_that_does_not_exist_is_a_value_error(sphere):
         meshsal.best_view(V, F, np.ones(len(V)), device=10 ** 6)
     with pytest.raises(ValueError, match=r"no Vulkan device 1000000 \("):
         meshsal.Device(10 ** 6)
+
+
+def test_a_deeply_nested_gltf_is_an_error_not_a_crash(tmp_path):
+    # 20,000 levels of extras overflowed the JSON conversion's stack and killed the
+    # interpreter; now load() raises meshsal.Error, and the interpreter goes on.
+    deep = tmp_path / "deep.gltf"
+    deep.write_text('{"asset":{"version":"2.0","extras":' + "[" * 20000 + "]" * 20000 + "}}")
+    code = textwrap.dedent(f"""
+        import meshsal
+        try:
+            meshsal.load({str(deep)!r})
+        except meshsal.Error as e:
+            print("refused:", e)
+    """)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=os.environ.copy())
+    assert r.returncode == 0, r.stderr
+    assert "its JSON nests deeper than 64 levels" in r.stdout
