@@ -96,8 +96,8 @@ TEST_CASE("cli: outputs are checked before any work", "[cli]") {
   };
   const std::vector<Case> cases = {
       {"saliency " + missing + " -o " + q(s / "no/such/o.ply"), s / "no/such/o.ply" + ": cannot write: folder '" + s / "no/such" + "' does not exist"},
-      {"saliency " + missing + " -o " + q(s / "o.txt"), s / "o.txt" + ": -o must be a .ply, .glb or .gltf file"},
-      {"simplify " + missing + " -o " + q(s / "o.stl") + " --ratio 0.5", s / "o.stl" + ": -o must be a .obj, .ply, .glb or .gltf file"},
+      {"saliency " + missing + " -o " + q(s / "o.txt"), s / "o.txt" + ": -o must be a .ply, .gltf, .glb, .obj, .off or .stl file"},
+      {"simplify " + missing + " -o " + q(s / "o.stlx") + " --ratio 0.5", s / "o.stlx" + ": -o must be a .ply, .gltf, .glb, .obj, .off or .stl file"},
       {"simplify " + missing + " -o " + q(s / "no/o.obj") + " --ratio 0.5", s / "no/o.obj" + ": cannot write: folder"},
       {"render " + missing + " -o " + q(s / "o.jpg"), s / "o.jpg" + ": -o must be a .png file"},
       {"render " + missing + " -o " + q(s / "no/o.png"), s / "no/o.png" + ": cannot write: folder"},

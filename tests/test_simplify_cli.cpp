@@ -79,9 +79,13 @@ TEST_CASE("cli simplify: bad input gets a clear error", "[simplify]") {
   r = run_cli_merged("compare '" + bunny + "' '" + spot + "' --saliency '" + sal + "'");
   CHECK(r.rc == 1);
   CHECK(r.out.find("has 2930 vertices but the mesh has 3485") != std::string::npos);
-  r = run_cli_merged("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500");
+  // Every format the loaders read is written too: a binary STL of the 500 faces.
+  r = run_cli_merged("simplify '" + bunny + "' -o '" + (dir / "x.stl").string() + "' --target-faces 500 -q");
+  CHECK(r.rc == 0);
+  CHECK(fs::file_size(dir / "x.stl") == 84 + 50 * 500);
+  r = run_cli_merged("simplify '" + bunny + "' -o '" + (dir / "x.txt").string() + "' --target-faces 500");
   CHECK(r.rc == 1);
-  CHECK(r.out.find("x.stl: -o must be a .obj, .ply, .glb or .gltf file") != std::string::npos);
+  CHECK(r.out.find("x.txt: -o must be a .ply, .gltf, .glb, .obj, .off or .stl file") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }

@@ -182,10 +182,10 @@ TEST_CASE("view: the faces --json reports are the faces the page shows, budget r
   CHECK(html.find("The page shows a copy simplified to " + std::to_string(shown) + " faces, as far as the simplifier "
                   "could go towards the 1 asked (plain quadrics, the saliency carried): the mesh has 1280.") !=
         std::string::npos);
-  // The summary says so too.
+  // A note says so too.
   r = run_cli("view " + quoted(in) + " -o " + quoted(page) + " --backend cpu --max-faces 1", dir);
   REQUIRE(r.rc == 0);
-  CHECK(r.out.find("note       the page shows a copy simplified to " + std::to_string(shown) +
+  CHECK(r.err.find("note: the page shows a copy simplified to " + std::to_string(shown) +
                    " faces, not the 1 of --max-faces: the simplifier could go no further (the mesh has 1280)\n") !=
         std::string::npos);
   // A budget it reaches: the count asked, shown and reported.

@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 old=${1:?usage: tools/compare_outputs.sh OLD_MESHSAL NEW_MESHSAL [WORKDIR]}
 new=${2:?usage: tools/compare_outputs.sh OLD_MESHSAL NEW_MESHSAL [WORKDIR]}
 work=${3:-$(mktemp -d /tmp/meshsal_compare.XXXXXX)}
-data=../shared/data/meshes
+data=$(cd ../shared/data/meshes 2>/dev/null && pwd || echo ../shared/data/meshes)
 inputs=(bunny_3k.off spot_3k.obj fandisk_6k.obj bun_zipper_res3.ply max_planck_5k.obj)
 for m in "${inputs[@]}"; do
   [ -f "$data/$m" ] || { echo "SKIPPED: $data/$m is absent"; exit 0; }
@@ -41,33 +41,39 @@ view IN -o OUT/page.html --backend cpu -q
 EOF
 }
 
-# Runs every command of one build into WORK/NAME/<input>/ (stdout kept as NNN.stdout).
+# Runs every command of one build into WORK/NAME/<input>/ (stdout kept as NNN.stdout), from
+# inside WORK/NAME so that the names the outputs print are the same for both builds.
 run_build() {
   local bin=$1 name=$2
-  for m in "${inputs[@]}" glb; do
-    local in="$data/$m" out="$work/$name/$m"
-    mkdir -p "$out"
-    if [ "$m" = glb ]; then
-      "$bin" saliency "$data/spot_3k.obj" -o "$work/$name/spot.glb" --backend cpu -q
-      in="$work/$name/spot.glb"
-    fi
-    local i=0
-    while read -r line; do
-      i=$((i + 1))
-      local cmd=${line//IN/$in}
-      cmd=${cmd//OUT/$out}
-      # shellcheck disable=SC2086
-      "$bin" $cmd > "$out/$(printf %03d $i).stdout" 2> "$out/$(printf %03d $i).stderr" || echo "exit $?" >> "$out/$(printf %03d $i).stdout"
-      sed -i -E 's/"(seconds|[a-z_]*_seconds|pairs_per_second|peak_rss)": [0-9.e+-]+/"\1": T/g' "$out/$(printf %03d $i).stdout"
-    done < <(commands)
-    mkdir -p "$out/batch_in"
-    cp "$in" "$out/batch_in/"
-    "$bin" batch "$out/batch_in" -o "$out/batch" --simplify 0.2 --view --html --lod 0.5,0.2 --backend cpu --size 128 -q \
-      > /dev/null 2>&1 || echo "batch exit $?" > "$out/batch.exit"
-    rm -rf "$out/batch/.meshsal-batch" "$out/batch/batch.jsonl"
-    # A page says how long its saliency took.
-    find "$out" -name '*.html' -exec sed -i -E 's#<td>computed in</td><td>[0-9.e+-]+ s</td>#<td>computed in</td><td>T</td>#' {} +
-  done
+  mkdir -p "$work/$name"
+  (
+    cd "$work/$name" || exit 1
+    for m in "${inputs[@]}" glb; do
+      local in="$data/$m" out="$m"
+      mkdir -p "$out"
+      if [ "$m" = glb ]; then
+        "$bin" saliency "$data/spot_3k.obj" -o spot.glb --backend cpu -q
+        in=spot.glb
+      fi
+      local i=0
+      while read -r line; do
+        i=$((i + 1))
+        local cmd=${line//IN/$in}
+        cmd=${cmd//OUT/$out}
+        local base="$out/$(printf %03d $i)"
+        # shellcheck disable=SC2086
+        "$bin" $cmd > "$base.stdout" 2> "$base.stderr" || echo "exit $?" >> "$base.stdout"
+        sed -i -E 's/"(seconds|[a-z_]*_seconds|pairs_per_second|peak_rss)": [0-9.e+-]+/"\1": T/g' "$base.stdout"
+      done < <(commands)
+      mkdir -p "$out/batch_in"
+      cp "$in" "$out/batch_in/"
+      "$bin" batch "$out/batch_in" -o "$out/batch" --simplify 0.2 --view --html --lod 0.5,0.2 --backend cpu --size 128 -q \
+        > /dev/null 2>&1 || echo "batch exit $?" > "$out/batch.exit"
+      rm -rf "$out/batch/.meshsal-batch" "$out/batch/batch.jsonl"
+      # A page says how long its saliency took.
+      find "$out" -name '*.html' -exec sed -i -E 's#<td>computed in</td><td>[0-9.e+-]+ s</td>#<td>computed in</td><td>T</td>#' {} +
+    done
+  )
 }
 
 run_build "$old" old

@@ -140,10 +140,10 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
 void bind_out_of_core(py::module_& m) {
   m.def("saliency_file", &saliency_file, py::arg("input"), py::arg("output"), py::kw_only(),
         py::arg("memory_limit") = py::none(), py::arg("temp_dir") = py::none(), py::arg("tiles") = 0u,
-        py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003, py::arg("method") = "auto",
+        py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003, py::arg("method") = "exact",
         py::arg("threads") = 0u,
         R"(saliency_file(input, output, *, memory_limit=None, temp_dir=None, tiles=0, scales=None,
-              eps_frac=0.003, method='auto', threads=0) -> dict
+              eps_frac=0.003, method='exact', threads=0) -> dict
 
 `meshsal saliency IN -o OUT.ply --memory-limit SIZE`: the saliency of the mesh file `input`
 written to `output` (a PLY as the command writes it, the same bytes) without holding the
@@ -151,7 +151,7 @@ mesh whole: streamed into tiles in a temporary folder under temp_dir (default $T
 /tmp, removed at the end) and computed a tile at a time on the CPU. memory_limit: a size
 ('700M', '2G') or bytes, the peak resident memory to stay under (None: no limit, `tiles`
 decides); too small a limit raises meshsal.Error naming the smallest workable one.
-method 'auto' is taken as 'fast'. Returns the report (counts, tiles, tile_estimate,
+method: 'exact' (the default of every front end), 'fast', or 'auto' (taken as 'fast' here). Returns the report (counts, tiles, tile_estimate,
 saliency range, stages).
 
 input and output are str, bytes or os.PathLike. Before any work the library checks the

@@ -1,6 +1,7 @@
 // meshsal Python module: simplify() and its result object.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,21 @@ void fill_result(SimplifyOut& out, meshsal::Mesh result, meshsal::SimplifyReport
 
 namespace {
 
+// run_request, its refusals (RequestError) in this module's argument names.
+meshsal::RequestResult run_in_python_terms(const meshsal::Request& request) {
+  try {
+    return meshsal::run_request(request);
+  } catch (const meshsal::RequestError& e) {
+    std::string m = e.what();
+    for (const auto& [flag, arg] : {std::pair{"--target-faces N", "target_faces"}, std::pair{"--ratio R", "ratio"},
+                                    std::pair{"--target-error E", "target_error"}, std::pair{"--target-faces", "target_faces"},
+                                    std::pair{"--ratio", "ratio"}, std::pair{"--target-error", "target_error"},
+                                    std::pair{"--lod", "lod"}})
+      for (size_t at = m.find(flag); at != std::string::npos; at = m.find(flag, at)) m.replace(at, std::strlen(flag), arg);
+    throw py::value_error(m);
+  }
+}
+
 // lod=: a str as --lod reads it, or a sequence (list, tuple, range, array, generator) of
 // ints (face counts) and floats (ratios); bytes are no str here (b'0.5' is three ints).
 std::vector<meshsal::SimplifyOptions> lod_levels(const py::object& lod) {
@@ -118,17 +134,12 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (!(error_percent >= 0 && error_percent <= 100))
     throw py::value_error("target_error must be in [0, 100] (% of the bounding-box diagonal), got " +
                           std::string(py::str(target_error)));
-  if (!target_faces.is_none() && !ratio.is_none()) throw py::value_error("give only one of target_faces and ratio");
-  if (lod && (!target_faces.is_none() || !ratio.is_none() || error_percent > 0))
-    throw py::value_error("lod names every level: give it without target_faces, ratio or target_error");
-  if (!lod && target_faces.is_none() && ratio.is_none() && error_percent == 0)
-    throw py::value_error("give target_faces, ratio or target_error");
   meshsal::SimplifyOptions options;
   options.target_error = error_percent / 100;
   options.lock_border = lock_border;
-  if (!target_faces.is_none()) {
-    options.target_faces = size_t(integer_arg(target_faces, "target_faces", 1, 4000000000LL));
-  } else if (!ratio.is_none()) {
+  // Both as given: the library's rules (check_request) say which combine.
+  if (!target_faces.is_none()) options.target_faces = size_t(integer_arg(target_faces, "target_faces", 1, 4000000000LL));
+  if (!ratio.is_none()) {
     const double r = number_or(ratio, 0, "ratio");
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1], got " + std::string(py::str(ratio)));
     options.ratio = r;
@@ -166,17 +177,27 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
 
   SimplifyOut out;
   const double diagonal = mesh_diagonal(mesh);  // for the error in model units, as the CLI's JSON
+  // The library's one pipeline (run_request), as `meshsal simplify` runs it: the rules of
+  // what combines are its (check_request), their messages in this module's spelling.
+  meshsal::Request req;
+  req.mesh = &mesh;
+  req.attributed = &mesh;
+  req.simplify_in_memory = true;
+  req.simplify = options;
+  if (lod) req.lod = *lod;
+  req.weighting = computed ? meshsal::parse_weighting(mode) : meshsal::Weighting::None;
+  req.weight_options = wo;
+  if (mode == "array") req.vertex_weights = &w;
+  if (!s.empty()) req.saliency_values = &s;
+  req.saliency = so;
+  meshsal::RequestResult r;
+  {
+    const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
+    req.simplify.cancel = req.saliency.cancel = call.flag();
+    r = run_in_python_terms(req);
+  }
   if (lod) {
-    // The chain (simplify_lod): the saliency once, carried down; each level as a result.
-    std::vector<meshsal::LodLevel> chain;
-    {
-      const InterruptibleCall call;
-      std::vector<meshsal::SimplifyOptions> levels = *lod;
-      for (meshsal::SimplifyOptions& o : levels) o.lock_border = lock_border, o.threads = so.threads, o.cancel = call.flag();
-      so.cancel = call.flag();
-      chain = meshsal::simplify_lod(mesh, levels, computed ? &wo : nullptr, so, s.empty() ? nullptr : &s);
-    }
-    for (meshsal::LodLevel& level : chain) {
+    for (meshsal::LodLevel& level : r.lod) {
       SimplifyOut o;
       if (computed) meshsal::set_vertex_attribute(level.mesh, "quality", level.saliency);
       fill_result(o, std::move(level.mesh), std::move(level.report), notices, diagonal, mode, wo, computed,
@@ -185,25 +206,10 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     }
     return out;
   }
-  meshsal::Mesh result;
-  meshsal::SimplifyReport report;
-  {
-    const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
-    options.cancel = so.cancel = call.flag();
-    // A target at or above the face count keeps the mesh as it is (the library's rule),
-    // with no saliency computed for it.
-    if (computed && !meshsal::simplify_keeps_mesh(options, mesh.triangle_count())) {
-      meshsal::SimplificationWeights sw = meshsal::simplification_weights(mesh, wo, so, s.empty() ? nullptr : &s);
-      w = std::move(sw.weights);
-      out.alpha = sw.alpha;
-      if (!sw.device.empty()) out.device = sw.device;
-      // S goes on the mesh as its `quality` attribute, as `meshsal simplify` puts it in its
-      // PLY output (replacing one the input had), and is carried like the others.
-      meshsal::set_vertex_attribute(mesh, "quality", sw.saliency);
-    }
-    result = meshsal::simplify_mesh(mesh, options, w.empty() ? nullptr : &w, &report);
-  }
-  fill_result(out, std::move(result), std::move(report), notices, diagonal, mode, wo, computed, float32_vertices(vertices));
+  out.alpha = r.alpha;
+  if (!r.weights_device.empty()) out.device = r.weights_device;
+  fill_result(out, std::move(r.simplified), std::move(r.simplify), notices, diagonal, mode, wo, computed,
+              float32_vertices(vertices));
   return out;
 }
 

@@ -114,11 +114,12 @@ ViewPageReport write_view_page(const std::string& path, const Mesh& mesh, const 
   level.mesh = &shown;
   level.saliency = &shown_s;
   level.is_point = &points;
+  level.range = &options.range;
   const std::string glb = gltf_file_bytes(path, {level}, true);
 
   // The colour bar: the pictures' scale over the mesh's points, ticks where the square-root
   // position puts their values.
-  const ColorLimits limits = colour_limits(saliency, referenced_vertices(mesh));
+  const ColorLimits limits = colour_limits(saliency, referenced_vertices(mesh), options.range);
   std::string gradient = "linear-gradient(to right";
   for (int i = 0; i <= 20; ++i) {
     uint8_t rgb[3];

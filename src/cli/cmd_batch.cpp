@@ -40,6 +40,7 @@
 #include "output_check.h"
 #include "progress.h"
 #include "saliency/saliency.h"
+#include "request_options.h"
 #include "saliency_output.h"
 #include "view/camera.h"
 #include "view/picture.h"
@@ -63,32 +64,19 @@ struct Options {
   double simplify = 0;  // 0: none; (0, 1]: a ratio of the faces; > 1: a face count
   double target_error = 0;  // --target-error, % of the bounding-box diagonal (0: none)
   bool lock_border = false;
-  bool view = false, force = false, quiet = false;
+  bool view = false, force = false;
   bool html = false;  // --html: NAME_view.html per model and the gallery DIR/index.html
   std::string lod;    // --lod LIST: NAME_lod.glb per model, as `simplify --lod LIST -o NAME_lod.glb`
-  std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", up = "y";
-  std::string weights = meshsal::weighting_name(meshsal::kDefaultWeighting);  // --simplify's weighting
-  double weight_floor = -1;          // -1: the weighting's own (SaliencyWeightOptions::floor)
-  double eps_frac = 0.003;
-  unsigned threads = 0;
-  int device = -1, size = 512, restarts = 8, resolution = meshsal::kDefaultViewResolution;
-  std::string elevation;  // --elevation MIN,MAX of the best view (empty: the whole sphere)
-  std::string memory_limit, temp_dir;  // --memory-limit, --temp-dir: saliency out of core
-  uint64_t seed = 1;      // --seed of the best view's random starts
-  double depth_tol = 2.0; // --depth-tol of the best view's visibility
+  bool weight_floor_given = false;  // --weight-floor (the state records -1 for the weighting's own)
+  RequestText text;  // the options every command shares
 };
 
-// What one model's run needs besides its mesh.
+// What one model's run needs besides its mesh: the request every model makes (its input
+// and outputs filled per model).
 struct Plan {
   const Options* o;
   bool simplifying = false;  // --simplify or --target-error
-  std::vector<SimplifyOptions> lod;  // --lod's levels (empty: none)
-  SaliencyOptions saliency;
-  SaliencyWeightOptions weights;  // --simplify's
-  RenderStyle style;
-  Backend backend;
-  ElevationRange elevation;  // --elevation (the whole sphere without it)
-  uint64_t memory_limit = 0;  // --memory-limit: each model's saliency streamed through tiles
+  meshsal::Request request;
 };
 
 // GPU reuse as the log shows it: whether this model opened a device, and how many
@@ -107,190 +95,94 @@ struct GpuCounts {
 
 const double kDeg = 180.0 / 3.14159265358979323846;
 
-// The best view (as `meshsal viewpoint`), its picture, and its part of the log line.
-JsonObject best_view(const Plan& p, const Mesh& mesh, const SaliencyResult& r, const std::string& input,
-                     const std::string& png, BatchProgress& progress, ViewCamera* camera) {
-  const Timer t;
-  // The one view pipeline (best_viewpoint), with `meshsal viewpoint`'s settings.
-  ViewpointOptions vo;
-  vo.up = p.style.up;
-  vo.resolution = p.o->resolution;
-  vo.elevation = p.elevation;
-  vo.restarts = p.o->restarts;
-  vo.seed = p.o->seed;
-  vo.depth_tol_px = p.o->depth_tol;
-  vo.threads = p.o->threads;
-  vo.backend = p.backend;
-  vo.device = p.o->device;
-  vo.progress = [&progress](const char* stage, double f) { progress.stage(stage, f); };
-  vo.notice = p.saliency.notice;
-  vo.cancel = interrupt_flag();
-  const Viewpoint best = best_viewpoint(mesh, r.saliency, vo);
-  if (camera) *camera = best.camera;
-  const ViewAngles shown = best.view;
+// The seconds of a step of the request ("views", "simplify", ...), 0 when it did not run.
+double step_seconds(const RequestResult& r, const std::string& name) {
+  for (const StageTime& s : r.steps)
+    if (s.name == name) return s.seconds;
+  return 0;
+}
+
+// The best view's part of the log line (as `meshsal viewpoint`).
+JsonObject view_json(const RequestResult& res, const std::string& png) {
+  const Viewpoint& best = res.viewpoint;
   const double* d = best.camera.direction;
-  progress.stage("view picture", 0);
-  write_png(png, titled_view(mesh, &r.saliency, shown, p.style, file_name(input), "saliency"));
   JsonObject j;
-  j.text("output", png).number("theta_deg", shown.theta * kDeg).number("phi_deg", shown.phi * kDeg)
+  j.text("output", png).number("theta_deg", best.view.theta * kDeg).number("phi_deg", best.view.phi * kDeg)
       .raw("direction", "[" + std::to_string(d[0]) + ", " + std::to_string(d[1]) + ", " + std::to_string(d[2]) + "]")
       .number("visible_score", best.U).number("visible_fraction", best.visible_fraction)
       .text("device", best.backend_name).count("views_evaluated", best.optimised.views_evaluated)
-      .number("seconds", t.seconds());
+      .number("seconds", step_seconds(res, "views"));
   if (!best.note.empty()) j.text("note", best.note);
   return j;
 }
 
-// Whether two meshes are one surface with the same vertices (an OBJ or PLY read with its
-// attributes, when nothing was split or added).
-bool same_vertices(const Mesh& a, const Mesh& b) {
-  return a.positions == b.positions && a.triangles == b.triangles && a.position_vertex == b.position_vertex;
-}
-
-// NAME_simplified.obj as `meshsal simplify IN -o OUT.obj` makes it with the same options:
-// the mesh read with its attributes, the same weights (simplification_weights) and the
-// same simplify_mesh call, so the files are the same byte for byte.
-JsonObject simplified(const Plan& p, const LoadedModel& m, const SaliencyResult& r, const std::string& out) {
-  if (!m.attributed_error.empty()) throw Error(m.attributed_error);
-  const Mesh& mesh = m.has_attributed ? m.attributed : m.mesh;
-  const bool has_target = p.o->simplify > 1, has_ratio = p.o->simplify > 0 && p.o->simplify <= 1;
-  SimplifyOptions so;
-  so.threads = p.o->threads;
-  so.cancel = interrupt_flag();
-  if (has_target) so.target_faces = size_t(p.o->simplify);
-  else so.ratio = p.o->simplify;
-  so.target_error = p.o->target_error / 100;
-  so.lock_border = p.o->lock_border;
-  SimplifyReport rep;
-  const Timer t;
-  std::vector<double> weights;
-  if (p.o->weights != "none" && !((has_target || has_ratio) && simplify_keeps_mesh(so, mesh.triangle_count()))) {
-    // The saliency was computed with its Sm (Plan::saliency.smoothed) on this very mesh:
-    // the weights simplification_weights() would compute from it. Else (vertices split at
-    // UV seams, or added) on the mesh as read for simplifying, as `simplify` does.
-    if (same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() && r.smoothed.size() == mesh.vertex_count())
-      weights = saliency_weights(r.smoothed, referenced_vertices(mesh), p.weights);
-    else
-      weights = simplification_weights(mesh, p.weights, p.saliency).weights;
-  }
-  const Mesh s = simplify_mesh(mesh, so, weights.empty() ? nullptr : &weights, &rep);
-  write_obj(out, s);
-  // What the output cannot hold: in the model's record, and once per run on the terminal
-  // (the notice prints each line once), not once per model.
-  const std::string lost = mesh_output_note(out, s, false);
-  if (!lost.empty() && p.saliency.notice)
-    p.saliency.notice("note: some simplified outputs cannot hold all their input holds: see \"output_note\" in the log");
+// The simplified mesh's part: as `meshsal simplify IN -o OUT` makes it with the same options.
+JsonObject simplified_json(const Plan& p, const RequestResult& res, const std::string& out) {
+  const SimplifyReport& rep = res.simplify;
   JsonObject j;
+  const std::string lost = mesh_output_note(out, res.simplified, false);
   if (!lost.empty()) j.text("output_note", lost);
   j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
       .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
       .number("error_percent", 100 * rep.error);
+  if (p.request.out_of_core.memory_limit)
+    j.count("tiles", res.simplify_out_of_core.tiles).count("peak_rss", meshsal::peak_resident_bytes());
   if (p.o->target_error > 0) j.number("target_error_percent", p.o->target_error);
   if (p.o->lock_border) j.flag("lock_border", true);
-  if (!s.attributes.empty()) j.count("attributes", s.attributes.size());
-  j.number("seconds", t.seconds());
+  if (!res.simplified.attributes.empty()) j.count("attributes", res.simplified.attributes.size());
+  j.number("seconds", step_seconds(res, "simplify"));
   if (!rep.note.empty()) j.text("note", rep.note);
   return j;
 }
 
-// NAME_lod.glb as `meshsal simplify IN -o NAME_lod.glb --lod LIST` writes it: the mesh read
-// with its attributes, S computed once (this model's, when it was computed on the same
-// vertices), simplify_lod and write_lod.
-JsonObject lod_chain(const Plan& p, const LoadedModel& m, const SaliencyResult& r, const std::string& out) {
-  if (!m.attributed_error.empty()) throw Error(m.attributed_error);
-  const Mesh& mesh = m.has_attributed ? m.attributed : m.mesh;
-  const Timer t;
-  const bool weighted = p.o->weights != "none";
-  std::vector<double> s;
-  if (weighted)
-    s = same_vertices(mesh, m.mesh) && mesh.position_vertex.empty() ? r.saliency : compute_saliency(mesh, p.saliency).saliency;
-  std::vector<SimplifyOptions> levels = p.lod;
-  for (SimplifyOptions& l : levels) l.lock_border = p.o->lock_border, l.cancel = interrupt_flag();
-  const std::vector<LodLevel> chain = simplify_lod(mesh, levels, weighted ? &p.weights : nullptr, p.saliency, weighted ? &s : nullptr);
-  write_lod(out, mesh, weighted ? &s : nullptr, chain);
-  std::string faces = "[";
-  for (size_t i = 0; i < chain.size(); ++i) faces += (i ? ", " : "") + std::to_string(chain[i].report.output_faces);
-  JsonObject j;
-  j.text("output", out).raw("faces", faces + "]").number("seconds", t.seconds());
-  return j;
-}
-
-// NAME_simplified.ply as `meshsal simplify IN -o OUT.ply --memory-limit SIZE` writes it with
-// the same options (simplify_file: the tiled simplifier on disk, its own saliency).
-JsonObject simplified_out_of_core(const Plan& p, const std::string& input, const std::string& out) {
-  SimplifyOptions so;
-  so.threads = p.o->threads;
-  so.cancel = interrupt_flag();
-  if (p.o->simplify > 1) so.target_faces = size_t(p.o->simplify);
-  else so.ratio = p.o->simplify;
-  so.lock_border = p.o->lock_border;
-  OutOfCoreOptions ooc;
-  ooc.memory_limit = p.memory_limit;
-  ooc.temp_dir = p.o->temp_dir;
-  const Timer t;
-  const OutOfCoreSimplifyReport r =
-      simplify_file(input, out, so, p.o->weights == "none" ? nullptr : &p.weights, p.saliency, ooc);
-  const SimplifyReport& rep = r.simplify;
-  JsonObject j;
-  j.text("output", out).count("faces", rep.output_faces).count("vertices", rep.output_vertices)
-      .count("target_faces", rep.target_faces).flag("reached", rep.reached).flag("unchanged", rep.unchanged)
-      .number("error_percent", 100 * rep.error).count("tiles", r.tiles).count("peak_rss", meshsal::peak_resident_bytes())
-      .number("seconds", t.seconds());
-  if (!rep.note.empty()) j.text("note", rep.note);
-  return j;
-}
-
-// One model, loaded: saliency, its PLY, then what was asked. Throws on failure.
+// One model: its request (the saliency PLY, then what was asked) and its log line. Throws
+// on failure.
 JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string& name,
                          const ModelOutputs& out, BatchProgress& progress) {
-  const Timer t;
-  if (p.memory_limit) {
-    // Out of core (the loader read nothing): the library streams the file through tiles.
-    OutOfCoreOptions ooc;
-    ooc.memory_limit = p.memory_limit;
-    ooc.temp_dir = p.o->temp_dir;
-    const OutOfCoreReport rep = saliency_file(m.path, out.saliency, p.saliency, ooc);
-    JsonObject j = out_of_core_json(m.path, out.saliency, rep, p.saliency.method, p.memory_limit, t.seconds(),
-                                    meshsal::peak_resident_bytes());
-    if (!out.simplified.empty()) {
-      progress.stage("simplify", 0);
-      j.object("simplify", simplified_out_of_core(p, m.path, out.simplified));
-    }
-    j.text("status", "done").text("name", name).number("total_seconds", t.seconds());
-    return j;
+  Request r = p.request;
+  r.input = m.path;
+  if (!p.request.out_of_core.memory_limit) {
+    // Read ahead by the loader (ModelLoader): plainly, and with its attributes for the
+    // meshes that carry them.
+    r.mesh = &m.mesh;
+    if (m.has_attributed) r.attributed = &m.attributed;
+    else if (!m.attributed_error.empty() && (!out.simplified.empty() || !out.lod.empty())) throw Error(m.attributed_error);
   }
+  r.saliency_output = out.saliency;
+  r.picture_output = out.view;
+  r.page_output = out.page;
+  r.find_view = !out.view.empty() || !out.page.empty();
+  r.simplified_output = out.simplified;
+  r.lod_output = out.lod;
+  r.saliency.progress = [&progress](const char* stage, double f) { progress.stage(stage, f); };
+  r.viewpoint.progress = r.saliency.progress;
   const GpuCounts gpu0 = GpuCounts::now();
-  const SaliencyResult r = compute_saliency(m.mesh, p.saliency);
-  progress.stage("writing", 0);
-  const Timer tw;
-  write_saliency_ply(out.saliency, m.mesh, r, false);
-  const double write_s = tw.seconds();
-  JsonObject j = saliency_json(m.path, out.saliency, m.mesh, r, m.seconds);
-  j.text("status", "done").text("name", name).number("write_seconds", write_s);
+  const RequestResult res = run_request(r);
+  JsonObject j;
+  if (p.request.out_of_core.memory_limit) {
+    j = out_of_core_json(m.path, out.saliency, res.out_of_core, r.saliency.method, r.out_of_core.memory_limit,
+                         step_seconds(res, "saliency output"), meshsal::peak_resident_bytes());
+  } else {
+    double computing = 0;
+    for (const StageTime& st : res.saliency.stages) computing += st.seconds;
+    j = saliency_json(m.path, out.saliency, m.mesh, res.saliency, m.seconds);
+    j.number("write_seconds", std::max(0.0, step_seconds(res, "saliency output") - computing));
+  }
+  j.text("status", "done").text("name", name);
   if (m.welded_corners) j.count("welded_corners", m.welded_corners);
-  ViewCamera camera;
-  if (!out.view.empty()) j.object("view", best_view(p, m.mesh, r, m.path, out.view, progress, &camera));
-  if (!out.page.empty()) {
-    // The page `meshsal view` writes, from the same view.
-    progress.stage("page", 0);
-    ViewPageOptions po;
-    po.title = file_name(m.path);
-    po.stats = view_page_stats(m.mesh, r.saliency, "computed (" + r.backend_name + ")", t.seconds() + m.seconds);
-    write_view_page(out.page, m.mesh, r.saliency, camera, po);
-    j.text("page", out.page);
-  }
-  if (!out.simplified.empty()) {
-    progress.stage("simplify", 0);
-    j.object("simplify", simplified(p, m, r, out.simplified));
-  }
+  if (!out.view.empty()) j.object("view", view_json(res, out.view));
+  if (!out.page.empty()) j.text("page", out.page);
+  if (!out.simplified.empty()) j.object("simplify", simplified_json(p, res, out.simplified));
   if (!out.lod.empty()) {
-    progress.stage("levels of detail", 0);
-    j.object("lod", lod_chain(p, m, r, out.lod));
+    std::string faces = "[";
+    for (size_t i = 0; i < res.lod.size(); ++i) faces += (i ? ", " : "") + std::to_string(res.lod[i].report.output_faces);
+    j.object("lod", JsonObject().text("output", out.lod).raw("faces", faces + "]").number("seconds",
+                                                                                         step_seconds(res, "levels of detail")));
   }
   const GpuCounts gpu1 = GpuCounts::now();
-  if (built_with_vulkan())
+  if (built_with_vulkan() && !p.request.out_of_core.memory_limit)
     j.flag("device_opened", gpu1.opened > gpu0.opened).count("pipelines_built", gpu1.kernels - gpu0.kernels);
-  j.number("total_seconds", t.seconds() + m.seconds);
+  j.strings("outputs", res.outputs).number("total_seconds", res.seconds + m.seconds);
   return j;
 }
 
@@ -328,13 +220,14 @@ std::string not_read_reason(const std::string& input) {
 // Everything that shapes a model's outputs, as one line (batch_state.h): a change in any of
 // them makes the model out of date.
 std::string options_line(const Options& o) {
+  const RequestText& t = o.text;
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "version=%d method=%s scales=%s eps_frac=%.17g precision=%s backend=%s device=%d view=%d "
                 "size=%d restarts=%d resolution=%d up=%s simplify=%.17g weights=%s weight_floor=%.17g",
-                MESHSAL_VERSION, o.method.c_str(), o.scales.c_str(), o.eps_frac, o.precision.c_str(),
-                o.backend.c_str(), o.device, int(o.view || o.html), o.size, o.restarts, o.resolution, o.up.c_str(),
-                o.simplify, o.weights.c_str(), o.weight_floor);
+                MESHSAL_VERSION, t.method.c_str(), t.scales.c_str(), t.eps_frac, t.precision.c_str(),
+                t.backend.c_str(), t.device, int(o.view || o.html), t.size, t.restarts, t.resolution, t.up.c_str(),
+                o.simplify, t.weights.c_str(), o.weight_floor_given ? t.weight_floor : -1.0);
   std::string line = buf;
   // Only where a simplified mesh is made, so that the records of runs without one still
   // hold (a simplified mesh carries the input's attributes since these options came).
@@ -346,11 +239,15 @@ std::string options_line(const Options& o) {
   // Only when not the defaults, so that the records of earlier runs stay up to date.
   if (o.html) line += " html=1";
   if (!o.lod.empty()) line += " lod=" + o.lod + " lock_border=" + std::to_string(int(o.lock_border));
-  if (!o.elevation.empty()) line += " elevation=" + o.elevation;
-  if (o.seed != 1) line += " seed=" + std::to_string(o.seed);
-  if (o.depth_tol != 2.0) {
+  if (!t.elevation.empty()) line += " elevation=" + t.elevation;
+  if (!t.color_range.empty()) line += " color_range=" + t.color_range;
+  if (t.score != "saliency") line += " score=" + t.score;
+  if (t.lambda_given) line += " lambda=" + std::to_string(t.lambda);
+  if (t.alpha_given) line += " alpha_percentile=" + std::to_string(t.alpha_percentile);
+  if (t.seed != 1) line += " seed=" + std::to_string(t.seed);
+  if (t.depth_tol != 2.0) {
     char tol[40];
-    std::snprintf(tol, sizeof tol, " depth_tol=%.17g", o.depth_tol);
+    std::snprintf(tol, sizeof tol, " depth_tol=%.17g", t.depth_tol);
     line += tol;
   }
   return line;
@@ -427,11 +324,11 @@ int run(Options o) {
                      std::to_string(o.simplify));
   if (o.lock_border && o.simplify == 0 && o.target_error == 0 && o.lod.empty())
     throw UsageError("--lock-border needs --simplify, --target-error or --lod");
-  if (!o.lod.empty() && !o.memory_limit.empty())
+  if (!o.lod.empty() && !o.text.memory_limit.empty())
     throw UsageError("--lod simplifies each model in memory: not with --memory-limit");
   // Out of core the mesh is never whole in memory: the saliency PLY, and with --simplify
   // NAME_simplified.ply as `simplify --memory-limit` writes it, are all a model gets.
-  if (!o.memory_limit.empty() && (o.view || o.html || !o.contact_sheet.empty() || o.target_error > 0))
+  if (!o.text.memory_limit.empty() && (o.view || o.html || !o.contact_sheet.empty() || o.target_error > 0))
     throw UsageError("--memory-limit computes each model out of core: it takes no --view, --html, --contact-sheet "
                      "(they need the mesh in memory) or --target-error (give --simplify RATIO|FACES)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
@@ -439,27 +336,15 @@ int run(Options o) {
   Plan p;
   p.o = &o;
   p.simplifying = o.simplify > 0 || o.target_error > 0;
-  if (!o.lod.empty()) p.lod = parse_lod_levels(o.lod);
-  p.backend = parse_backend(o.backend);
-  p.saliency.eps_frac = o.eps_frac;
-  p.saliency.scales = parse_scales(o.scales);
-  p.saliency.threads = o.threads;
-  p.saliency.raw_maps = false;  // no command of batch writes them
-  p.saliency.backend = p.backend;
-  p.saliency.precision = parse_precision(o.precision);
-  p.saliency.method = parse_method(o.method);
-  p.saliency.device = o.device;
-  p.saliency.cancel = interrupt_flag();
-  if (!o.memory_limit.empty()) p.memory_limit = parse_memory_size(o.memory_limit);
-  // The smoothed saliency Sm the weights are made of, computed with S as `simplify` does.
-  p.saliency.smoothed = p.simplifying && o.weights != "none";
-  check_saliency_options(p.saliency);
-  p.weights = weight_preset(parse_weighting(o.weights));
-  if (o.weight_floor >= 0) p.weights.floor = o.weight_floor;
-  p.style.size = o.size;
-  p.style.up = parse_up_axis(o.up);
-  if (!o.elevation.empty()) p.elevation = parse_elevation_range(o.elevation);
-  check_render_style(p.style);
+  Request& req = p.request;
+  req = request_from(o.text, nullptr);
+  req.saliency.raw_maps = false;  // no command of batch writes them
+  if (o.simplify > 1) req.simplify.target_faces = size_t(o.simplify);
+  else if (o.simplify > 0) req.simplify.ratio = o.simplify;
+  req.simplify.target_error = o.target_error / 100;
+  req.simplify.lock_border = o.lock_border;
+  if (!o.lod.empty()) req.lod = parse_lod_levels(o.lod);
+  check_render_style(req.style);
 
   // Before any work: the inputs, the output folder, the log and the sheet.
   std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
@@ -487,7 +372,8 @@ int run(Options o) {
   std::vector<ModelOutputs> outs;
   for (size_t i = 0; i < inputs.size(); ++i)
     outs.push_back(
-        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, p.memory_limit != 0, o.html, !p.lod.empty()));
+        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, req.out_of_core.memory_limit != 0, o.html,
+                      !req.lod.empty()));
   check_batch_outputs_apart(o.out_dir, {{log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {gallery, "--html's gallery"}},
                             inputs, names, outs);
   // The list files are inputs too: the log appended to one would be read as models next time.
@@ -547,24 +433,26 @@ int run(Options o) {
 
   std::unique_ptr<BatchLog> log;
   if (writer) log = std::make_unique<BatchLog>(log_path);
-  if (log && log->torn_bytes() && !o.quiet)  // its lines follow on a line of their own
+  if (log && log->torn_bytes() && !o.text.quiet)  // its lines follow on a line of their own
     std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
                  printable(log_path).c_str(), static_cast<unsigned long long>(log->torn_bytes()));
-  BatchProgress progress(writer && !o.quiet && stderr_is_terminal(), inputs.size());
+  BatchProgress progress(writer && !o.text.quiet && stderr_is_terminal(), inputs.size());
   std::set<std::string> told;  // each notice once per run, not once per model
   const auto tell = [&](const std::string& line) {
-    if (!o.quiet && told.insert(line).second) {
+    if (!o.text.quiet && told.insert(line).second) {
       progress.clear();
       std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
   };
   std::vector<std::string>* model_notes = nullptr;
-  p.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
-  p.saliency.notice = [&](const std::string& line) {
+  req.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
+  req.viewpoint.progress = req.saliency.progress;
+  req.saliency.notice = [&](const std::string& line) {
     if (model_notes) model_notes->push_back(line);
     // Under MPI rank 0 tells a model's notes with its line, in model order.
     if (ranks == 1 || (!model_notes && writer)) tell(line);
   };
+  req.viewpoint.notice = req.saliency.notice;
   std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
   std::vector<std::string> sheet_status(inputs.size()), sheet_message(inputs.size());  // the others'
   const auto report_failure = [&](const std::string& in, size_t i, const std::string& error) {
@@ -596,7 +484,7 @@ int run(Options o) {
         j.text("mesh", in).text("status", "skipped").text("name", names[i]).text("reason", not_read[i]);
         progress.clear();
         log->add(j.str());
-        if (!o.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
+        if (!o.text.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
         sheet_status[i] = "skipped";
         sheet_message[i] = not_read[i];
         skipped++;
@@ -676,8 +564,8 @@ int run(Options o) {
   };
 
   std::unique_ptr<ModelLoader> loader;  // none out of core: saliency_file reads each file
-  if (!to_load.empty() && !p.memory_limit)
-    loader = std::make_unique<ModelLoader>(to_load, p.simplifying || !p.lod.empty());
+  if (!to_load.empty() && !req.out_of_core.memory_limit)
+    loader = std::make_unique<ModelLoader>(to_load, p.simplifying || !req.lod.empty());
   const size_t rounds = batch_rounds(to_compute.size(), ranks);
   for (size_t round = 0; round < rounds && !interrupted; ++round) {
     const size_t first = round * size_t(ranks), k = first + size_t(rank);
@@ -744,7 +632,15 @@ int run(Options o) {
       gallery_failed = true;
     }
   }
-  if (!o.quiet) {
+  if (o.text.json) {
+    // The run's summary as one JSON object (each model's is its log line).
+    std::vector<std::string> written{log_path};
+    if (!o.contact_sheet.empty() && !sheet_failed && !interrupted) written.push_back(o.contact_sheet);
+    if (o.html && !gallery_failed && !interrupted) written.push_back(gallery);
+    JsonObject().count("models", inputs.size()).count("computed", computed).count("skipped", skipped)
+        .count("failed", failed).flag("interrupted", interrupted).count("ranks", uint64_t(ranks))
+        .text("log", log_path).strings("outputs", written).number("seconds", t_run.seconds()).print();
+  } else if (!o.text.quiet) {
     std::string on_ranks;  // how the computed models were shared (none with one process)
     for (int r = 0; ranks > 1 && r < ranks; ++r)
       on_ranks += (r ? ", " : (" on " + std::to_string(ranks) + " ranks (computed: ")) +
@@ -833,48 +729,25 @@ RunFn setup(CLI::App& sub) {
       ->check(finite_in(0, 100, true));
   sub.add_flag("--lock-border", o->lock_border,
                "Simplified mesh: keep the vertices of open borders exactly in place (as simplify --lock-border)");
-  sub.add_option("--weights", o->weights,
-                 "--simplify's weighting: balanced, saliency (the paper's recipe) or none (see simplify --help)")
-      ->capture_default_str()->check(CLI::IsMember({"saliency", "balanced", "none"}));
-  sub.add_option("--weight-floor", o->weight_floor,
-                 "--simplify: raise every weight W to at least this fraction of the mean W (default: the "
-                 "weighting's, see simplify --help; 0 = the paper's literal rule)")
-      ->check(finite_in(0, 100));
+  add_weight_options(sub, o->text);
   sub.add_option("--contact-sheet", o->contact_sheet,
                  "One PNG with a tile per model: its best-view picture as a thumbnail, or a failed one "
                  "marked with its error; the name under it (implies --view)");
-  sub.add_option("--memory-limit", o->memory_limit,
-                 "Compute each model's saliency out of core under this peak resident memory (e.g. "
-                 "700M, 2G), as `saliency --memory-limit` does; no --view, --html, --contact-sheet or --target-error. " +
-                     std::string(kSizeSyntax))
-      ->check(memory_size());
-  add_temp_dir_option(sub, &o->temp_dir);
+  add_memory_options(sub, o->text,
+                     "Compute each model's saliency out of core under this peak resident memory (e.g. "
+                     "700M, 2G), as `saliency --memory-limit` does; no --view, --html, --contact-sheet or --target-error.");
   sub.add_flag("--force", o->force, "Recompute models whose outputs are up to date");
-  sub.add_option("--backend", o->backend, "auto (a GPU when present, else the CPU), gpu or cpu")
-      ->capture_default_str()->check(CLI::IsMember({"auto", "cpu", "gpu"}));
-  add_precision_option(sub, &o->precision);
-  add_method_option(sub, &o->method);
-  sub.add_option("--device", o->device, "Vulkan device index for the gpu backend (see `meshsal devices`)")
-      ->check(whole_in(-1, 255));
-  sub.add_option("--scales", o->scales, "Center-surround scales in units of eps")
-      ->capture_default_str()->check(scales_list());
-  sub.add_option("--eps-frac", o->eps_frac, "eps as a fraction of the bounding-box diagonal")
-      ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
-  add_threads_option(sub, o->threads, "CPU threads (0 = all cores)");
-  sub.add_option("--size", o->size, "side of the best-view picture in pixels")
-      ->capture_default_str()->check(whole_in(16, 8192));
-  sub.add_option("--restarts", o->restarts, "best view: gradient-ascent restarts")
-      ->capture_default_str()->check(whole_in(1, 1000));
-  sub.add_option("--seed", o->seed, "best view: seed of the random starts")->capture_default_str();
-  sub.add_option("--depth-tol", o->depth_tol, "best view: visibility depth tolerance in pixel widths")
-      ->capture_default_str()->check(finite_in(0, 1000));
-  sub.add_option("--resolution", o->resolution, "best view: z-buffer side in pixels")
-      ->capture_default_str()->check(whole_in(16, 8192));
-  sub.add_option("--up", o->up, "mesh axis that points up in the pictures: x, y, z, -x, -y or -z")
-      ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
-  add_elevation_option(sub, &o->elevation);
-  sub.add_flag("-q,--quiet", o->quiet, "Print nothing but errors (no progress, notes or summary)");
-  return [o] { return run(*o); };
+  add_saliency_options(sub, o->text);
+  add_picture_options(sub, o->text, "side of the best-view picture in pixels");
+  add_view_options(sub, o->text);
+  sub.add_flag("-q,--quiet", o->text.quiet, "Print nothing but errors (no progress, notes or summary)");
+  sub.add_flag("--json", o->text.json,
+               "Print the run's summary as one JSON object on stdout (models, computed, skipped, failed, log, "
+               "outputs); each model's is its line in the log");
+  return [o, &sub] {
+    o->weight_floor_given = sub.get_option("--weight-floor")->count() > 0;
+    return run(*o);
+  };
 }
 
 const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup, true});

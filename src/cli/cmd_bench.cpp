@@ -35,6 +35,7 @@ struct Args {
   std::vector<std::string> meshes;
   std::string data_dir;
   bool json = false;
+  bool quiet = false;  // -q: no progress line
   bool simplify = false;
   std::string plot, sweep = "short";  // --simplify only (cmd_bench_simplify.h)
   unsigned threads = 0;
@@ -317,7 +318,7 @@ int run(const Args& a) {
       continue;
     }
     for (const auto& opt : bench_backends(a)) {
-      if (!a.json && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", printable(p).c_str());
+      if (!a.json && !a.quiet && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", printable(p).c_str());
       try {
         rows.push_back(bench_one(model, mesh, read, opt, a.repeat));
         rows.back().path = p;
@@ -344,6 +345,8 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("meshes", a->meshes, "Mesh files to time");
   sub.add_option("--data-dir", a->data_dir, "Folder of the default benchmark meshes");
   sub.add_flag("--json", a->json, "Print one JSON object (a row per mesh and device under \"rows\") instead of the table");
+  // Accepted as every command takes it: the figures are the command's result.
+  sub.add_flag("-q,--quiet", a->quiet, "No progress line on stderr (the figures are printed, and what was skipped)");
   sub.add_flag("--simplify", a->simplify,
                "Benchmark simplification instead (plain, saliency, balanced, meshoptimizer, and a sweep "
                "of the weighting) at 1% and 5% of the faces of armadillo_43k, dragon_50k, igea_134k, lucy_50k");

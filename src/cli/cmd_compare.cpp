@@ -29,15 +29,16 @@ struct Args {
   double fraction = 0.30;
   unsigned threads = 0;
   bool json = false;  // accepted like every command's --json; the output is always JSON
+  bool quiet = false;  // -q: no progress or notes (the result is printed)
 };
 
 int run(const Args& a) {
   using namespace meshsal;
   const meshsal::Timer t0;
-  Progress progress(stderr_is_terminal());  // on stderr: stdout holds only the JSON
+  Progress progress(!a.quiet && stderr_is_terminal());  // on stderr: stdout holds only the JSON
   progress.update("reading", 0.0);
-  const Mesh original = load_input(a.original, false);
-  const Mesh simplified = load_input(a.simplified, false);
+  const Mesh original = load_input(a.original, a.quiet);
+  const Mesh simplified = load_input(a.simplified, a.quiet);
   std::vector<double> s;
   std::string source, device = "cpu";  // distances are measured on the CPU
   if (!a.saliency.empty()) {
@@ -51,7 +52,9 @@ int run(const Args& a) {
     so.method = meshsal::parse_method(a.method);
     so.threads = a.threads;
     so.raw_maps = false;
-    so.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", printable(line).c_str()); };
+    so.notice = [&a](const std::string& line) {
+      if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
+    };
     so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     SaliencyResult r = compute_saliency(original, so);
     s = std::move(r.saliency);
@@ -113,6 +116,7 @@ RunFn setup(CLI::App& sub) {
   add_threads_option(sub, a->threads, "Threads (0 = all cores)");
   sub.add_flag("--json", a->json,
                "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json)");
+  sub.add_flag("-q,--quiet", a->quiet, "No progress or notes on stderr (the result is still printed)");
   return [a] { return run(*a); };
 }
 

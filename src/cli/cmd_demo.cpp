@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "json_object.h"
 #include "json_string.h"
 #include "meshsal/meshsal.h"
 #include "cli/render_demo.h"
@@ -27,6 +28,7 @@ struct Args {
   std::string dir = "demo_out", backend = "auto";
   int subdivisions = 6;
   unsigned threads = 0;
+  bool quiet = false, json = false;
 };
 
 // Mean distance of the masked vertices of `mesh` to the surface `simplified`.
@@ -52,13 +54,15 @@ double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& 
 }
 
 int run(const Args& a) {
+  // The human summary: nothing with -q, the JSON object instead with --json.
+  const bool human = !a.quiet && !a.json;
   using namespace meshsal;
   // Before any work: the folder exists (or is made) and is writable.
   prepare_output_folder(a.dir);
 
   std::vector<uint8_t> feature, bumps;
   Mesh mesh = make_bumpy_sphere(a.subdivisions, &feature, &bumps);
-  std::printf("demo mesh: a sphere with ~900 identical small bumps and one larger unique feature\n");
+  if (human) std::printf("demo mesh: a sphere with ~900 identical small bumps and one larger unique feature\n");
 
   SaliencyOptions opt;
   opt.cancel = interrupt_flag();
@@ -67,20 +71,22 @@ int run(const Args& a) {
   opt.backend = parse_backend(a.backend);
   opt.precision = meshsal::parse_precision(a.precision);
   opt.method = meshsal::parse_method(a.method);
-  Progress progress(stderr_is_terminal());
+  Progress progress(!a.quiet && stderr_is_terminal());
   opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", printable(line).c_str()); };
+  opt.notice = [&a](const std::string& line) {
+    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
+  };
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.finish();
-  print_saliency_summary(mesh, r, 0.0);
+  if (!a.quiet && !a.json) print_saliency_summary(mesh, r, 0.0);
 
   const std::string out = a.dir + "/bumpy_sphere_saliency.ply";
-  write_saliency_ply(out, mesh, r, true);
-  std::printf("\n                 mean |curvature|   mean saliency\n");
-  std::printf("unique feature   %16.3f   %13.3f\n", mean_over(r.curvature, feature), mean_over(r.saliency, feature));
-  std::printf("repeated bumps   %16.3f   %13.3f\n", mean_over(r.curvature, bumps), mean_over(r.saliency, bumps));
-  std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
-  std::printf("wrote %s (open in MeshLab: colour = saliency)\n", printable(out).c_str());
+  write_saliency(out, mesh, r, true);
+  if (human) std::printf("\n                 mean |curvature|   mean saliency\n");
+  if (human) std::printf("unique feature   %16.3f   %13.3f\n", mean_over(r.curvature, feature), mean_over(r.saliency, feature));
+  if (human) std::printf("repeated bumps   %16.3f   %13.3f\n", mean_over(r.curvature, bumps), mean_over(r.saliency, bumps));
+  if (human) std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
+  if (human) std::printf("wrote %s (open in MeshLab: colour = saliency)\n", printable(out).c_str());
 
   // Simplification to 4% of the faces, plain quadrics against saliency-weighted ones.
   SimplifyOptions so;
@@ -91,11 +97,11 @@ int run(const Args& a) {
   Mesh salient = simplify_mesh(mesh, so, &weights);
   write_obj(a.dir + "/simplified_plain.obj", plain);
   write_obj(a.dir + "/simplified_saliency.obj", salient);
-  std::printf("\nsimplified to %zu faces       plain quadrics   saliency-weighted\n",
+  if (human) std::printf("\nsimplified to %zu faces       plain quadrics   saliency-weighted\n",
               salient.triangle_count());
-  std::printf("feature error (mean dist.) %15.5f   %17.5f\n", mean_distance(mesh, feature, plain),
+  if (human) std::printf("feature error (mean dist.) %15.5f   %17.5f\n", mean_distance(mesh, feature, plain),
               mean_distance(mesh, feature, salient));
-  std::printf("wrote %s/simplified_plain.obj and simplified_saliency.obj\n", printable(a.dir).c_str());
+  if (human) std::printf("wrote %s/simplified_plain.obj and simplified_saliency.obj\n", printable(a.dir).c_str());
 
   // Pictures: best view coloured by saliency, the map of visible saliency over all view
   // directions, and original | plain | saliency-simplified side by side.
@@ -104,8 +110,20 @@ int run(const Args& a) {
   progress.update("pictures", 0.0);
   std::vector<std::string> pictures = write_demo_pictures(mesh, r.saliency, a.dir, &plain, &salient, po);
   progress.finish();
-  std::printf("\n");
-  for (const std::string& p : pictures) std::printf("wrote %s\n", printable(p).c_str());
+  if (human) std::printf("\n");
+  for (const std::string& p : pictures)
+    if (human) std::printf("wrote %s\n", printable(p).c_str());
+  if (a.json) {
+    std::vector<std::string> outputs{out, a.dir + "/simplified_plain.obj", a.dir + "/simplified_saliency.obj"};
+    outputs.insert(outputs.end(), pictures.begin(), pictures.end());
+    JsonObject()
+        .count("vertices", mesh.vertex_count()).count("faces", mesh.triangle_count())
+        .number("feature_curvature", mean_over(r.curvature, feature)).number("feature_saliency", mean_over(r.saliency, feature))
+        .number("bumps_curvature", mean_over(r.curvature, bumps)).number("bumps_saliency", mean_over(r.saliency, bumps))
+        .number("feature_error_plain", mean_distance(mesh, feature, plain))
+        .number("feature_error_saliency", mean_distance(mesh, feature, salient))
+        .strings("outputs", outputs).print();
+  }
   return 0;
 }
 
@@ -121,6 +139,8 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--subdivisions", a->subdivisions, "Icosphere subdivisions (5..8; 6 = 41k vertices)")
       ->capture_default_str()->check(whole_in(5, 8));
   add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
+  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
+  sub.add_flag("--json", a->json, "Print the demo's figures and the files written as one JSON object on stdout");
   return [a] { return run(*a); };
 }
 

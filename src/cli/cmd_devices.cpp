@@ -43,6 +43,8 @@ static void add_json_flag(CLI::App& sub, bool& json) {
   sub.add_flag("--json", json,
                "Print the devices as one JSON array on stdout: index, name, type, device_local_bytes, "
                "api_version, has_compute");
+  // Accepted as every command takes it: the list is the command's result, printed either way.
+  sub.add_flag("-q,--quiet", "Print only the list (it has no notes or progress)");
 }
 
 #if !MESHSAL_WITH_VULKAN

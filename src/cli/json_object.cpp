@@ -38,6 +38,12 @@ JsonObject& JsonObject::object(const std::string& key, const JsonObject& value) 
   return raw(key, value.str());
 }
 
+JsonObject& JsonObject::strings(const std::string& key, const std::vector<std::string>& values) {
+  std::string a = "[";
+  for (size_t i = 0; i < values.size(); ++i) a += (i ? ", " : "") + json_string(values[i]);
+  return raw(key, a + "]");
+}
+
 JsonObject& JsonObject::numbers(const std::string& key, const std::vector<double>& values) {
   std::string list;
   for (double v : values) list += (list.empty() ? "" : ", ") + number_text(v);

@@ -17,6 +17,7 @@ class JsonObject {
   JsonObject& null(const std::string& key) { return raw(key, "null"); }
   // Arrays: of numbers (as number()) and of objects.
   JsonObject& numbers(const std::string& key, const std::vector<double>& values);
+  JsonObject& strings(const std::string& key, const std::vector<std::string>& values);
   JsonObject& objects(const std::string& key, const std::vector<JsonObject>& values);
   // Already-formatted JSON (an array, null).
   JsonObject& raw(const std::string& key, const std::string& json);

@@ -43,10 +43,8 @@ meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties
                               bool attributes, meshsal::LoadReport* report, bool regular_only) {
   meshsal::LoadOptions options = load_options();
   options.regular_files_only = regular_only;
-  options.attributes = attributes || mesh_extension(path) == ".ply";
-  meshsal::Mesh mesh = meshsal::load_mesh(path, properties, options, report);
-  if (!attributes) mesh.attributes.clear();
-  return mesh;
+  options.attributes = attributes;
+  return meshsal::load_mesh(path, properties, options, report);
 }
 
 meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexProperties* properties,

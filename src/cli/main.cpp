@@ -143,6 +143,9 @@ static int run_main(int argc, char** argv) {
     return stop.status;
   } catch (const UsageError& e) {
     return fail(2, "error: " + printable(e.what()) + " (see --help)");
+  } catch (const meshsal::RequestError& e) {
+    // Options that do not combine, found by the library's one rule (check_request).
+    return fail(2, "error: " + printable(e.what()) + " (see --help)");
   } catch (const meshsal::Cancelled&) {
     return fail(interrupted_exit(), "interrupted");
   } catch (const meshsal::Error& e) {

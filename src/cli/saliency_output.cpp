@@ -17,56 +17,6 @@ namespace meshsal_cli {
 
 using namespace meshsal;
 
-void write_saliency_ply(const std::string& path, const Mesh& mesh, const SaliencyResult& r,
-                        bool dump_scales) {
-  const std::string format = mesh_output_format(path);
-  if (format == ".glb" || format == ".gltf") {
-    Mesh with_maps;
-    if (dump_scales) {
-      with_maps = mesh;
-      set_vertex_attribute(with_maps, "curvature", r.curvature);
-      for (size_t i = 0; i < r.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), r.raw[i]);
-    }
-    GltfLevel level;
-    level.mesh = dump_scales ? &with_maps : &mesh;
-    level.saliency = &r.saliency;
-    level.is_point = &r.is_point;
-    write_gltf(path, {level});
-    return;
-  }
-  std::vector<PlyFloatProperty> props;  // after quality = S, which the library's writer puts first
-  std::vector<std::string> names;
-  if (dump_scales) {
-    props.push_back({"curvature", &r.curvature});
-    for (size_t i = 0; i < r.raw.size(); ++i) names.push_back("saliency_raw_" + std::to_string(i));
-    for (size_t i = 0; i < r.raw.size(); ++i) props.push_back({names[i], &r.raw[i]});
-  }
-  meshsal::write_saliency_ply(path, mesh, r.saliency, props, &r.is_point);
-}
-
-// The statistics table of a page: what the model is and what its saliency came to.
-std::vector<std::pair<std::string, std::string>> view_page_stats(const meshsal::Mesh& mesh, const std::vector<double>& s,
-                                                            const std::string& source, double seconds) {
-  double lo = 0, hi = 0, sum = 0;
-  size_t n = 0;
-  const std::vector<uint8_t> used = meshsal::referenced_vertices(mesh);
-  for (size_t v = 0; v < s.size(); ++v)
-    if (used[v]) {
-      lo = n ? std::min(lo, s[v]) : s[v], hi = n ? std::max(hi, s[v]) : s[v];
-      sum += s[v], ++n;
-    }
-  auto num = [](double x) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%.4g", x);
-    return std::string(b);
-  };
-  return {{"vertices", std::to_string(mesh.vertex_count())},
-          {"faces", std::to_string(mesh.triangle_count())},
-          {"saliency", source},
-          {"S min / mean / max", num(lo) + " / " + num(n ? sum / double(n) : 0) + " / " + num(hi)},
-          {"computed in", num(seconds) + " s"}};
-}
-
 SaliencyStats saliency_stats(const SaliencyResult& r) {
   std::vector<double> s;
   for (size_t v = 0; v < r.saliency.size(); ++v)

@@ -1,4 +1,4 @@
-// meshsal CLI: writing a saliency result as the PLY of SPEC section 4, and its summary.
+// meshsal CLI: the summary of a saliency result (text and JSON), and the saliency options' flags.
 #pragma once
 #include <string>
 
@@ -11,17 +11,6 @@ class App;
 }
 
 namespace meshsal_cli {
-
-// quality = S, red/green/blue = colour map of S; with dump_scales also curvature and
-// saliency_raw_0..n-1. Written atomically. A name ending in .glb or .gltf gets glTF instead
-// (write_gltf: _SALIENCY and COLOR_0; the dumped maps as _CURVATURE, _SALIENCY_RAW_0..).
-void write_saliency_ply(const std::string& path, const meshsal::Mesh& mesh,
-                        const meshsal::SaliencyResult& result, bool dump_scales);
-
-// The statistics table of a viewer page (`view`, `batch --html`): vertices, faces, where S
-// came from (`source`), S over the mesh points (min / mean / max) and the seconds taken.
-std::vector<std::pair<std::string, std::string>> view_page_stats(const meshsal::Mesh& mesh, const std::vector<double>& s,
-                                                                 const std::string& source, double seconds);
 
 // Saliency S over the mesh points: min, mean, max and percentiles (nearest rank).
 struct SaliencyStats {

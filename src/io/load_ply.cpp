@@ -515,7 +515,9 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   if (vertex->count > 0xFFFFFFFFull) throw Error(name + ": too many vertices");
 
   Mesh mesh;
-  ElementPlans plan = plan_elements(h, vertex, face, body_size, properties != nullptr || attributes, mesh, name);
+  // The other scalar properties are read even when they are not kept: a UV seam is told
+  // from a plain duplicate by them (find_seam_twins below).
+  ElementPlans plan = plan_elements(h, vertex, face, body_size, true, mesh, name);
   if (!face) {
     bool strips = false;
     for (const Element& e : h.elements) strips |= e.name == "tristrips";
@@ -527,13 +529,15 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   check_nothing_after(bytes, end, h.format == Format::Ascii, name);
   if (unread) *unread = std::move(plan.unread);
   for (size_t i = 0; i < plan.extras.size(); ++i) {
-    if (attributes) mesh.attributes.push_back({plan.extra_names[i], plan.extras[i]});
-    if (properties) (*properties)[plan.extra_names[i]] = std::move(plan.extras[i]);
+    if (properties) (*properties)[plan.extra_names[i]] = plan.extras[i];
+    mesh.attributes.push_back({plan.extra_names[i], std::move(plan.extras[i])});
   }
-  // A PLY stores a UV seam as vertices split at one position: found here, so that saliency
-  // and simplification see one surface, as for an OBJ's v/vt corners.
+  // A PLY stores a UV seam as vertices split at one position: found here, with or without
+  // the attributes kept, so that saliency and simplification see one surface there, as for
+  // an OBJ's v/vt corners (every front end reads a PLY so).
   localize_read_positions(mesh);
-  if (attributes) find_seam_twins(mesh);
+  find_seam_twins(mesh);
+  if (!attributes) std::vector<VertexAttribute>().swap(mesh.attributes);
   return mesh;
 }
 

@@ -208,8 +208,9 @@ void write_material_files(const std::string& obj_path, const Mesh& mesh) {
   write_file_atomically(files[0], [&](std::FILE* f) { write_all(f, text.data(), text.size(), files[0]); });
   if (!mesh.gltf_assets) return;
   const GltfAssets& a = *mesh.gltf_assets;
-  for (const auto& [image, name] : written_images(obj_path, a)) {
-    const std::vector<unsigned char>& bytes = a.image_bytes[size_t(a.image_source[size_t(image)])];
+  for (const auto& written : written_images(obj_path, a)) {
+    const std::string& name = written.second;
+    const std::vector<unsigned char>& bytes = a.image_bytes[size_t(a.image_source[size_t(written.first)])];
     write_file_atomically(name, [&](std::FILE* f) { write_all(f, bytes.data(), bytes.size(), name); });
   }
 }

@@ -166,7 +166,8 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
                                     find_attribute(mesh, "alpha")};
   std::vector<uint8_t> colour(4 * n, 255);
   if (level.saliency) {
-    const std::vector<uint8_t> rgb = colormap_values(*level.saliency, level.is_point ? *level.is_point : referenced_vertices(mesh));
+    const std::vector<uint8_t> rgb = colormap_values(*level.saliency, level.is_point ? *level.is_point : referenced_vertices(mesh),
+                                                     level.range ? *level.range : ColorRange());
     for (size_t v = 0; v < n; ++v) std::copy_n(&rgb[3 * v], 3, &colour[4 * v]);
     prim.attributes["_SALIENCY"] = [&] {
       std::vector<float> s(level.saliency->begin(), level.saliency->end());

@@ -1,0 +1,99 @@
+// meshsal: run_request, every front end's pipeline: check, read, S once, then each output
+// (the saliency mesh, the views, the simplified mesh, the levels of detail).
+#include <string>
+#include <vector>
+
+#include "api/request_parts.h"
+#include "core/timer.h"
+#include "meshsal/meshsal.h"
+
+namespace meshsal {
+namespace {
+
+// Under MPI the ranks compute together and rank 0 alone writes (SaliencyOptions::exchange).
+bool writes_files(const Request& r) { return !r.saliency.exchange || r.saliency.exchange->rank() == 0; }
+
+bool weighted_simplification(const Request& r) {
+  return r.weighting != Weighting::None && (!r.simplified_output.empty() || !r.lod_output.empty() || r.simplify_in_memory);
+}
+
+}  // namespace
+
+std::string file_name_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+void add_note(RequestRun& run, const std::string& note) {
+  if (note.empty()) return;
+  for (const std::string& n : run.result.notes)
+    if (n == note) return;
+  run.result.notes.push_back(note);
+  if (run.request.saliency.notice) run.request.saliency.notice("note: " + note);
+}
+
+void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+  // The side files (an OBJ's .mtl and textures) get the output check the main file had.
+  const std::vector<std::string> side = mesh_side_files(path, mesh);
+  if (!side.empty()) {
+    std::vector<OutputFile> files;
+    for (const std::string& f : side) files.push_back({f, "-o", {}});
+    std::vector<std::string> inputs{run.request.input, run.request.saliency_from, path};
+    check_outputs(files, inputs);
+  }
+  write_mesh(path, mesh, saliency);
+  run.result.outputs.push_back(path);
+  run.result.outputs.insert(run.result.outputs.end(), side.begin(), side.end());
+  add_note(run, mesh_output_note(path, mesh, saliency != nullptr));
+}
+
+double RequestRun::timer_seconds() const { return timer.seconds(); }
+
+RequestResult run_request(const Request& r) {
+  check_request(r);
+  RequestResult result;
+  RequestRun run{r, result};
+  // Runs one step of the request, timed into result.steps.
+  const auto step = [&](const char* name, const auto& body) {
+    const Timer t;
+    body();
+    result.steps.push_back({name, t.seconds()});
+  };
+  if (r.out_of_core.memory_limit > 0) {
+    // The mesh is never held whole: the library streams the file through tiles on disk.
+    if (r.on_read) r.on_read();
+    if (!r.saliency_output.empty())
+      step("saliency output", [&] {
+        OutOfCoreOptions o = r.out_of_core;
+        o.dump_scales = r.dump_scales;
+        result.out_of_core = saliency_file(r.input, r.saliency_output, r.saliency, o);
+        if (writes_files(r)) result.outputs.push_back(r.saliency_output);
+      });
+    if (!r.simplified_output.empty()) step("simplify", [&] { make_simplified(run); });
+    result.seconds = run.timer_seconds();
+    return result;
+  }
+  step("read", [&] { read_input(run); });
+  if (r.on_read) r.on_read();
+  // Where S is computed on the plain mesh for its own outputs and the simplifier weighs by
+  // it too, it is computed once with its Sm.
+  if (run.plain && weighted_simplification(r) && r.saliency_from.empty() && !r.saliency_values &&
+      (!r.saliency_output.empty() || !r.picture_output.empty() || !r.page_output.empty() || r.find_view))
+    plain_saliency(run, true);
+  if (!r.saliency_output.empty())
+    step("saliency output", [&] {
+      if (writes_files(r)) write_saliency_output(run);
+      else plain_saliency(run, false);  // the ranks compute together; rank 0 writes
+    });
+  if (!r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view)
+    step("views", [&] { make_views(run); });
+  if (!r.simplified_output.empty() || (r.simplify_in_memory && r.lod.empty())) step("simplify", [&] { make_simplified(run); });
+  if (!r.lod_output.empty() || (r.simplify_in_memory && !r.lod.empty())) step("levels of detail", [&] { make_lod(run); });
+  if (result.saliency.saliency.empty() && run.has_plain_s) result.saliency = run.plain_s;
+  if (run.plain == &run.plain_read) result.mesh = std::move(run.plain_read);
+  else if (run.attributed == &run.attributed_read) result.mesh = std::move(run.attributed_read);
+  result.seconds = run.timer_seconds();
+  return result;
+}
+
+}  // namespace meshsal
