@@ -225,10 +225,14 @@ struct LoadReport {
   // 3 * triangles - vertices of the result. STL stores every corner by value; welding
   // gives the shared vertices that curvature needs.
   uint64_t welded_corners = 0;
-  // PLY only: what the file holds that no loading keeps, e.g. "vertex list property
-  // 'texcoord'", "face property 'flags'", "element 'edge'" (scalar vertex properties are
-  // kept with LoadOptions::attributes). Tells a user what an output will lack.
+  // What the file holds that no loading keeps, e.g. a PLY's "vertex list property
+  // 'texcoord'", "face property 'flags'", "element 'edge'", a glTF's "vertex attribute
+  // 'JOINTS_0'", an OBJ's unreadable "material library 'x.mtl': ...". Tells a user what an
+  // output will lack.
   std::vector<std::string> unread;
+  // What the file holds that LoadOptions::attributes (off) left unread: "normals",
+  // "texture coordinates", "vertex colours", "the attribute 'NAME'" (empty with attributes).
+  std::vector<std::string> attributes_not_read;
 };
 
 // Loads OBJ, PLY (ascii, binary little/big endian), OFF, STL (ascii or binary) or glTF 2.0

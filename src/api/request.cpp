@@ -32,7 +32,7 @@ void add_note(RequestRun& run, const std::string& note) {
   if (run.request.saliency.notice) run.request.saliency.notice("note: " + note);
 }
 
-void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+std::vector<std::string> check_side_files(RequestRun& run, const std::string& path, const Mesh& mesh) {
   // The side files (an OBJ's .mtl and textures) get the output check the main file had.
   const std::vector<std::string> side = mesh_side_files(path, mesh);
   if (!side.empty()) {
@@ -41,6 +41,11 @@ void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& me
     std::vector<std::string> inputs{run.request.input, run.request.saliency_from, path};
     check_outputs(files, inputs);
   }
+  return side;
+}
+
+void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+  const std::vector<std::string> side = check_side_files(run, path, mesh);
   write_mesh(path, mesh, saliency);
   run.result.outputs.push_back(path);
   run.result.outputs.insert(run.result.outputs.end(), side.begin(), side.end());

@@ -64,15 +64,17 @@ void read_input(RequestRun& run) {
       run.plain_read.material_library_text.clear();
       note_read(run, report, run.plain_read, false);
       run.result.load = report;
+      run.plain_report = report;
       run.plain = &run.plain_read;
     }
   }
   if (needs_attributed_mesh(r)) {
     if (r.attributed) {
       run.attributed = r.attributed;
-    } else if (r.mesh) {
-      run.attributed = r.mesh;  // a mesh in memory carries what it has
+    } else if (r.mesh && (r.input.empty() || input_format(r.input) == ".stl" || !r.mesh->attributes.empty())) {
+      run.attributed = r.mesh;  // a mesh in memory carries what it has (an STL has nothing more)
     } else {
+      // The input read again with its attributes (a caller gave it read plainly).
       LoadOptions o = r.load;
       o.attributes = true;
       LoadReport report;

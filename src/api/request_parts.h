@@ -19,6 +19,7 @@ struct RequestRun {
   const Mesh* plain = nullptr;
   const Mesh* attributed = nullptr;
   Mesh plain_read, attributed_read;
+  LoadReport plain_report;  // the plain read's (what it left unread)
   // S of each mesh once it is had (read back or computed), and Sm with it where computed.
   bool has_plain_s = false, has_attributed_s = false;
   SaliencyResult plain_s;
@@ -60,6 +61,9 @@ void make_views(RequestRun& run);
 // first, the file and side files added to result.outputs, and mesh_output_note's note
 // added to result.notes.
 void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency);
+
+// The side files of a mesh output (mesh_side_files), checked as its main file was.
+std::vector<std::string> check_side_files(RequestRun& run, const std::string& path, const Mesh& mesh);
 
 // Adds `note` to result.notes once, and tells request.saliency.notice.
 void add_note(RequestRun& run, const std::string& note);

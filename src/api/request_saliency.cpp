@@ -130,6 +130,15 @@ void write_saliency_output(RequestRun& run) {
     write_saliency(path, *run.plain, run.plain_s, r.dump_scales);
     run.result.outputs.push_back(path);
     run.result.saliency = run.plain_s;
+    // The saliency PLY holds the positions and faces as read and S (its colours replace
+    // any the input had): what else the input holds is said once.
+    std::string left;
+    for (const std::string& what : run.plain_report.attributes_not_read)
+      if (what != "the saliency" && what != "vertex colours") left += (left.empty() ? "" : ", ") + what;
+    if (!run.plain->triangle_material.empty()) left += (left.empty() ? "" : ", ") + std::string("materials");
+    if (!left.empty())
+      add_note(run, path + " is the saliency PLY (positions, faces and S: SPEC section 4) and does not carry the input's " +
+                        left + " (a .glb, .gltf or .obj output carries them)");
     return;
   }
   // The other formats carry the input's attributes and materials, S on that mesh.

@@ -121,17 +121,24 @@ void make_lod(RequestRun& run) {
     if (!out.lod[i].report.reached || out.lod[i].report.unchanged)
       add_note(run, "LOD" + std::to_string(i + 1) + ": " + out.lod[i].report.note);
   if (r.lod_output.empty()) return;
-  write_lod(r.lod_output, mesh, weighted ? &s : nullptr, out.lod);
+  // One glTF holding the input and every level, or a file per level (write_lod): each
+  // file's side files checked first and named, and what a level's format cannot hold said.
   const std::string format = mesh_output_format(r.lod_output);
+  std::vector<std::vector<std::string>> side;
   if (format == ".glb" || format == ".gltf") {
     out.lod_files.push_back(r.lod_output);
+    add_note(run, mesh_output_note(r.lod_output, mesh, weighted));
   } else {
-    for (size_t i = 0; i < out.lod.size(); ++i) out.lod_files.push_back(lod_level_path(r.lod_output, i + 1));
+    for (size_t i = 0; i < out.lod.size(); ++i) {
+      out.lod_files.push_back(lod_level_path(r.lod_output, i + 1));
+      side.push_back(check_side_files(run, out.lod_files[i], out.lod[i].mesh));
+      add_note(run, mesh_output_note(out.lod_files[i], out.lod[i].mesh, false));
+    }
   }
+  write_lod(r.lod_output, mesh, weighted ? &s : nullptr, out.lod);
   for (size_t i = 0; i < out.lod_files.size(); ++i) {
     out.outputs.push_back(out.lod_files[i]);
-    if (out.lod_files.size() == out.lod.size())
-      for (const std::string& side : mesh_side_files(out.lod_files[i], out.lod[i].mesh)) out.outputs.push_back(side);
+    if (i < side.size()) out.outputs.insert(out.outputs.end(), side[i].begin(), side[i].end());
   }
 }
 

@@ -37,9 +37,9 @@ void ModelLoader::run() {
       m.mesh = load_input_mesh(path, nullptr, false, &report, true);  // as `meshsal saliency` reads it
                                                                         // (but never waits on a pipe)
       m.welded_corners = report.welded_corners;
-      // OFF and STL hold no attributes: the same mesh either way.
-      const std::string ext = mesh_extension(path);
-      if (attributes_ && (ext == ".obj" || ext == ".ply")) {
+      // STL holds no attributes: the same mesh either way. Every other format may (a glTF's
+      // UVs and materials, an OFF's colours): read again with them, as `meshsal simplify` does.
+      if (attributes_ && mesh_extension(path) != ".stl") {
         m.has_attributed = true;
         try {
           m.attributed = load_input_mesh(path, nullptr, true, nullptr, true);  // as `meshsal simplify`

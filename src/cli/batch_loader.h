@@ -19,10 +19,10 @@ struct LoadedModel {
   std::string error;        // the one-line message when loading failed ("" = loaded)
   double seconds = 0;       // time spent reading and parsing
   uint64_t welded_corners = 0;
-  // With ModelLoader's `attributes`, for an OBJ or PLY: the file read again as `meshsal
-  // simplify` reads it (LoadOptions::attributes: vt/vn, PLY properties, split at UV seams),
-  // for the simplified mesh; `mesh` stays as `meshsal saliency` reads it. Its own message
-  // when that failed.
+  // With ModelLoader's `attributes`, for every format but STL: the file read again as
+  // `meshsal simplify` reads it (LoadOptions::attributes: vt/vn, PLY properties, a glTF's
+  // channels and materials, split at UV seams), for the simplified mesh; `mesh` stays as
+  // `meshsal saliency` reads it. Its own message when that failed.
   bool has_attributed = false;
   meshsal::Mesh attributed;
   std::string attributed_error;

@@ -562,7 +562,7 @@ std::string loader_error(std::string err) {
 }  // namespace
 
 Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_named prefixes it*/, bool binary, const std::string& folder,
-                     uint64_t limit, bool attributes, std::vector<std::string>* unread) {
+                     uint64_t limit, bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read) {
   // No parser recurses into JSON nested deeper than we read (tinygltf's conversion of
   // extras and extensions recurses once per level).
   if (json_nesting(json_text(bytes, binary)) > kMaxJsonNesting)
@@ -599,7 +599,14 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
   if (instances.empty()) fail("the scene holds no mesh");
   std::set<std::string> skipped;
   std::vector<Channel> channels;
-  if (attributes) channels = vertex_channels(model, instances, &skipped);
+  if (attributes) {
+    channels = vertex_channels(model, instances, &skipped);
+  } else {
+    // What a read with attributes would have kept, in the names every reader uses.
+    std::set<std::string> ignored;
+    for (const Channel& c : vertex_channels(model, instances, &ignored))
+      for (const VertexAttribute& a : c.attributes) note_not_read(not_read, a.name);
+  }
   // The memory bound: instancing lets a small file name a large mesh many times, so the
   // vertices and indices to build are counted and held to the other loaders' rule first.
   // Each accessor's count is first held to the bytes the file has for it (locate_accessor),

@@ -58,15 +58,18 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
   }
   Mesh mesh;
   if (ext == ".obj") {
-    mesh = load_obj_text(bytes, name, attributes);
+    mesh = load_obj_text(bytes, name, attributes, report ? &report->attributes_not_read : nullptr);
     if (!folder.empty() && !mesh.material_libraries.empty())
       read_material_libraries(mesh, folder, limit ? limit : kNoHeaderLimitBytes, report ? &report->unread : nullptr);
   }
-  else if (ext == ".off") mesh = load_off_text(bytes, name, attributes);
+  else if (ext == ".off") mesh = load_off_text(bytes, name, attributes, report ? &report->attributes_not_read : nullptr);
   else if (ext == ".stl") mesh = load_stl_bytes(bytes, name, report ? &report->welded_corners : nullptr);
   else if (ext == ".gltf" || ext == ".glb")
-    mesh = load_gltf_bytes(bytes, name, ext == ".glb", folder, limit, attributes, report ? &report->unread : nullptr);
-  else mesh = load_ply_bytes(bytes, name, properties, attributes, report ? &report->unread : nullptr);
+    mesh = load_gltf_bytes(bytes, name, ext == ".glb", folder, limit, attributes, report ? &report->unread : nullptr,
+                           report ? &report->attributes_not_read : nullptr);
+  else
+    mesh = load_ply_bytes(bytes, name, properties, attributes, report ? &report->unread : nullptr,
+                          report ? &report->attributes_not_read : nullptr);
   return mesh;
 }
 

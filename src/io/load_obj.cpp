@@ -160,7 +160,7 @@ void add_vertex_colours(Mesh& mesh, std::vector<float> colours) {
 
 }  // namespace
 
-Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes) {
+Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes, std::vector<std::string>* not_read) {
   Mesh mesh;
   TextScan scan(text, name);
   scan.skip_bom();  // otherwise the first line's key would be "\xEF\xBB\xBFv" and be ignored
@@ -169,6 +169,7 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
   std::vector<Corner> face, corners;  // with attributes: this face's, and every triangle's
   std::vector<float> texcoords, normals;
   std::vector<float> colours;  // r g b per v line up to the last one with colours (-1: none)
+  bool seen_vt = false, seen_vn = false, seen_colours = false;  // without attributes: noted once
   bool any_vt = false, any_vn = false;
   // Face indices beyond the vertices defined so far (forward references, legal) and their
   // lines: checked against the final count at the end, named as the file writes them.
@@ -211,7 +212,11 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
           throw fail("vertex " + std::to_string(mesh.source_positions.size() / 3) + " has a non-finite coordinate (" +
                      std::to_string(mesh.source_positions[k]) + ")");
       // Optional columns follow: w, or r g b (MeshLab's vertex colours, kept with attributes).
-      if (attributes) {
+      if (!attributes && !seen_colours && not_read) {
+        int more = 0;
+        for (std::string_view tok = next_token(line); !tok.empty() && more < 4; tok = next_token(line)) ++more;
+        if (more == 3) note_not_read(not_read, "red"), seen_colours = true;
+      } else if (attributes) {
         float rgb[3];
         int got = 0;
         for (std::string_view tok = next_token(line); !tok.empty() && got < 4; tok = next_token(line), ++got)
@@ -221,6 +226,10 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
           colours.insert(colours.end(), rgb, rgb + 3);
         }
       }
+    } else if (!attributes && (key == "vt" || key == "vn")) {
+      // Not read: said once (LoadReport::attributes_not_read).
+      if (key == "vt" && !seen_vt) note_not_read(not_read, "u"), seen_vt = true;
+      if (key == "vn" && !seen_vn) note_not_read(not_read, "nx"), seen_vn = true;
     } else if (attributes && key == "vt") {
       const std::string problem = take_floats(line, 1, 2, texcoords);  // u [v [w]]
       if (!problem.empty()) throw fail("texture coordinate " + problem);

@@ -134,14 +134,19 @@ uint64_t off_input_limit(std::string_view head, const std::string& name) {
                                     static_cast<unsigned __int128>(counts[1]) * kMinFaceBytes);
 }
 
-Mesh load_off_text(std::string_view text, const std::string& name, bool attributes) {
+Mesh load_off_text(std::string_view text, const std::string& name, bool attributes, std::vector<std::string>* not_read) {
   TextScan scan(text, name);
   std::string_view line;
   auto fail = [&](const std::string& problem) { return line_error(scan, problem); };
   uint64_t counts[2];
   OffColumns columns;
   parse_off_header(scan, counts, &columns);
-  if (!attributes) columns = OffColumns();
+  if (!attributes) {
+    if (columns.normals) note_not_read(not_read, "nx");
+    if (columns.colours) note_not_read(not_read, "red");
+    if (columns.texcoords) note_not_read(not_read, "u");
+    columns = OffColumns();
+  }
   // Counts beyond the file size are rejected before anything is allocated.
   const uint64_t left = text.size() - std::min(text.size(), scan.pos);
   if (counts[0] > left / kMinVertexBytes || counts[1] > left / kMinFaceBytes || counts[0] > 0xFFFFFFFFull)

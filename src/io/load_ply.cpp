@@ -501,7 +501,7 @@ void check_nothing_after(std::string_view bytes, size_t end, bool ascii, const s
 }  // namespace
 
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                    bool attributes, std::vector<std::string>* unread) {
+                    bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read) {
   const Header h = parse_header(bytes, name);
   const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
   check_counts_fit(h, body_size, name);
@@ -537,7 +537,10 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   // an OBJ's v/vt corners (every front end reads a PLY so).
   localize_read_positions(mesh);
   find_seam_twins(mesh);
-  if (!attributes) std::vector<VertexAttribute>().swap(mesh.attributes);
+  if (!attributes) {
+    for (const VertexAttribute& a : mesh.attributes) note_not_read(not_read, a.name);
+    std::vector<VertexAttribute>().swap(mesh.attributes);
+  }
   return mesh;
 }
 

@@ -14,13 +14,17 @@
 namespace meshsal {
 
 // `attributes`: also vt, vn and v/vt/vn corners (LoadOptions::attributes).
-Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false);
+// `not_read` (may be null): what `attributes` off left unread (LoadReport::attributes_not_read).
+Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false,
+                   std::vector<std::string>* not_read = nullptr);
 // `attributes`: the vertex columns COFF, NOFF and STOFF announce (normals, colours, u v).
-Mesh load_off_text(std::string_view text, const std::string& name, bool attributes = false);
+Mesh load_off_text(std::string_view text, const std::string& name, bool attributes = false,
+                   std::vector<std::string>* not_read = nullptr);
 // `attributes`: the extra scalar vertex properties also go to Mesh::attributes, in file order.
 // `unread` (may be null) gets what no option keeps (LoadReport::unread).
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                    bool attributes = false, std::vector<std::string>* unread = nullptr);
+                    bool attributes = false, std::vector<std::string>* unread = nullptr,
+                    std::vector<std::string>* not_read = nullptr);
 // STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);
@@ -28,9 +32,10 @@ Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* w
 // glTF 2.0 (load_gltf.cpp): `binary` for GLB. `folder` is where external buffers and images
 // are read from ("" = the glTF came from memory: any external reference is an Error);
 // each is read whole, at most `limit` bytes (0: kNoHeaderLimitBytes), regular files only.
-// `attributes`: NORMAL, TEXCOORD_0 and COLOR_0 as nx ny nz, u v, red green blue alpha.
+// `attributes`: NORMAL, TEXCOORD_n, COLOR_0 and the scalar custom attributes (Channel).
 Mesh load_gltf_bytes(std::string_view bytes, const std::string& name, bool binary, const std::string& folder,
-                     uint64_t limit, bool attributes, std::vector<std::string>* unread);
+                     uint64_t limit, bool attributes, std::vector<std::string>* unread,
+                     std::vector<std::string>* not_read = nullptr);
 
 // Every parser reads coordinates in double into mesh.source_positions and ends with this:
 // origin, local float positions, and the source kept where it is needed (set_model_positions).
@@ -141,6 +146,22 @@ std::vector<std::string> library_textures(const Mesh& mesh);
 std::string material_library_name(const std::string& obj_path);
 // Writes the side files of an OBJ output (mesh_side_files): OUT.mtl and the textures.
 void write_material_files(const std::string& obj_path, const Mesh& mesh);
+
+// Adds what a file held and LoadOptions::attributes (off) left unread, once: "normals",
+// "texture coordinates", "vertex colours", "the saliency", "the attribute 'NAME'", by the
+// name's role (attribute_role).
+inline void note_not_read(std::vector<std::string>* out, const std::string& attribute_name) {
+  if (!out) return;
+  const AttributeRole r = attribute_role(attribute_name);
+  const std::string what = r.kind == AttributeKind::Normal     ? "normals"
+                           : r.kind == AttributeKind::TexCoord ? "texture coordinates"
+                           : r.kind == AttributeKind::Color    ? "vertex colours"
+                           : r.kind == AttributeKind::Saliency ? "the saliency"
+                                                               : "the attribute '" + attribute_name + "'";
+  for (const std::string& w : *out)
+    if (w == what) return;
+  out->push_back(what);
+}
 
 inline const VertexAttribute* find_attribute(const Mesh& mesh, const char* name) {
   for (const VertexAttribute& a : mesh.attributes)
