@@ -1278,6 +1278,9 @@ struct Request {
   std::string map_output;
   int map_width = 720;
 
+  // What messages call the outputs: "-o" (the command line's option), "the output" (Python).
+  std::string output_option = "-o";
+
   // Called once the input is read (before S; out of core, before the file is streamed):
   // where processes that share the run meet (the command line's MPI ranks). May be empty.
   std::function<void()> on_read;

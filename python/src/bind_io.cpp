@@ -54,17 +54,15 @@ void save(const py::object& path_obj, const py::object& vertices, const py::obje
   // The library's check of every front end's outputs, before the arrays are read: a name
   // the writers know (the format comes from it), a place they can write.
   try {
-    meshsal::check_outputs({{path, "path", {".ply", ".obj", ".glb", ".gltf"}}}, {});
+    std::vector<std::string> formats;
+    for (const meshsal::MeshFormat& f : meshsal::mesh_formats()) formats.push_back(f.suffix);
+    meshsal::check_outputs({{path, "path", formats}}, {});
   } catch (const meshsal::Error& e) {
     raise_file_error(e, path_obj);
   }
-  const bool obj = meshsal::mesh_output_format(path) == ".obj";
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   std::vector<double> s;
-  if (!saliency.is_none()) {
-    if (obj) throw py::value_error("saliency needs a .ply, .glb or .gltf path (OBJ has no place for per-vertex values)");
-    s = vertex_values(saliency, mesh.vertex_count(), "saliency");
-  }
+  if (!saliency.is_none()) s = vertex_values(saliency, mesh.vertex_count(), "saliency");
   try {
     py::gil_scoped_release unlocked;
     meshsal::write_mesh(path, mesh, s.empty() ? nullptr : &s);
@@ -126,14 +124,15 @@ file meshsal.Error with the CLI's message.)");
 Writes a mesh with the library's writers, the bytes the CLI writes for the same mesh:
 
   path             str, bytes or os.PathLike ending in .ply (binary little-endian PLY),
-                   .obj (v, vt, vn and f lines), .glb or .gltf (glTF 2.0), the format
-                   the name gives (another ending raises meshsal.Error before anything is
-                   read); checked as the CLI checks its -o, then written to a temporary
-                   file and renamed, so a failure never leaves a half-written file
+                   .glb or .gltf (glTF 2.0), .obj (v with r g b colours, vt, vn and f
+                   lines), .off (COFF with colours) or .stl (binary): the format the name
+                   gives (another ending raises meshsal.Error before anything is read);
+                   checked as the CLI checks its -o, then written to a temporary file and
+                   renamed, so a failure never leaves a half-written file
   vertices, faces  as in saliency()
-  saliency         S per vertex (not for .obj): written as `meshsal saliency -o OUT` writes
-                   it; PLY: the property quality = S and red/green/blue its colour scale;
-                   glTF: _SALIENCY and COLOR_0
+  saliency         S per vertex: written as `meshsal saliency -o OUT` writes it; PLY: the
+                   property quality = S and red/green/blue its colour scale; glTF:
+                   _SALIENCY and COLOR_0; OBJ and OFF: its colours only; STL: refused
 
 With attributes (e.g. a SimplifyResult's .attributes and .position_vertex) a PLY gets
 them as vertex properties (red/green/blue/alpha as uchar) and an OBJ its texture

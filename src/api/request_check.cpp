@@ -76,16 +76,18 @@ void check_request(const Request& r) {
   if (!r.picture_output.empty() || !r.map_output.empty()) check_render_style(r.style);
 
   // Every output: the extension its writer takes, writable, distinct, none of them an input.
-  const std::vector<std::string> meshes = mesh_suffixes();
-  std::vector<OutputFile> outputs{{r.saliency_output, "-o", meshes}, {r.simplified_output, "-o", meshes},
-                                  {r.page_output, "-o", {".html"}},  {r.picture_output, "-o", {".png"}},
+  // Out of core, the file written is a binary PLY.
+  const std::vector<std::string> meshes = out_of_core ? std::vector<std::string>{".ply"} : mesh_suffixes();
+  const std::string& o = r.output_option;
+  std::vector<OutputFile> outputs{{r.saliency_output, o, meshes}, {r.simplified_output, o, meshes},
+                                  {r.page_output, o, {".html"}},  {r.picture_output, o, {".png"}},
                                   {r.map_output, "--map", {".png"}}};
   if (!r.lod_output.empty()) {
     const std::string format = mesh_output_format(r.lod_output);
     if (format == ".glb" || format == ".gltf" || format.empty())
-      outputs.push_back({r.lod_output, "-o", meshes});
+      outputs.push_back({r.lod_output, o, meshes});
     else
-      for (size_t i = 0; i < r.lod.size(); ++i) outputs.push_back({lod_level_path(r.lod_output, i + 1), "-o", meshes});
+      for (size_t i = 0; i < r.lod.size(); ++i) outputs.push_back({lod_level_path(r.lod_output, i + 1), o, meshes});
   }
   std::vector<std::string> inputs{r.input, r.saliency_from};
   inputs.insert(inputs.end(), r.compare.begin(), r.compare.end());

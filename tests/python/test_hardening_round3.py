@@ -29,8 +29,8 @@ def read_only_input(tmp_path, sphere):
 
 def out_of_core_calls():
     return [
-        ("saliency_file", lambda i, o: meshsal.saliency_file(i, o, method="fast", threads=1)),
-        ("simplify_file", lambda i, o: meshsal.simplify_file(i, o, ratio=0.5, weights="none", threads=1)),
+        ("saliency_file", lambda i, o, **k: meshsal.saliency_file(i, o, method="fast", threads=1, **k)),
+        ("simplify_file", lambda i, o, **k: meshsal.simplify_file(i, o, ratio=0.5, weights="none", threads=1, **k)),
     ]
 
 
@@ -53,13 +53,19 @@ def test_file_calls_never_write_over_their_input_through_a_link(tmp_path, read_o
 
 @pytest.mark.parametrize("name,call", out_of_core_calls())
 def test_file_calls_refuse_a_name_that_is_not_a_ply(tmp_path, read_only_input, name, call):
+    # Under a memory limit the file written is a binary PLY; in memory every mesh format
+    # is written, as the CLI writes it; a name of no format is refused either way.
     src, before = read_only_input
     for ext in (".obj", ".glb", ".gltf", ".ply.gz"):
         out = tmp_path / ("out" + ext)
-        with pytest.raises(meshsal.Error, match=rf"^{out}: {name} writes a binary PLY: give an output name ending "
-                                                r"in \.ply$"):
-            call(src, out)
+        with pytest.raises(ValueError, match=r"^memory_limit writes a binary PLY: give an output name ending in \.ply$"):
+            call(src, out, memory_limit="100M")
         assert not out.exists()
+    for ext in (".obj", ".glb", ".off"):
+        call(src, tmp_path / ("in_memory" + ext))
+        assert (tmp_path / ("in_memory" + ext)).exists()
+    with pytest.raises(meshsal.Error, match=r"the output must be a \.ply, \.gltf, \.glb, \.obj, \.off or \.stl file$"):
+        call(src, tmp_path / "out.ply.gz")
     assert src.read_bytes() == before
     call(src, tmp_path / "out.PLY")  # the suffix's case does not matter
     assert (tmp_path / "out.PLY").read_bytes().startswith(b"ply\nformat binary_little_endian")
@@ -75,9 +81,10 @@ def test_file_calls_raise_file_errors_for_the_output_folder(tmp_path, read_only_
 
 def test_save_goes_through_the_library_check(tmp_path, sphere):
     V, F = sphere
-    for name in ("out.stl", "out.off", "out.ply.gz", "out"):
+    for name in ("out.ply.gz", "out", "out.txt"):
         p = tmp_path / name
-        with pytest.raises(meshsal.Error, match=rf"^{p}: path must be a \.ply, \.obj, \.glb or \.gltf file$"):
+        with pytest.raises(meshsal.Error,
+                           match=rf"^{p}: path must be a \.ply, \.gltf, \.glb, \.obj, \.off or \.stl file$"):
             meshsal.save(p, V, F)
         assert not p.exists()
     # The check's housekeeping: a temporary a killed writer left beside the output goes.

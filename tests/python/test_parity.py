@@ -149,16 +149,21 @@ def test_save_plain_mesh_equals_cli_simplify_unchanged(mesh_path, cli, tmp_path)
 
 def test_save_and_load_round_trip(sphere, tmp_path):
     V, F = sphere
-    for ext in [".obj", ".ply", ".PLY"]:
+    for ext in [".obj", ".ply", ".PLY", ".off"]:
         p = tmp_path / ("ball" + ext)
         meshsal.save(p, V, F)
         V2, F2 = meshsal.load(p)  # an OBJ's decimals come back float64: the same floats
         np.testing.assert_array_equal(V2.astype(np.float32), V.astype(np.float32))
         np.testing.assert_array_equal(F2, F)
-    with pytest.raises(meshsal.Error, match=r"ball.stl: path must be a \.ply, \.obj, \.glb or \.gltf file"):
-        meshsal.save(tmp_path / "ball.stl", V, F)  # the library's check (a ValueError)
-    with pytest.raises(ValueError, match="needs a .ply, .glb or .gltf path"):
-        meshsal.save(tmp_path / "ball.obj", V, F, np.zeros(len(V)))
+    with pytest.raises(meshsal.Error, match=r"ball.xyz: path must be a \.ply, \.gltf, \.glb, \.obj, \.off or \.stl file"):
+        meshsal.save(tmp_path / "ball.xyz", V, F)  # the library's check (a ValueError)
+    meshsal.save(tmp_path / "ball.stl", V, F)  # STL: corners by value, welded again in order of first use
+    assert meshsal.load(tmp_path / "ball.stl")[1].shape == F.shape
+    # S where the format keeps it: its colours in an OBJ, nothing in an STL (refused).
+    meshsal.save(tmp_path / "ball_s.obj", V, F, np.arange(len(V), dtype=float))
+    assert "red" in meshsal.load(tmp_path / "ball_s.obj", attributes=True)[2]
+    with pytest.raises(ValueError, match="STL has no place for saliency"):
+        meshsal.save(tmp_path / "ball_s.stl", V, F, np.zeros(len(V)))
     with pytest.raises(ValueError, match=r"saliency must have shape"):
         meshsal.save(tmp_path / "ball.ply", V, F, np.zeros(3))
     with pytest.raises(ValueError, match="give properties=True or attributes=True"):
