@@ -15,6 +15,7 @@
 #include "load_input.h"
 #include "number_options.h"
 #include "progress.h"
+#include "request_options.h"
 #include "saliency_output.h"
 #include "interrupt.h"
 
@@ -22,40 +23,28 @@ namespace meshsal_cli {
 namespace {
 
 struct Args {
-  std::string precision = "auto";  // --precision
-  std::string method = "exact";    // --method
-  std::string original, simplified, saliency, backend = "auto";
+  std::string original, simplified;
   long long samples = 200000;
   double fraction = 0.30;
-  unsigned threads = 0;
-  bool json = false;  // accepted like every command's --json; the output is always JSON
-  bool quiet = false;  // -q: no progress or notes (the result is printed)
+  RequestText text;  // the options every command shares (--json: the output is always JSON)
 };
 
 int run(const Args& a) {
   using namespace meshsal;
   const meshsal::Timer t0;
-  Progress progress(!a.quiet && stderr_is_terminal());  // on stderr: stdout holds only the JSON
+  Progress progress(!a.text.quiet && stderr_is_terminal());  // on stderr: stdout holds only the JSON
   progress.update("reading", 0.0);
-  const Mesh original = load_input(a.original, a.quiet);
-  const Mesh simplified = load_input(a.simplified, a.quiet);
+  const Mesh original = load_input(a.original, a.text.quiet);
+  const Mesh simplified = load_input(a.simplified, a.text.quiet);
   std::vector<double> s;
   std::string source, device = "cpu";  // distances are measured on the CPU
-  if (!a.saliency.empty()) {
-    s = load_saliency_ply(a.saliency, original);
-    source = a.saliency;
+  if (!a.text.saliency_from.empty()) {
+    s = load_saliency(a.text.saliency_from, original);
+    source = a.text.saliency_from;
   } else {
-    SaliencyOptions so;
-    so.cancel = interrupt_flag();
-    so.backend = parse_backend(a.backend);
-    so.precision = meshsal::parse_precision(a.precision);
-    so.method = meshsal::parse_method(a.method);
-    so.threads = a.threads;
+    // The saliency options as every command reads them (request_from).
+    SaliencyOptions so = request_from(a.text, &progress).saliency;
     so.raw_maps = false;
-    so.notice = [&a](const std::string& line) {
-      if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
-    };
-    so.progress = [&](const char* stage, double f) { progress.update(stage, f); };
     SaliencyResult r = compute_saliency(original, so);
     s = std::move(r.saliency);
     source = "computed (" + r.backend_name + ")";
@@ -65,7 +54,7 @@ int run(const Args& a) {
   co.cancel = interrupt_flag();
   co.face_samples = size_t(a.samples);
   co.salient_fraction = a.fraction;
-  co.threads = a.threads;
+  co.threads = a.text.threads;
   progress.update("comparing surfaces", 0.0);
   const SurfaceComparison r = compare_surfaces(original, simplified, &s, co);
   progress.finish();
@@ -104,19 +93,15 @@ RunFn setup(CLI::App& sub) {
       "(DEVICE)`; device: where saliency was computed (cpu when read: distances run on the CPU).");
   sub.add_option("original", a->original, "The original mesh")->required();
   sub.add_option("simplified", a->simplified, "The simplified mesh")->required();
-  sub.add_option("--saliency-from,--saliency", a->saliency,
-                 "Reuse S from this saliency PLY of the original (`meshsal saliency`) instead of computing it");
+  add_saliency_from_option(sub, a->text, "--saliency-from,--saliency");
   sub.add_option("--samples", a->samples, "Area samples per surface besides its vertices")
       ->capture_default_str()->check(whole_in(0, 100000000));
   sub.add_option("--salient-fraction", a->fraction, "Fraction of most salient vertices")
       ->capture_default_str()->check(finite_in(0, 1, true));
-  sub.add_option("--backend", a->backend, "Saliency backend: auto, cpu or gpu")->capture_default_str();
-  add_precision_option(sub, &a->precision);
-  add_method_option(sub, &a->method);
-  add_threads_option(sub, a->threads, "Threads (0 = all cores)");
-  sub.add_flag("--json", a->json,
-               "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json)");
-  sub.add_flag("-q,--quiet", a->quiet, "No progress or notes on stderr (the result is still printed)");
+  add_saliency_options(sub, a->text);
+  add_output_flags(sub, a->text,
+                   "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json); "
+                   "-q: no progress or notes");
   return [a] { return run(*a); };
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "command.h"
+#include "request_options.h"
 #include "json_object.h"
 #include "json_string.h"
 #include "meshsal/meshsal.h"
@@ -23,12 +24,9 @@ namespace meshsal_cli {
 namespace {
 
 struct Args {
-  std::string precision = "auto";  // --precision
-  std::string method = "exact";    // --method
-  std::string dir = "demo_out", backend = "auto";
+  std::string dir = "demo_out";
   int subdivisions = 6;
-  unsigned threads = 0;
-  bool quiet = false, json = false;
+  RequestText text;  // the options every command shares
 };
 
 // Mean distance of the masked vertices of `mesh` to the surface `simplified`.
@@ -55,7 +53,7 @@ double mean_over(const std::vector<double>& values, const std::vector<uint8_t>& 
 
 int run(const Args& a) {
   // The human summary: nothing with -q, the JSON object instead with --json.
-  const bool human = !a.quiet && !a.json;
+  const bool human = !a.text.quiet && !a.text.json;
   using namespace meshsal;
   // Before any work: the folder exists (or is made) and is writable.
   prepare_output_folder(a.dir);
@@ -64,21 +62,13 @@ int run(const Args& a) {
   Mesh mesh = make_bumpy_sphere(a.subdivisions, &feature, &bumps);
   if (human) std::printf("demo mesh: a sphere with ~900 identical small bumps and one larger unique feature\n");
 
-  SaliencyOptions opt;
-  opt.cancel = interrupt_flag();
+  // The saliency options as every command reads them (request_from).
+  Progress progress(!a.text.quiet && stderr_is_terminal());
+  SaliencyOptions opt = request_from(a.text, &progress).saliency;
   opt.smoothed = true;  // Sm = G(S, 3 eps) for the simplification below
-  opt.threads = a.threads;
-  opt.backend = parse_backend(a.backend);
-  opt.precision = meshsal::parse_precision(a.precision);
-  opt.method = meshsal::parse_method(a.method);
-  Progress progress(!a.quiet && stderr_is_terminal());
-  opt.progress = [&](const char* stage, double f) { progress.update(stage, f); };
-  opt.notice = [&a](const std::string& line) {
-    if (!a.quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());
-  };
   SaliencyResult r = compute_saliency(mesh, opt);
   progress.finish();
-  if (!a.quiet && !a.json) print_saliency_summary(mesh, r, 0.0);
+  if (human) print_saliency_summary(mesh, r, 0.0);
 
   const std::string out = a.dir + "/bumpy_sphere_saliency.ply";
   write_saliency(out, mesh, r, true);
@@ -113,7 +103,7 @@ int run(const Args& a) {
   if (human) std::printf("\n");
   for (const std::string& p : pictures)
     if (human) std::printf("wrote %s\n", printable(p).c_str());
-  if (a.json) {
+  if (a.text.json) {
     std::vector<std::string> outputs{out, a.dir + "/simplified_plain.obj", a.dir + "/simplified_saliency.obj"};
     outputs.insert(outputs.end(), pictures.begin(), pictures.end());
     JsonObject()
@@ -133,14 +123,10 @@ RunFn setup(CLI::App& sub) {
       "Build a procedural mesh that shows the paper's point (a sphere covered with regular small\n"
       "bumps and one unique larger feature), compute its saliency and write the results to DIR.");
   sub.add_option("-o,--output", a->dir, "Output folder (created if missing)")->capture_default_str();
-  sub.add_option("--backend", a->backend, "auto, gpu or cpu")->capture_default_str();
-  add_precision_option(sub, &a->precision);
-  add_method_option(sub, &a->method);
   sub.add_option("--subdivisions", a->subdivisions, "Icosphere subdivisions (5..8; 6 = 41k vertices)")
       ->capture_default_str()->check(whole_in(5, 8));
-  add_threads_option(sub, a->threads, "CPU threads (0 = all cores)");
-  sub.add_flag("-q,--quiet", a->quiet, "Print nothing on success (no notes either)");
-  sub.add_flag("--json", a->json, "Print the demo's figures and the files written as one JSON object on stdout");
+  add_saliency_options(sub, a->text);
+  add_output_flags(sub, a->text, "Print the demo's figures and the files written as one JSON object on stdout");
   return [a] { return run(*a); };
 }
 

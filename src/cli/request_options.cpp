@@ -30,8 +30,8 @@ void add_saliency_options(CLI::App& app, RequestText& t) {
   add_threads_option(app, t.threads, "CPU threads (0 = all cores)");
 }
 
-CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t) {
-  return app.add_option("--saliency-from", t.saliency_from,
+CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t, const std::string& names) {
+  return app.add_option(names, t.saliency_from,
                         "Read S from this file instead of computing it: a PLY (`quality`) or glTF (`_SALIENCY`) that "
                         "`meshsal saliency` wrote for this mesh");
 }

@@ -37,8 +37,8 @@ struct RequestText {
 
 // --backend --precision --method --device --scales --eps-frac --threads.
 void add_saliency_options(CLI::App& app, RequestText& t);
-// --saliency-from FILE (a PLY or glTF that keeps S).
-CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t);
+// --saliency-from FILE (a PLY or glTF that keeps S); `names` may add an older spelling.
+CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t, const std::string& names = "--saliency-from");
 // --up --elevation --restarts --seed --resolution --depth-tol --score; returned in the order
 // given so that a command can make them need another option (render: --best).
 std::vector<CLI::Option*> add_view_options(CLI::App& app, RequestText& t);
