@@ -616,6 +616,11 @@ Method parse_method(const std::string& name);
 // "auto", "cpu" or "gpu"; throws Error on anything else.
 Backend parse_backend(const std::string& name);
 
+// The names the parsers above read, for each value (the front ends' option texts).
+const char* precision_name(Precision precision);
+const char* method_name(Method method);
+const char* backend_name(Backend backend);
+
 // Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);
 
@@ -1219,7 +1224,13 @@ struct Request {
   // S: computed with `saliency` (its defaults are every command's), or read back from
   // `saliency_from` (a PLY or glTF that keeps S: load_saliency); with saliency_from_input,
   // from the input itself when it holds S (a saliency PLY given to `render` or `view`).
-  SaliencyOptions saliency;
+  // Every front end's default backend is Auto (a GPU when there is one), not the CPU that
+  // a bare SaliencyOptions names.
+  SaliencyOptions saliency = [] {
+    SaliencyOptions o;
+    o.backend = Backend::Auto;
+    return o;
+  }();
   std::string saliency_from;
   bool saliency_from_input = false;
   // Or S given by the caller (not owned): one value per vertex of `mesh`, which must then
@@ -1267,7 +1278,11 @@ struct Request {
   // distance to the input). map_output: the view map (with viewpoint.views directions,
   // 2000 when 0), map_width pixels wide.
   bool find_view = false;
-  ViewpointOptions viewpoint;
+  ViewpointOptions viewpoint = [] {
+    ViewpointOptions o;
+    o.backend = Backend::Auto;
+    return o;
+  }();
   ViewAngles view;
   std::string page_output;
   ViewPageOptions page;

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "arg_values.h"
+#include <pybind11/stl.h>
+
 #include "bindings.h"
 #include "meshsal/meshsal.h"
 #include "mesh_args.h"
@@ -69,6 +71,28 @@ void save(const py::object& path_obj, const py::object& vertices, const py::obje
   } catch (const meshsal::Error& e) {
     raise_file_error(e, path_obj);
   }
+}
+
+// The defaults every front end shares: the library's meshsal::Request, as option values.
+py::dict defaults() {
+  const meshsal::Request r;
+  py::dict d;
+  d["method"] = meshsal::method_name(r.saliency.method);
+  d["backend"] = meshsal::backend_name(r.saliency.backend);
+  d["precision"] = meshsal::precision_name(r.saliency.precision);
+  d["eps_frac"] = r.saliency.eps_frac;
+  d["scales"] = py::cast(r.saliency.scales);
+  d["threads"] = r.saliency.threads;
+  d["device"] = r.saliency.device;
+  d["weights"] = meshsal::weighting_name(r.weighting);
+  d["weight_floor"] = r.weight_options.floor;
+  d["restarts"] = r.viewpoint.restarts;
+  d["seed"] = r.viewpoint.seed;
+  d["resolution"] = r.viewpoint.resolution;
+  d["depth_tol"] = r.viewpoint.depth_tol_px;
+  d["size"] = r.style.size;
+  d["max_faces"] = r.page.max_faces;
+  return d;
 }
 
 py::list devices() {
@@ -141,6 +165,13 @@ attributes=r.attributes, position_vertex=r.position_vertex) writes what `meshsal
 -o p` writes. A missing folder raises meshsal.FileNotFoundError, one that may not be
 written meshsal.PermissionError, other failures meshsal.Error.
 )") + kAttributesDoc).c_str());
+  m.def("defaults", &defaults,
+        R"(defaults() -> dict
+
+The defaults every front end shares (the library's meshsal::Request: the command line's
+options and these functions' keyword arguments take them): method, backend, precision,
+eps_frac, scales, threads, device, weights, weight_floor, restarts, seed, resolution,
+depth_tol, size, max_faces.)");
   m.def("built_with_vulkan", &meshsal::built_with_vulkan,
         "built_with_vulkan() -> bool\n\nTrue when this module has the Vulkan backend (backend='gpu').");
   m.def("devices", &devices,

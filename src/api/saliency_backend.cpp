@@ -154,6 +154,18 @@ Precision parse_precision(const std::string& name) {
   throw Error("precision must be auto, mixed or double, got '" + name + "'");
 }
 
+const char* method_name(Method method) {
+  return method == Method::Exact ? "exact" : method == Method::Fast ? "fast" : "auto";
+}
+
+const char* backend_name(Backend backend) {
+  return backend == Backend::Auto ? "auto" : backend == Backend::Cpu ? "cpu" : "gpu";
+}
+
+const char* precision_name(Precision precision) {
+  return precision == Precision::Auto ? "auto" : precision == Precision::Mixed ? "mixed" : "double";
+}
+
 std::vector<double> parse_scales(const std::string& text) {
   std::vector<double> scales;
   std::stringstream ss(text);
