@@ -60,6 +60,21 @@ std::map<int, std::string> written_images(const std::string& obj_path, const Glt
   return out;
 }
 
+// The lines of an .mtl's text, without their line ends and trailing blanks.
+std::vector<std::string> trimmed_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(at, end - at);
+    at = end + 1;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
 std::string number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", x);
@@ -108,18 +123,9 @@ std::string obj_materials_as_mtl(const Mesh& mesh) {
   for (size_t i = 0; i < mesh.material_libraries.size(); ++i) {
     out += (i ? ", " : "") + mesh.material_libraries[i];
     const std::string text = i < mesh.material_library_text.size() ? mesh.material_library_text[i] : "";
-    size_t at = 0;
-    while (at < text.size()) {
-      size_t end = text.find('\n', at);
-      if (end == std::string::npos) end = text.size();
-      std::string line = text.substr(at, end - at);
-      at = end + 1;
+    for (const std::string& line : trimmed_lines(text)) {
       const size_t b = line.find_first_not_of(" \t");
-      if (b != std::string::npos && line.compare(b, 7, "newmtl ") == 0) {
-        std::string name = line.substr(b + 7);
-        while (!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t')) name.pop_back();
-        defined.insert(name);
-      }
+      if (b != std::string::npos && line.compare(b, 7, "newmtl ") == 0) defined.insert(line.substr(b + 7));
     }
   }
   if (mesh.material_libraries.empty()) out += "the mesh's material names";
@@ -165,13 +171,7 @@ void read_material_libraries(Mesh& mesh, const std::string& folder, uint64_t bud
 std::vector<std::string> library_textures(const Mesh& mesh) {
   std::vector<std::string> out;
   for (const std::string& text : mesh.material_library_text) {
-    size_t at = 0;
-    while (at < text.size()) {
-      size_t end = text.find('\n', at);
-      if (end == std::string::npos) end = text.size();
-      std::string line = text.substr(at, end - at);
-      at = end + 1;
-      while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    for (const std::string& line : trimmed_lines(text)) {
       const size_t b = line.find_first_not_of(" \t");
       if (b == std::string::npos) continue;
       const size_t e = line.find_first_of(" \t", b);
