@@ -190,3 +190,24 @@ TEST_CASE("OBJ references: an mtllib outside the model's folder is refused by na
   CHECK_THROWS_WITH(load_mesh_bytes("mtllib ok.mtl /etc/passwd\n" + body, "a.obj"),
                     Catch::Contains("mtllib '/etc/passwd': an absolute path"));
 }
+
+TEST_CASE("OBJ references: a material library or texture that leads out of the folder refuses the model", "[io][materials][references]") {
+  Layout l;
+  const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  // A library beside the model: read; one missing: noted, the model read.
+  l.in_model("ok.mtl", "newmtl a\nKd 1 0 0\nmap_Kd sub/wood.png\n");
+  LoadReport report;
+  CHECK(load_mesh(l.in_model("ok.obj", "mtllib ok.mtl missing.mtl\n" + body), nullptr, {}, &report).material_library_text.size() == 2);
+  CHECK(report.unread == std::vector<std::string>{"material library 'missing.mtl': no such file in the model's folder"});
+  // A library through a link out of the folder, or a texture named outside it: refused.
+  l.root.write("outside.mtl", "newmtl a\n");
+  REQUIRE(::symlink("../outside.mtl", (l.model + "/linked.mtl").c_str()) == 0);
+  CHECK_THAT(load_error(l.in_model("linked.obj", "mtllib linked.mtl\n" + body)),
+             Catch::Contains("material library 'linked.mtl': leads out of the model's folder through a symbolic link"));
+  l.in_model("escape.mtl", "newmtl a\nmap_Kd -s 1 1 1 ../../secret.png\n");
+  CHECK_THAT(load_error(l.in_model("escape.obj", "mtllib escape.mtl\n" + body)),
+             Catch::Contains("material library 'escape.mtl': texture '../../secret.png': a path that leaves the model's folder"));
+  l.in_model("absolute.mtl", "newmtl a\nbump /etc/hostname\n");
+  CHECK_THAT(load_error(l.in_model("absolute.obj", "mtllib absolute.mtl\n" + body)),
+             Catch::Contains("texture '/etc/hostname': an absolute path"));
+}

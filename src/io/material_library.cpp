@@ -16,6 +16,7 @@
 #include "io/gltf_assets.h"
 #include "io/mesh_io_internal.h"
 #include "io/model_reference.h"
+#include "io/text_scan.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -162,9 +163,19 @@ void read_material_libraries(Mesh& mesh, const std::string& folder, uint64_t bud
       const std::vector<unsigned char> bytes = read_model_reference(folder, mesh.material_libraries[i], false, budget);
       budget -= bytes.size();
       mesh.material_library_text[i].assign(bytes.begin(), bytes.end());
+    } catch (const ReferenceRefused& e) {
+      throw Error(std::string("material library ") + e.what());  // a model naming its way out: refused whole
     } catch (const Error& e) {
-      if (unread) unread->push_back(std::string("material library ") + e.what());
+      if (unread) unread->push_back(std::string("material library ") + e.what());  // missing: noted
     }
+  }
+  // The textures a library names are carried into the output's .mtl: held to the same rule.
+  for (size_t i = 0; i < mesh.material_libraries.size(); ++i) {
+    Mesh one;
+    one.material_library_text = {mesh.material_library_text[i]};
+    for (const std::string& texture : library_textures(one))
+      if (const std::string problem = reference_text_problem(texture, false); !problem.empty())
+        throw Error("material library '" + mesh.material_libraries[i] + "': texture " + quoted(texture, 200) + ": " + problem);
   }
 }
 

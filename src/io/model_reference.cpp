@@ -90,7 +90,8 @@ std::vector<unsigned char> read_model_reference(const std::string& folder, const
                                                 uint64_t budget) {
   const std::string name = quoted(reference, 200);
   auto fail = [&](const std::string& problem) -> Error { return Error(name + ": " + problem); };
-  if (const std::string problem = reference_text_problem(reference, uri); !problem.empty()) throw fail(problem);
+  auto refuse = [&](const std::string& problem) -> ReferenceRefused { return ReferenceRefused(name + ": " + problem); };
+  if (const std::string problem = reference_text_problem(reference, uri); !problem.empty()) throw refuse(problem);
   const std::string base = real_path(folder.empty() ? "." : folder);
   if (base.empty()) throw fail("the model's folder cannot be resolved: " + std::string(std::strerror(errno)));
   std::vector<std::string> parts;
@@ -102,9 +103,9 @@ std::vector<unsigned char> read_model_reference(const std::string& folder, const
   const std::string resolved = real_path(joined);
   if (resolved.empty() && errno != ENOENT && errno != ENOTDIR)
     throw fail(std::string("cannot be resolved: ") + std::strerror(errno));
-  if (resolved.empty() || !lies_below(resolved, base))
-    throw fail(resolved.empty() ? "no such file in the model's folder"
-                                : "leads out of the model's folder through a symbolic link (" + std::string(kReferenceRule) + ")");
+  if (resolved.empty()) throw fail("no such file in the model's folder");
+  if (!lies_below(resolved, base))
+    throw refuse("leads out of the model's folder through a symbolic link (" + std::string(kReferenceRule) + ")");
   // O_NOFOLLOW: the resolved path has no link left; one put there since is refused.
   // O_NONBLOCK: a FIFO opens at once (and is refused below) instead of waiting for a writer.
   Fd f;
@@ -116,7 +117,7 @@ std::vector<unsigned char> read_model_reference(const std::string& folder, const
   std::vector<char> target(PATH_MAX + 1);
   const ssize_t len = ::readlink(link, target.data(), target.size() - 1);
   if (len > 0 && !lies_below(std::string(target.data(), size_t(len)), base))
-    throw fail("leads out of the model's folder (" + std::string(kReferenceRule) + ")");
+    throw refuse("leads out of the model's folder (" + std::string(kReferenceRule) + ")");
   struct stat st;
   if (::fstat(f.fd, &st) != 0) throw fail(std::string("cannot stat: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode)) throw fail("not a regular file (a model may name only regular files)");

@@ -14,10 +14,18 @@
 #include <string>
 #include <vector>
 
+#include "meshsal/meshsal.h"
+
 namespace meshsal {
 
 // The rule in the words every refusal uses.
 constexpr const char* kReferenceRule = "a model may name only files in its own folder or below";
+
+// A reference refused by the rule (not merely missing or unreadable): a model that names
+// its way out of its folder is refused whole, whatever names it.
+struct ReferenceRefused : Error {
+  using Error::Error;
+};
 
 // Why the reference cannot name a file in the model's folder by its text alone ("" when it
 // can): empty, a NUL byte, absolute, a URI scheme ("http:", "file:"; when `uri`), or more
@@ -27,7 +35,8 @@ std::string reference_text_problem(const std::string& reference, bool uri);
 
 // The bytes of the file `reference` names in the model's folder `folder` ("." or a path,
 // with or without a trailing '/'), under the rule above, symbolic links resolved: a regular
-// file (no FIFO, device or folder), at most `budget` bytes. Throws Error "'REFERENCE': ..."
+// file (no FIFO, device or folder), at most `budget` bytes. Throws ReferenceRefused
+// "'REFERENCE': ..." when the rule refuses it, Error when it is missing or cannot be read
 // (the caller prefixes the model's name).
 std::vector<unsigned char> read_model_reference(const std::string& folder, const std::string& reference, bool uri,
                                                 uint64_t budget);
