@@ -37,7 +37,7 @@ std::vector<std::string> check_side_files(RequestRun& run, const std::string& pa
   const std::vector<std::string> side = mesh_side_files(path, mesh);
   if (!side.empty()) {
     std::vector<OutputFile> files;
-    for (const std::string& f : side) files.push_back({f, "-o", {}});
+    for (const std::string& f : side) files.push_back({f, run.request.output_option, {}});
     std::vector<std::string> inputs{run.request.input, run.request.saliency_from, path};
     check_outputs(files, inputs);
   }
