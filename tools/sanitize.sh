@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the library, the command line and the tests with AddressSanitizer and
-# UndefinedBehaviorSanitizer (-DMESHSAL_SANITIZE=ON) into build-sanitize/ and runs the
-# whole suite there, lavapipe and the Khronos validation layer included.
+# Builds the library, the command line, the tests and the Python module with
+# AddressSanitizer and UndefinedBehaviorSanitizer (-DMESHSAL_SANITIZE=ON) into
+# build-sanitize/ and runs the whole suite there, lavapipe, the Khronos validation layer and
+# the Python tests included.
 #   tools/sanitize.sh [CTEST ARGS...]      e.g. tools/sanitize.sh -R '\[io\]'
 # Any sanitizer report aborts the test that triggered it, so a clean run is a passing run.
 # Leaks are checked too, except those reported inside the Vulkan loader, lavapipe, LLVM
@@ -10,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null   # packages (and the normal build)
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHSAL_SANITIZE=ON >/dev/null
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHSAL_SANITIZE=ON -DMESHSAL_BUILD_PYTHON=ON >/dev/null
 cmake --build build-sanitize -j"$(nproc)"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tools/lsan.supp:print_suppressions=0}
@@ -29,10 +30,16 @@ fi
 cd build-sanitize
 # package_consumer builds a plain (unsanitized) meshsal from source: nothing to check here.
 rc=0
-ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer -LE mpi "$@" || rc=1
+ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer -LE 'mpi|python' "$@" || rc=1
 # Open MPI's components (loaded and unloaded by MPI_Init/MPI_Finalize) keep allocations
 # they never free, in modules gone by exit that no suppression can name: the mpirun tests
 # run with every check but the leak check.
 ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
   ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E package_consumer -L mpi "$@" || rc=1
+# The Python module, built with the sanitizers too: python3 itself is not, so their
+# runtimes are preloaded ahead of everything (ASan must come first), and the leak check is
+# off (the interpreter keeps its allocations until exit by design).
+asan=$(gcc -print-file-name=libasan.so) ubsan=$(gcc -print-file-name=libubsan.so)
+LD_PRELOAD="$asan $ubsan${LD_PRELOAD:+ $LD_PRELOAD}" ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
+  ctest --output-on-failure --timeout 1200 -L python "$@" || rc=1
 exit $rc
