@@ -8,7 +8,7 @@
 #include "cli/synthetic.h"
 #include "core/mesh_points.h"
 #include "saliency/saliency.h"
-#include "saliency/saliency_tiles.h"
+#include "tiles/saliency_tiles.h"
 #include "test_util.h"
 
 using namespace meshsal;

@@ -6,7 +6,7 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 #include "cli/synthetic.h"
 #include "test_util.h"
 

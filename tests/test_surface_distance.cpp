@@ -4,7 +4,7 @@
 #include <random>
 
 #include "meshsal/meshsal.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 #include "cli/synthetic.h"
 #include "test_util.h"
 

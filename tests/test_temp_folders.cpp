@@ -20,8 +20,8 @@
 #include <thread>
 #include <vector>
 
-#include "api/scratch_files.h"
-#include "api/scratch_lock.h"
+#include "tiles/scratch_files.h"
+#include "tiles/scratch_lock.h"
 #include "cli/synthetic.h"
 #include "cli_run.h"
 #include "meshsal/meshsal.h"

@@ -9,10 +9,11 @@
 #include "core/number_text.h"
 #include "core/welded_view.h"
 #include "api/gpu_backend.h"
+#include "api/resolve_method.h"
 #include "core/mesh_points.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
-#include "saliency/saliency_tiles.h"
+#include "tiles/saliency_tiles.h"
 #include "core/cancel.h"
 
 namespace meshsal {

@@ -5,6 +5,7 @@
 #include "core/cancel.h"
 #include "core/mesh_points.h"
 #include "core/welded_view.h"
+#include "api/resolve_method.h"
 #include "meshsal/meshsal.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"

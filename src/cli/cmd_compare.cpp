@@ -10,7 +10,7 @@
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 #include "json_object.h"
 #include "load_input.h"
 #include "number_options.h"

@@ -12,7 +12,7 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 #include "cli/synthetic.h"
 #include "number_options.h"
 #include "output_check.h"

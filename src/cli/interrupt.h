@@ -7,7 +7,7 @@
 // or a job scheduler, SIGHUP from a closed terminal, SIGQUIT, SIGPIPE from a reader gone,
 // SIGUSR1/2, SIGALRM, SIGXCPU, SIGXFSZ, SIGPWR) does the same, so an out-of-core run removes
 // its temporary folder whatever stops it; a crash (SIGSEGV, abort) cannot, and SIGKILL
-// neither: a later run removes what they leave (api/scratch_lock.h). Under mpirun only
+// neither: a later run removes what they leave (tiles/scratch_lock.h). Under mpirun only
 // SIGINT: the ranks must die at once when one aborts (mpirun sends them SIGTERM), and a
 // rank waiting in a collective would never see the flag.
 #pragma once

@@ -33,8 +33,4 @@ constexpr unsigned kMaxTiles = 64;  // SaliencyOptions::tiles
 // Throws Error when options break the limits above (compute_saliency* call it).
 void check_saliency_options(const SaliencyOptions& options);
 
-// options.method with Auto decided for this mesh (Fast when the exact sweep's estimated
-// pairs pass kAutoPairBudget, with a notice); compute_saliency and smooth_saliency use it.
-Method resolve_method(const Mesh& mesh, const SaliencyOptions& options);
-
 }  // namespace meshsal

@@ -7,7 +7,7 @@
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
 #include "io/png_image.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 #include "view/legend.h"
 #include "view/picture.h"
 #include "view/render.h"

@@ -1,11 +1,12 @@
 // meshsal (internal): one group of a tiled simplification pass, see tile_pass.h.
-#include "simplify/tile_pass.h"
+#include "tiles/tile_pass.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/mesh_points.h"
-#include "simplify/simplify_tiled.h"
+#include "core/streamed_percentile.h"
+#include "tiles/simplify_tiled.h"
 
 namespace meshsal {
 namespace simplify_detail {
@@ -106,6 +107,21 @@ bool strip_grid(unsigned tiles, int step, unsigned* grid_tiles, double* shift) {
   *grid_tiles = t;
   *shift = t == 1 ? 0 : 0.5;
   return true;
+}
+
+std::vector<size_t> pass_goals(const PassBudget& budget, const std::vector<size_t>& faces, uint64_t first_goals,
+                               uint64_t level_count, const std::function<std::vector<double>(size_t)>& levels) {
+  uint64_t own = 0;
+  for (size_t f : faces) own += f;
+  const uint64_t collapses = std::min(pass_collapses(budget, own, first_goals), level_count);
+  const ValueStream all = [&](const std::function<void(double)>& take) {
+    for (size_t g = 0; g < faces.size(); ++g)
+      for (double x : levels(g)) take(x);
+  };
+  const double level = collapses == 0 ? -1.0 : streamed_kth(all, collapses - 1);
+  std::vector<LevelCount> counts;
+  for (size_t g = 0; g < faces.size(); ++g) counts.push_back(count_level(levels(g), level));
+  return level_goals(counts, faces, collapses);
 }
 
 }  // namespace simplify_detail

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+#include <utility>
 
-#include "api/disk_simplify.h"
+#include "tiles/disk_simplify.h"
 #include "core/streamed_percentile.h"
-#include "api/tile_saliency.h"
-#include "api/tile_store.h"
-#include "api/memory_size.h"
+#include "tiles/tile_saliency.h"
+#include "tiles/tile_store.h"
+#include "tiles/tile_rounds.h"
+#include "core/memory_size.h"
 #include "core/cancel.h"
 #include "core/model_frame.h"
 #include "core/stage_clock.h"
@@ -22,7 +24,7 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
-#include "simplify/simplify_tiled.h"
+#include "tiles/simplify_tiled.h"
 
 namespace meshsal {
 
@@ -174,13 +176,41 @@ void write_output(const std::string& output, const TileStore& store, const DiskM
   report.output_faces = size_t(mesh.triangle_count);
 }
 
-}  // namespace
+// The passes over the mesh on disk, for run_rounds (disk_simplify.h).
+class DiskPasses final : public TilePasses {
+ public:
+  DiskPasses(DiskMesh& mesh, const SimplifyOptions& options, size_t buffer_bytes, PassTotals& totals,
+             std::function<void(const char*, double)> progress)
+      : mesh_(mesh), options_(options), buffer_(buffer_bytes), totals_(totals), progress_(std::move(progress)),
+        pending_(mesh.vertices) {}
+  uint64_t triangles() const override { return mesh_.triangle_count; }
+  void first_pass(const TileGrid& grid, const PassBudget& budget) override {
+    for (uint64_t v = 0; v < mesh_.vertices; ++v) pending_.set(uint32_t(v));
+    run_disk_pass(mesh_, DiskPass{grid, budget}, options_, pending_, totals_, buffer_,
+                  [&](double f) { progress_("simplifying", f); });
+  }
+  bool strip_pass(const TileGrid& grid, const PassBudget& budget) override {
+    if (strip_vertices(mesh_, pending_, near1_, near2_) == 0) return false;
+    DiskPass pass{grid, budget};
+    pass.selected_near = &near1_;
+    pass.guard_near = &near2_;
+    run_disk_pass(mesh_, pass, options_, pending_, totals_, buffer_, [&](double f) { progress_("strips", f); });
+    return true;
+  }
 
-OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
-                                      const SimplifyOptions& options, const SaliencyWeightOptions* weights,
-                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& ooc,
-                                      unsigned tiles) {
-  const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
+ private:
+  DiskMesh& mesh_;
+  const SimplifyOptions& options_;
+  size_t buffer_;
+  PassTotals& totals_;
+  std::function<void(const char*, double)> progress_;
+  VertexBits pending_, near1_, near2_;
+};
+
+// The saliency options of simplify_file: S and its smoothed map, the fast method where
+// Auto; refuses what out of core cannot do.
+SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWeightOptions* weights,
+                                const SaliencyOptions& saliency_options, unsigned tiles) {
   if (options.target_error > 0)
     throw Error("simplify: out of core takes a face target (target_faces or ratio), not target_error");
   if (options.record_collapses) throw Error("simplify: out of core does not record the collapses");
@@ -199,6 +229,106 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     if (so.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
     if (so.exchange) throw Error("simplify: out of core runs in one process (no TileExchange)");
   }
+  return so;
+}
+
+// The vertex state (position, then S with weights) to mesh.state, and with weights each
+// vertex's smoothed saliency to sm.f64 (NaN where it is no mesh point), a block at a time.
+void write_vertex_state(const TileStore& store, const DiskMesh& mesh, bool weights, size_t scales) {
+  const size_t rec = mesh.record_bytes();
+  ScratchWriter state(mesh.state), sm(store.dir.file("sm.f64"));
+  ScratchReader pos(store.dir.file("pos.f32"));
+  std::vector<float> p(3 * kBlock), r(kBlock * rec / 4);
+  std::vector<double> values, smooth(kBlock);
+  std::vector<uint8_t> point;
+  for (uint64_t first = 0; first < store.vertices; first += kBlock) {
+    const size_t count = size_t(std::min<uint64_t>(kBlock, store.vertices - first));
+    pos.read_exact(p.data(), 12 * count);
+    if (weights) read_tile_results(store, scales, first, count, values, point);
+    for (size_t i = 0; i < count; ++i) {
+      float* out = &r[i * rec / 4];
+      for (int k = 0; k < 3; ++k) out[k] = p[3 * i + k];
+      if (weights) {
+        out[3] = float(values[i * (kResultWidth + scales)]);  // S, as set_vertex_attribute stores it
+        smooth[i] = point[i] ? values[i * (kResultWidth + scales) + 1] : NAN;
+      }
+    }
+    state.write(r.data(), count * rec);
+    if (weights) sm.write(smooth.data(), count * 8);
+  }
+  state.close();
+  sm.close();
+}
+
+// The weight of every vertex (simplify_with_saliency's rule, streamed) from sm.f64 to
+// mesh.weights; returns alpha.
+double write_weights(const TileStore& store, DiskMesh& mesh, const SaliencyWeightOptions& weights) {
+  const std::string sm_path = store.dir.file("sm.f64");
+  const ValueStream points = [&](const std::function<void(double)>& take) {
+    ScratchReader in(sm_path);
+    std::vector<double> buf(kBlock);
+    for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;)
+      for (size_t i = 0; i < got; ++i)
+        if (!std::isnan(buf[i])) take(buf[i]);
+  };
+  const double alpha = streamed_percentile(points, store.points, weights.alpha_percentile);
+  double sum = 0;
+  points([&](double s) { sum += curve_weight(s, alpha, weights); });
+  const double floor = weights.floor > 0 && store.points > 0 ? weight_floor(sum, store.points, weights) : 0;
+  mesh.weights = store.dir.file("w.f64");
+  ScratchWriter w(mesh.weights);
+  ScratchReader in(sm_path);
+  std::vector<double> buf(kBlock);
+  for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;) {
+    for (size_t i = 0; i < got; ++i)
+      buf[i] = std::isnan(buf[i]) ? 0.0 : std::max(curve_weight(buf[i], alpha, weights), floor);
+    w.write(buf.data(), got * 8);
+  }
+  w.close();
+  return alpha;
+}
+
+// The tiles: the fewest (at least `tiles`) whose largest piece fits beside the bits of
+// the passes (three per vertex) and the bucket buffers (an eighth of the limit).
+unsigned simplify_tiles(const TileStore& store, const std::string& input, uint64_t memory_limit, unsigned tiles,
+                        uint64_t& estimate) {
+  const uint64_t fixed = kBaseBytes + 3 * (store.vertices / 8) + memory_limit / 8;
+  unsigned t = std::max(1u, tiles);
+  for (;;) {
+    estimate = uint64_t(double(largest_cell(store, TileGrid(store.box, t, 0))) * kSimplifyBytesPerVertex);
+    if (!memory_limit || fixed + estimate <= memory_limit) return t;
+    if (t == kMaxSimplifyTiles)
+      throw Error("memory limit " + memory_size_text(memory_limit) + " is too small to simplify " + input +
+                  ": the smallest tile needs about " + mib_text(estimate) +
+                  "; the smallest workable limit is about " + mib_text(fixed + estimate));
+    t = std::min(kMaxSimplifyTiles, t + std::max(1u, t / 4));
+  }
+}
+
+// The report's outcome once the output is written.
+void finish_report(SimplifyReport& rep, bool keep, uint64_t faces, size_t target, const PassTotals& totals,
+                   double diagonal) {
+  rep.unchanged = keep;
+  rep.reached = rep.output_faces == target;
+  if (keep)
+    rep.note = "the target (" + std::to_string(target) + " faces) is at or above the mesh's " +
+               std::to_string(faces) + " faces: the mesh is unchanged";
+  else if (!rep.reached)
+    rep.note = "tiled simplification stopped at " + std::to_string(rep.output_faces) + " faces (target " +
+               std::to_string(target) + "): the strips along the tile cuts could not give up more";
+  rep.collapses = totals.collapses;
+  rep.refused = totals.refused;
+  rep.error = diagonal > 0 ? totals.error / diagonal : 0;
+}
+
+}  // namespace
+
+OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
+                                      const SimplifyOptions& options, const SaliencyWeightOptions* weights,
+                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& ooc,
+                                      unsigned tiles) {
+  const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
+  SaliencyOptions so = checked_options(options, weights, saliency_options, tiles);
   OutOfCoreSimplifyReport report;
   const Timer t0;
   StageClock clock(report.stages);
@@ -244,115 +374,26 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     tile_saliency(store, so, report.saliency);
     clock.lap("saliency");
   }
-  {
-    const size_t scales = so.scales.size(), rec = mesh.record_bytes();
-    ScratchWriter state(mesh.state), sm(store.dir.file("sm.f64"));
-    ScratchReader pos(store.dir.file("pos.f32"));
-    std::vector<float> p(3 * kBlock), r(kBlock * rec / 4);
-    std::vector<double> values, smooth(kBlock);
-    std::vector<uint8_t> point;
-    for (uint64_t first = 0; first < store.vertices; first += kBlock) {
-      const size_t count = size_t(std::min<uint64_t>(kBlock, store.vertices - first));
-      pos.read_exact(p.data(), 12 * count);
-      if (weights) read_tile_results(store, scales, first, count, values, point);
-      for (size_t i = 0; i < count; ++i) {
-        float* out = &r[i * rec / 4];
-        for (int k = 0; k < 3; ++k) out[k] = p[3 * i + k];
-        if (weights) {
-          out[3] = float(values[i * (kResultWidth + scales)]);  // S, as set_vertex_attribute stores it
-          smooth[i] = point[i] ? values[i * (kResultWidth + scales) + 1] : NAN;
-        }
-      }
-      state.write(r.data(), count * rec);
-      if (weights) sm.write(smooth.data(), count * 8);
-    }
-    state.close();
-    sm.close();
-  }
+  write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
   if (weights && !keep) {
-    const std::string sm_path = store.dir.file("sm.f64");
-    const ValueStream points = [&](const std::function<void(double)>& take) {
-      ScratchReader in(sm_path);
-      std::vector<double> buf(kBlock);
-      for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;)
-        for (size_t i = 0; i < got; ++i)
-          if (!std::isnan(buf[i])) take(buf[i]);
-    };
-    report.alpha = streamed_percentile(points, store.points, weights->alpha_percentile);
-    double sum = 0;
-    points([&](double s) { sum += curve_weight(s, report.alpha, *weights); });
-    const double floor = weights->floor > 0 && store.points > 0 ? weight_floor(sum, store.points, *weights) : 0;
-    mesh.weights = store.dir.file("w.f64");
-    ScratchWriter w(mesh.weights);
-    ScratchReader in(sm_path);
-    std::vector<double> buf(kBlock);
-    for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;) {
-      for (size_t i = 0; i < got; ++i)
-        buf[i] = std::isnan(buf[i]) ? 0.0 : std::max(curve_weight(buf[i], report.alpha, *weights), floor);
-      w.write(buf.data(), got * 8);
-    }
-    w.close();
+    report.alpha = write_weights(store, mesh, *weights);
     clock.lap("weights");
   }
   std::remove(store.dir.file("sm.f64").c_str());
-
-  // The tiles: the fewest (at least `tiles`) whose largest piece fits beside the bits of
-  // the passes (three per vertex) and the bucket buffers (an eighth of the limit).
-  const uint64_t fixed = kBaseBytes + 3 * (store.vertices / 8) + ooc.memory_limit / 8;
-  unsigned t = std::max(1u, tiles);
-  for (;;) {
-    report.tile_estimate = uint64_t(double(largest_cell(store, TileGrid(store.box, t, 0))) * kSimplifyBytesPerVertex);
-    if (!ooc.memory_limit || fixed + report.tile_estimate <= ooc.memory_limit) break;
-    if (t == kMaxSimplifyTiles)
-      throw Error("memory limit " + memory_size_text(ooc.memory_limit) + " is too small to simplify " + input +
-                  ": the smallest tile needs about " + mib_text(report.tile_estimate) +
-                  "; the smallest workable limit is about " + mib_text(fixed + report.tile_estimate));
-    t = std::min(kMaxSimplifyTiles, t + std::max(1u, t / 4));
-  }
-  report.tiles = t;
+  report.tiles = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);
 
   // The passes of simplify_mesh_tiled.
   PassTotals totals;
   if (!keep) {
     const size_t buffer = ooc.memory_limit ? size_t(ooc.memory_limit / 8) : size_t(64) << 20;
-    VertexBits pending(store.vertices), near1, near2;
-    // Rounds, as simplify_mesh_tiled (simplify/tile_pass.h).
-    for (uint64_t now = mesh.triangle_count; now > target; now = mesh.triangle_count) {
-      const size_t goal = round_target(size_t(now), target);
-      for (uint64_t v = 0; v < store.vertices; ++v) pending.set(uint32_t(v));
-      DiskPass first{TileGrid(store.box, t, 0), PassBudget{}};
-      first.budget.ratio = double(goal) / double(now);
-      run_disk_pass(mesh, first, options, pending, totals, buffer, [&](double f) { progress("simplifying", f); });
-      unsigned grid_tiles = 0;
-      double shift = 0;
-      for (int step = 0; mesh.triangle_count > goal && strip_grid(t, step, &grid_tiles, &shift); ++step) {
-        const uint64_t strips = strip_vertices(mesh, pending, near1, near2);
-        if (strips == 0) break;
-        DiskPass pass{TileGrid(store.box, grid_tiles, shift), PassBudget{}};
-        pass.budget.rule = Targets::Remaining;
-        pass.budget.to_remove = (long long)mesh.triangle_count - (long long)goal;
-        pass.selected_near = &near1;
-        pass.guard_near = &near2;
-        run_disk_pass(mesh, pass, options, pending, totals, buffer, [&](double f) { progress("strips", f); });
-      }
-      if (mesh.triangle_count >= now) break;  // the round gave up nothing: neither will the next
-    }
+    DiskPasses passes(mesh, options, buffer, totals, progress);
+    run_rounds(passes, store.box, report.tiles, target);
     clock.lap("simplifying");
   }
 
   write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep);
   clock.lap("writing");
-  rep.unchanged = keep;
-  rep.reached = rep.output_faces == target;
-  if (keep)
-    rep.note = "the target (" + std::to_string(target) + " faces) is at or above the mesh's " +
-               std::to_string(faces) + " faces: the mesh is unchanged";
-  else if (!rep.reached)
-    rep.note = "tiled simplification stopped at " + std::to_string(rep.output_faces) + " faces (target " +
-               std::to_string(target) + "): the strips along the tile cuts could not give up more";
-  rep.collapses = totals.collapses;
-  rep.refused = totals.refused;
-  rep.error = store.box.diagonal() > 0 ? totals.error / store.box.diagonal() : 0;
+  finish_report(rep, keep, faces, target, totals, store.box.diagonal());
   rep.seconds = t0.seconds();
   return report;
 }

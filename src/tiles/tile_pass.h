@@ -1,13 +1,14 @@
 // meshsal (internal): what every pass of tiled simplification does to one group, and the
 // order of the passes; shared by the in-memory driver (simplify_tiled.cpp) and the
-// out-of-core one (api/simplify_out_of_core.cpp), so that both make the same collapses.
+// out-of-core one (tiles/simplify_out_of_core.cpp), so that both make the same collapses.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "meshsal/meshsal.h"
-#include "simplify/tile_pieces.h"
+#include "tiles/tile_pieces.h"
 
 namespace meshsal {
 namespace simplify_detail {
@@ -73,6 +74,14 @@ LevelCount count_level(const std::vector<double>& levels, double level);
 // Each group's face target: faces[g] - 2 * its collapses, at least 1.
 std::vector<size_t> level_goals(const std::vector<LevelCount>& counts, const std::vector<size_t>& faces,
                                 uint64_t collapses);
+
+// A pass's goal for each of its groups, from all of the above: the pass_collapses (at most
+// `level_count`, the levels there are) go to the cheapest levels of all groups.
+// `faces`: each group's own faces; `first_goals`: the sum of their first_pass_goal()s (a
+// first pass); `levels(g)`: group g's collapse_levels, asked for more than once (a driver
+// keeps them in memory or on disk).
+std::vector<size_t> pass_goals(const PassBudget& budget, const std::vector<size_t>& faces, uint64_t first_goals,
+                               uint64_t level_count, const std::function<std::vector<double>(size_t)>& levels);
 
 // The global ids of the vertices `tile`'s own triangles use that it did not pin: no other
 // group has them, so this pass freed them (they are no longer pending).

@@ -1,6 +1,6 @@
-#include "saliency/tile_reduce.h"
+#include "tiles/tile_reduce.h"
 
-#include "saliency/tile_bytes.h"
+#include "tiles/tile_bytes.h"
 
 namespace meshsal {
 

@@ -4,7 +4,7 @@
 // half a tile (so a cut of the last pass lies inside a strip), toward what is left of the
 // target. A shared vertex is pinned in every piece that has it, so the pieces join on it:
 // no crack, and no border edge that the input did not have.
-#include "simplify/simplify_tiled.h"
+#include "tiles/simplify_tiled.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +15,12 @@
 #include "core/cancel.h"
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
-#include "core/streamed_percentile.h"
 #include "core/timer.h"
 #include "simplify/simplify.h"
-#include "simplify/tile_grid.h"
-#include "simplify/tile_pass.h"
-#include "simplify/tile_pieces.h"
+#include "tiles/tile_grid.h"
+#include "tiles/tile_pass.h"
+#include "tiles/tile_pieces.h"
+#include "tiles/tile_rounds.h"
 
 namespace meshsal {
 
@@ -59,33 +59,21 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
     return w;
   };
   // Each group's goal from the common error level (tile_pass.h), in every pass.
-  std::vector<size_t> goals;
-  {
-    std::vector<std::vector<double>> levels;
-    uint64_t faces = 0, goal_sum = 0, count = 0;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      throw_if_cancelled();
-      const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
-      const std::vector<double> w = weights_of(tile);
-      levels.push_back(collapse_levels(tile, weights ? &w : nullptr, options));
-      faces += groups[g].size();
-      if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
-      count += levels.back().size();
-    }
-    const uint64_t collapses = std::min(pass_collapses(budget, faces, goal_sum), count);
-    const ValueStream all = [&](const std::function<void(double)>& take) {
-      for (const std::vector<double>& l : levels)
-        for (double x : l) take(x);
-    };
-    const double level = collapses == 0 ? -1.0 : streamed_kth(all, collapses - 1);
-    std::vector<LevelCount> counts;
-    std::vector<size_t> sizes;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      counts.push_back(count_level(levels[g], level));
-      sizes.push_back(groups[g].size());
-    }
-    goals = level_goals(counts, sizes, collapses);
+  std::vector<std::vector<double>> levels;
+  std::vector<size_t> sizes;
+  uint64_t goal_sum = 0, count = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    throw_if_cancelled();
+    const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
+    const std::vector<double> w = weights_of(tile);
+    levels.push_back(collapse_levels(tile, weights ? &w : nullptr, options));
+    sizes.push_back(groups[g].size());
+    if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
+    count += levels.back().size();
   }
+  const std::vector<size_t> goals =
+      pass_goals(budget, sizes, goal_sum, count, [&](size_t g) { return levels[g]; });
+  std::vector<std::vector<double>>().swap(levels);
   std::vector<TilePiece> out;
   for (size_t g = 0; g < groups.size(); ++g) {
     throw_if_cancelled();
@@ -124,6 +112,34 @@ std::vector<uint32_t> strip_triangles(const Work& work, const std::vector<uint8_
     if (taken[t]) list.push_back(uint32_t(t));
   return list;
 }
+
+// The passes over the mesh in memory, for run_rounds.
+class MemoryPasses final : public TilePasses {
+ public:
+  MemoryPasses(Work& work, const std::vector<double>* weights, const SimplifyOptions& options,
+               std::vector<uint8_t>& pending, PassTotals& totals)
+      : work_(work), weights_(weights), options_(options), pending_(pending), totals_(totals) {}
+  uint64_t triangles() const override { return work_.mesh.triangle_count(); }
+  void first_pass(const TileGrid& grid, const PassBudget& budget) override {
+    std::vector<uint32_t> all(work_.mesh.triangle_count());
+    for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
+    std::fill(pending_.begin(), pending_.end(), 1);  // every vertex waits for the round's first pass
+    work_ = run_pass(work_, all, grid, budget, weights_, options_, pending_, totals_);
+  }
+  bool strip_pass(const TileGrid& grid, const PassBudget& budget) override {
+    const std::vector<uint32_t> strips = strip_triangles(work_, pending_, kStripRings);
+    if (strips.empty()) return false;
+    work_ = run_pass(work_, strips, grid, budget, weights_, options_, pending_, totals_);
+    return true;
+  }
+
+ private:
+  Work& work_;
+  const std::vector<double>* weights_;
+  const SimplifyOptions& options_;
+  std::vector<uint8_t>& pending_;
+  PassTotals& totals_;
+};
 
 }  // namespace
 
@@ -180,27 +196,8 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   for (size_t v = 0; v < nv; ++v) work.ids[v] = uint32_t(v);
   PassTotals totals;
   std::vector<uint8_t> pending(nv);
-  // Rounds (tile_pass.h): a first pass over every triangle, then strips along its cuts.
-  for (size_t now = work.mesh.triangle_count(); now > target; now = work.mesh.triangle_count()) {
-    const size_t goal = round_target(now, target);
-    std::vector<uint32_t> all(now);
-    for (size_t t = 0; t < now; ++t) all[t] = uint32_t(t);
-    std::fill(pending.begin(), pending.end(), 1);  // every vertex waits for the round's first pass
-    PassBudget first;
-    first.ratio = double(goal) / double(now);
-    work = run_pass(work, all, TileGrid(box, tiles, 0), first, vertex_weights, options, pending, totals);
-    unsigned grid_tiles = 0;
-    double shift = 0;
-    for (int step = 0; work.mesh.triangle_count() > goal && strip_grid(tiles, step, &grid_tiles, &shift); ++step) {
-      const std::vector<uint32_t> strips = strip_triangles(work, pending, kStripRings);
-      if (strips.empty()) break;
-      PassBudget rest;
-      rest.rule = Targets::Remaining;
-      rest.to_remove = (long long)work.mesh.triangle_count() - (long long)goal;
-      work = run_pass(work, strips, TileGrid(box, grid_tiles, shift), rest, vertex_weights, options, pending, totals);
-    }
-    if (work.mesh.triangle_count() >= now) break;  // the round gave up nothing: neither will the next
-  }
+  MemoryPasses passes(work, vertex_weights, options, pending, totals);
+  run_rounds(passes, box, tiles, target);
 
   Mesh out = std::move(work.mesh);
   carry_model_frame(mesh, work.ids, out);  // an unmoved vertex is written as it was read

@@ -1,6 +1,6 @@
 // meshsal: point-to-surface distances over a triangle BVH, Hausdorff / RMS / salient error.
 #include "core/model_frame.h"
-#include "simplify/surface_distance.h"
+#include "core/surface_distance.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
 // tile_saliency(): the phases of saliency_tiles.h over a TileStore, see tile_saliency.h.
-#include "api/tile_saliency.h"
+#include "tiles/tile_saliency.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/stage_clock.h"
-#include "saliency/tile_bytes.h"
-#include "saliency/tile_reduce.h"
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
 
 namespace meshsal {
 

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "api/scratch_files.h"
-#include "saliency/saliency_tiles.h"
+#include "tiles/scratch_files.h"
+#include "tiles/saliency_tiles.h"
 
 namespace meshsal {
 

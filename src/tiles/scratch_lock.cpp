@@ -1,7 +1,7 @@
 // meshsal: the temporary folders' locks and the removal of stale ones (scratch_lock.h).
 // Every step goes through descriptors opened with O_NOFOLLOW, relative to the folder's
 // own, so that a link put in a shared /tmp never sends a removal elsewhere.
-#include "api/scratch_lock.h"
+#include "tiles/scratch_lock.h"
 
 #include <dirent.h>
 #include <fcntl.h>

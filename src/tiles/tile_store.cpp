@@ -1,4 +1,4 @@
-#include "api/tile_store.h"
+#include "tiles/tile_store.h"
 
 #include <sys/stat.h>
 
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <map>
 
-#include "api/memory_size.h"
+#include "core/memory_size.h"
 #include "core/model_frame.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
@@ -74,65 +74,67 @@ uint64_t PointHistogram::within(const BoundingBox& b) const {
   return sum;
 }
 
-void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
-                      uint64_t memory_limit, unsigned min_tiles,
-                      const std::function<void(const char*, double)>& progress) {
-  auto report = [&](const char* stage, double f) {
-    if (progress) progress(stage, f);
-  };
+namespace {
+
+using Progress = std::function<void(const char*, double)>;
+// One bit per vertex: referenced by a face (a mesh point).
+using PointBits = std::vector<uint64_t>;
+bool is_point(const PointBits& bits, uint64_t v) { return (bits[v >> 6] >> (v & 63)) & 1; }
+
+// The input as a binary PLY the passes can stream: itself, or another format converted
+// once (this one step holds the mesh whole), in double so the coordinates stay the values
+// as read. Sets store.input and store.double_positions's source.
+void store_input(TileStore& store, const std::string& input_path, int& converted_wide) {
   struct stat st;
   if (::stat(input_path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
     throw Error(input_path + ": out of core reads regular files only (it reads the input more than once)");
-  std::string input = input_path;
-  int converted_wide = -1;  // a converted file's own precision (it is stored in double)
-  if (!PlyStream::readable(input_path)) {
-    // Another format: converted once to a binary PLY (this one step holds the mesh whole),
-    // in double so the coordinates stay the values as read.
-    Mesh m = load_mesh(input_path);
-    converted_wide = positions_need_double(m) ? 1 : 0;
-    m.double_positions = true;
-    input = store.dir.file("input.ply");
-    write_ply(input, m, {}, nullptr);
-  }
-  store.input = input;
-  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit.
-  store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
+  store.input = input_path;
+  converted_wide = -1;  // a converted file's own precision (it is stored in double)
+  if (PlyStream::readable(input_path)) return;
+  Mesh m = load_mesh(input_path);
+  converted_wide = positions_need_double(m) ? 1 : 0;
+  m.double_positions = true;
+  store.input = store.dir.file("input.ply");
+  write_ply(store.input, m, {}, nullptr);
+}
 
-  // Pass A: doubles as read, triangles, and the referenced bits.
-  PlyStream ply(input);
+// Pass A: the doubles as read to xyz.f64, the triangles to tri.u32; returns the point bits.
+PointBits read_input(TileStore& store, const std::string& input_path, int converted_wide, const Progress& report) {
+  PlyStream ply(store.input);
   store.vertices = ply.vertex_count();
   store.double_positions = converted_wide >= 0 ? converted_wide == 1 : ply.double_positions();
   if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
-  std::vector<uint64_t> referenced((store.vertices + 63) / 64, 0);
-  {
-    ScratchWriter xyz(store.dir.file("xyz.f64"));
-    std::vector<double> buf(3 * kChunk);
-    uint64_t v = 0;
-    for (size_t got; (got = ply.read_vertices(buf.data(), kChunk)) > 0; v += got) {
-      for (size_t i = 0; i < 3 * got; ++i)
-        if (!std::isfinite(buf[i]))
-          throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
-      xyz.write(buf.data(), 3 * got * sizeof(double));
-    }
-    xyz.close();
-    ScratchWriter tri(store.dir.file("tri.u32"));
-    std::vector<uint32_t> t;
-    uint64_t faces_read = 0;
-    for (size_t got; (got = ply.read_faces(t, kChunk)) > 0;) {
-      faces_read += got;
-      for (uint32_t v : t) referenced[v >> 6] |= uint64_t(1) << (v & 63);
-      store.triangles += t.size() / 3;
-      tri.write_vector(t);
-      t.clear();
-      report("reading", double(faces_read) / double(std::max<uint64_t>(1, ply.face_count())));
-    }
-    tri.close();
+  PointBits referenced((store.vertices + 63) / 64, 0);
+  ScratchWriter xyz(store.dir.file("xyz.f64"));
+  std::vector<double> buf(3 * kChunk);
+  uint64_t v = 0;
+  for (size_t got; (got = ply.read_vertices(buf.data(), kChunk)) > 0; v += got) {
+    for (size_t i = 0; i < 3 * got; ++i)
+      if (!std::isfinite(buf[i]))
+        throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
+    xyz.write(buf.data(), 3 * got * sizeof(double));
   }
+  xyz.close();
+  ScratchWriter tri(store.dir.file("tri.u32"));
+  std::vector<uint32_t> t;
+  uint64_t faces_read = 0;
+  for (size_t got; (got = ply.read_faces(t, kChunk)) > 0;) {
+    faces_read += got;
+    for (uint32_t v : t) referenced[v >> 6] |= uint64_t(1) << (v & 63);
+    store.triangles += t.size() / 3;
+    tri.write_vector(t);
+    t.clear();
+    report("reading", double(faces_read) / double(std::max<uint64_t>(1, ply.face_count())));
+  }
+  tri.close();
   if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
   if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
-  auto is_point = [&](uint64_t v) { return (referenced[v >> 6] >> (v & 63)) & 1; };
+  return referenced;
+}
 
-  // Pass B: the origin (set_model_positions' rule), local floats, their box and histogram.
+// Pass B: the origin (set_model_positions' rule), local floats to pos.f32, their box, the
+// point count and the histogram of the points.
+void local_positions(TileStore& store, const PointBits& points) {
   BoundingBox model = empty_box();
   {
     ScratchReader xyz(store.dir.file("xyz.f64"));
@@ -140,7 +142,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
     uint64_t v = 0;
     for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got)
       for (size_t i = 0; i < got; ++i)
-        if (is_point(v + i))
+        if (is_point(points, v + i))
           for (int a = 0; a < 3; ++a) {
             model.min[a] = std::min(model.min[a], buf[3 * i + a]);
             model.max[a] = std::max(model.max[a], buf[3 * i + a]);
@@ -157,7 +159,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
     for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got) {
       for (size_t i = 0; i < 3 * got; ++i) local[i] = local_coordinate(buf[i], store.origin[i % 3]);
       for (size_t i = 0; i < got; ++i)
-        if (is_point(v + i)) {
+        if (is_point(points, v + i)) {
           store.points++;
           for (int a = 0; a < 3; ++a) {
             box.min[a] = std::min(box.min[a], double(local[3 * i + a]));
@@ -172,28 +174,28 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
   PointHistogram& hist = store.histogram;
   hist.box = box;
   for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / PointHistogram::kBins, 1e-30);
-  {
-    ScratchReader pos(store.dir.file("pos.f32"));
-    std::vector<float> buf(3 * kChunk);
-    uint64_t v = 0;
-    for (size_t got; (got = pos.read(buf.data(), buf.size() * sizeof(float)) / 12) > 0; v += got)
-      for (size_t i = 0; i < got; ++i)
-        if (is_point(v + i)) hist.add(&buf[3 * i]);
-  }
-  std::vector<uint64_t>().swap(referenced);
+  ScratchReader pos(store.dir.file("pos.f32"));
+  std::vector<float> buf(3 * kChunk);
+  uint64_t v = 0;
+  for (size_t got; (got = pos.read(buf.data(), buf.size() * sizeof(float)) / 12) > 0; v += got)
+    for (size_t i = 0; i < got; ++i)
+      if (is_point(points, v + i)) hist.add(&buf[3 * i]);
+}
 
-  // The tile count: the fewest (at least min_tiles) whose largest tile fits the limit,
-  // among those whose halos cost at most kMaxTileWork times the untiled work (smaller
-  // tiles would shrink little: the halo, the filter's reach, stays).
+// The tile count: the fewest (at least min_tiles) whose largest tile fits the limit,
+// among those whose halos cost at most kMaxTileWork times the untiled work (smaller
+// tiles would shrink little: the halo, the filter's reach, stays).
+void choose_tiling(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                   uint64_t memory_limit, unsigned min_tiles) {
   unsigned tiles = std::max(1u, min_tiles);
-  store.plan = make_tile_plan(box, store.points, options, tiles);
-  PlanCost cost = plan_cost(store.plan, hist, store.points);
+  store.plan = make_tile_plan(store.box, store.points, options, tiles);
+  PlanCost cost = plan_cost(store.plan, store.histogram, store.points);
   if (memory_limit) {
     uint64_t best = cost.largest;
     while (kBaseBytes + cost.largest > memory_limit) {
       const unsigned next = std::min(kMaxTiles, tiles + std::max(1u, tiles / 4));
-      const TilePlan finer = make_tile_plan(box, store.points, options, next);
-      const PlanCost finer_cost = plan_cost(finer, hist, store.points);
+      const TilePlan finer = make_tile_plan(store.box, store.points, options, next);
+      const PlanCost finer_cost = plan_cost(finer, store.histogram, store.points);
       if (next == tiles || finer_cost.work > kMaxTileWork) break;
       tiles = next;
       store.plan = finer;
@@ -206,9 +208,22 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
                   mib_text(best) + "; the smallest workable limit is about " + mib_text(kBaseBytes + best));
   }
   store.largest_tile_estimate = cost.largest;
+}
 
-  // Pass C: each triangle to the bucket of every tile one of its corners lies in, a block
-  // of vertex positions at a time.
+// Whether triangle c, all of whose corners are in the block at `first`, has an area
+// (validate_mesh's test).
+bool has_area(const uint32_t* c, const std::vector<float>& pos, uint64_t first) {
+  double u[3], w[3];
+  for (int a = 0; a < 3; ++a) {
+    u[a] = double(pos[3 * (c[1] - first) + a]) - pos[3 * (c[0] - first) + a];
+    w[a] = double(pos[3 * (c[2] - first) + a]) - pos[3 * (c[0] - first) + a];
+  }
+  return u[1] * w[2] - u[2] * w[1] != 0 || u[2] * w[0] - u[0] * w[2] != 0 || u[0] * w[1] - u[1] * w[0] != 0;
+}
+
+// Pass C: each triangle to the bucket of every tile one of its corners lies in, a block of
+// vertex positions at a time.
+void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memory_limit, const Progress& report) {
   const size_t ntiles = tile_count(store.plan);
   std::vector<std::vector<TileFace>> pending(ntiles);
   size_t pending_count = 0;
@@ -232,25 +247,18 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
       in.seek(first * 12);
       in.read_exact(pos.data(), pos.size() * sizeof(float));
     }
+    auto in_block = [&](uint32_t v) { return v >= first && v < first + count; };
     ScratchReader tri(store.dir.file("tri.u32"));
     std::vector<uint32_t> buf(3 * kChunk);
     uint32_t f = 0;
     for (size_t got; (got = tri.read(buf.data(), buf.size() * 4) / 12) > 0;) {
       for (size_t i = 0; i < got; ++i, ++f) {
         const uint32_t* c = &buf[3 * i];
-        if (!any_area && c[0] >= first && c[1] >= first && c[2] >= first && c[0] < first + count &&
-            c[1] < first + count && c[2] < first + count) {
-          double u[3], w[3];
-          for (int a = 0; a < 3; ++a) {
-            u[a] = double(pos[3 * (c[1] - first) + a]) - pos[3 * (c[0] - first) + a];
-            w[a] = double(pos[3 * (c[2] - first) + a]) - pos[3 * (c[0] - first) + a];
-          }
-          any_area = u[1] * w[2] - u[2] * w[1] != 0 || u[2] * w[0] - u[0] * w[2] != 0 || u[0] * w[1] - u[1] * w[0] != 0;
-        }
+        if (!any_area && in_block(c[0]) && in_block(c[1]) && in_block(c[2])) any_area = has_area(c, pos, first);
         size_t seen[3];
         int nseen = 0;
         for (int k = 0; k < 3; ++k) {
-          if (c[k] < first || c[k] >= first + count) continue;
+          if (!in_block(c[k])) continue;
           const size_t t = tile_of(store.plan, &pos[3 * (c[k] - first)]);
           if (std::find(seen, seen + nseen, t) != seen + nseen) continue;
           seen[nseen++] = t;
@@ -265,6 +273,26 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
   flush();
   if (!any_area && store.block >= store.vertices)
     throw Error(input_path + ": every triangle has zero area (degenerate mesh)");
+}
+
+}  // namespace
+
+void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned min_tiles,
+                      const std::function<void(const char*, double)>& progress) {
+  const Progress report = [&](const char* stage, double f) {
+    if (progress) progress(stage, f);
+  };
+  int converted_wide = -1;
+  store_input(store, input_path, converted_wide);
+  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit.
+  store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
+  {
+    const PointBits points = read_input(store, input_path, converted_wide, report);
+    local_positions(store, points);
+  }
+  choose_tiling(store, input_path, options, memory_limit, min_tiles);
+  fill_buckets(store, input_path, memory_limit, report);
 }
 
 TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan) {

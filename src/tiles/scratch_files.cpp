@@ -1,4 +1,4 @@
-#include "api/scratch_files.h"
+#include "tiles/scratch_files.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include "api/scratch_lock.h"
+#include "tiles/scratch_lock.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {

@@ -2,9 +2,9 @@
 // process's share of the tiles, the reductions through a TileExchange when one is given.
 #include "core/parallel.h"
 #include "core/stage_clock.h"
-#include "saliency/saliency_tiles.h"
-#include "saliency/tile_bytes.h"
-#include "saliency/tile_reduce.h"
+#include "tiles/saliency_tiles.h"
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
 
 namespace meshsal {
 

@@ -1,11 +1,12 @@
 // meshsal (internal): cutting and joining the pieces of tiled simplification, see
 // tile_pieces.h.
-#include "simplify/tile_pieces.h"
+#include "tiles/tile_pieces.h"
 
 #include <algorithm>
 #include <string>
 #include <utility>
 
+#include "core/mesh_context.h"
 #include "simplify/simplify.h"
 
 namespace meshsal {

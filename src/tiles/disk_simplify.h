@@ -1,11 +1,11 @@
 // meshsal: tiled simplification's passes over a mesh on disk (simplify_file, out of core).
-// The in-memory driver (simplify/simplify_tiled.cpp) keeps the mesh between passes in
+// The in-memory driver (tiles/simplify_tiled.cpp) keeps the mesh between passes in
 // memory; here it lives in two files, and each pass reads one group at a time:
 //   state      per global vertex id: x, y, z (local floats) and the carried attributes;
 //   triangles  3 global ids per triangle, in the order the in-memory driver holds them.
 // A pass groups its triangles by their centroid's cell (the same TileGrid), cuts each
 // group with its guards from bucket files, simplifies it with the shared step
-// (simplify/tile_pass.h) and appends the result; so both drivers make the same collapses
+// (tiles/tile_pass.h) and appends the result; so both drivers make the same collapses
 // and the same mesh, to the bit.
 #pragma once
 #include <cstdint>
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "api/scratch_files.h"
-#include "simplify/tile_grid.h"
-#include "simplify/tile_pass.h"
+#include "tiles/scratch_files.h"
+#include "tiles/tile_grid.h"
+#include "tiles/tile_pass.h"
 
 namespace meshsal {
 

@@ -1,5 +1,5 @@
 // meshsal (internal): the tile grid, see tile_grid.h.
-#include "simplify/tile_grid.h"
+#include "tiles/tile_grid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The passes of tiled simplification over a mesh on disk, see disk_simplify.h.
-#include "api/disk_simplify.h"
+#include "tiles/disk_simplify.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,7 +7,6 @@
 #include <map>
 
 #include "core/cancel.h"
-#include "core/streamed_percentile.h"
 
 namespace meshsal {
 
@@ -195,19 +194,21 @@ uint64_t strip_vertices(const DiskMesh& mesh, const VertexBits& pending, VertexB
   return selected;
 }
 
-void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
-                   PassTotals& totals, size_t buffer_bytes, const std::function<void(double)>& progress) {
-  Buckets buckets(mesh, ++mesh.passes, buffer_bytes);
-  auto selected = [&](const uint32_t* c) { return !pass.selected_near || pass.selected_near->any(c); };
-  // Each selected triangle to its group's bucket; each triangle that may be a guard to the
-  // bucket of every cell its corners lie in.
+namespace {
+
+// Whether the pass selects triangle c (every triangle in a first pass).
+bool selected(const DiskPass& pass, const uint32_t* c) { return !pass.selected_near || pass.selected_near->any(c); }
+
+// Each selected triangle to its group's bucket; each triangle that may be a guard to the
+// bucket of every cell its corners lie in.
+void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets) {
   CornerStates states;
   for_each_chunk(mesh, [&](uint64_t first, const std::vector<uint32_t>& t) {
     throw_if_cancelled();
     states.read(mesh, t.data(), t.size());
     for (size_t i = 0; i < t.size(); i += 3) {
       const uint32_t* c = &t[i];
-      const bool mine = selected(c);
+      const bool mine = selected(pass, c);
       if (!mine && pass.guard_near && !pass.guard_near->any(c)) continue;
       const BucketFace face{uint32_t(first + i / 3), {c[0], c[1], c[2]}, 0};
       const float* p[3] = {states.position(c[0]), states.position(c[1]), states.position(c[2])};
@@ -225,6 +226,76 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     }
   });
   buckets.flush();
+}
+
+// The weights of a piece's vertices (empty without weights).
+std::vector<double> piece_weights(const DiskMesh& mesh, const TilePiece& tile) {
+  std::vector<double> w;
+  if (!mesh.weights.empty()) {
+    w.resize(tile.ids.size());
+    read_records(mesh.weights, 8, tile.ids, w.data());
+  }
+  return w;
+}
+
+// Each group's goal from the common error level (tile_pass.h), in every pass; the levels
+// of each group kept on disk meanwhile.
+std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, const Buckets& buckets,
+                                const std::vector<uint64_t>& groups, const SimplifyOptions& options,
+                                const std::function<void(double)>& progress) {
+  auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
+  uint64_t goal_sum = 0, count = 0;
+  std::vector<size_t> sizes;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    throw_if_cancelled();
+    if (progress) progress(0.5 * double(g) / double(groups.size()));
+    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+    const std::vector<double> w = piece_weights(mesh, tile);
+    const std::vector<double> levels = collapse_levels(tile, mesh.weights.empty() ? nullptr : &w, options);
+    ScratchWriter lf(levels_file(g));
+    lf.write_vector(levels);
+    lf.close();
+    sizes.push_back(tile.mesh.triangle_count() - tile.guards);
+    if (pass.budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, pass.budget.ratio);
+    count += levels.size();
+  }
+  const std::vector<size_t> goals = pass_goals(pass.budget, sizes, goal_sum, count, [&](size_t g) {
+    const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
+    std::vector<double> levels(bytes.size() / 8);
+    // (A group with no collapse has an empty file: memcpy's pointers would be null.)
+    if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
+    return levels;
+  });
+  for (size_t g = 0; g < groups.size(); ++g) std::remove(levels_file(g).c_str());
+  return goals;
+}
+
+// Writes the moved vertices' records (id, then the state record) into the state file, a
+// block at a time: only once every group has read the pass's input.
+void apply_moves(DiskMesh& mesh, const std::string& moves) {
+  const size_t rec = mesh.record_bytes();
+  ScratchReader in(moves);
+  std::vector<uint8_t> buf((4 + rec) * kChunk), data;
+  std::vector<uint32_t> ids;
+  for (size_t got; (got = in.read(buf.data(), buf.size()) / (4 + rec)) > 0;) {
+    ids.resize(got);
+    data.resize(got * rec);
+    for (size_t i = 0; i < got; ++i) {
+      std::memcpy(&ids[i], &buf[i * (4 + rec)], 4);
+      std::memcpy(&data[i * rec], &buf[i * (4 + rec) + 4], rec);
+    }
+    write_records(mesh.state, rec, ids, data.data());
+  }
+}
+
+}  // namespace
+
+void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
+                   PassTotals& totals, size_t buffer_bytes, const std::function<void(double)>& progress) {
+  Buckets buckets(mesh, ++mesh.passes, buffer_bytes);
+  fill_buckets(mesh, pass, buckets);
+  const std::vector<uint64_t> groups = buckets.groups();
+  const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, options, progress);
 
   // Each group in cell order (the in-memory driver's order), then the rest as it was.
   const std::string next = mesh.triangles + "+";
@@ -232,63 +303,11 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   ScratchWriter out(next), moved(moves);
   uint64_t out_count = 0;
   const size_t rec = mesh.record_bytes(), nattr = mesh.attribute_names.size();
-  const std::vector<uint64_t> groups = buckets.groups();
-  const PassBudget& budget = pass.budget;
-  auto weights_of = [&](const TilePiece& tile) {
-    std::vector<double> w;
-    if (!mesh.weights.empty()) {
-      w.resize(tile.ids.size());
-      read_records(mesh.weights, 8, tile.ids, w.data());
-    }
-    return w;
-  };
-  // Each group's goal from the common error level (tile_pass.h), in every pass; the levels
-  // of each group kept on disk meanwhile.
-  std::vector<size_t> goals;
-  {
-    auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
-    uint64_t faces = 0, goal_sum = 0, count = 0;
-    std::vector<size_t> sizes;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      throw_if_cancelled();
-      if (progress) progress(0.5 * double(g) / double(groups.size()));
-      const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
-      const std::vector<double> w = weights_of(tile);
-      const std::vector<double> levels = collapse_levels(tile, mesh.weights.empty() ? nullptr : &w, options);
-      ScratchWriter lf(levels_file(g));
-      lf.write_vector(levels);
-      lf.close();
-      sizes.push_back(tile.mesh.triangle_count() - tile.guards);
-      faces += sizes.back();
-      if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
-      count += levels.size();
-    }
-    const uint64_t collapses = std::min(pass_collapses(budget, faces, goal_sum), count);
-    const ValueStream all = [&](const std::function<void(double)>& take) {
-      for (size_t g = 0; g < groups.size(); ++g) {
-        ScratchReader in(levels_file(g));
-        std::vector<double> buf(kChunk);
-        for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;)
-          for (size_t i = 0; i < got; ++i) take(buf[i]);
-      }
-    };
-    const double level = collapses == 0 ? -1.0 : streamed_kth(all, collapses - 1);
-    std::vector<LevelCount> counts;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
-      std::vector<double> levels(bytes.size() / 8);
-      // (A group with no collapse has an empty file: memcpy's pointers would be null.)
-      if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
-      counts.push_back(count_level(levels, level));
-      std::remove(levels_file(g).c_str());
-    }
-    goals = level_goals(counts, sizes, collapses);
-  }
   for (size_t g = 0; g < groups.size(); ++g) {
     throw_if_cancelled();
     if (progress) progress(0.5 + 0.5 * double(g) / double(groups.size()));
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
-    const std::vector<double> w = weights_of(tile);
+    const std::vector<double> w = piece_weights(mesh, tile);
     const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, goals[g], totals);
     for (uint32_t v : piece.mesh.triangles) out.write(&piece.ids[v], 4);
     out_count += piece.mesh.triangle_count();
@@ -306,28 +325,14 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   if (pass.selected_near)
     for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
       for (size_t i = 0; i < t.size(); i += 3)
-        if (!selected(&t[i])) {
+        if (!selected(pass, &t[i])) {
           out.write(&t[i], 12);
           ++out_count;
         }
     });
   out.close();
   moved.close();
-  // Every group read the pass's input: only now do the moved vertices go in.
-  {
-    ScratchReader in(moves);
-    std::vector<uint8_t> buf((4 + rec) * kChunk), data;
-    std::vector<uint32_t> ids;
-    for (size_t got; (got = in.read(buf.data(), buf.size()) / (4 + rec)) > 0;) {
-      ids.resize(got);
-      data.resize(got * rec);
-      for (size_t i = 0; i < got; ++i) {
-        std::memcpy(&ids[i], &buf[i * (4 + rec)], 4);
-        std::memcpy(&data[i * rec], &buf[i * (4 + rec) + 4], rec);
-      }
-      write_records(mesh.state, rec, ids, data.data());
-    }
-  }
+  apply_moves(mesh, moves);
   std::remove(moves.c_str());
   if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)
     throw Error(mesh.triangles + ": cannot replace a temporary file");

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "api/tile_store.h"
+#include "tiles/tile_store.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {

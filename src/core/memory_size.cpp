@@ -1,6 +1,6 @@
 // meshsal: parse_memory_size (meshsal.h), the one reading of a size every front end uses
 // (the CLI's --memory-limit, Python's memory_limit="700M"), and its inverse for messages.
-#include "api/memory_size.h"
+#include "core/memory_size.h"
 
 #include <cctype>
 #include <string>

@@ -1,5 +1,5 @@
 // The phases of a tiled saliency run (saliency_tiles.h), each on one tile.
-#include "saliency/saliency_tiles.h"
+#include "tiles/saliency_tiles.h"
 
 #include <algorithm>
 #include <cmath>

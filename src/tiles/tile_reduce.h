@@ -1,12 +1,12 @@
 // meshsal: the reductions of a tiled saliency run over the processes sharing it
 // (TileExchange; none: this process alone), one per phase, for every driver
-// (saliency_tiled.cpp in memory, api/saliency_out_of_core.cpp on disk).
+// (saliency_tiled.cpp in memory, saliency_out_of_core.cpp on disk).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "meshsal/meshsal.h"
-#include "saliency/saliency_tiles.h"
+#include "tiles/saliency_tiles.h"
 
 namespace meshsal {
 

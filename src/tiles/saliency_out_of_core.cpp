@@ -1,0 +1,212 @@
+// saliency_file(): the phases of saliency_tiles.h over a TileStore on disk, a tile at a
+// time, each tile's state kept on disk between phases; the output streamed in the input's
+// vertex order.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "tiles/tile_saliency.h"
+#include "tiles/tile_store.h"
+#include "core/cancel.h"
+#include "core/stage_clock.h"
+#include "io/atomic_write.h"
+#include "io/colormap.h"
+#include "io/output_check.h"
+#include "meshsal/meshsal.h"
+#include "saliency/saliency.h"
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
+
+namespace meshsal {
+
+namespace {
+
+// The store's description, from rank 0 to the others (they read the same files).
+TileBytes describe(const TileStore& s) {
+  TileBytes b;
+  std::vector<uint8_t> dir(s.dir.path().begin(), s.dir.path().end());
+  b.put(dir);
+  b.put(s.vertices);
+  b.put(s.triangles);
+  b.put(s.points);
+  b.put(uint8_t(s.double_positions));
+  for (double o : s.origin) b.put(o);
+  b.put(s.largest_tile_estimate);
+  b.put(uint64_t(s.block));
+  b.put(s.plan.tile_edge);
+  for (int a = 0; a < 3; ++a) b.put(s.plan.box.min[a]), b.put(s.plan.box.max[a]), b.put(s.plan.tiles[a]);
+  b.put(s.plan.query_margin);
+  b.put(s.plan.source_margin);
+  b.put(s.plan.eps);
+  return b;
+}
+
+void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOptions& options) {
+  TileBytesReader in{bytes};
+  const std::vector<uint8_t> dir = in.get_vector<uint8_t>();
+  s.dir.borrow(std::string(dir.begin(), dir.end()));
+  s.vertices = in.get<uint64_t>();
+  s.triangles = in.get<uint64_t>();
+  s.points = in.get<uint64_t>();
+  s.double_positions = in.get<uint8_t>() != 0;
+  for (double& o : s.origin) o = in.get<double>();
+  s.largest_tile_estimate = in.get<uint64_t>();
+  s.block = size_t(in.get<uint64_t>());
+  const double edge = in.get<double>();
+  BoundingBox box;
+  int tiles[3];
+  for (int a = 0; a < 3; ++a) box.min[a] = in.get<double>(), box.max[a] = in.get<double>(), tiles[a] = in.get<int>();
+  s.plan = make_tile_plan(box, s.points, options, 1);
+  s.plan.tile_edge = edge;
+  for (int a = 0; a < 3; ++a) s.plan.tiles[a] = tiles[a];
+  s.plan.query_margin = in.get<double>();
+  s.plan.source_margin = in.get<double>();
+  s.plan.eps = in.get<double>();
+}
+
+// The store: built by rank 0 (an error there reaches every rank through the exchange as
+// an empty description), described to the others.
+void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
+                      const std::function<void(const char*, double)>& progress) {
+  TileExchange* exchange = options.exchange;
+  const int rank = exchange ? exchange->rank() : 0;
+  TileBytes mine;
+  std::string failure;
+  if (rank == 0) {
+    try {
+      build_tile_store(store, input, options, memory_limit, options.tiles, progress);
+      mine = describe(store);
+    } catch (const Error& e) {
+      if (!exchange) throw;
+      failure = e.what();
+    }
+  }
+  const auto all = tile_gather(exchange, mine.data);
+  if (all[0].empty()) {
+    if (rank == 0) throw Error(failure);
+    throw Error("rank 0 could not read the input");
+  }
+  if (rank != 0) adopt(store, all[0], options);
+}
+
+// The output's PLY header: positions as read, S, with dump_scales the curvature and each
+// raw map, the colours; then the faces.
+std::string output_header(const TileStore& store, size_t scales, bool dump_scales) {
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by meshsal\n";
+  header += "element vertex " + std::to_string(store.vertices) + "\n";
+  header += store.double_positions ? "property double x\nproperty double y\nproperty double z\n"
+                                   : "property float x\nproperty float y\nproperty float z\n";
+  header += "property float quality\n";
+  if (dump_scales) {
+    header += "property float curvature\n";
+    for (size_t k = 0; k < scales; ++k) header += "property float saliency_raw_" + std::to_string(k) + "\n";
+  }
+  header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  header += "element face " + std::to_string(store.triangles) + "\n";
+  header += "property list uchar int vertex_indices\nend_header\n";
+  return header;
+}
+
+// The output (rank 0): the vertices a block at a time, each block's results gathered from
+// every tile's file; then the triangles.
+void write_output(const std::string& output, const TileStore& store, const SaliencyOptions& options,
+                  const OutOfCoreOptions& ooc, const OutOfCoreReport& report,
+                  const std::function<void(const char*, double)>& progress) {
+  const bool wide = store.double_positions;
+  const size_t scales = options.scales.size();
+  const std::string header = output_header(store, scales, ooc.dump_scales);
+  const ColorLimits limits = colour_limits({report.saliency_min, report.saliency_max}, {1, 1}, ColorRange{});
+  // A block of output vertices holds their results (8 bytes each) and positions as read:
+  // a quarter of the limit.
+  const size_t per_vertex = 8 * (2 + scales) + 25;
+  const size_t block = size_t(std::min<uint64_t>(
+      store.vertices, ooc.memory_limit ? std::max<uint64_t>(65536, ooc.memory_limit / 4 / per_vertex) : store.vertices));
+  write_file_atomically(output, [&](std::FILE* f) {
+    write_all(f, header.data(), header.size(), output);
+    std::vector<char> buf;
+    auto put = [&](const void* p, size_t n) { buf.insert(buf.end(), (const char*)p, (const char*)p + n); };
+    for (uint64_t first = 0; first < store.vertices; first += block) {
+      const size_t count = size_t(std::min<uint64_t>(block, store.vertices - first));
+      progress("writing", double(first) / double(store.vertices));
+      const size_t width = kResultWidth + scales;
+      std::vector<double> values;
+      std::vector<uint8_t> point;
+      read_tile_results(store, scales, first, count, values, point);
+      std::vector<double> xyz(3 * count);
+      read_source_positions(store, first, count, xyz.data());
+      buf.clear();
+      buf.reserve(count * (12 + 4 * width + 3 + 12));
+      for (size_t v = 0; v < count; ++v) {
+        for (int a = 0; a < 3; ++a) {
+          if (wide) put(&xyz[3 * v + a], 8);
+          else {
+            const float x = float(xyz[3 * v + a]);
+            put(&x, 4);
+          }
+        }
+        const float q = float(values[v * width]);
+        put(&q, 4);
+        if (ooc.dump_scales)
+          for (size_t k = 0; k < 1 + scales; ++k) {
+            const float x = float(values[v * width + 2 + k]);
+            put(&x, 4);
+          }
+        uint8_t rgb[3];
+        colormap_rgb(point[v] ? colour_position(values[v * width], limits) : 0.0, rgb);
+        put(rgb, 3);
+      }
+      write_all(f, buf.data(), buf.size(), output);
+    }
+    std::vector<uint32_t> tri(3 * 65536);
+    for (uint64_t first = 0; first < store.triangles; first += 65536) {
+      const size_t count = size_t(std::min<uint64_t>(65536, store.triangles - first));
+      read_triangles(store, first, count, tri.data());
+      buf.clear();
+      for (size_t i = 0; i < count; ++i) {
+        buf.push_back(3);
+        for (int k = 0; k < 3; ++k) {
+          const int32_t x = int32_t(tri[3 * i + k]);
+          put(&x, 4);
+        }
+      }
+      write_all(f, buf.data(), buf.size(), output);
+    }
+  });
+}
+
+}  // namespace
+
+OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
+                              const SaliencyOptions& options_in, const OutOfCoreOptions& ooc) {
+  const CancelScope cancel(options_in.cancel);
+  check_saliency_options(options_in);
+  if (options_in.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
+  SaliencyOptions options = options_in;
+  if (options.method == Method::Auto) options.method = Method::Fast;
+  TileExchange* exchange = options.exchange;
+  const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
+  OutOfCoreReport report;
+  report.ranks = ranks;
+  StageClock clock(report.stages);
+  auto progress = [&](const char* stage, double f) {
+    if (options.progress) options.progress(stage, f);
+  };
+  // Before the work: a .ply name (PLY bytes in a .obj would mislead), never the input
+  // (through a link either: the rename would replace it).
+  if (rank == 0) check_ply_output("saliency_file", output, input);
+
+  TileStore store(ooc.temp_dir);
+  if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
+  share_tile_store(store, input, options, ooc.memory_limit, progress);
+  clock.lap("tiling");
+  tile_saliency(store, options, report);
+  if (rank == 0) {
+    write_output(output, store, options, ooc, report, progress);
+    clock.lap("writing");
+  }
+  // Every rank done before rank 0's store (and its folder) goes.
+  tile_gather(exchange, {});
+  return report;
+}
+
+}  // namespace meshsal

@@ -1,0 +1,25 @@
+#include "tiles/tile_rounds.h"
+
+namespace meshsal {
+namespace simplify_detail {
+
+void run_rounds(TilePasses& passes, const BoundingBox& box, unsigned tiles, uint64_t target) {
+  for (uint64_t now = passes.triangles(); now > target; now = passes.triangles()) {
+    const uint64_t goal = round_target(size_t(now), size_t(target));
+    PassBudget first;
+    first.ratio = double(goal) / double(now);
+    passes.first_pass(TileGrid(box, tiles, 0), first);
+    unsigned grid_tiles = 0;
+    double shift = 0;
+    for (int step = 0; passes.triangles() > goal && strip_grid(tiles, step, &grid_tiles, &shift); ++step) {
+      PassBudget rest;
+      rest.rule = Targets::Remaining;
+      rest.to_remove = (long long)passes.triangles() - (long long)goal;
+      if (!passes.strip_pass(TileGrid(box, grid_tiles, shift), rest)) break;
+    }
+    if (passes.triangles() >= now) break;  // the round gave up nothing: neither will the next
+  }
+}
+
+}  // namespace simplify_detail
+}  // namespace meshsal
