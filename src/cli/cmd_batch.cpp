@@ -308,7 +308,8 @@ int agreed_status(int status) {
   return meshsal::cli::mpi_all_gather(mine)[0][0];
 }
 
-int run(Options o) {
+// The checks of the options alone, before anything is read; --contact-sheet implies --view.
+void check_options(Options& o) {
   {
     // A build without MPI started as N copies would run the whole batch N times at once.
     const int launched = meshsal::cli::mpi_launcher_size();
@@ -332,7 +333,10 @@ int run(Options o) {
     throw UsageError("--memory-limit computes each model out of core: it takes no --view, --html, --contact-sheet "
                      "(they need the mesh in memory) or --target-error (give --simplify RATIO|FACES)");
   if (!o.contact_sheet.empty()) o.view = true;  // the sheet shows the best-view pictures
+}
 
+// The request every model makes, from the options (its input and outputs filled per model).
+Plan make_plan(const Options& o) {
   Plan p;
   p.o = &o;
   p.simplifying = o.simplify > 0 || o.target_error > 0;
@@ -345,205 +349,284 @@ int run(Options o) {
   req.simplify.lock_border = o.lock_border;
   if (!o.lod.empty()) req.lod = parse_lod_levels(o.lod);
   check_render_style(req.style);
+  return p;
+}
 
-  // Before any work: the inputs, the output folder, the log and the sheet.
-  std::vector<std::string> inputs = expand_batch_inputs(o.inputs, o.list_file);
+// The run's models and the files each writes, every output checked before any work.
+struct Models {
+  std::vector<std::string> inputs, names;  // names: NAME of each model's outputs
+  std::vector<ModelOutputs> outs;
+  std::string log_path, gallery;  // gallery: "" without --html
+  // Whether an input lives in the output folder: then a model's state file is made before
+  // its outputs, so that they are known for outputs even when the run stops part way.
+  bool inputs_in_output_folder = false;
+  std::set<std::pair<dev_t, ino_t>> input_ids;  // the inputs' files
+};
+
+// Whether one of `inputs` lies in the folder `dir` itself (through a link too).
+bool any_input_in_folder(const std::vector<std::string>& inputs, const std::string& dir) {
+  bool found = false;
+  struct stat ds;
+  if (::stat(dir.c_str(), &ds) == 0)
+    for (const std::string& in : inputs) {
+      const std::string folder = std::filesystem::path(in).parent_path().string();
+      struct stat fs;
+      if (::stat(folder.empty() ? "." : folder.c_str(), &fs) == 0 && fs.st_dev == ds.st_dev && fs.st_ino == ds.st_ino)
+        found = true;
+    }
+  return found;
+}
+
+// Before any work: the inputs, the output folder, the log, the sheet and the gallery.
+Models find_models(const Options& o, const Plan& p) {
+  Models ms;
+  std::vector<std::string>& inputs = ms.inputs;
+  inputs = expand_batch_inputs(o.inputs, o.list_file);
   prepare_output_folder(o.out_dir);
   // An input folder that is also the output folder: what earlier runs wrote there is no input.
   inputs = without_batch_outputs(inputs, o.out_dir);
   if (inputs.empty())
     throw Error("batch: no mesh file found in the inputs given besides the outputs of earlier runs in " + o.out_dir);
-  // Whether an input lives in the output folder: then a model's state file is made before
-  // its outputs, so that they are known for outputs even when the run stops part way.
-  bool inputs_in_output_folder = false;
-  {
-    struct stat ds;
-    if (::stat(o.out_dir.c_str(), &ds) == 0)
-      for (const std::string& in : inputs) {
-        const std::string folder = std::filesystem::path(in).parent_path().string();
-        struct stat fs;
-        if (::stat(folder.empty() ? "." : folder.c_str(), &fs) == 0 && fs.st_dev == ds.st_dev && fs.st_ino == ds.st_ino)
-          inputs_in_output_folder = true;
-      }
-  }
-  const std::string log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
-  const std::string gallery = o.html ? o.out_dir + "/index.html" : "";
-  const std::vector<std::string> names = output_names(inputs);
-  std::vector<ModelOutputs> outs;
+  ms.inputs_in_output_folder = any_input_in_folder(inputs, o.out_dir);
+  ms.log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
+  ms.gallery = o.html ? o.out_dir + "/index.html" : "";
+  ms.names = output_names(inputs);
   for (size_t i = 0; i < inputs.size(); ++i)
-    outs.push_back(
-        model_outputs(o.out_dir, names[i], o.view || o.html, p.simplifying, req.out_of_core.memory_limit != 0, o.html,
-                      !req.lod.empty()));
-  check_batch_outputs_apart(o.out_dir, {{log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {gallery, "--html's gallery"}},
-                            inputs, names, outs);
+    ms.outs.push_back(model_outputs(o.out_dir, ms.names[i], o.view || o.html, p.simplifying,
+                                    p.request.out_of_core.memory_limit != 0, o.html, !p.request.lod.empty()));
+  check_batch_outputs_apart(o.out_dir,
+                            {{ms.log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {ms.gallery, "--html's gallery"}},
+                            inputs, ms.names, ms.outs);
   // The list files are inputs too: the log appended to one would be read as models next time.
   std::vector<std::string> read = inputs;
   if (!o.list_file.empty() && o.list_file != "-") read.push_back(o.list_file);
   for (const std::string& item : o.inputs)
     if (item.size() > 1 && item[0] == '@') read.push_back(item.substr(1));
-  check_outputs({{log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {gallery, "--html", {}}}, read);
+  check_outputs({{ms.log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {ms.gallery, "--html", {}}},
+                read);
   if (o.html && !built_with_viewer())
     throw Error("--html: this meshsal was built without the web viewer (web/node_modules was missing at build "
                 "time: run tools/setup.sh, then build again)");
-  std::set<std::pair<dev_t, ino_t>> input_ids;
   for (const std::string& in : inputs) {
     struct stat st;
-    if (::stat(in.c_str(), &st) == 0) input_ids.insert({st.st_dev, st.st_ino});
+    if (::stat(in.c_str(), &st) == 0) ms.input_ids.insert({st.st_dev, st.st_ino});
   }
-  // What runs killed mid-write left: temporaries of the outputs a batch writes.
+  return ms;
+}
+
+// What runs killed mid-write left: temporaries of the outputs a batch writes (on one rank:
+// the others' scan does not need it).
+void remove_batch_temporaries(const std::string& out_dir) {
   const auto batch_output = [](const std::string& base) {
     for (const char* end : {"_saliency.ply", "_view.png", "_view.html", "_simplified.obj", "_lod.glb", ".state"})
       if (base.size() > std::strlen(end) && base.compare(base.size() - std::strlen(end), std::string::npos, end) == 0)
         return true;
     return false;
   };
-  if (meshsal::cli::mpi_world().rank == 0) {  // one rank: the others' scan does not need it
-    remove_stale_temporaries(o.out_dir, batch_output);
-    remove_stale_temporaries(o.out_dir + "/.meshsal-batch", batch_output);
+  if (meshsal::cli::mpi_world().rank == 0) {
+    remove_stale_temporaries(out_dir, batch_output);
+    remove_stale_temporaries(out_dir + "/.meshsal-batch", batch_output);
   }
+}
 
-  // Each model: not read (refused, not a regular file), up to date (skipped) or computed.
-  // Under MPI every rank makes the same choices here, before any rank writes (the barrier).
-  const std::string options = options_line(o);
-  std::vector<std::string> refused(inputs.size()), not_read(inputs.size()), skip_record(inputs.size());
-  std::vector<size_t> to_compute;  // model indices, in order
-  for (size_t i = 0; i < inputs.size(); ++i) {
-    refused[i] = output_is_an_input(outs[i], input_ids);
-    if (refused[i].empty()) not_read[i] = not_read_reason(inputs[i]);
-    if (!refused[i].empty() || !not_read[i].empty()) continue;
+// Each model: not read (refused, not a regular file), up to date (skipped) or computed.
+// Under MPI every rank makes the same choices here, before any rank writes (the barrier).
+struct Choices {
+  std::string options;  // options_line
+  std::vector<std::string> refused, not_read, skip_record;  // per model ("": not so)
+  std::vector<size_t> to_compute;                            // model indices, in order
+};
+
+Choices choose_models(const Options& o, const Models& ms) {
+  Choices ch;
+  const size_t n = ms.inputs.size();
+  ch.options = options_line(o);
+  ch.refused.resize(n), ch.not_read.resize(n), ch.skip_record.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    ch.refused[i] = output_is_an_input(ms.outs[i], ms.input_ids);
+    if (ch.refused[i].empty()) ch.not_read[i] = not_read_reason(ms.inputs[i]);
+    if (!ch.refused[i].empty() || !ch.not_read[i].empty()) continue;
     ModelState saved;
-    if (!o.force && load_state(state_path(o.out_dir, names[i]), &saved)) {
+    if (!o.force && load_state(state_path(o.out_dir, ms.names[i]), &saved)) {
       try {
-        if (up_to_date(saved, fingerprint(inputs[i]), options, outs[i].all())) skip_record[i] = saved.record;
+        if (up_to_date(saved, fingerprint(ms.inputs[i]), ch.options, ms.outs[i].all())) ch.skip_record[i] = saved.record;
       } catch (const Error&) {
         // unreadable now: it is loaded, and fails with the loader's message
       }
     }
-    if (skip_record[i].empty()) to_compute.push_back(i);
+    if (ch.skip_record[i].empty()) ch.to_compute.push_back(i);
   }
-  const meshsal::cli::MpiWorld& world = meshsal::cli::mpi_world();
-  const int ranks = world.active ? world.size : 1, rank = world.active ? world.rank : 0;
-  const bool writer = rank == 0;  // the log, the messages, the summary, the sheet
-  meshsal::cli::mpi_begin_work();  // the first collective: a rank that failed before stops all alike
-  check_same_models(inputs, options, to_compute);
-  meshsal::cli::mpi_barrier();
-  // This rank's models: the (round * ranks + rank)-th to compute.
-  std::vector<std::string> to_load;
-  for (size_t k = size_t(rank); k < to_compute.size(); k += size_t(ranks)) to_load.push_back(inputs[to_compute[k]]);
+  return ch;
+}
 
-  std::unique_ptr<BatchLog> log;
-  if (writer) log = std::make_unique<BatchLog>(log_path);
-  if (log && log->torn_bytes() && !o.text.quiet)  // its lines follow on a line of their own
-    std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
-                 printable(log_path).c_str(), static_cast<unsigned long long>(log->torn_bytes()));
-  BatchProgress progress(writer && !o.text.quiet && stderr_is_terminal(), inputs.size());
-  std::set<std::string> told;  // each notice once per run, not once per model
-  const auto tell = [&](const std::string& line) {
-    if (!o.text.quiet && told.insert(line).second) {
-      progress.clear();
+// The models' run on this rank, round by round (batch_ranks.h), and on rank 0, the writer,
+// their log lines in model order, then the contact sheet, the gallery and the summary.
+class BatchRun {
+ public:
+  // Opens the log (the writer) and routes the requests' progress and notices here.
+  BatchRun(const Options& o, Plan& p, const Models& ms, const Choices& ch, int ranks, int rank)
+      : o_(o), p_(p), ms_(ms), ch_(ch), ranks_(ranks), rank_(rank), writer_(rank == 0),
+        log_(writer_ ? std::make_unique<BatchLog>(ms.log_path) : nullptr),
+        progress_(writer_ && !o.text.quiet && stderr_is_terminal(), ms.inputs.size()),
+        has_view_(ms.inputs.size(), false), sheet_status_(ms.inputs.size()), sheet_message_(ms.inputs.size()),
+        computed_by_(size_t(ranks), 0), results_(ms.inputs.size()), has_result_(ms.inputs.size(), false) {
+    if (log_ && log_->torn_bytes() && !o.text.quiet)  // its lines follow on a line of their own
+      std::fprintf(stderr, "note: %s: ignored a torn last line (%llu bytes) from an interrupted run\n",
+                   printable(ms.log_path).c_str(), static_cast<unsigned long long>(log_->torn_bytes()));
+    Request& req = p.request;
+    req.saliency.progress = [this](const char* stage, double f) { progress_.stage(stage, f); };
+    req.viewpoint.progress = req.saliency.progress;
+    req.saliency.notice = [this](const std::string& line) {
+      if (model_notes_) model_notes_->push_back(line);
+      // Under MPI rank 0 tells a model's notes with its line, in model order.
+      if (ranks_ == 1 || (!model_notes_ && writer_)) tell(line);
+    };
+    req.viewpoint.notice = req.saliency.notice;
+    t_run_.restart();
+  }
+  BatchRun(const BatchRun&) = delete;  // the requests' callbacks hold `this`
+  BatchRun& operator=(const BatchRun&) = delete;
+
+  // This rank's models, each round's results gathered and logged by the writer.
+  void compute_all() {
+    const std::vector<size_t>& to_compute = ch_.to_compute;
+    // This rank's models: the (round * ranks + rank)-th to compute.
+    std::vector<std::string> to_load;
+    for (size_t k = size_t(rank_); k < to_compute.size(); k += size_t(ranks_)) to_load.push_back(ms_.inputs[to_compute[k]]);
+    std::unique_ptr<ModelLoader> loader;  // none out of core: saliency_file reads each file
+    if (!to_load.empty() && !p_.request.out_of_core.memory_limit)
+      loader = std::make_unique<ModelLoader>(to_load, p_.simplifying || !p_.request.lod.empty());
+    const size_t rounds = batch_rounds(to_compute.size(), ranks_);
+    for (size_t round = 0; round < rounds && !interrupted_; ++round) {
+      const size_t first = round * size_t(ranks_), k = first + size_t(rank_);
+      log_until(to_compute[first]);  // rank 0's model is the round's first
+      std::vector<ModelResult> mine;
+      if (k < to_compute.size()) {
+        const size_t i = to_compute[k];
+        progress_.remaining(rounds - round - 1);
+        progress_.model(logged_, file_name(ms_.inputs[i]));
+        LoadedModel m;
+        if (loader) m = loader->next();
+        else m.path = ms_.inputs[i];
+        mine.push_back(compute(i, m));
+        if (mine.back().status == "done") progress_.computed(mine.back().seconds);
+      }
+      for (ModelResult& r : gather_results(mine)) {
+        interrupted_ = interrupted_ || r.status == "interrupted";
+        has_result_[r.index] = true;
+        results_[r.index] = std::move(r);
+      }
+      // An interrupted round: its models' lines (the interrupted one's says so), then the
+      // summary; the models after it are not logged, as in one process.
+      log_until(to_compute[std::min(to_compute.size(), first + size_t(ranks_)) - 1] + 1);
+    }
+    if (!interrupted_) log_until(ms_.inputs.size());
+  }
+
+  // After compute_all: the log synced, the contact sheet, the gallery and the summary (the
+  // writer); every rank's exit status.
+  int finish() {
+    progress_.clear();
+    if (!writer_) return agreed_status(0);
+    log_->finish();
+    const bool sheet_failed = !o_.contact_sheet.empty() && !interrupted_ && !write_sheet();
+    const bool gallery_failed = o_.html && !interrupted_ && !write_gallery_page();
+    print_summary(sheet_failed, gallery_failed);
+    if (!log_->error().empty())
+      std::fprintf(stderr, "error: the log %s misses %zu line%s (the write error is above)\n",
+                   printable(ms_.log_path).c_str(), log_->lost(), log_->lost() == 1 ? "" : "s");
+    if (interrupted_) {
+      std::fprintf(stderr, "interrupted (a new run resumes where this one stopped)\n");
+      std::fflush(stderr);
+      return agreed_status(interrupted_exit());
+    }
+    return agreed_status(failed_ || !log_->error().empty() || sheet_failed || gallery_failed ? 1 : 0);
+  }
+
+ private:
+  // Each notice once per run, not once per model.
+  void tell(const std::string& line) {
+    if (!o_.text.quiet && told_.insert(line).second) {
+      progress_.clear();
       std::fprintf(stderr, "%s\n", printable(line).c_str());
     }
-  };
-  std::vector<std::string>* model_notes = nullptr;
-  req.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
-  req.viewpoint.progress = req.saliency.progress;
-  req.saliency.notice = [&](const std::string& line) {
-    if (model_notes) model_notes->push_back(line);
-    // Under MPI rank 0 tells a model's notes with its line, in model order.
-    if (ranks == 1 || (!model_notes && writer)) tell(line);
-  };
-  req.viewpoint.notice = req.saliency.notice;
-  std::vector<bool> has_view(inputs.size(), false);  // for the contact sheet
-  std::vector<std::string> sheet_status(inputs.size()), sheet_message(inputs.size());  // the others'
-  const auto report_failure = [&](const std::string& in, size_t i, const std::string& error) {
-    sheet_status[i] = "failed";
-    sheet_message[i] = error;
-    progress.clear();
-    log->add(failed_line(in, names[i], error));
-    std::fprintf(stderr, "error: %s\n", printable(error).c_str());
-  };
+  }
 
-  const Timer t_run;
-  size_t computed = 0, skipped = 0, failed = 0;
-  std::vector<size_t> computed_by(size_t(ranks), 0);
-  bool interrupted = false;
+  void report_failure(const std::string& in, size_t i, const std::string& error) {
+    sheet_status_[i] = "failed";
+    sheet_message_[i] = error;
+    progress_.clear();
+    log_->add(failed_line(in, ms_.names[i], error));
+    std::fprintf(stderr, "error: %s\n", printable(error).c_str());
+  }
+
   // Rank 0: the log lines of the models before `end` not logged yet, in order: those not
   // computed, and the results of those computed (all of them in by then).
-  std::vector<ModelResult> results(inputs.size());
-  std::vector<bool> has_result(inputs.size(), false);
-  size_t logged = 0;
-  const auto log_until = [&](size_t end) {
-    for (; writer && logged < end; ++logged) {
-      const size_t i = logged;
-      const std::string& in = inputs[i];
-      if (!refused[i].empty()) {
-        report_failure(in, i, refused[i]);
-        failed++;
-      } else if (!not_read[i].empty()) {
+  void log_until(size_t end) {
+    for (; writer_ && logged_ < end; ++logged_) {
+      const size_t i = logged_;
+      const std::string& in = ms_.inputs[i];
+      if (!ch_.refused[i].empty()) {
+        report_failure(in, i, ch_.refused[i]);
+        failed_++;
+      } else if (!ch_.not_read[i].empty()) {
         JsonObject j;
-        j.text("mesh", in).text("status", "skipped").text("name", names[i]).text("reason", not_read[i]);
-        progress.clear();
-        log->add(j.str());
-        if (!o.text.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), not_read[i].c_str());
-        sheet_status[i] = "skipped";
-        sheet_message[i] = not_read[i];
-        skipped++;
-      } else if (!skip_record[i].empty()) {
-        log->add(skipped_line(skip_record[i]));
-        has_view[i] = o.view || o.html;
-        skipped++;
-      } else if (has_result[i]) {
-        const ModelResult& r = results[i];
-        if (ranks > 1)
+        j.text("mesh", in).text("status", "skipped").text("name", ms_.names[i]).text("reason", ch_.not_read[i]);
+        progress_.clear();
+        log_->add(j.str());
+        if (!o_.text.quiet) std::fprintf(stderr, "note: skipped %s: %s\n", printable(in).c_str(), ch_.not_read[i].c_str());
+        sheet_status_[i] = "skipped";
+        sheet_message_[i] = ch_.not_read[i];
+        skipped_++;
+      } else if (!ch_.skip_record[i].empty()) {
+        log_->add(skipped_line(ch_.skip_record[i]));
+        has_view_[i] = o_.view || o_.html;
+        skipped_++;
+      } else if (has_result_[i]) {
+        const ModelResult& r = results_[i];
+        if (ranks_ > 1)
           for (const std::string& note : r.notes) tell(note);
         if (r.status == "failed") {
           report_failure(in, i, r.error);
-          failed++;
+          failed_++;
         } else {
-          progress.clear();
-          log->add(r.line);
+          progress_.clear();
+          log_->add(r.line);
           if (r.status == "done") {
-            has_view[i] = r.has_view;
-            computed++;
-            computed_by[size_t(r.rank)]++;
+            has_view_[i] = r.has_view;
+            computed_++;
+            computed_by_[size_t(r.rank)]++;
           }
         }
       }
     }
-  };
+  }
 
   // One model on this rank: its result (the outputs and state written when done).
-  const auto compute = [&](size_t i, LoadedModel& m) {
-    const std::string& in = inputs[i];
+  ModelResult compute(size_t i, LoadedModel& m) {
+    const std::string& in = ms_.inputs[i];
     ModelResult res;
     res.index = i;
     std::vector<std::string> notes;
-    model_notes = &notes;
+    model_notes_ = &notes;
     std::string error = m.error;
     if (error.empty()) {
       try {
         const Timer t;
-        if (inputs_in_output_folder) mark_started(state_path(o.out_dir, names[i]));
-        JsonObject j = compute_model(p, m, names[i], outs[i], progress);
+        if (ms_.inputs_in_output_folder) mark_started(state_path(o_.out_dir, ms_.names[i]));
+        JsonObject j = compute_model(p_, m, ms_.names[i], ms_.outs[i], progress_);
         if (!notes.empty()) {
           std::string arr = "[";
           for (size_t k = 0; k < notes.size(); ++k) arr += (k ? ", " : "") + json_string(notes[k]);
           j.raw("notes", arr + "]");
         }
-        // The record that lets a later run skip this model, after its outputs are in place.
-        ModelState state;
-        state.input = fingerprint(in);
-        state.options = options;
-        state.output_sizes = output_sizes(outs[i]);
-        state.record = j.str();
-        save_state(state_path(o.out_dir, names[i]), state);
+        res.line = save_record(i, j);
         res.status = "done";
-        res.line = state.record;
-        res.has_view = o.view || o.html;
+        res.has_view = o_.view || o_.html;
         res.seconds = t.seconds() + m.seconds;
       } catch (const Cancelled&) {
         JsonObject j;  // Ctrl-C: this model's line says so, then the summary
-        j.text("mesh", in).text("status", "interrupted").text("name", names[i]);
+        j.text("mesh", in).text("status", "interrupted").text("name", ms_.names[i]);
         res.status = "interrupted";
         res.line = j.str();
       } catch (const std::bad_alloc&) {
@@ -552,7 +635,7 @@ int run(Options o) {
         error = e.what();
       }
     }
-    model_notes = nullptr;
+    model_notes_ = nullptr;
     if (!error.empty()) {
       res.status = "failed";
       res.error = error;
@@ -561,106 +644,121 @@ int run(Options o) {
     m.mesh = {};  // free them before the next one is read
     m.attributed = {};
     return res;
-  };
-
-  std::unique_ptr<ModelLoader> loader;  // none out of core: saliency_file reads each file
-  if (!to_load.empty() && !req.out_of_core.memory_limit)
-    loader = std::make_unique<ModelLoader>(to_load, p.simplifying || !req.lod.empty());
-  const size_t rounds = batch_rounds(to_compute.size(), ranks);
-  for (size_t round = 0; round < rounds && !interrupted; ++round) {
-    const size_t first = round * size_t(ranks), k = first + size_t(rank);
-    log_until(to_compute[first]);  // rank 0's model is the round's first
-    std::vector<ModelResult> mine;
-    if (k < to_compute.size()) {
-      const size_t i = to_compute[k];
-      progress.remaining(rounds - round - 1);
-      progress.model(logged, file_name(inputs[i]));
-      LoadedModel m;
-      if (loader) m = loader->next();
-      else m.path = inputs[i];
-      mine.push_back(compute(i, m));
-      if (mine.back().status == "done") progress.computed(mine.back().seconds);
-    }
-    for (ModelResult& r : gather_results(mine)) {
-      interrupted = interrupted || r.status == "interrupted";
-      has_result[r.index] = true;
-      results[r.index] = std::move(r);
-    }
-    // An interrupted round: its models' lines (the interrupted one's says so), then the
-    // summary; the models after it are not logged, as in one process.
-    log_until(to_compute[std::min(to_compute.size(), first + size_t(ranks)) - 1] + 1);
   }
-  if (!interrupted) log_until(inputs.size());
-  loader.reset();
-  progress.clear();
-  if (!writer) return agreed_status(0);
-  log->finish();
 
-  bool sheet_failed = false;
-  if (!o.contact_sheet.empty() && !interrupted) {
-    // Every model: its picture, or a marked tile with its error (the input's path shown as
-    // its name, which the label under the tile gives in full).
+  // The record that lets a later run skip model i, after its outputs are in place: its
+  // input, the options, its outputs' sizes and its log line `j`, which it returns.
+  std::string save_record(size_t i, const JsonObject& j) {
+    ModelState state;
+    state.input = fingerprint(ms_.inputs[i]);
+    state.options = ch_.options;
+    state.output_sizes = output_sizes(ms_.outs[i]);
+    state.record = j.str();
+    save_state(state_path(o_.out_dir, ms_.names[i]), state);
+    return state.record;
+  }
+
+  // Every model: its picture, or a marked tile with its error (the input's path shown as
+  // its name, which the label under the tile gives in full). False when it failed.
+  bool write_sheet() {
+    const std::vector<std::string>& inputs = ms_.inputs;
     std::vector<SheetItem> items;
     for (size_t i = 0; i < inputs.size(); ++i) {
-      std::string message = sheet_message[i];
+      std::string message = sheet_message_[i];
       const std::string name = file_name(inputs[i]);
       for (size_t at = 0; !inputs[i].empty() && (at = message.find(inputs[i], at)) != std::string::npos;
            at += name.size())
         message.replace(at, inputs[i].size(), name);
-      items.push_back({name, has_view[i] ? outs[i].view : "", sheet_status[i], message});
+      items.push_back({name, has_view_[i] ? ms_.outs[i].view : "", sheet_status_[i], message});
     }
     try {
-      write_png(o.contact_sheet, contact_sheet(items));
+      write_png(o_.contact_sheet, contact_sheet(items));
     } catch (const Error& e) {
       std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-      sheet_failed = true;
+      return false;
     }
+    return true;
   }
-  bool gallery_failed = false;
-  if (o.html && !interrupted) {
-    // Every model: its thumbnail opening its page, or a marked card with its error.
+
+  // Every model: its thumbnail opening its page, or a marked card with its error. False
+  // when it failed.
+  bool write_gallery_page() {
     std::vector<GalleryItem> items;
-    for (size_t i = 0; i < inputs.size(); ++i) {
-      const bool shown = has_view[i] && sheet_status[i].empty();
-      items.push_back({file_name(inputs[i]), shown ? file_name(outs[i].page) : "", shown ? file_name(outs[i].view) : "",
-                       sheet_status[i].empty() ? "done" : sheet_status[i], sheet_message[i]});
+    for (size_t i = 0; i < ms_.inputs.size(); ++i) {
+      const bool shown = has_view_[i] && sheet_status_[i].empty();
+      items.push_back({file_name(ms_.inputs[i]), shown ? file_name(ms_.outs[i].page) : "",
+                       shown ? file_name(ms_.outs[i].view) : "", sheet_status_[i].empty() ? "done" : sheet_status_[i],
+                       sheet_message_[i]});
     }
     try {
-      write_gallery(gallery, items);
+      write_gallery(ms_.gallery, items);
     } catch (const Error& e) {
       std::fprintf(stderr, "error: %s\n", printable(e.what()).c_str());
-      gallery_failed = true;
+      return false;
+    }
+    return true;
+  }
+
+  // The run's summary: one JSON object with --json (each model's is its log line), else a
+  // line and the files written, unless --quiet.
+  void print_summary(bool sheet_failed, bool gallery_failed) const {
+    const std::string& log_path = ms_.log_path;
+    if (o_.text.json) {
+      std::vector<std::string> written{log_path};
+      if (!o_.contact_sheet.empty() && !sheet_failed && !interrupted_) written.push_back(o_.contact_sheet);
+      if (o_.html && !gallery_failed && !interrupted_) written.push_back(ms_.gallery);
+      JsonObject().count("models", ms_.inputs.size()).count("computed", computed_).count("skipped", skipped_)
+          .count("failed", failed_).flag("interrupted", interrupted_).count("ranks", uint64_t(ranks_))
+          .text("log", log_path).strings("outputs", written).number("seconds", t_run_.seconds()).print();
+    } else if (!o_.text.quiet) {
+      std::string on_ranks;  // how the computed models were shared (none with one process)
+      for (int r = 0; ranks_ > 1 && r < ranks_; ++r)
+        on_ranks += (r ? ", " : (" on " + std::to_string(ranks_) + " ranks (computed: ")) +
+                    std::to_string(computed_by_[size_t(r)]) + (r + 1 == ranks_ ? ")" : "");
+      std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed%s in %.3f s%s; log %s\n", ms_.inputs.size(),
+                  computed_, skipped_, failed_, interrupted_ ? ", then interrupted" : "", t_run_.seconds(),
+                  on_ranks.c_str(), printable(log_path).c_str());
+      if (!o_.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o_.contact_sheet).c_str());
+      if (o_.html && !gallery_failed && !interrupted_) std::printf("wrote  %s\n", printable(ms_.gallery).c_str());
+      std::fflush(stdout);
     }
   }
-  if (o.text.json) {
-    // The run's summary as one JSON object (each model's is its log line).
-    std::vector<std::string> written{log_path};
-    if (!o.contact_sheet.empty() && !sheet_failed && !interrupted) written.push_back(o.contact_sheet);
-    if (o.html && !gallery_failed && !interrupted) written.push_back(gallery);
-    JsonObject().count("models", inputs.size()).count("computed", computed).count("skipped", skipped)
-        .count("failed", failed).flag("interrupted", interrupted).count("ranks", uint64_t(ranks))
-        .text("log", log_path).strings("outputs", written).number("seconds", t_run.seconds()).print();
-  } else if (!o.text.quiet) {
-    std::string on_ranks;  // how the computed models were shared (none with one process)
-    for (int r = 0; ranks > 1 && r < ranks; ++r)
-      on_ranks += (r ? ", " : (" on " + std::to_string(ranks) + " ranks (computed: ")) +
-                  std::to_string(computed_by[size_t(r)]) + (r + 1 == ranks ? ")" : "");
-    std::printf("batch: %zu models: %zu computed, %zu skipped, %zu failed%s in %.3f s%s; log %s\n", inputs.size(),
-                computed, skipped, failed, interrupted ? ", then interrupted" : "", t_run.seconds(),
-                on_ranks.c_str(), printable(log_path).c_str());
-    if (!o.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o.contact_sheet).c_str());
-    if (o.html && !gallery_failed && !interrupted) std::printf("wrote  %s\n", printable(gallery).c_str());
-    std::fflush(stdout);
-  }
-  if (!log->error().empty())
-    std::fprintf(stderr, "error: the log %s misses %zu line%s (the write error is above)\n",
-                 printable(log_path).c_str(), log->lost(), log->lost() == 1 ? "" : "s");
-  if (interrupted) {
-    std::fprintf(stderr, "interrupted (a new run resumes where this one stopped)\n");
-    std::fflush(stderr);
-    return agreed_status(interrupted_exit());
-  }
-  return agreed_status(failed || !log->error().empty() || sheet_failed || gallery_failed ? 1 : 0);
+
+  const Options& o_;
+  Plan& p_;
+  const Models& ms_;
+  const Choices& ch_;
+  const int ranks_, rank_;
+  const bool writer_;  // the log, the messages, the summary, the sheet
+  std::unique_ptr<BatchLog> log_;
+  BatchProgress progress_;
+  std::set<std::string> told_;
+  std::vector<std::string>* model_notes_ = nullptr;  // the running model's notices
+  std::vector<bool> has_view_;                        // for the contact sheet
+  std::vector<std::string> sheet_status_, sheet_message_;  // the others'
+  Timer t_run_;
+  size_t computed_ = 0, skipped_ = 0, failed_ = 0;
+  std::vector<size_t> computed_by_;
+  bool interrupted_ = false;
+  std::vector<ModelResult> results_;  // the writer's: of the models computed, until logged
+  std::vector<bool> has_result_;
+  size_t logged_ = 0;
+};
+
+int run(Options o) {
+  check_options(o);
+  Plan p = make_plan(o);
+  const Models ms = find_models(o, p);
+  remove_batch_temporaries(o.out_dir);
+  const Choices ch = choose_models(o, ms);
+  const meshsal::cli::MpiWorld& world = meshsal::cli::mpi_world();
+  const int ranks = world.active ? world.size : 1, rank = world.active ? world.rank : 0;
+  meshsal::cli::mpi_begin_work();  // the first collective: a rank that failed before stops all alike
+  check_same_models(ms.inputs, ch.options, ch.to_compute);
+  meshsal::cli::mpi_barrier();
+  BatchRun batch(o, p, ms, ch, ranks, rank);
+  batch.compute_all();
+  return batch.finish();
 }
 
 RunFn setup(CLI::App& sub) {

@@ -559,10 +559,9 @@ std::string loader_error(std::string err) {
   return err;
 }
 
-}  // namespace
-
-Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_named prefixes it*/, bool binary, const std::string& folder,
-                     uint64_t limit, bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read) {
+// The glTF parsed by tinygltf (external files read under FileAccess's rule), refused with
+// our message where it is not valid or requires an extension meshsal does not honour.
+tinygltf::Model parse_model(std::string_view bytes, bool binary, const std::string& folder, uint64_t limit) {
   // No parser recurses into JSON nested deeper than we read (tinygltf's conversion of
   // extras and extensions recurses once per level).
   if (json_nesting(json_text(bytes, binary)) > kMaxJsonNesting)
@@ -594,28 +593,14 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
     if (!known_required_extension(ext))
       fail("requires the extension " + quoted(ext, 80) + ", which meshsal does not know (a reader must refuse what it cannot honour)");
   }
+  return model;
+}
 
-  const std::vector<Instance> instances = scene_instances(model);
-  if (instances.empty()) fail("the scene holds no mesh");
-  std::set<std::string> skipped;
-  std::vector<Channel> channels;
-  if (attributes) {
-    channels = vertex_channels(model, instances, &skipped);
-  } else {
-    // What a read with attributes would have kept, in the names every reader uses.
-    std::set<std::string> ignored;
-    for (const Channel& c : vertex_channels(model, instances, &ignored))
-      for (const VertexAttribute& a : c.attributes) note_not_read(not_read, a.name);
-  }
-  // The memory bound: instancing lets a small file name a large mesh many times, so the
-  // vertices and indices to build are counted and held to the other loaders' rule first.
-  // Each accessor's count is first held to the bytes the file has for it (locate_accessor),
-  // so a count no file could back is named as such, not as instancing.
-  const uint64_t input_bytes = bytes.size() + [&] {
-    uint64_t b = 0;
-    for (const tinygltf::Buffer& buf : model.buffers) b += buf.data.size();
-    return b;
-  }();
+// The memory bound: instancing lets a small file name a large mesh many times, so the
+// vertices and indices to build are counted and held to the other loaders' rule first.
+// Each accessor's count is first held to the bytes the file has for it (locate_accessor),
+// so a count no file could back is named as such, not as instancing.
+void check_scene_size(const tinygltf::Model& model, const std::vector<Instance>& instances, uint64_t input_bytes) {
   unsigned __int128 need = 0;
   for (const Instance& in : instances)
     for (size_t pi = 0; pi < model.meshes[size_t(in.mesh)].primitives.size(); ++pi) {
@@ -629,119 +614,189 @@ Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_nam
     }
   if (need > (unsigned __int128)counts_limit(input_bytes, input_bytes))
     fail("its instances would build a mesh far larger than the file (a mesh named by many nodes): refused");
+}
 
-  Mesh mesh;
-  std::vector<double>& xyz = mesh.source_positions;
-  std::map<int, uint32_t> material_slot;  // glTF material index (-1: none) -> Mesh::materials
-  std::vector<uint32_t> tri_material;
-  bool any_material = false;
-  std::vector<Frame> worlds;
-  std::map<std::pair<size_t, std::map<std::string, int>>, std::pair<size_t, size_t>> vertex_ranges;
-  for (size_t ii = 0; ii < instances.size(); ++ii) {
-    const Instance& in = instances[ii];
-    const tinygltf::Mesh& gm = model.meshes[size_t(in.mesh)];
+// Refuses a primitive meshsal does not read: Draco-compressed, points or lines, an unknown mode.
+void check_primitive_mode(const tinygltf::Primitive& p, const std::string& what) {
+  if (p.extensions.count("KHR_draco_mesh_compression"))
+    fail(what + ": Draco-compressed (KHR_draco_mesh_compression), which meshsal does not read (decompress it first)");
+  if (p.mode == TINYGLTF_MODE_POINTS || p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_LOOP ||
+      p.mode == TINYGLTF_MODE_LINE_STRIP)
+    fail(what + ": " + (p.mode == TINYGLTF_MODE_POINTS ? "points" : "lines") +
+         " (mode " + std::to_string(p.mode) + "): meshsal reads triangle primitives only");
+  if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN)
+    fail(what + ": unknown mode " + std::to_string(p.mode));
+}
+
+// A primitive's corners (indices into its nv vertices): indexed or in vertex order.
+std::vector<uint32_t> primitive_corners(const tinygltf::Model& model, const tinygltf::Primitive& p, size_t nv,
+                                        const std::string& what, uint64_t input_bytes) {
+  std::vector<uint32_t> corners;
+  if (p.indices >= 0) {
+    const tinygltf::Accessor* ia = size_t(p.indices) < model.accessors.size() ? &model.accessors[size_t(p.indices)] : nullptr;
+    if (ia && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(what + ": indices must be unsigned integers");
+    const std::vector<double> idx = read_accessor(model, p.indices, 1, what + " indices", input_bytes);
+    corners.reserve(idx.size());
+    for (double x : idx) {
+      if (x >= double(nv)) fail(what + ": index " + std::to_string(uint64_t(x)) + " out of range (" + std::to_string(nv) + " vertices)");
+      corners.push_back(uint32_t(x));
+    }
+  } else {
+    corners.resize(nv);
+    for (size_t v = 0; v < nv; ++v) corners[v] = uint32_t(v);
+  }
+  return corners;
+}
+
+// The triangles of a primitive's corners: strips and fans become triangles.
+std::vector<std::array<uint32_t, 3>> corner_triangles(int mode, const std::vector<uint32_t>& corners, const std::string& what) {
+  std::vector<std::array<uint32_t, 3>> tris;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (corners.size() % 3) fail(what + ": " + std::to_string(corners.size()) + " indices, not a multiple of 3");
+    for (size_t i = 0; i + 2 < corners.size(); i += 3) tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
+  } else {
+    for (size_t i = 0; i + 2 < corners.size(); ++i) {
+      std::array<uint32_t, 3> t = mode == TINYGLTF_MODE_TRIANGLE_FAN ? std::array<uint32_t, 3>{corners[i + 1], corners[i + 2], corners[0]}
+                                  : (i % 2 == 0)                      ? std::array<uint32_t, 3>{corners[i], corners[i + 1], corners[i + 2]}
+                                                                      : std::array<uint32_t, 3>{corners[i + 1], corners[i], corners[i + 2]};
+      // Strips join pieces with zero-area triangles that repeat a corner: dropped.
+      if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) tris.push_back(t);
+    }
+  }
+  return tris;
+}
+
+// The scene's instances as one Mesh, built one primitive at a time: positions in world
+// coordinates, the channels' values, triangles and their materials.
+class SceneMesh {
+ public:
+  SceneMesh(tinygltf::Model& model, uint64_t input_bytes, std::vector<Channel>& channels)
+      : model_(model), input_bytes_(input_bytes), channels_(channels) {}
+
+  void add_instance(size_t ii, const Instance& in) {
+    const tinygltf::Mesh& gm = model_.meshes[size_t(in.mesh)];
     const Frame normal_frame = normal_matrix(in.world);
     const bool flip = determinant3(in.world) < 0;  // a mirroring transform reverses the winding
     for (size_t pi = 0; pi < gm.primitives.size(); ++pi) {
       const tinygltf::Primitive& p = gm.primitives[pi];
       const std::string what = "mesh " + std::to_string(in.mesh) + " primitive " + std::to_string(pi);
-      if (p.extensions.count("KHR_draco_mesh_compression"))
-        fail(what + ": Draco-compressed (KHR_draco_mesh_compression), which meshsal does not read (decompress it first)");
-      if (p.mode == TINYGLTF_MODE_POINTS || p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_LOOP ||
-          p.mode == TINYGLTF_MODE_LINE_STRIP)
-        fail(what + ": " + (p.mode == TINYGLTF_MODE_POINTS ? "points" : "lines") +
-             " (mode " + std::to_string(p.mode) + "): meshsal reads triangle primitives only");
-      if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        fail(what + ": unknown mode " + std::to_string(p.mode));
-      const auto pos = p.attributes.find("POSITION");
-      if (pos == p.attributes.end()) fail(what + ": no POSITION attribute");
-      // Primitives of one instance that name the same accessors (one per material, as
-      // write_gltf and most exporters write them) share their vertices.
-      size_t first = 0, nv = 0;
-      const auto range = vertex_ranges.find({ii, p.attributes});
-      if (range != vertex_ranges.end()) {
-        first = range->second.first, nv = range->second.second;
-      } else {
-        const std::vector<double> local = read_accessor(model, pos->second, 3, what + " POSITION", input_bytes);
-        nv = local.size() / 3, first = xyz.size() / 3;
-        if (first + nv > UINT32_MAX) fail("more than 2^32 - 1 vertices");
-        for (size_t v = 0; v < nv; ++v) {
-          double w[3];
-          transform_point(in.world, &local[3 * v], w);
-          xyz.insert(xyz.end(), w, w + 3);
-        }
-        for (Channel& c : channels) read_channel(model, p, c, nv, normal_frame, what, input_bytes);
-        vertex_ranges[{ii, p.attributes}] = {first, nv};
-      }
-      // The corners: indexed or in vertex order; strips and fans become triangles.
-      std::vector<uint32_t> corners;
-      if (p.indices >= 0) {
-        const tinygltf::Accessor* ia = size_t(p.indices) < model.accessors.size() ? &model.accessors[size_t(p.indices)] : nullptr;
-        if (ia && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            ia->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-          fail(what + ": indices must be unsigned integers");
-        const std::vector<double> idx = read_accessor(model, p.indices, 1, what + " indices", input_bytes);
-        corners.reserve(idx.size());
-        for (double x : idx) {
-          if (x >= double(nv)) fail(what + ": index " + std::to_string(uint64_t(x)) + " out of range (" + std::to_string(nv) + " vertices)");
-          corners.push_back(uint32_t(x));
-        }
-      } else {
-        corners.resize(nv);
-        for (size_t v = 0; v < nv; ++v) corners[v] = uint32_t(v);
-      }
-      std::vector<std::array<uint32_t, 3>> tris;
-      if (p.mode == TINYGLTF_MODE_TRIANGLES) {
-        if (corners.size() % 3) fail(what + ": " + std::to_string(corners.size()) + " indices, not a multiple of 3");
-        for (size_t i = 0; i + 2 < corners.size(); i += 3) tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
-      } else {
-        for (size_t i = 0; i + 2 < corners.size(); ++i) {
-          std::array<uint32_t, 3> t = p.mode == TINYGLTF_MODE_TRIANGLE_FAN ? std::array<uint32_t, 3>{corners[i + 1], corners[i + 2], corners[0]}
-                                      : (i % 2 == 0)                        ? std::array<uint32_t, 3>{corners[i], corners[i + 1], corners[i + 2]}
-                                                                            : std::array<uint32_t, 3>{corners[i + 1], corners[i], corners[i + 2]};
-          // Strips join pieces with zero-area triangles that repeat a corner: dropped.
-          if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) tris.push_back(t);
-        }
-      }
-      uint32_t slot = 0;
-      if (p.material >= 0 && size_t(p.material) >= model.materials.size())
-        fail(what + ": material " + std::to_string(p.material) + " does not exist");
-      if (p.material >= 0) any_material = true;
-      const auto found = material_slot.find(p.material);
-      if (found != material_slot.end()) {
-        slot = found->second;
-      } else {
-        slot = uint32_t(mesh.materials.size());
-        material_slot[p.material] = slot;
-        std::string mname;
-        if (p.material >= 0 && size_t(p.material) < model.materials.size()) mname = model.materials[size_t(p.material)].name;
-        if (p.material >= 0 && mname.empty()) mname = "material_" + std::to_string(p.material);
-        // Unique, as an OBJ's usemtl names must be to tell materials apart.
-        if (std::find(mesh.materials.begin(), mesh.materials.end(), mname) != mesh.materials.end())
-          mname += "_" + std::to_string(p.material);
-        mesh.materials.push_back(mname);
-      }
+      check_primitive_mode(p, what);
+      const auto [first, nv] = vertices(ii, in, p, normal_frame, what);
+      const std::vector<std::array<uint32_t, 3>> tris = corner_triangles(p.mode, primitive_corners(model_, p, nv, what, input_bytes_), what);
+      const uint32_t slot = material_slot(p, what);
       for (auto t : tris) {
         if (flip) std::swap(t[1], t[2]);
-        for (uint32_t c : t) mesh.triangles.push_back(uint32_t(first) + c);
-        tri_material.push_back(slot);
+        for (uint32_t c : t) mesh_.triangles.push_back(uint32_t(first) + c);
+        tri_material_.push_back(slot);
       }
     }
-    worlds.push_back(in.world);
+    worlds_.push_back(in.world);
   }
-  if (any_material) {
-    mesh.triangle_material = std::move(tri_material);
-    mesh.gltf_assets = carry_assets(model, material_slot, &skipped);
+
+  // The mesh: its materials (and the assets they use), the channels as attributes, and
+  // the scene's frame.
+  Mesh finish(std::set<std::string>* skipped) {
+    if (any_material_) {
+      mesh_.triangle_material = std::move(tri_material_);
+      mesh_.gltf_assets = carry_assets(model_, material_slot_, skipped);
+    } else {
+      mesh_.materials.clear();
+    }
+    for (Channel& c : channels_)
+      for (VertexAttribute& a : c.attributes) mesh_.attributes.push_back(std::move(a));
+    // One frame for the whole scene when every instance has the same one: a writer puts the
+    // positions back in it (see Frame).
+    if (worlds_[0] != identity_frame() &&
+        std::all_of(worlds_.begin(), worlds_.end(), [&](const Frame& f) { return f == worlds_[0]; }))
+      mesh_.frame.assign(worlds_[0].begin(), worlds_[0].end());
+    return std::move(mesh_);
+  }
+
+ private:
+  // A primitive's vertices (the first one's index, their count), read and appended unless
+  // an earlier primitive of the instance named the same accessors (one per material, as
+  // write_gltf and most exporters write them): then they are shared.
+  std::pair<size_t, size_t> vertices(size_t ii, const Instance& in, const tinygltf::Primitive& p, const Frame& normal_frame,
+                                     const std::string& what) {
+    const auto pos = p.attributes.find("POSITION");
+    if (pos == p.attributes.end()) fail(what + ": no POSITION attribute");
+    const auto range = vertex_ranges_.find({ii, p.attributes});
+    if (range != vertex_ranges_.end()) return range->second;
+    std::vector<double>& xyz = mesh_.source_positions;
+    const std::vector<double> local = read_accessor(model_, pos->second, 3, what + " POSITION", input_bytes_);
+    const size_t nv = local.size() / 3, first = xyz.size() / 3;
+    if (first + nv > UINT32_MAX) fail("more than 2^32 - 1 vertices");
+    for (size_t v = 0; v < nv; ++v) {
+      double w[3];
+      transform_point(in.world, &local[3 * v], w);
+      xyz.insert(xyz.end(), w, w + 3);
+    }
+    for (Channel& c : channels_) read_channel(model_, p, c, nv, normal_frame, what, input_bytes_);
+    vertex_ranges_[{ii, p.attributes}] = {first, nv};
+    return {first, nv};
+  }
+
+  // The Mesh::materials slot of a primitive's material, added at its first use under a
+  // unique name.
+  uint32_t material_slot(const tinygltf::Primitive& p, const std::string& what) {
+    if (p.material >= 0 && size_t(p.material) >= model_.materials.size())
+      fail(what + ": material " + std::to_string(p.material) + " does not exist");
+    if (p.material >= 0) any_material_ = true;
+    const auto found = material_slot_.find(p.material);
+    if (found != material_slot_.end()) return found->second;
+    const uint32_t slot = uint32_t(mesh_.materials.size());
+    material_slot_[p.material] = slot;
+    std::string mname;
+    if (p.material >= 0 && size_t(p.material) < model_.materials.size()) mname = model_.materials[size_t(p.material)].name;
+    if (p.material >= 0 && mname.empty()) mname = "material_" + std::to_string(p.material);
+    // Unique, as an OBJ's usemtl names must be to tell materials apart.
+    if (std::find(mesh_.materials.begin(), mesh_.materials.end(), mname) != mesh_.materials.end())
+      mname += "_" + std::to_string(p.material);
+    mesh_.materials.push_back(mname);
+    return slot;
+  }
+
+  tinygltf::Model& model_;
+  const uint64_t input_bytes_;
+  std::vector<Channel>& channels_;
+  Mesh mesh_;
+  std::map<int, uint32_t> material_slot_;  // glTF material index (-1: none) -> Mesh::materials
+  std::vector<uint32_t> tri_material_;
+  bool any_material_ = false;
+  std::vector<Frame> worlds_;
+  std::map<std::pair<size_t, std::map<std::string, int>>, std::pair<size_t, size_t>> vertex_ranges_;
+};
+
+}  // namespace
+
+Mesh load_gltf_bytes(std::string_view bytes, const std::string& /*name: load_named prefixes it*/, bool binary, const std::string& folder,
+                     uint64_t limit, bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read) {
+  // Not const: carry_assets takes the images' bytes over.
+  tinygltf::Model model = parse_model(bytes, binary, folder, limit);
+  const std::vector<Instance> instances = scene_instances(model);
+  if (instances.empty()) fail("the scene holds no mesh");
+  std::set<std::string> skipped;
+  std::vector<Channel> channels;
+  if (attributes) {
+    channels = vertex_channels(model, instances, &skipped);
   } else {
-    mesh.materials.clear();
+    // What a read with attributes would have kept, in the names every reader uses.
+    std::set<std::string> ignored;
+    for (const Channel& c : vertex_channels(model, instances, &ignored))
+      for (const VertexAttribute& a : c.attributes) note_not_read(not_read, a.name);
   }
-  for (Channel& c : channels)
-    for (VertexAttribute& a : c.attributes) mesh.attributes.push_back(std::move(a));
-  // One frame for the whole scene when every instance has the same one: a writer puts the
-  // positions back in it (see Frame).
-  if (worlds[0] != identity_frame() &&
-      std::all_of(worlds.begin(), worlds.end(), [&](const Frame& f) { return f == worlds[0]; }))
-    mesh.frame.assign(worlds[0].begin(), worlds[0].end());
+  const uint64_t input_bytes = bytes.size() + [&] {
+    uint64_t b = 0;
+    for (const tinygltf::Buffer& buf : model.buffers) b += buf.data.size();
+    return b;
+  }();
+  check_scene_size(model, instances, input_bytes);
+
+  SceneMesh scene(model, input_bytes, channels);
+  for (size_t ii = 0; ii < instances.size(); ++ii) scene.add_instance(ii, instances[ii]);
+  Mesh mesh = scene.finish(&skipped);
   if (unread) unread->assign(skipped.begin(), skipped.end());
   localize_read_positions(mesh);
   // Primitives (and instances) meet at duplicated vertices: linked as seam twins, so the

@@ -158,146 +158,193 @@ void add_vertex_colours(Mesh& mesh, std::vector<float> colours) {
   }
 }
 
+// One OBJ text read line by line: the mesh so far and what later lines need of earlier ones.
+class ObjReader {
+ public:
+  ObjReader(std::string_view text, const std::string& name, bool attributes, std::vector<std::string>* not_read)
+      : scan_(text, name), name_(name), attributes_(attributes), not_read_(not_read) {}
+
+  Mesh read() {
+    scan_.skip_bom();  // otherwise the first line's key would be "\xEF\xBB\xBFv" and be ignored
+    std::string_view line;
+    while (scan_.next_line(line)) {
+      line = strip_comment(line);
+      const std::string_view key = next_token(line);
+      if (key == "mtllib") {
+        mtllib(line);
+      } else if (key == "usemtl") {
+        usemtl(line);
+      } else if (key == "v") {
+        vertex(line);
+      } else if (!attributes_ && (key == "vt" || key == "vn")) {
+        // Not read: said once (LoadReport::attributes_not_read).
+        if (key == "vt" && !seen_vt_) note_not_read(not_read_, "u"), seen_vt_ = true;
+        if (key == "vn" && !seen_vn_) note_not_read(not_read_, "nx"), seen_vn_ = true;
+      } else if (attributes_ && key == "vt") {
+        const std::string problem = take_floats(line, 1, 2, texcoords_);  // u [v [w]]
+        if (!problem.empty()) throw fail("texture coordinate " + problem);
+      } else if (attributes_ && key == "vn") {
+        const std::string problem = take_floats(line, 3, 3, normals_);
+        if (!problem.empty()) throw fail("normal " + problem);
+      } else if (key == "f" && attributes_) {
+        face_with_corners(line);
+      } else if (key == "f") {
+        face(line);
+      }
+    }
+    finish_materials();
+    check_forward_references();
+    if (any_vt_ || any_vn_) split_corners(mesh_, corners_, texcoords_, normals_, any_vt_, any_vn_, name_);
+    if (!colours_.empty()) add_vertex_colours(mesh_, colours_);
+    localize_read_positions(mesh_);
+    return std::move(mesh_);
+  }
+
+ private:
+  Error fail(const std::string& problem) const {
+    return Error(name_ + ": line " + std::to_string(scan_.line_no) + ": " + problem);
+  }
+
+  // Carried into outputs (and read once materials are), so held to the rule of every file
+  // a model names: in its folder or below (io/model_reference.h).
+  void mtllib(std::string_view line) {
+    for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
+      if (const std::string problem = reference_text_problem(std::string(tok), /*uri=*/false); !problem.empty())
+        throw fail("mtllib " + quoted(tok, 200) + ": " + problem);
+      mesh_.material_libraries.emplace_back(tok);
+    }
+  }
+
+  // The name is the rest of the line (without surrounding blanks): "usemtl" alone is "".
+  void usemtl(std::string_view line) {
+    while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
+    while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
+    auto [it, fresh] = material_index_.try_emplace(std::string(line), uint32_t(mesh_.materials.size()));
+    if (fresh) {
+      // The faces so far have no material; from here on every triangle gets one entry.
+      if (mesh_.materials.empty()) mesh_.triangle_material.assign(mesh_.triangles.size() / 3, kNone);
+      mesh_.materials.emplace_back(line);
+    }
+    material_ = it->second;
+  }
+
+  void vertex(std::string_view line) {
+    const std::string problem = take_xyz(line, mesh_.source_positions);
+    if (!problem.empty()) throw fail(problem);
+    // Named here, as the file numbers its vertices (from 1), not by validate_mesh.
+    for (size_t k = mesh_.source_positions.size() - 3; k < mesh_.source_positions.size(); ++k)
+      if (!std::isfinite(mesh_.source_positions[k]))
+        throw fail("vertex " + std::to_string(mesh_.source_positions.size() / 3) + " has a non-finite coordinate (" +
+                   std::to_string(mesh_.source_positions[k]) + ")");
+    // Optional columns follow: w, or r g b (MeshLab's vertex colours, kept with attributes).
+    if (!attributes_ && !seen_colours_ && not_read_) {
+      int more = 0;
+      for (std::string_view tok = next_token(line); !tok.empty() && more < 4; tok = next_token(line)) ++more;
+      if (more == 3) note_not_read(not_read_, "red"), seen_colours_ = true;
+    } else if (attributes_) {
+      float rgb[3];
+      int got = 0;
+      for (std::string_view tok = next_token(line); !tok.empty() && got < 4; tok = next_token(line), ++got)
+        if (got < 3 && (!parse_coord(tok, rgb[got]) || !std::isfinite(rgb[got]))) got = 4;
+      if (got == 3) {
+        colours_.resize(mesh_.source_positions.size() - 3, -1.0f);
+        colours_.insert(colours_.end(), rgb, rgb + 3);
+      }
+    }
+  }
+
+  // An f line read with attributes: its v/vt/vn corners, kept per triangle for split_corners.
+  void face_with_corners(std::string_view line) {
+    face_.clear();
+    const int64_t defined[3] = {int64_t(mesh_.source_positions.size() / 3), int64_t(texcoords_.size() / 2),
+                                int64_t(normals_.size() / 3)};
+    for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
+      Corner c;
+      const std::string problem = parse_corner(tok, defined, c);
+      if (!problem.empty()) throw fail(problem);
+      if (c.v >= defined[0]) forward_.emplace_back(c.v, scan_.line_no);
+      any_vt_ |= c.vt != kNone;
+      any_vn_ |= c.vn != kNone;
+      face_.push_back(c);
+      if (face_.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
+    }
+    if (const std::string problem = polygon_size_problem(face_.size()); !problem.empty()) throw fail(problem);
+    for (size_t i = 1; i + 1 < face_.size(); ++i) {
+      for (const Corner& c : {face_[0], face_[i], face_[i + 1]}) {
+        corners_.push_back(c);
+        mesh_.triangles.push_back(c.v);
+      }
+      if (!mesh_.materials.empty()) mesh_.triangle_material.push_back(material_);
+    }
+  }
+
+  // An f line read without attributes: its v indices only.
+  void face(std::string_view line) {
+    poly_.clear();
+    const int64_t defined = static_cast<int64_t>(mesh_.source_positions.size() / 3);
+    for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
+      int64_t idx;
+      if (!parse_int_prefix(tok, idx)) throw fail("bad face index " + quoted(tok));
+      if (idx == 0) throw fail("face index 0 (OBJ indices start at 1)");
+      // Negative = relative to the vertices defined so far; positive ones are checked
+      // against the final count by validate_mesh (forward references are legal).
+      int64_t v = idx > 0 ? idx - 1 : defined + idx;
+      if (v < 0) throw fail("face index " + std::to_string(idx) + " points before the first vertex");
+      if (v > 0xFFFFFFFEll) throw fail("face index " + std::to_string(idx) + " is out of range");
+      if (v >= defined) forward_.emplace_back(uint32_t(v), scan_.line_no);
+      poly_.push_back(static_cast<uint32_t>(v));
+      if (poly_.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
+    }
+    if (const std::string problem = polygon_size_problem(poly_.size()); !problem.empty()) throw fail(problem);
+    append_fan(mesh_.triangles, poly_.data(), poly_.size());
+    if (!mesh_.materials.empty()) mesh_.triangle_material.resize(mesh_.triangles.size() / 3, material_);
+  }
+
+  // No usemtl: no materials. Faces before the first usemtl: the material "" (no material).
+  void finish_materials() {
+    if (mesh_.materials.empty()) {
+      mesh_.triangle_material.clear();
+    } else if (std::find(mesh_.triangle_material.begin(), mesh_.triangle_material.end(), kNone) !=
+               mesh_.triangle_material.end()) {
+      auto [it, fresh] = material_index_.try_emplace(std::string(), uint32_t(mesh_.materials.size()));
+      if (fresh) mesh_.materials.emplace_back();
+      for (uint32_t& m : mesh_.triangle_material)
+        if (m == kNone) m = it->second;
+    }
+  }
+
+  void check_forward_references() const {
+    for (const auto& [v, line_no] : forward_)
+      if (v >= mesh_.source_positions.size() / 3)
+        throw Error(name_ + ": line " + std::to_string(line_no) + ": face index " + std::to_string(uint64_t(v) + 1) +
+                    " is beyond the file's " + std::to_string(mesh_.source_positions.size() / 3) +
+                    " vertices (OBJ indices start at 1)");
+  }
+
+  Mesh mesh_;
+  TextScan scan_;
+  const std::string& name_;
+  const bool attributes_;
+  std::vector<std::string>* not_read_;
+  std::vector<uint32_t> poly_;
+  std::vector<Corner> face_, corners_;  // with attributes: this face's, and every triangle's
+  std::vector<float> texcoords_, normals_;
+  std::vector<float> colours_;  // r g b per v line up to the last one with colours (-1: none)
+  bool seen_vt_ = false, seen_vn_ = false, seen_colours_ = false;  // without attributes: noted once
+  bool any_vt_ = false, any_vn_ = false;
+  // Face indices beyond the vertices defined so far (forward references, legal) and their
+  // lines: checked against the final count at the end, named as the file writes them.
+  std::vector<std::pair<uint32_t, size_t>> forward_;
+  // The current usemtl's index into mesh.materials (kNone before the first), one per
+  // triangle as the faces are read.
+  uint32_t material_ = kNone;
+  std::map<std::string, uint32_t, std::less<>> material_index_;
+};
+
 }  // namespace
 
 Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes, std::vector<std::string>* not_read) {
-  Mesh mesh;
-  TextScan scan(text, name);
-  scan.skip_bom();  // otherwise the first line's key would be "\xEF\xBB\xBFv" and be ignored
-  std::string_view line;
-  std::vector<uint32_t> poly;
-  std::vector<Corner> face, corners;  // with attributes: this face's, and every triangle's
-  std::vector<float> texcoords, normals;
-  std::vector<float> colours;  // r g b per v line up to the last one with colours (-1: none)
-  bool seen_vt = false, seen_vn = false, seen_colours = false;  // without attributes: noted once
-  bool any_vt = false, any_vn = false;
-  // Face indices beyond the vertices defined so far (forward references, legal) and their
-  // lines: checked against the final count at the end, named as the file writes them.
-  std::vector<std::pair<uint32_t, size_t>> forward;
-  // The current usemtl's index into mesh.materials (kNone before the first), one per
-  // triangle as the faces are read.
-  uint32_t material = kNone;
-  std::map<std::string, uint32_t, std::less<>> material_index;
-  auto fail = [&](const std::string& problem) -> Error {
-    return Error(name + ": line " + std::to_string(scan.line_no) + ": " + problem);
-  };
-  while (scan.next_line(line)) {
-    line = strip_comment(line);
-    const std::string_view key = next_token(line);
-    if (key == "mtllib") {
-      // Carried into outputs (and read once materials are), so held to the rule of every
-      // file a model names: in its folder or below (io/model_reference.h).
-      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
-        if (const std::string problem = reference_text_problem(std::string(tok), /*uri=*/false); !problem.empty())
-          throw fail("mtllib " + quoted(tok, 200) + ": " + problem);
-        mesh.material_libraries.emplace_back(tok);
-      }
-    } else if (key == "usemtl") {
-      // The name is the rest of the line (without surrounding blanks): "usemtl" alone is "".
-      while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
-      while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
-      auto [it, fresh] = material_index.try_emplace(std::string(line), uint32_t(mesh.materials.size()));
-      if (fresh) {
-        // The faces so far have no material; from here on every triangle gets one entry.
-        if (mesh.materials.empty()) mesh.triangle_material.assign(mesh.triangles.size() / 3, kNone);
-        mesh.materials.emplace_back(line);
-      }
-      material = it->second;
-    } else if (key == "v") {
-      const std::string problem = take_xyz(line, mesh.source_positions);
-      if (!problem.empty()) throw fail(problem);
-      // Named here, as the file numbers its vertices (from 1), not by validate_mesh.
-      for (size_t k = mesh.source_positions.size() - 3; k < mesh.source_positions.size(); ++k)
-        if (!std::isfinite(mesh.source_positions[k]))
-          throw fail("vertex " + std::to_string(mesh.source_positions.size() / 3) + " has a non-finite coordinate (" +
-                     std::to_string(mesh.source_positions[k]) + ")");
-      // Optional columns follow: w, or r g b (MeshLab's vertex colours, kept with attributes).
-      if (!attributes && !seen_colours && not_read) {
-        int more = 0;
-        for (std::string_view tok = next_token(line); !tok.empty() && more < 4; tok = next_token(line)) ++more;
-        if (more == 3) note_not_read(not_read, "red"), seen_colours = true;
-      } else if (attributes) {
-        float rgb[3];
-        int got = 0;
-        for (std::string_view tok = next_token(line); !tok.empty() && got < 4; tok = next_token(line), ++got)
-          if (got < 3 && (!parse_coord(tok, rgb[got]) || !std::isfinite(rgb[got]))) got = 4;
-        if (got == 3) {
-          colours.resize(mesh.source_positions.size() - 3, -1.0f);
-          colours.insert(colours.end(), rgb, rgb + 3);
-        }
-      }
-    } else if (!attributes && (key == "vt" || key == "vn")) {
-      // Not read: said once (LoadReport::attributes_not_read).
-      if (key == "vt" && !seen_vt) note_not_read(not_read, "u"), seen_vt = true;
-      if (key == "vn" && !seen_vn) note_not_read(not_read, "nx"), seen_vn = true;
-    } else if (attributes && key == "vt") {
-      const std::string problem = take_floats(line, 1, 2, texcoords);  // u [v [w]]
-      if (!problem.empty()) throw fail("texture coordinate " + problem);
-    } else if (attributes && key == "vn") {
-      const std::string problem = take_floats(line, 3, 3, normals);
-      if (!problem.empty()) throw fail("normal " + problem);
-    } else if (key == "f" && attributes) {
-      face.clear();
-      const int64_t defined[3] = {int64_t(mesh.source_positions.size() / 3), int64_t(texcoords.size() / 2),
-                                  int64_t(normals.size() / 3)};
-      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
-        Corner c;
-        const std::string problem = parse_corner(tok, defined, c);
-        if (!problem.empty()) throw fail(problem);
-        if (c.v >= defined[0]) forward.emplace_back(c.v, scan.line_no);
-        any_vt |= c.vt != kNone;
-        any_vn |= c.vn != kNone;
-        face.push_back(c);
-        if (face.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
-      }
-      if (const std::string problem = polygon_size_problem(face.size()); !problem.empty()) throw fail(problem);
-      for (size_t i = 1; i + 1 < face.size(); ++i) {
-        for (const Corner& c : {face[0], face[i], face[i + 1]}) {
-          corners.push_back(c);
-          mesh.triangles.push_back(c.v);
-        }
-        if (!mesh.materials.empty()) mesh.triangle_material.push_back(material);
-      }
-    } else if (key == "f") {
-      poly.clear();
-      const int64_t defined = static_cast<int64_t>(mesh.source_positions.size() / 3);
-      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
-        int64_t idx;
-        if (!parse_int_prefix(tok, idx)) throw fail("bad face index " + quoted(tok));
-        if (idx == 0) throw fail("face index 0 (OBJ indices start at 1)");
-        // Negative = relative to the vertices defined so far; positive ones are checked
-        // against the final count by validate_mesh (forward references are legal).
-        int64_t v = idx > 0 ? idx - 1 : defined + idx;
-        if (v < 0) throw fail("face index " + std::to_string(idx) + " points before the first vertex");
-        if (v > 0xFFFFFFFEll) throw fail("face index " + std::to_string(idx) + " is out of range");
-        if (v >= defined) forward.emplace_back(uint32_t(v), scan.line_no);
-        poly.push_back(static_cast<uint32_t>(v));
-        if (poly.size() > kMaxPolygonCorners) break;  // refused below, before the rest is read
-      }
-      if (const std::string problem = polygon_size_problem(poly.size()); !problem.empty()) throw fail(problem);
-      append_fan(mesh.triangles, poly.data(), poly.size());
-      if (!mesh.materials.empty()) mesh.triangle_material.resize(mesh.triangles.size() / 3, material);
-    }
-  }
-  if (mesh.materials.empty()) {
-    mesh.triangle_material.clear();
-  } else if (std::find(mesh.triangle_material.begin(), mesh.triangle_material.end(), kNone) !=
-             mesh.triangle_material.end()) {
-    // Faces before the first usemtl: the material "" (no material).
-    auto [it, fresh] = material_index.try_emplace(std::string(), uint32_t(mesh.materials.size()));
-    if (fresh) mesh.materials.emplace_back();
-    for (uint32_t& m : mesh.triangle_material)
-      if (m == kNone) m = it->second;
-  }
-  for (const auto& [v, line_no] : forward)
-    if (v >= mesh.source_positions.size() / 3)
-      throw Error(name + ": line " + std::to_string(line_no) + ": face index " + std::to_string(uint64_t(v) + 1) +
-                  " is beyond the file's " + std::to_string(mesh.source_positions.size() / 3) +
-                  " vertices (OBJ indices start at 1)");
-  if (any_vt || any_vn) split_corners(mesh, corners, texcoords, normals, any_vt, any_vn, name);
-  if (!colours.empty()) add_vertex_colours(mesh, colours);
-  localize_read_positions(mesh);
-  return mesh;
+  return ObjReader(text, name, attributes, not_read).read();
 }
 
 }  // namespace meshsal

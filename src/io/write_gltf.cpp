@@ -86,8 +86,8 @@ std::vector<float> face_normals_at_vertices(const std::vector<float>& xyz, const
   return out;
 }
 
-// One level: its mesh (with primitives per material), returning the mesh's index.
-int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const std::string& path) {
+// Refuses a level whose per-vertex arrays do not match its mesh, or that has no triangle.
+void check_level(const GltfLevel& level, const std::string& path) {
   const Mesh& mesh = *level.mesh;
   check_mesh(path, mesh);
   const size_t n = mesh.vertex_count();
@@ -102,50 +102,69 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     if (a.values.size() != n)
       throw Error(path + ": cannot write: attribute '" + a.name + "' has " + std::to_string(a.values.size()) +
                   " values for " + std::to_string(n) + " vertices");
+}
+
+// One level's vertex channels as they are added (the accessors in the order the file has
+// them): the primitive's attributes, and the mesh's attributes already written as one.
+struct Channels {
   tinygltf::Primitive prim;
-  // Positions: the local floats as they are under a node at the origin (exact), or put
-  // back in the input's frame.
+  std::vector<const VertexAttribute*> used;
+};
+
+// Positions: the local floats as they are under a node at the origin (exact), or put
+// back in the input's frame.
+std::vector<float> level_positions(const Mesh& mesh, const Frame* inverse) {
   std::vector<float> xyz = mesh.positions;
   if (inverse) {
-    for (size_t v = 0; v < n; ++v) {
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
       double p[3], q[3];
       model_position(mesh, v, p);  // as read where unmoved: no rounding through the local floats
       transform_point(*inverse, p, q);
       for (int k = 0; k < 3; ++k) xyz[3 * v + size_t(k)] = float(q[k]);
     }
   }
-  {
-    std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
-    for (size_t v = 0; v < n; ++v)
-      for (size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(xyz[3 * v + k])), hi[k] = std::max(hi[k], double(xyz[3 * v + k]));
-    const int a = b.accessor(xyz.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, kArrayBuffer);
-    b.model.accessors[size_t(a)].minValues = lo;
-    b.model.accessors[size_t(a)].maxValues = hi;
-    prim.attributes["POSITION"] = a;
-  }
-  std::vector<const VertexAttribute*> used;
+  return xyz;
+}
+
+// POSITION, with the bounds glTF requires.
+void add_positions(Builder& b, const std::vector<float>& xyz, size_t n, Channels& ch) {
+  std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
+  for (size_t v = 0; v < n; ++v)
+    for (size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(xyz[3 * v + k])), hi[k] = std::max(hi[k], double(xyz[3 * v + k]));
+  const int a = b.accessor(xyz.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, kArrayBuffer);
+  b.model.accessors[size_t(a)].minValues = lo;
+  b.model.accessors[size_t(a)].maxValues = hi;
+  ch.prim.attributes["POSITION"] = a;
+}
+
+// NORMAL from nx ny nz, unit length (the faces' normal where one is zero or not finite).
+void add_normals(Builder& b, const Mesh& mesh, const std::vector<float>& xyz, const Frame* inverse, Channels& ch) {
+  const size_t n = mesh.vertex_count();
   const VertexAttribute* nrm[3] = {find_attribute(mesh, "nx"), find_attribute(mesh, "ny"), find_attribute(mesh, "nz")};
-  if (nrm[0] && nrm[1] && nrm[2]) {
-    // Normals turn with the inverse transpose of the transform the positions took.
-    const Frame nm = inverse ? normal_matrix(*inverse) : identity_frame();
-    std::vector<float> normals(3 * n), fallback;
-    for (size_t v = 0; v < n; ++v) {
-      const double d[3] = {nrm[0]->values[v], nrm[1]->values[v], nrm[2]->values[v]};
-      double w[3];
-      transform_direction(nm, d, w);
-      const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      if (!(len > 0) || !std::isfinite(len)) {
-        if (fallback.empty()) fallback = face_normals_at_vertices(xyz, mesh.triangles);
-        for (int k = 0; k < 3; ++k) normals[3 * v + size_t(k)] = fallback[3 * v + size_t(k)];
-      } else {
-        for (int k = 0; k < 3; ++k) normals[3 * v + size_t(k)] = float(w[k] / len);
-      }
+  if (!nrm[0] || !nrm[1] || !nrm[2]) return;
+  // Normals turn with the inverse transpose of the transform the positions took.
+  const Frame nm = inverse ? normal_matrix(*inverse) : identity_frame();
+  std::vector<float> normals(3 * n), fallback;
+  for (size_t v = 0; v < n; ++v) {
+    const double d[3] = {nrm[0]->values[v], nrm[1]->values[v], nrm[2]->values[v]};
+    double w[3];
+    transform_direction(nm, d, w);
+    const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    if (!(len > 0) || !std::isfinite(len)) {
+      if (fallback.empty()) fallback = face_normals_at_vertices(xyz, mesh.triangles);
+      for (int k = 0; k < 3; ++k) normals[3 * v + size_t(k)] = fallback[3 * v + size_t(k)];
+    } else {
+      for (int k = 0; k < 3; ++k) normals[3 * v + size_t(k)] = float(w[k] / len);
     }
-    prim.attributes["NORMAL"] = b.accessor(normals.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, kArrayBuffer);
-    used.insert(used.end(), nrm, nrm + 3);
   }
-  // TEXCOORD_<set> from each texture-coordinate set (attribute_role: u v, s t, texture_u
-  // texture_v for set 0; u1 v1 .. u7 v7), the first pair found of each set.
+  ch.prim.attributes["NORMAL"] = b.accessor(normals.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, kArrayBuffer);
+  ch.used.insert(ch.used.end(), nrm, nrm + 3);
+}
+
+// TEXCOORD_<set> from each texture-coordinate set (attribute_role: u v, s t, texture_u
+// texture_v for set 0; u1 v1 .. u7 v7), the first pair found of each set.
+void add_texcoords(Builder& b, const Mesh& mesh, Channels& ch) {
+  const size_t n = mesh.vertex_count();
   for (int set = 0; set < 8; ++set) {
     const VertexAttribute* uv_pair[2] = {nullptr, nullptr};
     for (const VertexAttribute& a : mesh.attributes) {
@@ -155,13 +174,20 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     if (!uv_pair[0] || !uv_pair[1]) continue;
     std::vector<float> uv(2 * n);
     for (size_t v = 0; v < n; ++v) uv[2 * v] = uv_pair[0]->values[v], uv[2 * v + 1] = 1.0f - uv_pair[1]->values[v];  // glTF's v runs down
-    prim.attributes["TEXCOORD_" + std::to_string(set)] =
+    ch.prim.attributes["TEXCOORD_" + std::to_string(set)] =
         b.accessor(uv.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 8, kArrayBuffer);
-    used.push_back(uv_pair[0]), used.push_back(uv_pair[1]);
+    ch.used.push_back(uv_pair[0]), ch.used.push_back(uv_pair[1]);
   }
-  // COLOR_0: the saliency on the pictures' colour scale, else the input's colours. glTF's
-  // vertex colours are linear (the spec): our sRGB bytes go in converted, 16 bits a channel
-  // so that reading them back gives the same bytes.
+}
+
+// COLOR_0: the saliency on the pictures' colour scale, else the input's colours. glTF's
+// vertex colours are linear (the spec): our sRGB bytes go in converted, 16 bits a channel
+// so that reading them back gives the same bytes. S goes as _SALIENCY: the level's, else
+// S carried on the mesh (kSaliencyAttribute, e.g. read from a saliency PLY or a glTF's
+// _SALIENCY).
+void add_saliency_and_colours(Builder& b, const GltfLevel& level, Channels& ch) {
+  const Mesh& mesh = *level.mesh;
+  const size_t n = mesh.vertex_count();
   const VertexAttribute* rgba[4] = {find_attribute(mesh, "red"), find_attribute(mesh, "green"), find_attribute(mesh, "blue"),
                                     find_attribute(mesh, "alpha")};
   std::vector<uint8_t> colour(4 * n, 255);
@@ -169,7 +195,7 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     const std::vector<uint8_t> rgb = colormap_values(*level.saliency, level.is_point ? *level.is_point : referenced_vertices(mesh),
                                                      level.range ? *level.range : ColorRange());
     for (size_t v = 0; v < n; ++v) std::copy_n(&rgb[3 * v], 3, &colour[4 * v]);
-    prim.attributes["_SALIENCY"] = [&] {
+    ch.prim.attributes["_SALIENCY"] = [&] {
       std::vector<float> s(level.saliency->begin(), level.saliency->end());
       return b.accessor(s.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
     }();
@@ -177,14 +203,13 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     for (size_t v = 0; v < n; ++v)
       for (int k = 0; k < 4; ++k)
         if (rgba[k]) colour[4 * v + size_t(k)] = uint8_t(std::clamp(std::nearbyint(double(rgba[k]->values[v])), 0.0, 255.0));
-    used.insert(used.end(), rgba, rgba + 4);
+    ch.used.insert(ch.used.end(), rgba, rgba + 4);
   }
-  // S carried on the mesh (kSaliencyAttribute, e.g. read from a saliency PLY or a glTF's
-  // _SALIENCY) goes back as _SALIENCY; S given beside the mesh replaces it.
+  // S given beside the mesh replaces the S it carries.
   if (const VertexAttribute* carried = find_attribute(mesh, kSaliencyAttribute)) {
     if (!level.saliency)
-      prim.attributes["_SALIENCY"] = b.accessor(carried->values.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
-    used.push_back(carried);
+      ch.prim.attributes["_SALIENCY"] = b.accessor(carried->values.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
+    ch.used.push_back(carried);
   }
   if (level.saliency || (rgba[0] && rgba[1] && rgba[2])) {
     uint16_t table[256];
@@ -192,17 +217,27 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     std::vector<uint16_t> linear(4 * n);
     for (size_t i = 0; i < linear.size(); ++i)
       linear[i] = i % 4 == 3 ? uint16_t(colour[i] * 257) : table[colour[i]];  // alpha is linear already
-    prim.attributes["COLOR_0"] =
+    ch.prim.attributes["COLOR_0"] =
         b.accessor(linear.data(), n, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, 8, kArrayBuffer, true);
   }
-  // Every other attribute as a custom float channel.
+}
+
+// Every other attribute as a custom float channel.
+void add_custom_attributes(Builder& b, const Mesh& mesh, Channels& ch) {
   for (const VertexAttribute& a : mesh.attributes) {
-    if (std::find(used.begin(), used.end(), &a) != used.end()) continue;
+    if (std::find(ch.used.begin(), ch.used.end(), &a) != ch.used.end()) continue;
     const std::string name = custom_attribute_name(a.name);
-    if (prim.attributes.count(name)) continue;
-    prim.attributes[name] = b.accessor(a.values.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
+    if (ch.prim.attributes.count(name)) continue;
+    ch.prim.attributes[name] = b.accessor(a.values.data(), mesh.vertex_count(), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                          TINYGLTF_TYPE_SCALAR, 4, kArrayBuffer);
   }
-  // Triangles, one primitive per material (in the order of the material slots).
+}
+
+// Triangles, one primitive per material (in the order of the material slots), each with
+// the vertex channels of `prim`.
+tinygltf::Mesh level_primitives(Builder& b, const GltfLevel& level, const tinygltf::Primitive& prim,
+                                const std::string& path) {
+  const Mesh& mesh = *level.mesh;
   tinygltf::Mesh gm;
   gm.name = level.name;
   const std::vector<uint32_t>& tm = mesh.triangle_material;
@@ -226,7 +261,23 @@ int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const st
     gm.primitives.push_back(std::move(p));
   }
   if (gm.primitives.empty()) throw Error(path + ": cannot write: triangle_material names no material slot");
-  b.model.meshes.push_back(std::move(gm));
+  return gm;
+}
+
+// One level: its mesh (with primitives per material), returning the mesh's index. The
+// accessors go in this order: positions, normals, texture coordinates, S, colours, the
+// other attributes, then each primitive's indices.
+int add_level(Builder& b, const GltfLevel& level, const Frame* inverse, const std::string& path) {
+  const Mesh& mesh = *level.mesh;
+  check_level(level, path);
+  Channels ch;
+  const std::vector<float> xyz = level_positions(mesh, inverse);
+  add_positions(b, xyz, mesh.vertex_count(), ch);
+  add_normals(b, mesh, xyz, inverse, ch);
+  add_texcoords(b, mesh, ch);
+  add_saliency_and_colours(b, level, ch);
+  add_custom_attributes(b, mesh, ch);
+  b.model.meshes.push_back(level_primitives(b, level, ch.prim, path));
   return int(b.model.meshes.size()) - 1;
 }
 

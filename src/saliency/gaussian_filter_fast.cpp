@@ -106,6 +106,121 @@ void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
     if (!(s > 0) || !std::isfinite(s)) throw Error("Gaussian filter sigma must be positive");
 }
 
+// The box of a tile's query vertices.
+BoundingBox query_points_box(const Mesh& mesh, const std::vector<uint32_t>& point_list,
+                             const std::vector<uint8_t>& query) {
+  BoundingBox query_box;
+  for (int a = 0; a < 3; ++a) query_box.min[a] = INFINITY, query_box.max[a] = -INFINITY;
+  for (uint32_t v : point_list)
+    if (query[v])
+      for (int a = 0; a < 3; ++a) {
+        query_box.min[a] = std::min(query_box.min[a], double(mesh.positions[3 * size_t(v) + a]));
+        query_box.max[a] = std::max(query_box.max[a], double(mesh.positions[3 * size_t(v) + a]));
+      }
+  return query_box;
+}
+
+// Into `reached` (its storage reused from one sigma to the next): the points of
+// `point_list` within `reach` of the query box, in their order.
+void points_within_reach(const Mesh& mesh, const std::vector<uint32_t>& point_list,
+                         const BoundingBox& query_box, double reach, std::vector<uint32_t>& reached) {
+  reached.clear();
+  for (uint32_t v : point_list) {
+    bool in = true;
+    for (int a = 0; a < 3 && in; ++a) {
+      const double x = mesh.positions[3 * size_t(v) + a];
+      in = x >= query_box.min[a] - reach && x <= query_box.max[a] + reach;
+    }
+    if (in) reached.push_back(v);
+  }
+}
+
+// One sigma's progress: the vertices written so far, told from the caller's thread only.
+struct SigmaProgress {
+  const std::function<void(double)>& progress;
+  std::thread::id caller;
+  size_t sigma, sigmas, points;
+  std::atomic<size_t> done{0};
+  void tick(size_t count) {
+    size_t finished = done += count;
+    if (progress && std::this_thread::get_id() == caller)
+      progress((sigma + double(finished) / points) / sigmas);
+  }
+};
+
+// The query groups that hold one of a tile's query vertices, in order.
+std::vector<uint32_t> groups_with_queries(const sweep::QueryGroups& groups, const SparseCells& cells,
+                                          const std::vector<uint8_t>& query) {
+  const size_t units = groups.start.size() - 1;
+  std::vector<uint32_t> wanted;
+  for (size_t u = 0; u < units; ++u) {
+    bool any = false;
+    for (uint32_t i = groups.start[u]; i < groups.start[u + 1] && !any; ++i) {
+      const uint32_t c = groups.cell[i];
+      for (uint32_t j = cells.start[c]; j < cells.start[c + 1] && !any; ++j) any = query[cells.order[j]];
+    }
+    if (any) wanted.push_back(uint32_t(u));
+  }
+  return wanted;
+}
+
+// Dense cells: the hot loop per query group (all of them, or a tile's that hold a query
+// vertex), with the cutoff's shell `shell` deep (0: none).
+void query_groups(sweep::QueryArgs& args, const sweep::QueryGroups& groups, const SparseCells& cells,
+                  const std::vector<uint8_t>* query, double shell, unsigned threads,
+                  std::atomic<uint64_t>& total_pairs, SigmaProgress& tick) {
+  // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
+  const sweep::Kernels& kernels = sweep::kernels();
+  const double s = args.s, t = shell;
+  args.groups = &groups;
+  args.shell2 = t > 0 ? (2 * s - t) * (2 * s - t) : INFINITY;
+  args.shell_weight = t > 0 ? s * s * std::exp(-2.0) / (2 * s * t) : 0.0;
+  const size_t units = groups.start.size() - 1;
+  // A tile queries only the groups that hold one of its query vertices.
+  std::vector<uint32_t> wanted;
+  if (query) wanted = groups_with_queries(groups, cells, *query);
+  const size_t count = query ? wanted.size() : units;
+  parallel_for(count, threads, 16, [&](size_t begin, size_t end) {
+    uint64_t pairs = 0;
+    size_t visited = 0;
+    if (!query) {
+      visited = kernels.query_cells(args, begin, end, &pairs);
+    } else {
+      for (size_t i = begin; i < end; ++i)
+        visited += kernels.query_cells(args, wanted[i], wanted[i] + 1, &pairs);
+    }
+    total_pairs += pairs;
+    tick.tick(visited);
+  });
+}
+
+// The per-vertex path's visiting order: the (query) points in the order of the cells of
+// edge `cell`. `point_list` is made again when an earlier sigma handed it over.
+std::vector<uint32_t> visiting_order(const Mesh& mesh, const std::vector<uint8_t>& is_point,
+                                     std::vector<uint32_t>& point_list, const BoundingBox& box, double cell,
+                                     const std::vector<uint8_t>* query, unsigned threads) {
+  if (point_list.empty()) point_list = mesh_point_list(is_point);  // handed over
+  std::vector<uint32_t> visit = sort_into_cells(mesh, point_list, box, cell, threads).order;
+  if (query)
+    visit.erase(std::remove_if(visit.begin(), visit.end(), [&](uint32_t v) { return !(*query)[v]; }),
+                visit.end());
+  return visit;
+}
+
+// Sparse cells: the hot loop per vertex, in `visit` order.
+void query_visits(sweep::QueryArgs& args, const std::vector<uint32_t>& visit, unsigned threads,
+                  std::atomic<uint64_t>& total_pairs, SigmaProgress& tick) {
+  // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
+  const sweep::Kernels& kernels = sweep::kernels();
+  args.visit = visit.data();
+  parallel_for(visit.size(), threads, 512, [&](size_t begin, size_t end) {
+    uint64_t pairs = 0;
+    kernels.query_vertices(args, begin, end, &pairs);
+    total_pairs += pairs;
+    tick.tick(end - begin);
+  });
+}
+
 }  // namespace
 
 double fast_cell_edge(const BoundingBox& box, double sigma, const FastFilterParams& params) {
@@ -153,32 +268,14 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   const std::thread::id caller = std::this_thread::get_id();
   // A tile: each sigma's cells need only the points within its reach of the queries (2 s
   // and the cells around them); the smaller sigmas skip most of the halo.
-  BoundingBox query_box = box;
-  if (query) {
-    for (int a = 0; a < 3; ++a) query_box.min[a] = INFINITY, query_box.max[a] = -INFINITY;
-    for (uint32_t v : point_list)
-      if ((*query)[v])
-        for (int a = 0; a < 3; ++a) {
-          query_box.min[a] = std::min(query_box.min[a], double(mesh.positions[3 * size_t(v) + a]));
-          query_box.max[a] = std::max(query_box.max[a], double(mesh.positions[3 * size_t(v) + a]));
-        }
-  }
+  const BoundingBox query_box = query ? query_points_box(mesh, point_list, *query) : box;
   std::vector<uint32_t> reached;
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
     const double cell = fast_cell_edge(box, s, params);
     const std::vector<uint32_t>* sorted_points = &point_list;
     if (query) {
-      const double reach = 2 * s + 3 * cell;
-      reached.clear();
-      for (uint32_t v : point_list) {
-        bool in = true;
-        for (int a = 0; a < 3 && in; ++a) {
-          const double x = mesh.positions[3 * size_t(v) + a];
-          in = x >= query_box.min[a] - reach && x <= query_box.max[a] + reach;
-        }
-        if (in) reached.push_back(v);
-      }
+      points_within_reach(mesh, point_list, query_box, 2 * s + 3 * cell, reached);
       sorted_points = &reached;
     }
     // The last sigma of a whole mesh hands the list over to its cells (the fast CPU
@@ -188,13 +285,7 @@ std::vector<std::vector<double>> gaussian_filter_fast(
                                         : sort_into_cells(mesh, *sorted_points, box, cell, threads);
     if (hand_over) std::vector<uint32_t>().swap(point_list);  // empty for certain
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
-    std::atomic<size_t> done{0};
-    std::vector<double>& o = out[k];
-    auto tick = [&](size_t count) {
-      size_t finished = done += count;
-      if (progress && std::this_thread::get_id() == caller)
-        progress((k + double(finished) / points) / sigmas.size());
-    };
+    SigmaProgress tick{progress, caller, k, sigmas.size(), points};
     const size_t m = cells.key.size();
     const double all_cells = scope ? double(scope->occupied_cells[k]) : double(m);
     // Dense cells: the sums and their gradients once at each query group's centroid,
@@ -206,57 +297,15 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     std::vector<uint64_t>().swap(cells.key);  // grouped: 8 bytes a cell less from here on
     const GridFrame cell_frame{box, uint64_t(all_cells)};
     const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, cell_frame, threads, dense ? &groups : nullptr);
-    // The hot loops, on the instruction set cpu_path() picks (sweep_kernels.h).
-    const sweep::Kernels& kernels = sweep::kernels();
     sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2,
-                          1.0 / (s * s), INFINITY, 0.0, o.data()};
+                          1.0 / (s * s), INFINITY, 0.0, out[k].data()};
     if (dense) {
-      args.groups = &groups;
       // The cutoff's shell: params.shell_cells cells deep (0: none).
-      const double t = params.shell_cells * cell;
-      args.shell2 = t > 0 ? (2 * s - t) * (2 * s - t) : INFINITY;
-      args.shell_weight = t > 0 ? s * s * std::exp(-2.0) / (2 * s * t) : 0.0;
-      const size_t units = groups.start.size() - 1;
-      // A tile queries only the groups that hold one of its query vertices.
-      std::vector<uint32_t> wanted;
-      if (query)
-        for (size_t u = 0; u < units; ++u) {
-          bool any = false;
-          for (uint32_t i = groups.start[u]; i < groups.start[u + 1] && !any; ++i) {
-            const uint32_t c = groups.cell[i];
-            for (uint32_t j = cells.start[c]; j < cells.start[c + 1] && !any; ++j) any = (*query)[cells.order[j]];
-          }
-          if (any) wanted.push_back(uint32_t(u));
-        }
-      const size_t count = query ? wanted.size() : units;
-      parallel_for(count, threads, 16, [&](size_t begin, size_t end) {
-        uint64_t pairs = 0;
-        size_t visited = 0;
-        if (!query) {
-          visited = kernels.query_cells(args, begin, end, &pairs);
-        } else {
-          for (size_t i = begin; i < end; ++i)
-            visited += kernels.query_cells(args, wanted[i], wanted[i] + 1, &pairs);
-        }
-        total_pairs += pairs;
-        tick(visited);
-      });
+      query_groups(args, groups, cells, query, params.shell_cells * cell, threads, total_pairs, tick);
       continue;
     }
-    if (visit.empty()) {
-      if (point_list.empty()) point_list = mesh_point_list(is_point);  // handed over above
-      visit = sort_into_cells(mesh, point_list, box, fast_cell_edge(box, finest, params), threads).order;
-      if (query)
-        visit.erase(std::remove_if(visit.begin(), visit.end(), [&](uint32_t v) { return !(*query)[v]; }),
-                    visit.end());
-    }
-    args.visit = visit.data();
-    parallel_for(visit.size(), threads, 512, [&](size_t begin, size_t end) {
-      uint64_t pairs = 0;
-      kernels.query_vertices(args, begin, end, &pairs);
-      total_pairs += pairs;
-      tick(end - begin);
-    });
+    if (visit.empty()) visit = visiting_order(mesh, is_point, point_list, box, fast_cell_edge(box, finest, params), query, threads);
+    query_visits(args, visit, threads, total_pairs, tick);
   }
   if (stats) stats->pairs = total_pairs;
   return out;
