@@ -253,7 +253,7 @@ SweepPlan plan_sweep(const std::vector<double>& scales, double eps) {
   std::sort(units.begin(), units.end());
   units.erase(std::unique(units.begin(), units.end()), units.end());
   if (units.size() > size_t(kMaxSigmas))
-    throw Error("the GPU path takes at most 16 distinct sigmas (s_i and 2 s_i)");
+    throw Error("the GPU path takes at most " + std::to_string(kMaxSigmas) + " distinct sigmas (s_i and 2 s_i)");
   std::vector<int> plan_of_unit;
   SweepParams& params = plan.params;
   params = make_params(units, eps, &plan_of_unit);
@@ -427,7 +427,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (nv >= 0xffffffffu / 32) throw Error("mesh too large for the GPU path (vertex count)");
   const size_t nsc = options.scales.size();
   if (nsc == 0) throw Error("at least one scale is needed");
-  if (nsc > kMaxScales) throw Error("the GPU path takes at most 16 scales");
+  if (nsc > kMaxScales) throw Error("the GPU path takes at most " + std::to_string(kMaxScales) + " scales");
 
   // --- curvature (CPU): the same functions as compute_saliency_cpu --------------------
   Timer t0;
