@@ -1,5 +1,6 @@
 #include "test_gpu_selftest.h"
 
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
 
@@ -8,9 +9,8 @@
 namespace meshsal {
 
 std::vector<float> gpu_selftest(vk::Context& ctx, const std::vector<float>& x, float a) {
-  struct Push { uint32_t base, n; float a; };
-  auto& k = vk::cached_kernel(ctx, spv_selftest_comp, sizeof(spv_selftest_comp), 2, sizeof(Push),
-                              "selftest");
+  using Push = gpu::shader::SelftestPush;
+  auto& k = vk::cached_kernel<gpu::shader::Selftest>(ctx, spv_selftest_comp, sizeof spv_selftest_comp, "selftest");
   vk::Buffer bx(ctx, x.size() * 4, "x"), by(ctx, x.size() * 4, "y");
   bx.upload(x.data(), x.size() * 4);
   vk::DescriptorPool pool(ctx, 1, 2);

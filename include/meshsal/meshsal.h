@@ -1008,6 +1008,16 @@ BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
 // that of every front end (`meshsal viewpoint`, `render --best`, `batch --view`, Python).
 constexpr int kDefaultViewResolution = 512;
 
+// ---- Limits of the view and picture settings (issue 38: one constant per limit; every check
+// and its message, in the library and the front ends, is built from these) ----
+// The side in pixels of every square picture and z-buffer: RenderStyle::size,
+// VisibilityOptions::resolution and ViewpointOptions::resolution (--size, --resolution).
+constexpr int kMinImageSize = 16, kMaxImageSize = 8192;
+constexpr int kMinMapWidth = 32;  // the view map picture (--map): kMinMapWidth..kMaxImageSize wide
+// What the front ends accept for the viewpoint search (--restarts, --views, --depth-tol).
+constexpr int kMaxViewRestarts = 1000, kMaxViewMapViews = 1000000, kMaxDepthTolPx = 1000;
+// ---- end of the view limits ----
+
 // A band of latitudes, in degrees, in the frame of the up axis: -90 <= min <= max <= 90.
 // The default is the whole sphere.
 struct ElevationRange {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,7 +69,7 @@ void fill_result(SimplifyOut& out, meshsal::Mesh result, meshsal::SimplifyReport
   out.reached = report.reached;
   out.unchanged = report.unchanged;
   out.note = report.note;
-  out.weights = out.unchanged ? "none" : mode;
+  out.weights = out.unchanged ? meshsal::weighting_name(meshsal::Weighting::None) : mode;
   out.seconds = report.seconds;
   out.error = report.error * diagonal;
   out.error_percent = 100 * report.error;
@@ -108,19 +109,25 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
     if (!(r > 0 && r <= 1)) throw py::value_error("ratio must be in (0, 1], got " + std::string(py::str(ratio)));
     options.ratio = r;
   }
-  // The weighting: a name (the library's presets, as --weights) or W per vertex.
-  std::string mode = "array";
+  // The weighting, read once here: a name (the library's presets, as --weights), or W per
+  // vertex from an array (`named` empty).
+  std::optional<meshsal::Weighting> named;
   if (weights.is_none()) {
-    mode = meshsal::weighting_name(meshsal::kDefaultWeighting);
+    named = meshsal::kDefaultWeighting;
   } else if (py::isinstance<py::str>(weights)) {
-    mode = weights.cast<std::string>();
-    if (mode != "saliency" && mode != "balanced" && mode != "none")
+    const std::string name = weights.cast<std::string>();
+    try {
+      named = meshsal::parse_weighting(name);
+    } catch (const meshsal::Error&) {
       throw py::value_error("weights must be 'saliency', 'balanced', 'none' or an array of one weight per vertex, got '" +
-                            mode + "'");
+                            name + "'");
+    }
   }
-  const bool computed = mode == "saliency" || mode == "balanced";
+  const bool array = !named;
+  const bool computed = named && *named != meshsal::Weighting::None;
+  const std::string mode = named ? meshsal::weighting_name(*named) : "array";  // the result's `weights`
   // W's parameters: the preset's unless given (the CLI's --lambda, --alpha-percentile).
-  meshsal::SaliencyWeightOptions wo = weight_preset(computed ? meshsal::parse_weighting(mode) : meshsal::kDefaultWeighting);
+  meshsal::SaliencyWeightOptions wo = weight_preset(computed ? *named : meshsal::kDefaultWeighting);
   wo.lambda = number_or(lambda_arg, wo.lambda, "lambda_");
   wo.alpha_percentile = number_or(alpha_arg, wo.alpha_percentile, "alpha_percentile");
   wo.floor = number_or(floor_arg, wo.floor, "weight_floor");
@@ -129,10 +136,10 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (!(wo.floor >= 0 && wo.floor <= 100)) throw py::value_error("weight_floor must be in [0, 100]");
   if (!computed && !saliency.is_none())
     throw py::value_error("saliency (S per vertex) needs weights='saliency' or 'balanced'");
-  if (lod && mode == "array") throw py::value_error("lod takes weights 'saliency', 'balanced' or 'none', not an array");
+  if (lod && array) throw py::value_error("lod takes weights 'saliency', 'balanced' or 'none', not an array");
 
   std::vector<double> w, s;
-  if (mode == "array") w = vertex_values(weights, n, "weights");
+  if (array) w = vertex_values(weights, n, "weights");
   if (!saliency.is_none()) s = vertex_values(saliency, n, "saliency");
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
@@ -149,9 +156,9 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   req.simplify_in_memory = true;
   req.simplify = options;
   if (lod) req.lod = *lod;
-  req.weighting = computed ? meshsal::parse_weighting(mode) : meshsal::Weighting::None;
+  req.weighting = named.value_or(meshsal::Weighting::None);
   req.weight_options = wo;
-  if (mode == "array") req.vertex_weights = &w;
+  if (array) req.vertex_weights = &w;
   if (!s.empty()) req.saliency_values = &s;
   req.saliency = so;
   meshsal::RequestResult r;

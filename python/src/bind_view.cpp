@@ -71,13 +71,14 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
                    const py::object& device, const py::object& threads) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   // The CLI's ranges (the library checks resolution and depth_tol itself).
-  const int restarts = int(integer_arg(restarts_arg, "restarts", 1, 1000));
-  const int views = int(integer_arg(views_arg, "views", 0, 1000000));
-  const int resolution = int(integer_arg(resolution_arg, "resolution", 16, 8192));
+  const int restarts = int(integer_arg(restarts_arg, "restarts", 1, meshsal::kMaxViewRestarts));
+  const int views = int(integer_arg(views_arg, "views", 0, meshsal::kMaxViewMapViews));
+  const int resolution = int(integer_arg(resolution_arg, "resolution", meshsal::kMinImageSize, meshsal::kMaxImageSize));
   const uint64_t seed = unsigned_arg(seed_arg, "seed", 0, std::numeric_limits<uint64_t>::max());
   const double depth_tol = number_arg(depth_tol_arg, "depth_tol");
-  if (!(depth_tol >= 0 && depth_tol <= 1000))
-    throw py::value_error("depth_tol must be in [0, 1000], got " + std::string(py::str(depth_tol_arg)));
+  if (!(depth_tol >= 0 && depth_tol <= meshsal::kMaxDepthTolPx))
+    throw py::value_error("depth_tol must be in [0, " + std::to_string(meshsal::kMaxDepthTolPx) + "], got " +
+                          std::string(py::str(depth_tol_arg)));
   meshsal::ViewpointOptions vo;
   vo.up = meshsal::parse_up_axis(up);
   vo.elevation = elevation_range(elevation);

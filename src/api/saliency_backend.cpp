@@ -175,11 +175,12 @@ std::vector<double> parse_scales(const std::string& text) {
     char* end = nullptr;
     double k = std::strtod(item.c_str(), &end);
     if (item.empty() || end == item.c_str() || *end != '\0' || !(k > 0 && k <= kMaxScale))
-      throw Error("scales must be a comma-separated list of numbers in (0, 100], got '" + text + "'");
+      throw Error("scales must be a comma-separated list of numbers in (0, " + number_text(kMaxScale) + "], got '" +
+                  text + "'");
     scales.push_back(k);
   }
   if (scales.empty()) throw Error("scales must list at least one scale");
-  if (scales.size() > 16) throw Error("scales: at most 16 scales");
+  if (scales.size() > kMaxScaleCount) throw Error("scales: at most " + std::to_string(kMaxScaleCount) + " scales");
   return scales;
 }
 

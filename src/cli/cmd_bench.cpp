@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -42,6 +43,7 @@ struct Args {
   int repeat = 3;
   std::string method = "exact";  // fast: also the error against exact, per mesh
   std::string backend;           // cpu or gpu; empty: exact times every backend, fast the CPU
+                                 // (read once by run() into an optional Backend)
   int subdivide = 0;             // midpoint subdivisions of each mesh, in memory
   std::string write_mesh;        // --write-mesh: write the (subdivided) mesh there and stop
 };
@@ -59,7 +61,7 @@ struct Row {
   double read = 0;
   meshsal::SaliencyResult best;  // the fastest of the repeats
   double total = 0;
-  std::string method = "exact";
+  meshsal::Method method = meshsal::Method::Exact;
   // --method fast: the exact reference (time, pairs) and the error against it.
   bool has_reference = false;
   double exact_total = 0, exact_pairs = 0;  // pairs estimated when there is no reference
@@ -71,15 +73,15 @@ struct Row {
 };
 
 // Each backend the table has a row for: the CPU path and every Vulkan device with compute,
-// once per sweep precision.
-std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
+// once per sweep precision; only `only`'s when given (--backend).
+std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a, std::optional<meshsal::Backend> only) {
   meshsal::SaliencyOptions cpu;
   cpu.cancel = interrupt_flag();
   cpu.backend = meshsal::Backend::Cpu;
   cpu.threads = a.threads;
   std::vector<meshsal::SaliencyOptions> out;
-  if (a.backend != "gpu") out.push_back(cpu);
-  if (a.backend == "cpu") return out;
+  if (only != meshsal::Backend::Gpu) out.push_back(cpu);
+  if (only == meshsal::Backend::Cpu) return out;
   try {
     for (const auto& d : meshsal::list_devices()) {
       if (!d.has_compute) continue;
@@ -92,7 +94,7 @@ std::vector<meshsal::SaliencyOptions> bench_backends(const Args& a) {
       }
     }
   } catch (const meshsal::Error& e) {
-    if (a.backend == "gpu") throw;
+    if (only == meshsal::Backend::Gpu) throw;
     std::fprintf(stderr, "no Vulkan rows: %s\n", printable(e.what()).c_str());
   }
   if (out.empty()) throw meshsal::Error("bench --backend gpu: no Vulkan device with compute");
@@ -123,7 +125,7 @@ Row bench_one(const std::string& model, const meshsal::Mesh& mesh, double read,
     if (i == 0 || total < row.total) row.best = std::move(r), row.total = total;
   }
   row.device = row.best.backend_name;
-  row.method = row.best.method == meshsal::Method::Fast ? "fast" : "exact";
+  row.method = row.best.method;
   row.peak_rss = double(meshsal::peak_resident_bytes());
   row.precision = opt.backend == meshsal::Backend::Cpu ? "double"
                   : row.best.mixed_precision           ? "mixed"
@@ -133,10 +135,11 @@ Row bench_one(const std::string& model, const meshsal::Mesh& mesh, double read,
 
 // --method fast: the fast CPU row, then the exact reference once (or its estimated time when
 // its pair count passes kExactReferencePairLimit) and the error of fast against it.
-Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read, const Args& a) {
+Row bench_fast(const std::string& model, const meshsal::Mesh& mesh, double read, const Args& a,
+               std::optional<meshsal::Backend> only) {
   meshsal::SaliencyOptions opt;
   opt.cancel = interrupt_flag();
-  opt.backend = a.backend == "gpu" ? meshsal::Backend::Gpu : meshsal::Backend::Cpu;
+  opt.backend = only.value_or(meshsal::Backend::Cpu);
   opt.threads = a.threads;
   opt.method = meshsal::Method::Fast;
   // Whether the exact reference will run (then the raw maps are compared): without it the
@@ -188,19 +191,19 @@ void print_table(const std::vector<Row>& rows) {
     const double listed = stage(r, "curvature") + stage(r, "gaussian sweep") +
                           stage(r, "center-surround") + stage(r, "suppression");
     std::printf("%-24s %9zu  %-22.22s %-6s %-5s %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %8.3fs %10.3g %10.3g %8llu\n",
-                r.model.c_str(), r.vertices, r.device.c_str(), r.precision.c_str(), r.method.c_str(), stage(r, "curvature"),
+                r.model.c_str(), r.vertices, r.device.c_str(), r.precision.c_str(), meshsal::method_name(r.method), stage(r, "curvature"),
                 stage(r, "gaussian sweep"), stage(r, "center-surround"), stage(r, "suppression"),
                 std::max(0.0, r.total - listed), r.total, double(r.best.pairs),
                 r.total > 0 ? r.best.pairs / r.total : 0.0, (unsigned long long)r.best.rechecked);
   }
   bool any_fast = false;
-  for (const Row& r : rows) any_fast |= r.method == "fast";
+  for (const Row& r : rows) any_fast |= r.method == meshsal::Method::Fast;
   if (any_fast) {
     std::printf("\n%-24s %9s %10s %10s %8s %10s %9s %9s %9s %9s %8s %9s %9s\n", "model", "vertices", "fast",
                 "exact", "speed-up", "exact pairs", "corr", "top30", "raw mean", "raw max", "peak B/v", "Sm fast",
                 "Sm exact");
     for (const Row& r : rows) {
-      if (r.method != "fast") continue;
+      if (r.method != meshsal::Method::Fast) continue;
       double mean = 0, worst = 0;
       for (double x : r.error.raw_mean) mean = std::max(mean, x);
       for (double x : r.error.raw_max) worst = std::max(worst, x);
@@ -258,11 +261,11 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
     JsonObject j;
     j.text("mesh", r.path).text("name", r.model).count("subdivisions", uint64_t(a.subdivide))
         .count("vertices", r.vertices).text("device", r.device).text("precision", r.precision)
-        .text("method", r.method).number("read_seconds", r.read).number("seconds", r.total).object("stages", stages)
+        .text("method", meshsal::method_name(r.method)).number("read_seconds", r.read).number("seconds", r.total).object("stages", stages)
         .object("stage_peak_bytes", stage_peaks)
         .count("pairs", r.best.pairs).number("pairs_per_second", r.total > 0 ? r.best.pairs / r.total : 0.0)
         .count("rechecked", r.best.rechecked).count("peak_rss_bytes", uint64_t(r.peak_rss));
-    if (r.method == "fast") {
+    if (r.method == meshsal::Method::Fast) {
       j.flag("exact_measured", r.has_reference).number("exact_seconds", r.exact_total).number("exact_pairs", r.exact_pairs);
       j.number("smooth_fast_seconds", r.smooth_fast);
       if (r.has_reference) j.number("smooth_exact_seconds", r.smooth_exact);
@@ -280,7 +283,7 @@ void print_json(const std::vector<Row>& rows, const Args& a, double seconds) {
 int run(const Args& a) {
   std::vector<std::string> paths = a.meshes;
   const std::string dir = a.data_dir.empty() ? meshsal::benchmark_data_dir() : a.data_dir;
-  if (a.simplify) return run_simplify_benchmark({a.meshes, dir, a.json, a.repeat, a.threads, a.plot, a.sweep});
+  if (a.simplify) return run_simplify_benchmark({a.meshes, dir, a.json, a.repeat, a.threads, a.plot, parse_sweep(a.sweep)});
   if (paths.empty()) {
     for (const char* name : {"bunny_36k.obj", "armadillo_43k.obj", "dragon_50k.ply", "igea_134k.ply.gz"}) {
       std::string p = dir + "/" + name;
@@ -293,6 +296,8 @@ int run(const Args& a) {
   }
   const meshsal::Method method = meshsal::parse_method(a.method);
   if (method == meshsal::Method::Auto) throw meshsal::Error("bench: --method must be exact or fast");
+  std::optional<meshsal::Backend> only;  // --backend: cpu or gpu (checked by its option)
+  if (!a.backend.empty()) only = meshsal::parse_backend(a.backend);
   std::vector<Row> rows;
   meshsal::set_stage_peaks(true);  // each stage's peak memory in the table and --json
   const meshsal::Timer wall;
@@ -313,11 +318,11 @@ int run(const Args& a) {
     }
     const double read = t0.seconds();
     if (method == meshsal::Method::Fast) {
-      rows.push_back(bench_fast(model, mesh, read, a));
+      rows.push_back(bench_fast(model, mesh, read, a, only));
       rows.back().path = p;
       continue;
     }
-    for (const auto& opt : bench_backends(a)) {
+    for (const auto& opt : bench_backends(a, only)) {
       if (!a.json && !a.quiet && isatty(fileno(stderr))) std::fprintf(stderr, "  %s ...\r", printable(p).c_str());
       try {
         rows.push_back(bench_one(model, mesh, read, opt, a.repeat));

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@ using meshsal::Mesh;
 using meshsal::SaliencyWeightOptions;
 using meshsal::SurfaceComparison;
 using meshsal::WeightCurve;
+using meshsal::Weighting;
 
 // The target for a weighting, relative to plain quadrics at the same face count.
 constexpr double kSalientTarget = 0.8, kRmsTarget = 1.25, kHausdorffTarget = 1.25;
@@ -91,12 +93,12 @@ SweepPoint continuous(double alpha, double lambda, double gamma, double cap) {
   return p;
 }
 
-// "short": a few points per curve around the presets (the benchmark's plot); "wide": the
+// Short: a few points per curve around the presets (the benchmark's plot); Wide: the
 // search behind the balanced preset (docs/method.md).
-std::vector<SweepPoint> sweep_points(const std::string& which) {
+std::vector<SweepPoint> sweep_points(SweepSet which) {
   std::vector<SweepPoint> out;
-  if (which == "none") return out;
-  if (which == "short") {
+  if (which == SweepSet::None) return out;
+  if (which == SweepSet::Short) {
     for (double l : {3.0, 10.0}) out.push_back(threshold(30, l));
     for (double l : {1.0, 4.0}) out.push_back(rank(70, l, 0));
     out.push_back(rank(50, 2, 0));
@@ -149,6 +151,7 @@ Mesh meshopt(const Mesh& in, size_t target_faces) {
 struct Run {
   std::string path, model, method;  // model: the file name; method: none, saliency, balanced,
                                     // meshopt, or a sweep label
+  std::optional<Weighting> weighting;  // the named weightings (none, saliency, balanced)
   std::string curve;          // the sweep's curve ("" for the named methods)
   SaliencyWeightOptions options;
   bool sweep = false;
@@ -165,7 +168,9 @@ struct Run {
 // One method to time: its best time over the rounds and its last output.
 struct Timed {
   Timed(std::string m, std::function<Mesh()> r) : method(std::move(m)), run(std::move(r)) {}
+  Timed(Weighting w, std::function<Mesh()> r) : method(meshsal::weighting_name(w)), weighting(w), run(std::move(r)) {}
   std::string method;
+  std::optional<Weighting> weighting;
   std::function<Mesh()> run;
   double seconds = 1e30;
   Mesh out;
@@ -217,7 +222,7 @@ void print_table(const std::vector<Run>& runs, const std::vector<std::pair<std::
   for (const Run& r : runs) {  // `none` too: the speed target holds for every weighting
     if (r.sweep) continue;
     const Run* mo = find(runs, r, "meshopt");
-    const char* ok = r.method == "none" ? "ref" : r.meets() ? "ok" : "-";
+    const char* ok = r.weighting == Weighting::None ? "ref" : r.meets() ? "ok" : "-";
     std::printf("%-18s %5.0f%% %-9s %8.3f %8.3f %10.3f %4s", r.model.c_str(), 100 * r.ratio, r.method.c_str(),
                 r.salient_rel, r.rms_rel, r.hausdorff_rel, ok);
     if (mo && mo->seconds > 0) std::printf(" %14.2f\n", r.seconds / mo->seconds);
@@ -236,7 +241,7 @@ void print_table(const std::vector<Run>& runs, const std::vector<std::pair<std::
     // worst case as the largest of salient/0.8, rms/1.25, hausdorff/1.25 (<= 1 meets it).
     std::vector<std::string> labels;
     for (const Run& r : runs)
-      if (r.method != "none" && r.method != "meshopt" &&
+      if (r.weighting != Weighting::None && r.method != "meshopt" &&
           std::find(labels.begin(), labels.end(), r.method) == labels.end())
         labels.push_back(r.method);
     struct Score { std::string label; int met = 0, cases = 0; double worst = 0; };
@@ -277,7 +282,7 @@ void print_json(const std::vector<Run>& runs, const std::vector<std::pair<std::s
     std::printf(tradeoff ? "],\n \"tradeoff\": [\n" : " \"runs\": [\n");
     bool first = true;
     for (const Run& r : runs) {
-      if (tradeoff ? r.method == "none" : r.sweep) continue;
+      if (tradeoff ? r.weighting == Weighting::None : r.sweep) continue;
       std::printf("%s  {\"mesh\": %s, \"name\": %s, \"device\": \"cpu\", \"ratio\": %g, \"method\": %s, ",
                   first ? "" : ",\n", json_string(r.path).c_str(), json_string(r.model).c_str(), r.ratio,
                   json_string(r.method).c_str());
@@ -313,20 +318,20 @@ void print_json(const std::vector<Run>& runs, const std::vector<std::pair<std::s
 void write_plot(const std::string& path, const std::vector<Run>& runs) {
   std::vector<meshsal::TradeoffPanel> panels;
   for (const Run& r : runs) {
-    if (r.method != "none") continue;
+    if (r.weighting != Weighting::None) continue;
     meshsal::TradeoffPanel p;
     p.title = r.model + fmt("  %g%%", 100 * r.ratio);
     for (const Run& x : runs) {
-      if (x.model != r.model || x.ratio != r.ratio || x.method == "none") continue;
+      if (x.model != r.model || x.ratio != r.ratio || x.weighting == Weighting::None) continue;
       const meshsal::TradeoffPoint pt{x.rms_rel, x.salient_rel};
       if (x.sweep) {
         const int series = x.options.curve == WeightCurve::Threshold ? meshsal::kSweepThreshold
                            : x.options.curve == WeightCurve::Rank    ? meshsal::kSweepRank
                                                                      : meshsal::kSweepContinuous;
         p.series[series].push_back(pt);
-      } else if (x.method == "saliency") {
+      } else if (x.weighting == Weighting::Saliency) {
         p.series[meshsal::kPaperRecipe].push_back(pt);
-      } else if (x.method == "balanced") {
+      } else if (x.weighting == Weighting::Balanced) {
         p.series[meshsal::kBalancedPreset].push_back(pt);
       } else if (x.method == "meshopt") {
         p.series[meshsal::kMeshoptimizer].push_back(pt);
@@ -339,11 +344,16 @@ void write_plot(const std::string& path, const std::vector<Run>& runs) {
 
 }  // namespace
 
+SweepSet parse_sweep(const std::string& name) {
+  if (name == "short") return SweepSet::Short;
+  if (name == "wide") return SweepSet::Wide;
+  if (name == "none") return SweepSet::None;
+  throw UsageError("--sweep must be short, wide or none, got '" + name + "'");
+}
+
 int run_simplify_benchmark(const SimplifyBenchArgs& a) {
   using namespace meshsal;
   check_outputs({{a.plot, "--plot", {".png"}}}, a.meshes);
-  if (a.sweep != "short" && a.sweep != "wide" && a.sweep != "none")
-    throw UsageError("--sweep must be short, wide or none, got '" + a.sweep + "'");
   const std::string dir = a.data_dir.empty() ? benchmark_data_dir() : a.data_dir;
   const std::vector<std::string> paths = a.meshes.empty() ? default_meshes(dir) : a.meshes;
 #ifndef MESHSAL_HAVE_MESHOPTIMIZER
@@ -380,7 +390,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
         Run r;
         r.path = path;
         r.model = model;
-        r.method = method;
+        r.method = method;  // the named weightings' `weighting` is set by the caller
         r.ratio = ratio;
         r.faces_in = mesh.triangle_count();
         r.target = target;
@@ -391,14 +401,14 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
         return runs.back();
       };
       std::vector<Timed> methods;
-      methods.push_back({"none", [&] { return simplify_mesh(mesh, opt); }});
-      methods.push_back({"saliency", [&] { return simplify_mesh(mesh, opt, &w_paper); }});
-      methods.push_back({"balanced", [&] { return simplify_mesh(mesh, opt, &w_balanced); }});
+      methods.push_back({Weighting::None, [&] { return simplify_mesh(mesh, opt); }});
+      methods.push_back({Weighting::Saliency, [&] { return simplify_mesh(mesh, opt, &w_paper); }});
+      methods.push_back({Weighting::Balanced, [&] { return simplify_mesh(mesh, opt, &w_balanced); }});
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER
       methods.push_back({"meshopt", [&] { return meshopt(mesh, target); }});
 #endif
       best_of_interleaved(a.repeat, methods);
-      for (const Timed& m : methods) add(m.method, m.out, m.seconds);
+      for (const Timed& m : methods) add(m.method, m.out, m.seconds).weighting = m.weighting;
       for (const SweepPoint& p : sweep) {
         const std::vector<double> w = saliency_weights(p.raw ? s.saliency : s.smoothed, s.is_point, p.options);
         const Timer t0;
@@ -419,9 +429,9 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
                        ratio, r.method.c_str(), r.seconds, r.salient_rel, r.rms_rel, r.hausdorff_rel);
       }
       for (size_t i = first; i < runs.size(); ++i)
-        if (runs[i].method == "saliency" || runs[i].method == "balanced") {
-          runs[i].curve = curve_name((runs[i].method == "saliency" ? SaliencyWeightOptions{} : balanced).curve);
-          runs[i].options = runs[i].method == "saliency" ? SaliencyWeightOptions{} : balanced;
+        if (runs[i].weighting == Weighting::Saliency || runs[i].weighting == Weighting::Balanced) {
+          runs[i].curve = curve_name((runs[i].weighting == Weighting::Saliency ? SaliencyWeightOptions{} : balanced).curve);
+          runs[i].options = runs[i].weighting == Weighting::Saliency ? SaliencyWeightOptions{} : balanced;
         }
     }
   }

@@ -7,6 +7,13 @@
 
 namespace meshsal_cli {
 
+// The weighting parameters the benchmark sweeps (--sweep): short (the benchmark's plot), wide
+// (the search behind the balanced preset) or none.
+enum class SweepSet { Short, Wide, None };
+
+// "short", "wide" or "none"; throws UsageError otherwise.
+SweepSet parse_sweep(const std::string& name);
+
 struct SimplifyBenchArgs {
   std::vector<std::string> meshes;  // empty: the four default models from data_dir
   std::string data_dir;
@@ -14,7 +21,7 @@ struct SimplifyBenchArgs {
   int repeat = 3;
   unsigned threads = 0;
   std::string plot;                 // PNG of the trade-off; "" = none
-  std::string sweep = "short";      // "short" (the benchmark), "wide" (the search), "none"
+  SweepSet sweep = SweepSet::Short;
 };
 
 // Runs the benchmark; prints a table (or one JSON object with --json). Returns the exit code.

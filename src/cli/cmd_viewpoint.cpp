@@ -85,12 +85,12 @@ RunFn setup(CLI::App& app) {
   add_saliency_from_option(app, o->text);
   add_view_options(app, o->text);
   app.add_option("--views", o->views, "also evaluate N Fibonacci-sphere directions exhaustively (0: only with --map, 2000)")
-      ->capture_default_str()->check(whole_in(0, 1000000));
+      ->capture_default_str()->check(whole_in(0, meshsal::kMaxViewMapViews));
   app.add_option("-o,--output", o->out_png, "PNG of the mesh coloured by score from the best view");
   app.add_option("--map", o->map_png, "PNG of U over all directions (equirectangular)");
   add_picture_options(app, o->text, "side of the -o picture in pixels");
   app.add_option("--map-width", o->map_width, "width of the --map picture in pixels")
-      ->capture_default_str()->check(whole_in(32, 8192));
+      ->capture_default_str()->check(whole_in(meshsal::kMinMapWidth, meshsal::kMaxImageSize));
   add_saliency_options(app, o->text);
   add_output_flags(app, o->text,
                    "Print the result as one JSON object on stdout (always so; accepted like the other commands' --json)");

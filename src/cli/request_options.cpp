@@ -42,19 +42,19 @@ std::vector<CLI::Option*> add_view_options(CLI::App& app, RequestText& t) {
                     ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"})));
   out.push_back(add_elevation_option(app, &t.elevation));
   out.push_back(app.add_option("--restarts", t.restarts, "best view: gradient-ascent restarts from random directions")
-                    ->capture_default_str()->check(whole_in(1, 1000)));
+                    ->capture_default_str()->check(whole_in(1, meshsal::kMaxViewRestarts)));
   out.push_back(app.add_option("--seed", t.seed, "best view: seed of the random starts")->capture_default_str());
   out.push_back(app.add_option("--resolution", t.resolution, "best view: z-buffer side in pixels")
-                    ->capture_default_str()->check(whole_in(16, 8192)));
+                    ->capture_default_str()->check(whole_in(meshsal::kMinImageSize, meshsal::kMaxImageSize)));
   out.push_back(app.add_option("--depth-tol", t.depth_tol, "best view: visibility depth tolerance in pixel widths")
-                    ->capture_default_str()->check(finite_in(0, 1000)));
+                    ->capture_default_str()->check(finite_in(0, meshsal::kMaxDepthTolPx)));
   out.push_back(app.add_option("--score", t.score, "colour and search by saliency, or curvature (|H|, the paper's baseline)")
                     ->capture_default_str()->check(CLI::IsMember({"saliency", "curvature"})));
   return out;
 }
 
 void add_picture_options(CLI::App& app, RequestText& t, const std::string& size_help) {
-  app.add_option("--size", t.size, size_help)->capture_default_str()->check(whole_in(16, 8192));
+  app.add_option("--size", t.size, size_help)->capture_default_str()->check(whole_in(meshsal::kMinImageSize, meshsal::kMaxImageSize));
   add_color_range_option(app, t);
 }
 

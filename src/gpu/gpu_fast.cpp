@@ -10,6 +10,7 @@
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_slices.h"
 #include "gpu/gpu_sweep.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/query_groups.h"
@@ -26,13 +27,10 @@ namespace meshsal::gpu {
 namespace {
 
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
-struct QueryPush {
-  uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
-  double h, cut2, radius, coef, shell2, shell_w;
-};
-struct FinishPush { uint32_t base, n, dense, offset; double inv_s2; };
-struct RangePush { uint32_t base, n; };
-struct CenterSurroundPush { uint32_t base, n, map, has_b; };
+using shader::CenterSurroundPush;  // the push blocks: gpu/shader_interfaces.h
+using shader::FinishPush;
+using shader::QueryPush;
+using shader::RangePush;
 
 // The most candidates any query can walk: the aggregates in the (2r+1)^3 cells around any
 // cell of the query grid, r = ceil(radius / h) + 3 (fast_query.comp walks the rows of the
@@ -131,9 +129,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
     cell_group = vk::Buffer(ctx, size_t(m) * 4, "the fast method's query groups");
     cell_group.upload(of_cell.data(), of_cell.size() * 4);
     group_pos = vk::Buffer(ctx, size_t(groups) * 32, "the query groups' centroids");
-    auto& k_groups = vk::cached_kernel(ctx, spv_fast_group_centroids_comp,
-                                       sizeof spv_fast_group_centroids_comp, 5, sizeof(RangePush),
-                                       "fast_group_centroids");
+    auto& k_groups = vk::cached_kernel<shader::FastGroupCentroids>(ctx, spv_fast_group_centroids_comp, sizeof spv_fast_group_centroids_comp, "fast_group_centroids");
     vk::DescriptorPool gpool(ctx, 1, 5);
     VkDescriptorSet s_groups =
         gpool.bind(k_groups, {&fc.cell_pos, &fc.cell_count, &group_start, &group_cell, &group_pos});
@@ -164,10 +160,8 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
 
   vk::Buffer sums(ctx, size_t(queries) * (dense ? 8 : 2) * 8, "the fast method's sums");
   vk::Buffer pairs(ctx, size_t(queries) * 4, "the pair counts");
-  auto& k_query = vk::cached_kernel(ctx, spv_fast_query_comp, sizeof spv_fast_query_comp, 8,
-                                    sizeof(QueryPush), "fast_query");
-  auto& k_finish = vk::cached_kernel(ctx, spv_fast_finish_comp, sizeof spv_fast_finish_comp, 8,
-                                     sizeof(FinishPush), "fast_finish");
+  auto& k_query = vk::cached_kernel<shader::FastQuery>(ctx, spv_fast_query_comp, sizeof spv_fast_query_comp, "fast_query");
+  auto& k_finish = vk::cached_kernel<shader::FastFinish>(ctx, spv_fast_finish_comp, sizeof spv_fast_finish_comp, "fast_finish");
   vk::DescriptorPool pool(ctx, 4, 16);
   VkDescriptorSet s_query =
       pool.bind(k_query, {&qsorted, &qcell, &qstarts, &fc.cell_count, dense ? &group_pos : &pos,
@@ -264,9 +258,7 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
                               options, stage);
   clock.restart();
 
-  auto& k_cs = vk::cached_kernel(ctx, spv_fast_center_surround_comp,
-                                 sizeof spv_fast_center_surround_comp, 4,
-                                 sizeof(CenterSurroundPush), "fast_center_surround");
+  auto& k_cs = vk::cached_kernel<shader::FastCenterSurround>(ctx, spv_fast_center_surround_comp, sizeof spv_fast_center_surround_comp, "fast_center_surround");
   vk::DescriptorPool pool(ctx, nout, 4 * nout);
   std::vector<VkDescriptorSet> sets;
   for (uint32_t o = 0; o < nout; ++o) {

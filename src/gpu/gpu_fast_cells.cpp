@@ -8,6 +8,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_radix_sort.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 
 #include "fast_aggregate_cells_comp.h"
@@ -18,9 +19,9 @@ namespace meshsal::gpu {
 
 namespace {
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
-struct KeyPush { uint32_t base, n, nx, ny, nz, pad; double cell; };
-struct RangePush { uint32_t base, n; };
-struct CellsPush { uint32_t base, n, pad0, pad1; double min[3]; };
+using shader::CellKeyPush;  // the push blocks: gpu/shader_interfaces.h
+using shader::CellsPush;
+using shader::RangePush;
 }  // namespace
 
 FastGrid plan_fast_grid(const double extent[3], double cell) {
@@ -50,13 +51,12 @@ uint64_t fast_cells_bytes(uint64_t nv, uint64_t np) {
 FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, uint32_t np,
                           const FastGrid& g, const double box_min[3]) {
   const uint32_t cells = g.nx * g.ny * g.nz;
-  auto& k_key = vk::cached_kernel(ctx, spv_fast_cell_key_comp, sizeof spv_fast_cell_key_comp, 3,
-                                  sizeof(KeyPush), "fast_cell_key");
+  auto& k_key = vk::cached_kernel<shader::FastCellKey>(ctx, spv_fast_cell_key_comp, sizeof spv_fast_cell_key_comp, "fast_cell_key");
   vk::DescriptorPool pool(ctx, 8, 32);
   RadixSort sort(ctx, pool, nv, cells, "the fast method's");  // keys run up to `cells` (not a point)
   VkDescriptorSet s_key = pool.bind(k_key, {in.pos, in.flags, &sort.keys_in()});
   vk::submit(ctx, "fast method: cell sort", [&](VkCommandBuffer cmd) {
-    KeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.cell};
+    CellKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.cell};
     vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, nv, kLocal);
     vk::barrier(cmd);
     sort.record(ctx, cmd);
@@ -99,12 +99,8 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
   fc.piece_cell.upload(piece_cell.data(), piece_cell.size() * 4);
   cell_piece_buf.upload(cell_piece.data(), cell_piece.size() * 4);
 
-  auto& k_pieces = vk::cached_kernel(ctx, spv_fast_aggregate_pieces_comp,
-                                     sizeof spv_fast_aggregate_pieces_comp, 5, sizeof(RangePush),
-                                     "fast_aggregate_pieces");
-  auto& k_cells = vk::cached_kernel(ctx, spv_fast_aggregate_cells_comp,
-                                    sizeof spv_fast_aggregate_cells_comp, 5, sizeof(CellsPush),
-                                    "fast_aggregate_cells");
+  auto& k_pieces = vk::cached_kernel<shader::FastAggregatePieces>(ctx, spv_fast_aggregate_pieces_comp, sizeof spv_fast_aggregate_pieces_comp, "fast_aggregate_pieces");
+  auto& k_cells = vk::cached_kernel<shader::FastAggregateCells>(ctx, spv_fast_aggregate_cells_comp, sizeof spv_fast_aggregate_cells_comp, "fast_aggregate_cells");
   VkDescriptorSet s_pieces =
       pool.bind(k_pieces, {in.pos, in.pos32, &fc.order, &fc.piece_start, &piece_sum});
   VkDescriptorSet s_cells = pool.bind(
@@ -113,7 +109,7 @@ FastCells aggregate_cells(vk::Context& ctx, const FastInputs& in, uint32_t nv, u
     RangePush pp{0, 0};
     vk::dispatch(ctx, cmd, k_pieces, s_pieces, &pp, 0, fc.pieces, kLocal);
     vk::barrier(cmd);
-    CellsPush cp{0, 0, 0, 0, {box_min[0], box_min[1], box_min[2]}};
+    CellsPush cp{0, 0, 0, 0, box_min[0], box_min[1], box_min[2]};
     vk::dispatch(ctx, cmd, k_cells, s_cells, &cp, 0, fc.cells, kLocal);
   });
   return fc;

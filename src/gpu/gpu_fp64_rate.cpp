@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/timer.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 #include "meshsal/meshsal.h"
 
@@ -16,10 +17,7 @@ namespace meshsal::gpu {
 
 namespace {
 
-struct Push {
-  uint32_t base, n, iterations;
-  float mul, add;
-};
+using Push = shader::Fp64RatePush;  // gpu/shader_interfaces.h
 
 template <typename T>
 double chain(uint32_t lane, uint32_t iterations, T m, T c) {
@@ -43,10 +41,8 @@ Fp64Probe measure_fp64_rate(vk::Context& ctx, uint32_t lanes, uint32_t iteration
   // mul < 1 keeps every chain bounded (it tends to add / (1 - mul)).
   Push push{0, probe.lanes, std::max(1u, iterations), 0.999f, 0.001f};
   vk::Buffer out(ctx, size_t(probe.lanes) * 8, "the fp64 probe's results");
-  vk::Kernel& k_float = vk::cached_kernel(ctx, spv_fp64_rate_comp, sizeof spv_fp64_rate_comp, 1,
-                                          sizeof(Push), "fp64_rate (float)", {0});
-  vk::Kernel& k_double = vk::cached_kernel(ctx, spv_fp64_rate_comp, sizeof spv_fp64_rate_comp, 1,
-                                           sizeof(Push), "fp64_rate (double)", {1});
+  vk::Kernel& k_float = vk::cached_kernel<shader::Fp64Rate>(ctx, spv_fp64_rate_comp, sizeof spv_fp64_rate_comp, "fp64_rate (float)", {0});
+  vk::Kernel& k_double = vk::cached_kernel<shader::Fp64Rate>(ctx, spv_fp64_rate_comp, sizeof spv_fp64_rate_comp, "fp64_rate (double)", {1});
   vk::DescriptorPool pool(ctx, 2, 2);
   const VkDescriptorSet s_float = pool.bind(k_float, {&out}), s_double = pool.bind(k_double, {&out});
   auto timed = [&](vk::Kernel& k, VkDescriptorSet set) {

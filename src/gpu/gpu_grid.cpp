@@ -7,6 +7,7 @@
 #include "meshsal/meshsal.h"
 #include "core/mesh_points.h"
 #include "gpu/gpu_radix_sort.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 #include "saliency/spatial_grid.h"
 
@@ -17,8 +18,8 @@ namespace meshsal {
 
 namespace {
 constexpr uint32_t kLocal = 64;   // local_size_x of the grid shaders
-struct KeyPush { uint32_t base, n, nx, ny, nz, pad; double h; };
-struct RangePush { uint32_t base, n; };
+using gpu::shader::GridKeyPush;  // the push blocks: gpu/shader_interfaces.h
+using gpu::shader::RangePush;
 }  // namespace
 
 GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uint64_t limit) {
@@ -41,10 +42,8 @@ GridPlan build_gpu_grid(vk::Context& ctx, const GridArrays& a, uint32_t nv, uint
   const uint32_t cells = static_cast<uint32_t>(g.cells());
   vk::Buffer cell_count(ctx, size_t(cells) * 4, "the grid cell counts");
   *a.starts = vk::Buffer(ctx, size_t(cells + 1) * 4, "the grid cell starts");
-  auto& k_key = vk::cached_kernel(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, 4,
-                                  sizeof(KeyPush), "grid_key");
-  auto& k_gather = vk::cached_kernel(ctx, spv_grid_gather_comp, sizeof spv_grid_gather_comp, 4,
-                                     sizeof(RangePush), "grid_gather");
+  auto& k_key = vk::cached_kernel<gpu::shader::GridKey>(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, "grid_key");
+  auto& k_gather = vk::cached_kernel<gpu::shader::GridGather>(ctx, spv_grid_gather_comp, sizeof spv_grid_gather_comp, "grid_gather");
   const vk::Kernel& k_scan = gpu::scan_kernel(ctx);
   vk::DescriptorPool pool(ctx, 8, 32);
   gpu::RadixSort sort(ctx, pool, nv, cells, "the grid's");  // keys run up to `cells` (not a point)
@@ -55,7 +54,7 @@ GridPlan build_gpu_grid(vk::Context& ctx, const GridArrays& a, uint32_t nv, uint
   vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::barrier(cmd);
-    KeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
+    GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
     vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, nv, kLocal);
     vk::barrier(cmd);
     gpu::record_scan(cmd, k_scan, s_scan, cells);

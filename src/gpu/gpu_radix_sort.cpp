@@ -7,14 +7,15 @@
 #include "grid_radix_count_comp.h"
 #include "grid_radix_scatter_comp.h"
 #include "grid_scan_comp.h"
+#include "gpu/shader_interfaces.h"
 
 namespace meshsal::gpu {
 
 namespace {
 constexpr uint32_t kLocal = 64;       // local_size_x of the radix shaders
 constexpr uint32_t kRadixTile = 256;  // keys per invocation of the count and scatter passes
-struct RangePush { uint32_t base, n; };
-struct RadixPush { uint32_t base, n, items, shift, first; };
+using shader::RadixPush;  // the push blocks: gpu/shader_interfaces.h
+using shader::RangePush;
 
 uint32_t radix_passes(uint64_t largest_key) {
   uint32_t bits = 0;
@@ -24,8 +25,7 @@ uint32_t radix_passes(uint64_t largest_key) {
 }  // namespace
 
 vk::Kernel& scan_kernel(vk::Context& ctx) {
-  return vk::cached_kernel(ctx, spv_grid_scan_comp, sizeof spv_grid_scan_comp, 2, sizeof(RangePush),
-                           "grid_scan");
+  return vk::cached_kernel<shader::GridScan>(ctx, spv_grid_scan_comp, sizeof spv_grid_scan_comp, "grid_scan");
 }
 
 void record_scan(VkCommandBuffer cmd, const vk::Kernel& k, VkDescriptorSet set, uint32_t n) {
@@ -51,10 +51,8 @@ RadixSort::RadixSort(vk::Context& ctx, vk::DescriptorPool& pool, uint32_t n, uin
   counts_ = vk::Buffer(ctx, size_t(digits_) * 4, "the radix digit counts");
   offsets_ = vk::Buffer(ctx, size_t(digits_ + 1) * 4, "the radix digit offsets");
   const std::vector<int32_t> tile{int32_t(kRadixTile)};
-  count_ = &vk::cached_kernel(ctx, spv_grid_radix_count_comp, sizeof spv_grid_radix_count_comp, 2,
-                              sizeof(RadixPush), "grid_radix_count", tile);
-  scatter_ = &vk::cached_kernel(ctx, spv_grid_radix_scatter_comp, sizeof spv_grid_radix_scatter_comp, 5,
-                                sizeof(RadixPush), "grid_radix_scatter", tile);
+  count_ = &vk::cached_kernel<shader::GridRadixCount>(ctx, spv_grid_radix_count_comp, sizeof spv_grid_radix_count_comp, "grid_radix_count", tile);
+  scatter_ = &vk::cached_kernel<shader::GridRadixScatter>(ctx, spv_grid_radix_scatter_comp, sizeof spv_grid_radix_scatter_comp, "grid_radix_scatter", tile);
   scan_ = &scan_kernel(ctx);
   s_digits_ = pool.bind(*scan_, {&counts_, &offsets_});
   for (int i = 0; i < 2; ++i) {  // pass p reads array p % 2 and writes the other

@@ -18,6 +18,7 @@
 #include "gpu/vk_staging.h"
 #include "core/mesh_points.h"
 #include "gpu/vk_buffer.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 #include "core/timer.h"
 
@@ -39,18 +40,18 @@ namespace meshsal {
 namespace {
 
 
-#define KERNEL(ctx, spv, bindings, push) \
-  vk::cached_kernel(ctx, spv, sizeof(spv), bindings, sizeof(push), #spv)
+#define KERNEL(ctx, spv, shader) vk::cached_kernel<shader>(ctx, spv, sizeof(spv), #spv)
 
 constexpr uint32_t kLocal = 64;     // local_size_x of the per-item shaders
 constexpr int kMaxSigmas = 16;      // sweep.glsl's arrays
 constexpr int kMaxScales = 16;      // mbar.comp's factor layout
 
-// Push blocks: each begins with {base, n} (vk::dispatch fills them in).
-struct RangePush { uint32_t base, n; };
-using gpu::SweepPush;
-struct ScalesPush { uint32_t base, n, nscales; };
-struct GroupsPush { uint32_t base, n, groups; };
+// Push blocks: each begins with {base, n} (vk::dispatch fills them in); gpu/shader_interfaces.h.
+namespace shader = gpu::shader;
+using shader::GroupsPush;
+using shader::RangePush;
+using shader::ScalesPush;
+using shader::SweepPush;
 
 // The sweep's plan (sweep.glsl's Params): sigmas largest first, like the CPU's KernelPlan.
 struct SweepParams {
@@ -119,12 +120,11 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
   // the subgroup (sweep8_rows); otherwise each point gets a subgroup (see sweep.glsl).
   const bool rows = shared_rows(ctx, fast8);
   // Mixed precision (the default plan only) adds the float points and the error bounds.
-  auto& k = mixed ? (rows ? KERNEL(ctx, spv_sweep8_rows_mixed_comp, 8, SweepPush)
-                          : KERNEL(ctx, spv_sweep8_mixed_comp, 8, SweepPush))
-            : rows  ? KERNEL(ctx, spv_sweep8_rows_comp, 6, SweepPush)
-            : fast8 ? KERNEL(ctx, spv_sweep8_comp, 6, SweepPush)
-                  : vk::cached_kernel(ctx, spv_sweepn_comp, sizeof(spv_sweepn_comp), 6,
-                                      sizeof(SweepPush), "sweepn", spec);
+  auto& k = mixed ? (rows ? KERNEL(ctx, spv_sweep8_rows_mixed_comp, shader::Sweep8RowsMixed)
+                          : KERNEL(ctx, spv_sweep8_mixed_comp, shader::Sweep8Mixed))
+            : rows  ? KERNEL(ctx, spv_sweep8_rows_comp, shader::Sweep8Rows)
+            : fast8 ? KERNEL(ctx, spv_sweep8_comp, shader::Sweep8)
+                  : vk::cached_kernel<shader::SweepN>(ctx, spv_sweepn_comp, sizeof spv_sweepn_comp, "sweepn", spec);
   // A lane per point (rows): 64 points per work group whatever the subgroup size. A
   // subgroup per point: sized by the size the device reports; the shader strides over
   // the subgroups the driver really made, so another size still sweeps every point.
@@ -253,7 +253,7 @@ SweepPlan plan_sweep(const std::vector<double>& scales, double eps) {
   std::sort(units.begin(), units.end());
   units.erase(std::unique(units.begin(), units.end()), units.end());
   if (units.size() > size_t(kMaxSigmas))
-    throw Error("the GPU path takes at most 16 distinct sigmas (s_i and 2 s_i)");
+    throw Error("the GPU path takes at most " + std::to_string(kMaxSigmas) + " distinct sigmas (s_i and 2 s_i)");
   std::vector<int> plan_of_unit;
   SweepParams& params = plan.params;
   params = make_params(units, eps, &plan_of_unit);
@@ -352,12 +352,12 @@ void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& 
   vk::Buffer partial(ctx, size_t(groups) * nsc * 16, "the local-maximum sums");
   vk::Buffer factor(ctx, 32 * 8, "the suppression factors");
   vk::Buffer& raw = m.result;
-  auto& k_mx = KERNEL(ctx, spv_map_max_comp, 3, GroupsPush);
-  auto& k_mf = KERNEL(ctx, spv_map_max_final_comp, 2, GroupsPush);
-  auto& k_gi = KERNEL(ctx, spv_global_index_comp, 4, RangePush);
-  auto& k_lm = KERNEL(ctx, spv_local_max_comp, 7, GroupsPush);
-  auto& k_mb = KERNEL(ctx, spv_mbar_comp, 3, GroupsPush);
-  auto& k_fs = KERNEL(ctx, spv_final_sum_comp, 5, ScalesPush);
+  auto& k_mx = KERNEL(ctx, spv_map_max_comp, shader::MapMax);
+  auto& k_mf = KERNEL(ctx, spv_map_max_final_comp, shader::MapMaxFinal);
+  auto& k_gi = KERNEL(ctx, spv_global_index_comp, shader::GlobalIndex);
+  auto& k_lm = KERNEL(ctx, spv_local_max_comp, shader::LocalMax);
+  auto& k_mb = KERNEL(ctx, spv_mbar_comp, shader::Mbar);
+  auto& k_fs = KERNEL(ctx, spv_final_sum_comp, shader::FinalSum);
   VkDescriptorSet s_mx = pool.bind(k_mx, {&raw, &m.flags, &partial_max});
   VkDescriptorSet s_mf = pool.bind(k_mf, {&partial_max, &map_max});
   VkDescriptorSet s_gi = pool.bind(k_gi, {&raw, &m.flags, &map_max, &global_index});
@@ -427,7 +427,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (nv >= 0xffffffffu / 32) throw Error("mesh too large for the GPU path (vertex count)");
   const size_t nsc = options.scales.size();
   if (nsc == 0) throw Error("at least one scale is needed");
-  if (nsc > kMaxScales) throw Error("the GPU path takes at most 16 scales");
+  if (nsc > kMaxScales) throw Error("the GPU path takes at most " + std::to_string(kMaxScales) + " scales");
 
   // --- curvature (CPU): the same functions as compute_saliency_cpu --------------------
   Timer t0;

@@ -37,11 +37,9 @@ uint64_t total_swept_pairs(const std::vector<uint32_t>& pairs) {
 
 void make_float_points(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buffer& sorted_pos,
                        vk::Buffer& sorted_pos32, uint32_t np, const double origin[3]) {
-  struct Push { uint32_t base, n, pad0, pad1; double origin[3]; };
-  auto& k = vk::cached_kernel(ctx, spv_sorted_float_comp, sizeof spv_sorted_float_comp, 2,
-                              sizeof(Push), "sorted_float");
+  auto& k = vk::cached_kernel<shader::SortedFloat>(ctx, spv_sorted_float_comp, sizeof spv_sorted_float_comp, "sorted_float");
   VkDescriptorSet set = pool.bind(k, {&sorted_pos, &sorted_pos32});
-  Push p{0, 0, 0, 0, {origin[0], origin[1], origin[2]}};
+  shader::OriginPush p{0, 0, 0, 0, origin[0], origin[1], origin[2]};
   vk::submit(ctx, "float points", [&](VkCommandBuffer cmd) {
     vk::dispatch(ctx, cmd, k, set, &p, 0, np, kLocal);
   });
@@ -49,13 +47,11 @@ void make_float_points(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buf
 
 uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const NearTieBuffers& b,
                            uint32_t nv, uint32_t nmaps, SweepPush push) {
-  struct MarkPush { uint32_t base, n, nmaps; };
-  auto& k_mark = vk::cached_kernel(ctx, spv_near_tie_comp, sizeof spv_near_tie_comp, 6,
-                                   sizeof(MarkPush), "near_tie");
+  auto& k_mark = vk::cached_kernel<shader::NearTie>(ctx, spv_near_tie_comp, sizeof spv_near_tie_comp, "near_tie");
   vk::Buffer need(ctx, size_t(nv) * 4, "the near-tie marks");
   VkDescriptorSet s_mark =
       pool.bind(k_mark, {b.raw, b.is_point, b.bound, b.offsets, b.neighbors, &need});
-  MarkPush mp{0, 0, nmaps};
+  shader::NearTiePush mp{0, 0, nmaps};
   vk::submit(ctx, "near ties", [&](VkCommandBuffer cmd) {
     vk::dispatch(ctx, cmd, k_mark, s_mark, &mp, 0, nv, kLocal);
   });
@@ -68,8 +64,7 @@ uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const Nea
 
   vk::Buffer list_buf(ctx, list.size() * 4, "the near-tie points");
   list_buf.upload(list.data(), list.size() * 4);
-  auto& k = vk::cached_kernel(ctx, spv_sweep8_list_comp, sizeof spv_sweep8_list_comp, 8,
-                              sizeof(SweepPush), "sweep8_list");
+  auto& k = vk::cached_kernel<shader::Sweep8List>(ctx, spv_sweep8_list_comp, sizeof spv_sweep8_list_comp, "sweep8_list");
   VkDescriptorSet set = pool.bind(k, {b.sorted_pos, b.sorted_vertex, b.starts, b.params, b.raw,
                                       b.pairs, b.pos, &list_buf});
   const uint32_t n = static_cast<uint32_t>(list.size());

@@ -5,18 +5,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
 
 namespace meshsal::gpu {
 
-// sweep.glsl's push block (it begins with {base, n}, which vk::dispatch fills in).
-struct SweepPush {
-  uint32_t base, n, nx, ny, nz;
-  uint32_t per_group;  // points per work group the dispatch is sized for (subgroup per point)
-  uint32_t stride, nsig, nout, pad;
-  double h, radius2;
-};
+// sweep.glsl's push block (gpu/shader_interfaces.h).
+using SweepPush = shader::SweepPush;
 
 // The sum of the per-point pair counts of a sweep; throws Error when a point has none
 // (every point counts itself, so 0 means the sweep never reached it).

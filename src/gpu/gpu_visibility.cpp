@@ -5,6 +5,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/vk_buffer.h"
+#include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
 #include "gpu/vk_staging.h"
 #include "visibility_raster_comp.h"
@@ -13,16 +14,10 @@
 namespace meshsal {
 
 namespace {
-struct RasterPush {
-  uint32_t base, n, res, triangles, views, budget;  // n: invocations per view group
-};
+using gpu::shader::RasterPush;  // the push blocks: gpu/shader_interfaces.h
+using gpu::shader::TestPush;
 const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
 const uint32_t kRasterMost = 4096, kTestMost = 2048;  // invocations per view (CPU plan)
-struct TestPush {
-  uint32_t base, n, res, vertices;
-  float tol;
-  uint32_t views, budget;
-};
 // Lavapipe (gallivm) ends every loop of an invocation, silently, once its loops have taken
 // 65535 steps in all. On CPU devices the shaders count their steps and flag an invocation
 // that may reach that (a little below, to keep a margin for the loops they do not count).
@@ -102,10 +97,8 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
   s.partial = vk::Buffer(ctx, partials * 4, "visibility partial sums");
 
   s.status = vk::Buffer(ctx, 16, "visibility status");
-  s.raster = &vk::cached_kernel(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, 5,
-                                sizeof(RasterPush), "visibility_raster");
-  s.test = &vk::cached_kernel(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, 6,
-                              sizeof(TestPush), "visibility_test");
+  s.raster = &vk::cached_kernel<gpu::shader::VisibilityRaster>(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, "visibility_raster");
+  s.test = &vk::cached_kernel<gpu::shader::VisibilityTest>(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, "visibility_test");
   s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 11);
   s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf, &s.status});
   s.test_set = s.pool->bind(*s.test, {&s.pos, &s.weights, &s.rows, &s.zbuf, &s.partial, &s.status});

@@ -68,6 +68,15 @@ Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes,
                       uint32_t bindings, uint32_t push_bytes, const char* name,
                       const std::vector<int32_t>& specialization = {});
 
+// The same with the bindings and push block of a shader's interface (gpu/shader_interfaces.h,
+// e.g. cached_kernel<shader::GridKey>(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, "grid_key")).
+template <class Shader>
+Kernel& cached_kernel(Context& ctx, const uint32_t* spirv, size_t spirv_bytes, const char* name,
+                      const std::vector<int32_t>& specialization = {}) {
+  return cached_kernel(ctx, spirv, spirv_bytes, Shader::bindings, uint32_t(sizeof(typename Shader::Push)), name,
+                       specialization);
+}
+
 // Ends every submission: makes its shader and transfer writes visible to the host (the
 // Vulkan memory model: a fence wait alone makes them available, not visible) and to the
 // shaders and copies of later submissions.

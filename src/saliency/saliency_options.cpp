@@ -14,8 +14,9 @@ void check_saliency_options(const SaliencyOptions& options) {
   if (!(options.eps_frac > 0 && options.eps_frac <= kMaxEpsFrac))
     throw Error("eps-frac must be a finite number in (0, " + number_text(kMaxEpsFrac) + "], got " +
                 number_text(options.eps_frac));
-  if (options.scales.empty() || options.scales.size() > 16)
-    throw Error("scales: give 1 to 16 scales, got " + std::to_string(options.scales.size()));
+  if (options.scales.empty() || options.scales.size() > kMaxScaleCount)
+    throw Error("scales: give 1 to " + std::to_string(kMaxScaleCount) + " scales, got " +
+                std::to_string(options.scales.size()));
   double largest = 0;
   for (double k : options.scales) {
     if (!(k > 0 && k <= kMaxScale))

@@ -13,7 +13,7 @@
 
 namespace meshsal {
 
-// Checks size (16..8192), margin (>= 1) and supersample (1..4); throws Error otherwise.
+// Checks size (kMinImageSize..kMaxImageSize), margin (>= 1) and supersample (1..4); throws Error otherwise.
 void check_render_style(const RenderStyle& style);
 
 // The square of the view plane a picture shows: centre (cx, cy) along the view's right and up

@@ -13,8 +13,9 @@
 namespace meshsal {
 
 void check_visibility_options(const VisibilityOptions& o) {
-  if (o.resolution < 16 || o.resolution > 8192)
-    throw Error("resolution must be between 16 and 8192, got " + std::to_string(o.resolution));
+  if (o.resolution < kMinImageSize || o.resolution > kMaxImageSize)
+    throw Error("resolution must be between " + std::to_string(kMinImageSize) + " and " +
+                std::to_string(kMaxImageSize) + ", got " + std::to_string(o.resolution));
   if (!(o.depth_tol_px >= 0) || !std::isfinite(o.depth_tol_px))
     throw Error("depth tolerance must be a finite number >= 0");
 }

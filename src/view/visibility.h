@@ -23,7 +23,7 @@
 
 namespace meshsal {
 
-// Checks resolution (16..8192) and tolerance (>= 0); throws Error otherwise.
+// Checks resolution (kMinImageSize..kMaxImageSize) and tolerance (>= 0); throws Error otherwise.
 void check_visibility_options(const VisibilityOptions& options);
 
 // Per-vertex score for visibility sums: the given values on mesh points, 0 elsewhere.

@@ -1,0 +1,89 @@
+// meshsal: what the C++ side of every compute shader (shaders/*.comp) assumes about it, in
+// one place: the push-constant block, a copy of the shader's `layout(push_constant) uniform
+// Push` member for member, and how many storage buffers it binds (bindings 0..n-1, the
+// buffers vk::DescriptorPool::bind is given). tests/test_shader_interfaces.cpp reads the
+// compiled SPIR-V and checks each against it, so a change on one side only fails there.
+// Plain C++ (no Vulkan): the test includes it without a device.
+#pragma once
+#include <cstdint>
+
+namespace meshsal::gpu::shader {
+
+// Push blocks. Each begins with {base, n}, which vk::dispatch fills in.
+struct RangePush { uint32_t base, n; };
+struct GroupsPush { uint32_t base, n, groups; };
+struct ScalesPush { uint32_t base, n, nscales; };  // final_sum.comp
+struct NearTiePush { uint32_t base, n, nmaps; };
+struct RadixPush { uint32_t base, n, items, shift, first; };
+struct GridKeyPush { uint32_t base, n, nx, ny, nz, pad; double h; };
+struct CellKeyPush { uint32_t base, n, nx, ny, nz, pad; double cell; };
+struct CellsPush { uint32_t base, n, pad0, pad1; double minx, miny, minz; };  // fast_aggregate_cells.comp
+struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };       // sorted_float.comp
+struct QueryPush {
+  uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
+  double h, cut2, radius, coef, shell2, shell_w;
+};
+struct FinishPush { uint32_t base, n, dense, offset; double inv_s2; };
+struct CenterSurroundPush { uint32_t base, n, map, has_b; };
+struct Fp64RatePush {
+  uint32_t base, n, iterations;
+  float mul, add;
+};
+struct RasterPush {
+  uint32_t base, n, res, triangles, views, budget;  // n: invocations per view group
+};
+struct TestPush {
+  uint32_t base, n, res, vertices;
+  float tol;
+  uint32_t views, budget;
+};
+struct SelftestPush { uint32_t base, n; float a; };  // tests/test_gpu_selftest.cpp
+// sweep.glsl's (every sweep*.comp).
+struct SweepPush {
+  uint32_t base, n, nx, ny, nz;
+  uint32_t per_group;  // points per work group the dispatch is sized for (subgroup per point)
+  uint32_t stride, nsig, nout, pad;
+  double h, radius2;
+};
+
+// One shader's interface: its push block and its number of storage-buffer bindings.
+// vk::cached_kernel<Shader>(...) creates the kernel from it.
+template <class PushBlock, uint32_t Bindings>
+struct Interface {
+  using Push = PushBlock;
+  static constexpr uint32_t bindings = Bindings;
+};
+
+// One line per shaders/NAME.comp (the test lists the same names).
+using FastAggregateCells = Interface<CellsPush, 5>;
+using FastAggregatePieces = Interface<RangePush, 5>;
+using FastCellKey = Interface<CellKeyPush, 3>;
+using FastCenterSurround = Interface<CenterSurroundPush, 4>;
+using FastFinish = Interface<FinishPush, 8>;
+using FastGroupCentroids = Interface<RangePush, 5>;
+using FastQuery = Interface<QueryPush, 8>;
+using FinalSum = Interface<ScalesPush, 5>;
+using Fp64Rate = Interface<Fp64RatePush, 1>;
+using GlobalIndex = Interface<RangePush, 4>;
+using GridGather = Interface<RangePush, 4>;
+using GridKey = Interface<GridKeyPush, 4>;
+using GridRadixCount = Interface<RadixPush, 2>;
+using GridRadixScatter = Interface<RadixPush, 5>;
+using GridScan = Interface<RangePush, 2>;
+using LocalMax = Interface<GroupsPush, 7>;
+using MapMax = Interface<GroupsPush, 3>;
+using MapMaxFinal = Interface<GroupsPush, 2>;
+using Mbar = Interface<GroupsPush, 3>;
+using NearTie = Interface<NearTiePush, 6>;
+using Selftest = Interface<SelftestPush, 2>;
+using SortedFloat = Interface<OriginPush, 2>;
+using Sweep8 = Interface<SweepPush, 6>;
+using Sweep8Rows = Interface<SweepPush, 6>;
+using Sweep8Mixed = Interface<SweepPush, 8>;      // MIXED: the float points and error bounds
+using Sweep8RowsMixed = Interface<SweepPush, 8>;
+using Sweep8List = Interface<SweepPush, 8>;       // POINT_LIST: positions by vertex, the list
+using SweepN = Interface<SweepPush, 6>;
+using VisibilityRaster = Interface<RasterPush, 5>;
+using VisibilityTest = Interface<TestPush, 6>;
+
+}  // namespace meshsal::gpu::shader
