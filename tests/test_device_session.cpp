@@ -104,8 +104,8 @@ TEST_CASE("device session: the viewpoint search scores on it", "[gpu]") {
   Device d(0);
   ViewpointOptions vo;
   vo.backend = Backend::Gpu;
-  vo.resolution = 64;
-  vo.restarts = 2;
+  vo.visibility.resolution = 64;
+  vo.optimiser.restarts = 2;
   vo.session = &d;
   const Viewpoint on_session = best_viewpoint(mesh, score, vo);
   CHECK(on_session.backend_name == "vulkan: " + d.info().name);

@@ -33,5 +33,5 @@
 #include "meshsal/request.h"   // Request and run_request
 
 // The version: CMake's project(VERSION) is the one source; the build checks that these agree.
-#define MESHSAL_VERSION 200  // major * 10000 + minor * 100 + patch
-#define MESHSAL_VERSION_STRING "0.2.0"
+#define MESHSAL_VERSION 300  // major * 10000 + minor * 100 + patch
+#define MESHSAL_VERSION_STRING "0.3.0"

@@ -31,14 +31,16 @@ struct ViewAngles {
   double phi = 0;    // latitude, in [-pi/2, pi/2]
 };
 
+// The z-buffer that decides which mesh points a view sees (ViewpointOptions::visibility).
 struct VisibilityOptions {
-  int resolution = 256;       // z-buffer side in pixels, 16..8192
+  int resolution = 256;       // z-buffer side in pixels, 16..8192 (the search: kDefaultViewResolution)
   double depth_tol_px = 2.0;  // depth tolerance in pixel widths, >= 0
   unsigned threads = 0;       // CPU threads (views in parallel), 0 = all cores
 };
 
+// The gradient ascent of the viewpoint search (ViewpointOptions::optimiser).
 struct OptimiserOptions {
-  int restarts = 8;              // random starts of the gradient ascent
+  int restarts = 8;              // random starts of the gradient ascent, >= 1
   uint64_t seed = 1;             // runs with the same seed repeat
   double probe = 0.05;           // probe angle (radians) for the central differences
   double initial_step = 0.25;    // first step length along the gradient (radians)
@@ -71,27 +73,9 @@ struct ViewMap {
   size_t best = 0;  // index of the largest U
 };
 
-struct BestView {
-  OptimiserResult optimised;  // gradient ascent from seeded random starts
-  ViewMap map;                // exhaustive map over `views` Fibonacci directions (empty if 0)
-  std::string backend_name;   // where the views were scored
-};
-
-// The older form of best_viewpoint(mesh, score, ViewpointOptions) below, kept for its
-// callers; new code uses that one. The view of largest visible score U = sum of score over
-// the visible mesh points (`score`: one value per vertex, finite and >= 0 on the mesh
-// points, else Error); `views` > 0 also evaluates that many directions exhaustively;
-// backend as in SaliencyOptions. It runs the same search (ViewpointOptions with up Y and
-// these settings): angles in the y-up frame, as the optimiser returns them (not through
-// the direction round trip), VisibilityOptions' own resolution (256 by default), the whole
-// sphere.
-BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
-                        const OptimiserOptions& options = {}, int views = 0,
-                        const VisibilityOptions& visibility = {}, Backend backend = Backend::Cpu,
-                        int device = -1);
-
-// The z-buffer side of the viewpoint search: ViewpointOptions::resolution's default, and so
-// that of every front end (`meshsal viewpoint`, `render --best`, `batch --view`, Python).
+// The z-buffer side of the viewpoint search: ViewpointOptions::visibility.resolution's
+// default, and so that of every front end (`meshsal viewpoint`, `render --best`, `batch
+// --view`, Python).
 constexpr int kDefaultViewResolution = 512;
 
 // A band of latitudes, in degrees, in the frame of the up axis: -90 <= min <= max <= 90.
@@ -105,30 +89,27 @@ struct ElevationRange {
 // same settings give the same view to the last bit (docs/method.md, "One view pipeline").
 struct ViewpointOptions {
   UpAxis up = UpAxis::Y;                    // the frame of the angles: searched, limited, returned
-  int resolution = kDefaultViewResolution;  // z-buffer side in pixels, 16..8192
-  double depth_tol_px = 2.0;                // depth tolerance in pixel widths, >= 0
   // The latitudes (phi, in the frame of `up`) the search may look from: the random starts
   // are uniform on that band of the sphere, every probe and step stays in it, and the
   // exhaustive map's directions are spread over it. Error when out of range (above).
   ElevationRange elevation;
-  int restarts = 8;                         // random starts of the gradient ascent, >= 1
-  uint64_t seed = 1;                        // runs with the same seed repeat
+  // The gradient ascent: restarts, seed, steps; its progress ("best view", then "view map"
+  // with views > 0) and cancel hold for the whole search.
+  OptimiserOptions optimiser;
+  // The z-buffer: resolution (kDefaultViewResolution here, not VisibilityOptions' own
+  // 256), depth tolerance and CPU threads.
+  VisibilityOptions visibility = [] {
+    VisibilityOptions v;
+    v.resolution = kDefaultViewResolution;
+    return v;
+  }();
   int views = 0;                            // also score this many directions exhaustively, >= 0
-  unsigned threads = 0;                     // CPU threads (views in parallel), 0 = all cores
   Backend backend = Backend::Cpu;           // as SaliencyOptions::backend (visibility)
   int device = -1;                          // Vulkan device index, -1 = choose
   Device* session = nullptr;                // as SaliencyOptions::session (visibility)
-  // The gradient ascent's steps, as in OptimiserOptions.
-  double probe = 0.05;
-  double initial_step = 0.25;
-  double min_step = 0.01;
-  int max_iterations = 60;
-  // As OptimiserOptions::progress ("best view", then "view map" with views > 0).
-  std::function<void(const char* stage, double fraction)> progress;
   // Called with a one-line notice (e.g. Backend::Auto found no GPU); also kept in
   // Viewpoint::notices. May be empty.
   std::function<void(const std::string&)> notice;
-  const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
 };
 
 // The camera of a view: orthographic, looking from `eye` towards `target` (mesh
@@ -171,7 +152,7 @@ struct Viewpoint {
 // mesh turned so that z is up, searched with up Z, gives the angles of the original with up
 // Y. Throws Error for an option out of range.
 Viewpoint best_viewpoint(const Mesh& mesh, const std::vector<double>& score,
-                         const ViewpointOptions& options);
+                         const ViewpointOptions& options = {});
 
 // The one colour scale of every picture and of the saliency PLY's vertex colours: a value v
 // is placed at t = sqrt((v - lo) / (hi - lo)), clamped to [0, 1], and t runs through Turbo

@@ -155,7 +155,7 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
   r.simplified_output = out.simplified;
   r.lod_output = out.lod;
   r.saliency.progress = [&progress](const char* stage, double f) { progress.stage(stage, f); };
-  r.viewpoint.progress = r.saliency.progress;
+  r.viewpoint.optimiser.progress = r.saliency.progress;
   const GpuCounts gpu0 = GpuCounts::now();
   const RequestResult res = run_request(r);
   JsonObject j;
@@ -446,7 +446,7 @@ int run(Options o) {
   };
   std::vector<std::string>* model_notes = nullptr;
   req.saliency.progress = [&](const char* stage, double f) { progress.stage(stage, f); };
-  req.viewpoint.progress = req.saliency.progress;
+  req.viewpoint.optimiser.progress = req.saliency.progress;
   req.saliency.notice = [&](const std::string& line) {
     if (model_notes) model_notes->push_back(line);
     // Under MPI rank 0 tells a model's notes with its line, in model order.
