@@ -48,6 +48,14 @@ std::vector<DeviceInfo> list_devices();
 // Without a session, Backend::Gpu and Backend::Auto use a process-wide cache instead (one
 // open device per index, kept until release_cached_devices() or the end of the process):
 // the command-line tool relies on it; library callers who want control use a Device.
+class Device;
+
+// Names that only the library's own files use: not part of the interface, may change.
+namespace detail {
+// The open device behind `device`, for the library's backend (opaque here); null once closed.
+std::shared_ptr<void> device_handle(const Device& device);
+}  // namespace detail
+
 class Device {
  public:
   // Opens device `index` of list_devices(); -1 picks as Backend::Gpu does (the best
@@ -68,10 +76,8 @@ class Device {
   void close();
   bool is_open() const;
 
-  // The open device, for the library's backend (opaque here); null once closed.
-  std::shared_ptr<void> handle() const;
-
  private:
+  friend std::shared_ptr<void> detail::device_handle(const Device& device);
   std::shared_ptr<void> handle_;
   DeviceInfo info_;
 };
