@@ -20,18 +20,18 @@ namespace meshsal {
 // The GPU sweep's arithmetic. Mixed: distances and weights in float, sums folded into
 // doubles, cutoffs decided exactly and near ties of the local-maximum test rechecked in
 // double (the default scales; other scales run in double). Double: all in double.
-// Auto: mixed on GPUs whose doubles run at most a quarter as fast as floats (consumer GPUs:
-// 1/32..1/64; timed once per device by a short probe), double on the others (the H200,
-// 1/2: double measured 2.2x faster on igea_loop2) and on CPU devices (lavapipe), where the
-// double sweep measured faster too. The CPU path is always double.
+// Auto: mixed on GPUs whose doubles run at most a quarter as fast as floats (consumer GPUs;
+// timed once per device by a short probe), double on the others and on CPU devices
+// (lavapipe), where the double sweep is the faster one (docs/benchmarks.md). The CPU path
+// is always double.
 enum class Precision { Auto, Mixed, Double };
 
 // How the Gaussian-weighted averages are taken (SPEC section 5; docs/method.md).
 // Exact: over every mesh point within 2 sigma (SPEC section 1), cost ~ n x neighbours.
 // Fast: over per-cell aggregates (count, curvature sum, centroid) of cells of sigma/6, a
 //   fixed number of cells per vertex whatever the density, so the cost is linear in n;
-//   measured against Exact on the scans: final-saliency correlation >= 0.999 and >= 98% of
-//   the exact top-30% vertices in the fast top 30% (docs/method.md has the figures).
+//   an approximation of Exact, measured against it on the scans (final-saliency
+//   correlation and top-30% overlap: docs/method.md, docs/benchmarks.md).
 //   Everything after the averages is unchanged; with `smoothed`, Sm uses the same method.
 //   Runs on either backend, picked as for Exact; the Vulkan path is held to the CPU's fast
 //   path per vertex to 1e-4 of each raw map's maximum (in double on the device).
@@ -39,7 +39,7 @@ enum class Precision { Auto, Mixed, Double };
 //   within 4 x the largest scale x eps, from 256 sampled points) exceeds kAutoPairBudget,
 //   with a one-line notice; else Exact.
 enum class Method { Exact, Fast, Auto };
-constexpr double kAutoPairBudget = 2e9;  // ~6 s of exact sweep on 2 CPU cores
+constexpr double kAutoPairBudget = 2e9;  // neighbour pairs (its time: docs/benchmarks.md)
 
 class TileExchange;  // processes that share one tiled computation (tiles.h)
 

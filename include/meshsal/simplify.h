@@ -111,8 +111,8 @@ struct SaliencyWeightOptions {
   double alpha_percentile = 30;   // alpha = this percentile of Sm over mesh points, [0, 100]
   // Not in the paper: W is raised to at least floor * mean(W) over mesh points, so that no
   // collapse is free. The paper's rule gives W = 0 where Sm is 0 (flat regions), and there
-  // every collapse, border ones included, costs nothing: a plane with one bump lost half its
-  // area at 10% (Hausdorff 35% of the diagonal). kDefaultWeightFloor, chosen by measurement
+  // every collapse, border ones included, costs nothing, so a flat region can lose its
+  // shape (docs/method.md, "Weight floor"). kDefaultWeightFloor, chosen by measurement
   // (docs/method.md, "Weight floor"), removes that and leaves the paper's recipe on the
   // benchmark meshes as it was; 0 gives the literal rule. Where every W is 0 (nothing
   // salient), a floor > 0 makes every W 1: plain quadrics.
@@ -124,9 +124,9 @@ struct SaliencyWeightOptions {
 
 // The named weightings of `meshsal simplify --weights`: None (plain quadrics, no weights),
 // Saliency (the paper's recipe: SaliencyWeightOptions{} as declared) and Balanced (parameters
-// chosen by measurement, docs/method.md "Weightings": the salient-region error drops by about
-// a fifth while RMS and Hausdorff error stay within 1.25x of plain's on most models, where the
-// paper's recipe costs 3x on the bunny; weight_preset() returns them).
+// chosen by measurement to keep most of the paper's gain in the salient regions at a
+// fraction of its cost in RMS and Hausdorff error: docs/method.md "Weightings",
+// docs/benchmarks.md "Simplification"; weight_preset() returns them).
 enum class Weighting { None, Saliency, Balanced };
 
 // The weighting a front end uses when none is named (`meshsal simplify` and `batch`
@@ -153,8 +153,8 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
 // options name, not necessarily the one that computed `saliency` (nothing records that).
 // Given the options that computed S, the result is compute_saliency's own Sm
 // (SaliencyOptions::smoothed) up to the backend's rounding. On the CPU, whatever
-// options.backend says: the fast CPU filter takes seconds where the exact one took most of
-// a simplification's time (igea_loop2: 35.5 s against 7.1 s).
+// options.backend says: on a large scan the fast CPU filter takes a fraction of the exact
+// one's time, which can be most of a simplification's (docs/benchmarks.md).
 std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>& saliency,
                                     const SaliencyOptions& options);
 
@@ -202,8 +202,8 @@ struct LodLevel {
 // carried down the chain as a vertex attribute, interpolated along each collapse; each
 // level is simplified from the level before with weights from S on that mesh
 // (simplification_weights). Without (null), plain quadrics. Simplifying from the level
-// before measured better than from the input at equal faces (8-12% lower RMS error at 20%
-// and 5% on bunny_36k, armadillo_43k and igea_134k: README, Levels of detail).
+// before measured better than from the input at equal faces (README, "Levels of detail in
+// one run"; docs/benchmarks.md).
 std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyOptions>& levels,
                                    const SaliencyWeightOptions* weight_options, const SaliencyOptions& saliency_options,
                                    const std::vector<double>* saliency = nullptr);

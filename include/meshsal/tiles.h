@@ -89,11 +89,11 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
 // Attributes and materials are carried; vertex_origin maps to input vertices, output
 // vertices follow their input order. The face count lands at or above the target
 // (report->note when above): within 1% unless the tiles are small against the output's
-// triangles. The RMS error is within 1.2x of simplify_mesh's with 2-4 tiles at 10% and 1%
-// on igea_134k (0.82-0.95x) and bunny_36k (0.82-0.93x) but for tiles a few output
-// triangles wide (bunny at 1% with 4 tiles, 695 faces over ~40 tiles: 2.8x; README). It
-// takes 3-5x simplify_mesh's time. report->error: the largest collapse error, in units of
-// the whole mesh's diagonal; no collapse sequence. tiles 0 or 1, or a target at or above
+// triangles. The RMS error stays near simplify_mesh's while a tile holds many output
+// triangles and grows when tiles are only a few output triangles wide; it takes several
+// times simplify_mesh's time (measured: the README's --tiles table; docs/benchmarks.md).
+// report->error: the largest collapse error, in units of the whole mesh's diagonal; no
+// collapse sequence. tiles 0 or 1, or a target at or above
 // the face count: simplify_mesh itself. Throws Error as simplify_mesh does, and for tiles >
 // 1024, options.target_error, options.record_collapses or a mesh split at seams
 // (Mesh::position_vertex), which the tiled path does not take.
