@@ -90,10 +90,10 @@ TEST_CASE("cancel: a set flag stops every long call with Cancelled", "[cancel]")
   opt.ratio = 0.1;
   opt.cancel = &stop;
   CHECK(throws_cancelled([&] { simplify_mesh(m, opt); }));
-  OptimiserOptions oo;
-  oo.cancel = &stop;
+  ViewpointOptions vo;
+  vo.optimiser.cancel = &stop;
   const std::vector<double> score(m.vertex_count(), 1.0);
-  CHECK(throws_cancelled([&] { best_viewpoint(m, score, oo); }));
+  CHECK(throws_cancelled([&] { best_viewpoint(m, score, vo); }));
   CompareOptions co;
   co.cancel = &stop;
   CHECK(throws_cancelled([&] { compare_surfaces(m, m, nullptr, co); }));

@@ -107,12 +107,12 @@ TEST_CASE("coordinates: a scan at survey coordinates gets the saliency of the sc
   CHECK(naive_worst > 1e-2 * top);
 
   // The view: the same angles and score.
-  OptimiserOptions oo;
-  oo.restarts = 2;
-  const BestView b0 = best_viewpoint(at0, r0.saliency, oo), bu = best_viewpoint(utm, ru.saliency, oo);
-  CHECK(b0.optimised.best.theta == bu.optimised.best.theta);
-  CHECK(b0.optimised.best.phi == bu.optimised.best.phi);
-  CHECK(std::fabs(b0.optimised.U - bu.optimised.U) <= 1e-9 * b0.optimised.U);
+  ViewpointOptions vo;
+  vo.optimiser.restarts = 2;
+  const Viewpoint b0 = best_viewpoint(at0, r0.saliency, vo), bu = best_viewpoint(utm, ru.saliency, vo);
+  CHECK(b0.view.theta == bu.view.theta);
+  CHECK(b0.view.phi == bu.view.phi);
+  CHECK(std::fabs(b0.U - bu.U) <= 1e-9 * b0.U);
 }
 
 TEST_CASE("coordinates: the saliency PLY of a survey scan keeps its positions to the last digit", "[coordinates][cli]") {

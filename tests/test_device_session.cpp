@@ -104,8 +104,8 @@ TEST_CASE("device session: the viewpoint search scores on it", "[gpu]") {
   Device d(0);
   ViewpointOptions vo;
   vo.backend = Backend::Gpu;
-  vo.resolution = 64;
-  vo.restarts = 2;
+  vo.visibility.resolution = 64;
+  vo.optimiser.restarts = 2;
   vo.session = &d;
   const Viewpoint on_session = best_viewpoint(mesh, score, vo);
   CHECK(on_session.backend_name == "vulkan: " + d.info().name);
@@ -125,12 +125,12 @@ TEST_CASE("device session: the viewpoint search scores on it", "[gpu]") {
 TEST_CASE("device session: close() releases it, a closed one is an Error, moves carry it", "[gpu]") {
   const Mesh mesh = make_sphere(1.0, 2);
   Device d(0);
-  std::weak_ptr<void> device = d.handle();
+  std::weak_ptr<void> device = detail::device_handle(d);
   REQUIRE(!device.expired());
   Device moved(std::move(d));
   CHECK_FALSE(d.is_open());
   CHECK(moved.is_open());
-  CHECK(moved.handle() == device.lock());
+  CHECK(detail::device_handle(moved) == device.lock());
   moved.close();
   CHECK_FALSE(moved.is_open());
   CHECK(device.expired());  // nothing else held it: the device is closed
@@ -139,7 +139,7 @@ TEST_CASE("device session: close() releases it, a closed one is an Error, moves 
   moved.close();  // idempotent
   {
     Device scoped(0);
-    device = scoped.handle();
+    device = detail::device_handle(scoped);
   }
   CHECK(device.expired());  // the destructor released it
 }

@@ -40,18 +40,18 @@ TEST_CASE("viewpoint: when no view sees any score, the front view with a note, n
   const std::vector<double> s = compute_saliency(m, so).saliency;
   CHECK(s == std::vector<double>(3, 0.0));
   for (uint64_t seed : {1, 2, 3}) {
-    OptimiserOptions o;
-    o.seed = seed;
-    const BestView b = best_viewpoint(m, s, o);
-    CHECK(b.optimised.best.theta == 0);
-    CHECK(b.optimised.best.phi == 0);
-    CHECK(b.optimised.U == 0);
-    CHECK(b.optimised.note.find("no view sees any score") == 0);
+    ViewpointOptions o;
+    o.optimiser.seed = seed;
+    const Viewpoint b = best_viewpoint(m, s, o);
+    CHECK(b.view.theta == 0);
+    CHECK(b.view.phi == 0);
+    CHECK(b.U == 0);
+    CHECK(b.note.find("no view sees any score") == 0);
   }
   // A score that some view sees: no note.
-  const BestView b = best_viewpoint(m, {1.0, 1.0, 1.0});
-  CHECK(b.optimised.note.empty());
-  CHECK(b.optimised.U > 0);
+  const Viewpoint b = best_viewpoint(m, {1.0, 1.0, 1.0});
+  CHECK(b.note.empty());
+  CHECK(b.U > 0);
 }
 
 TEST_CASE("viewpoint: a negative score is refused, every command refuses negative saliency files", "[view][cli]") {

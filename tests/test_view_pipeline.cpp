@@ -41,8 +41,8 @@ std::string json_text(const std::string& text, const std::string& key, size_t fr
 // also scored exhaustively (0: none, ViewpointOptions' default).
 ViewpointOptions search_options(int resolution, int restarts, int views = 0) {
   ViewpointOptions o;
-  o.resolution = resolution;
-  o.restarts = restarts;
+  o.visibility.resolution = resolution;
+  o.optimiser.restarts = restarts;
   o.views = views;
   return o;
 }
@@ -72,10 +72,10 @@ TEST_CASE("view pipeline: viewpoint, render --best, batch --view and the library
   const std::vector<double> s = compute_saliency(m, so).saliency;
   // The defaults, an elevation range, and other search settings: each command takes them all.
   ViewpointOptions other;
-  other.restarts = 3;
-  other.seed = 5;
-  other.resolution = 256;
-  other.depth_tol_px = 1.5;
+  other.optimiser.restarts = 3;
+  other.optimiser.seed = 5;
+  other.visibility.resolution = 256;
+  other.visibility.depth_tol_px = 1.5;
   const std::vector<std::pair<std::string, ViewpointOptions>> settings{
       {"", ViewpointOptions{}},
       {" --elevation 0,40", [] { ViewpointOptions o; o.elevation = {0, 40}; return o; }()},

@@ -33,11 +33,12 @@ TEST_CASE("viewpoint progress: the optimiser reports every batch, smoothly, then
   std::vector<double> score(s.vertex_count());
   for (size_t i = 0; i < score.size(); ++i) score[i] = std::max(0.0, double(s.positions[3 * i]));
   Heard heard;
-  OptimiserOptions opt;  // 8 restarts, as `meshsal viewpoint` runs them
-  opt.progress = [&](const char* stage, double f) { heard.calls.emplace_back(stage, f); };
-  VisibilityOptions vopt;
-  vopt.resolution = 64;
-  const BestView b = best_viewpoint(s, score, opt, 300, vopt, Backend::Cpu);
+  ViewpointOptions vo;  // 8 restarts, as `meshsal viewpoint` runs them
+  vo.optimiser.progress = [&](const char* stage, double f) { heard.calls.emplace_back(stage, f); };
+  vo.visibility.resolution = 64;
+  vo.views = 300;
+  const Viewpoint b = best_viewpoint(s, score, vo);
+  const OptimiserOptions& opt = vo.optimiser;
 
   const std::vector<double> f = heard.of("best view");
   REQUIRE(f.size() >= 10);

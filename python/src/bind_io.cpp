@@ -86,10 +86,10 @@ py::dict defaults() {
   d["device"] = r.saliency.device;
   d["weights"] = meshsal::weighting_name(r.weighting);
   d["weight_floor"] = r.weight_options.floor;
-  d["restarts"] = r.viewpoint.restarts;
-  d["seed"] = r.viewpoint.seed;
-  d["resolution"] = r.viewpoint.resolution;
-  d["depth_tol"] = r.viewpoint.depth_tol_px;
+  d["restarts"] = r.viewpoint.optimiser.restarts;
+  d["seed"] = r.viewpoint.optimiser.seed;
+  d["resolution"] = r.viewpoint.visibility.resolution;
+  d["depth_tol"] = r.viewpoint.visibility.depth_tol_px;
   d["size"] = r.style.size;
   d["max_faces"] = r.page.max_faces;
   return d;

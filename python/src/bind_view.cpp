@@ -88,18 +88,18 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
       saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
-  vo.restarts = restarts;
-  vo.seed = seed;
+  vo.optimiser.restarts = restarts;
+  vo.optimiser.seed = seed;
   vo.views = views;
-  vo.resolution = resolution;
-  vo.depth_tol_px = depth_tol;
-  vo.threads = so.threads;
+  vo.visibility.resolution = resolution;
+  vo.visibility.depth_tol_px = depth_tol;
+  vo.visibility.threads = so.threads;
   use_saliency_device(vo, so);
   meshsal::Viewpoint b;
   meshsal::ViewCamera map_best;
   {
     const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
-    so.cancel = vo.cancel = call.flag();
+    so.cancel = vo.optimiser.cancel = call.flag();
     const std::vector<double> s = score_or_saliency(mesh, std::move(given), so);
     b = meshsal::best_viewpoint(mesh, s, vo);  // the one view pipeline, as the CLI's
     if (views > 0) map_best = meshsal::view_camera(mesh, b.map.views[b.map.best], vo.up);
@@ -174,9 +174,9 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       meshsal::ViewpointOptions vo;
       vo.up = style.up;
       vo.elevation = band;
-      vo.threads = so.threads;
+      vo.visibility.threads = so.threads;
       use_saliency_device(vo, so);
-      vo.cancel = so.cancel;
+      vo.optimiser.cancel = so.cancel;
       const meshsal::Viewpoint b = meshsal::best_viewpoint(mesh, score, vo);
       image = meshsal::render_camera_view(mesh, grey ? nullptr : &score, b.camera, style);
     } else {

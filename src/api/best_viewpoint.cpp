@@ -49,22 +49,9 @@ ViewAngles normalised(const ViewAngles& a) {
 
 // The search, its angles as optimise_viewpoint and exhaustive_map return them.
 Viewpoint search(const Mesh& mesh, const std::vector<double>& score, const ViewpointOptions& o) {
-  const CancelScope cancel(o.cancel);
+  const CancelScope cancel(o.optimiser.cancel);
   if (o.views < 0) throw Error("views must be >= 0, got " + std::to_string(o.views));
   const LatitudeBand band = latitude_band(o.elevation);
-  VisibilityOptions vopt;
-  vopt.resolution = o.resolution;
-  vopt.depth_tol_px = o.depth_tol_px;
-  vopt.threads = o.threads;
-  OptimiserOptions oopt;
-  oopt.restarts = o.restarts;
-  oopt.seed = o.seed;
-  oopt.probe = o.probe;
-  oopt.initial_step = o.initial_step;
-  oopt.min_step = o.min_step;
-  oopt.max_iterations = o.max_iterations;
-  oopt.progress = o.progress;
-  oopt.cancel = o.cancel;
 
   Viewpoint out;
   out.up = o.up;
@@ -75,10 +62,10 @@ Viewpoint search(const Mesh& mesh, const std::vector<double>& score, const Viewp
   Mesh turned;
   if (o.up != UpAxis::Y) turned = in_frame(mesh, o.up);
   const Mesh& searched = o.up != UpAxis::Y ? turned : mesh;
-  const ViewScorerSetup setup = make_view_scorer(searched, score, vopt, o.backend, o.device, notice, o.session);
+  const ViewScorerSetup setup = make_view_scorer(searched, score, o.visibility, o.backend, o.device, notice, o.session);
   out.backend_name = setup.backend_name;
-  out.optimised = optimise_viewpoint(setup.scorer, oopt, band);
-  if (o.views > 0) out.map = exhaustive_map(setup.scorer, o.views, setup.batch, o.progress, band);
+  out.optimised = optimise_viewpoint(setup.scorer, o.optimiser, band);
+  if (o.views > 0) out.map = exhaustive_map(setup.scorer, o.views, setup.batch, o.optimiser.progress, band);
   return out;  // a GPU scorer gives its device back here
 }
 
@@ -112,32 +99,6 @@ Viewpoint best_viewpoint(const Mesh& mesh, const std::vector<double>& score, con
   out.visible_fraction = out.total > 0 ? out.U / out.total : 0.0;
   out.note = out.optimised.note;
   out.camera = view_camera(mesh, out.view, o.up);
-  return out;
-}
-
-BestView best_viewpoint(const Mesh& mesh, const std::vector<double>& score, const OptimiserOptions& options,
-                        int views, const VisibilityOptions& visibility, Backend backend, int device) {
-  ViewpointOptions o;
-  o.up = UpAxis::Y;
-  o.resolution = visibility.resolution;
-  o.depth_tol_px = visibility.depth_tol_px;
-  o.threads = visibility.threads;
-  o.restarts = options.restarts;
-  o.seed = options.seed;
-  o.probe = options.probe;
-  o.initial_step = options.initial_step;
-  o.min_step = options.min_step;
-  o.max_iterations = options.max_iterations;
-  o.progress = options.progress;
-  o.cancel = options.cancel;
-  o.views = views;
-  o.backend = backend;
-  o.device = device;
-  Viewpoint v = search(mesh, score, o);  // y up: the search's own angles, as before
-  BestView out;
-  out.optimised = std::move(v.optimised);
-  out.map = std::move(v.map);
-  out.backend_name = std::move(v.backend_name);
   return out;
 }
 

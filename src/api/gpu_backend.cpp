@@ -44,10 +44,12 @@ void Device::close() { std::atomic_store(&handle_, std::shared_ptr<void>()); }
 
 bool Device::is_open() const { return std::atomic_load(&handle_) != nullptr; }
 
-std::shared_ptr<void> Device::handle() const { return std::atomic_load(&handle_); }
+namespace detail {
+std::shared_ptr<void> device_handle(const Device& device) { return std::atomic_load(&device.handle_); }
+}  // namespace detail
 
 std::shared_ptr<void> session_handle(const Device& session) {
-  std::shared_ptr<void> h = session.handle();
+  std::shared_ptr<void> h = detail::device_handle(session);
   if (!h)
     throw Error("the meshsal::Device given (Vulkan device " + std::to_string(session.info().index) + ", '" +
                 session.info().name + "') was closed");

@@ -55,7 +55,7 @@ void make_views(RequestRun& run) {
   out.view = r.view;
   if (r.find_view || !r.page_output.empty() || !r.map_output.empty()) {
     ViewpointOptions vo = r.viewpoint;
-    if (!vo.cancel) vo.cancel = r.saliency.cancel;
+    if (!vo.optimiser.cancel) vo.optimiser.cancel = r.saliency.cancel;
     if (!r.map_output.empty() && vo.views == 0) vo.views = 2000;
     out.viewpoint = best_viewpoint(mesh, out.score, vo);
     out.view = out.viewpoint.view;

@@ -155,7 +155,7 @@ JsonObject compute_model(const Plan& p, const LoadedModel& m, const std::string&
   r.simplified_output = out.simplified;
   r.lod_output = out.lod;
   r.saliency.progress = [&progress](const char* stage, double f) { progress.stage(stage, f); };
-  r.viewpoint.progress = r.saliency.progress;
+  r.viewpoint.optimiser.progress = r.saliency.progress;
   const GpuCounts gpu0 = GpuCounts::now();
   const RequestResult res = run_request(r);
   JsonObject j;
@@ -475,7 +475,7 @@ class BatchRun {
                    printable(ms.log_path).c_str(), static_cast<unsigned long long>(log_->torn_bytes()));
     Request& req = p.request;
     req.saliency.progress = [this](const char* stage, double f) { progress_.stage(stage, f); };
-    req.viewpoint.progress = req.saliency.progress;
+    req.viewpoint.optimiser.progress = req.saliency.progress;
     req.saliency.notice = [this](const std::string& line) {
       if (model_notes_) model_notes_->push_back(line);
       // Under MPI rank 0 tells a model's notes with its line, in model order.

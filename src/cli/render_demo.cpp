@@ -13,7 +13,7 @@ std::vector<std::string> write_demo_pictures(const Mesh& mesh, const std::vector
                                              const Mesh* salient, const DemoPictureOptions& options) {
   // The one view pipeline (best_viewpoint), at the demo's own z-buffer size.
   ViewpointOptions vo;
-  vo.resolution = options.resolution;
+  vo.visibility.resolution = options.resolution;
   vo.views = options.map_views;
   vo.backend = options.backend;
   const Viewpoint v = best_viewpoint(mesh, saliency, vo);

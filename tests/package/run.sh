@@ -18,7 +18,17 @@ expect() {  # expect NAME OUTPUT PATTERN
 
 cmake --install "$build" --prefix "$work/full" >/dev/null
 [ -f "$work/full/include/meshsal/meshsal.h" ] || fail "public header not installed"
-[ -z "$(find "$work/full/include" -name '*.h' ! -name meshsal.h)" ] || fail "internal headers installed"
+# The public headers are meshsal.h and its parts, every file of include/meshsal/: all of
+# them installed, and nothing else (no internal header).
+installed=$(cd "$work/full/include" && find . -name '*.h' | sort)
+public=$(cd "$src/include" && find . -name '*.h' | sort)
+[ "$installed" = "$public" ] || fail "installed headers differ from include/: $(diff <(echo "$public") <(echo "$installed") | tr '\n' ' ')"
+# Each installed header compiles alone from the installed include folder.
+for h in $installed; do
+  echo "#include <${h#./}>" | c++ -std=c++17 -fsyntax-only -x c++ -I"$work/full/include" - ||
+    fail "installed ${h#./} does not compile alone"
+done
+echo "ok: $(wc -w <<<"$installed") public headers installed, each compiles alone"
 cmake -S "$src/tests/package/consumer" -B "$work/consumer-full" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/consumer-full" -j2 >/dev/null
 expect "core, cpu" "$("$work/consumer-full/consumer_core")" '^vulkan=0 backend=cpu .*pairs=[1-9].* faces=6 image=32x32$'
