@@ -17,8 +17,9 @@ namespace meshsal {
 static const double kPi = 3.14159265358979323846;
 
 void check_render_style(const RenderStyle& s) {
-  if (s.size < 16 || s.size > 8192)
-    throw Error("image size must be between 16 and 8192, got " + std::to_string(s.size));
+  if (s.size < kMinImageSize || s.size > kMaxImageSize)
+    throw Error("image size must be between " + std::to_string(kMinImageSize) + " and " +
+                std::to_string(kMaxImageSize) + ", got " + std::to_string(s.size));
   if (!(s.margin >= 1.0) || !std::isfinite(s.margin)) throw Error("image margin must be >= 1");
   if (s.supersample < 1 || s.supersample > 4)
     throw Error("supersample must be between 1 and 4, got " + std::to_string(s.supersample));
@@ -328,7 +329,8 @@ void view_map_pixel(const ViewAngles& a, int width, int* x, int* y) {
 }
 
 Image render_view_map(const ViewMap& map, int width, const ViewAngles* ring, const ViewAngles* cross) {
-  if (width < 32 || width > 8192) throw Error("map width must be between 32 and 8192");
+  if (width < kMinMapWidth || width > kMaxImageSize)
+    throw Error("map width must be between " + std::to_string(kMinMapWidth) + " and " + std::to_string(kMaxImageSize));
   if (map.views.empty() || map.U.size() != map.views.size()) throw Error("internal: empty view map");
   const int h = width / 2;
   const size_t n = map.views.size();
