@@ -249,7 +249,9 @@ def test_unreadable_file_raises_permission_error_as_nobody():
             os.setgroups([])
             os.setuid(65534)
 
-        env = {k: v for k, v in os.environ.items() if k in ("PYTHONPATH", "PATH")}
+        # (LD_PRELOAD and the sanitizers' options: tools/sanitize.sh preloads their runtimes.)
+        env = {k: v for k, v in os.environ.items()
+               if k in ("PYTHONPATH", "PATH", "LD_PRELOAD", "ASAN_OPTIONS", "UBSAN_OPTIONS", "LSAN_OPTIONS")}
         env["PYTHONDONTWRITEBYTECODE"] = "1"
         r = subprocess.run([sys.executable, "-c", _AS_NOBODY, folder], env=env, preexec_fn=as_nobody,
                            capture_output=True, text=True, timeout=120)
