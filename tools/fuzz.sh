@@ -7,7 +7,7 @@
 # into the repository). A crash, sanitizer report, leak, time-out (2 s) or memory blow-up
 # (2 GB) stops that target and leaves the input in build-fuzz/findings/TARGET/. Fix it,
 # then copy the file into tests/fuzz/regressions/TARGET/: the normal suite replays every
-# file there (tests/test_fuzz_replay.cpp). Exits 1 when any target found something.
+# file there (tests/io/test_fuzz_replay.cpp). Exits 1 when any target found something.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}

@@ -15,7 +15,7 @@
 #include "meshsal/meshsal.h"
 #include "load_input.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 namespace fs = std::filesystem;
@@ -171,4 +171,4 @@ std::vector<std::string> expand_batch_inputs(const std::vector<std::string>& ite
   return e.out;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

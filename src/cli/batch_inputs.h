@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // True for the names the loaders read: .obj .ply .off .stl, each optionally + .gz (any case).
 bool is_mesh_file_name(const std::string& path);
@@ -23,4 +23,4 @@ bool is_mesh_file_name(const std::string& path);
 std::vector<std::string> expand_batch_inputs(const std::vector<std::string>& items,
                                              const std::string& list_file);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

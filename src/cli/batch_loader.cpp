@@ -6,7 +6,7 @@
 #include "core/timer.h"
 #include "load_input.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 ModelLoader::ModelLoader(std::vector<std::string> paths, bool attributes)
     : paths_(std::move(paths)), attributes_(attributes) {
@@ -73,4 +73,4 @@ LoadedModel ModelLoader::next() {
   return m;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -11,7 +11,7 @@
 
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 struct LoadedModel {
   std::string path;
@@ -51,4 +51,4 @@ class ModelLoader {
   std::thread thread_;
 };
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -12,7 +12,7 @@
 #include "json_valid.h"
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 
@@ -98,4 +98,4 @@ void BatchLog::failed(const std::string& error) {
   std::fprintf(stderr, "error: %s\n", printable(error).c_str());
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -9,7 +9,7 @@
 
 #include "io/append_file.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // The bytes of the last line of the regular file at `path` when that line is torn: not one
 // JSON value (a run killed part way through writing it; a last line cut short before its
@@ -41,4 +41,4 @@ class BatchLog {
   std::string error_;
 };
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -11,7 +11,7 @@
 #include "io/atomic_write.h"
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 namespace fs = std::filesystem;
@@ -106,4 +106,4 @@ void check_batch_outputs_apart(const std::string& dir, const std::vector<RunOutp
   }
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

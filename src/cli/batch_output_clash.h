@@ -8,7 +8,7 @@
 
 #include "batch_outputs.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 struct RunOutput {
   std::string path;  // "" = not written by this run
@@ -26,4 +26,4 @@ void check_batch_outputs_apart(const std::string& dir, const std::vector<RunOutp
                                const std::vector<std::string>& inputs, const std::vector<std::string>& names,
                                const std::vector<ModelOutputs>& outs);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

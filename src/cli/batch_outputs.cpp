@@ -10,7 +10,7 @@
 
 #include "batch_state.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 std::string file_name(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
@@ -116,4 +116,4 @@ std::vector<std::string> without_batch_outputs(const std::vector<std::string>& i
   return out;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 struct ModelOutputs {
   std::string saliency;    // DIR/NAME_saliency.ply
@@ -36,4 +36,4 @@ ModelOutputs model_outputs(const std::string& dir, const std::string& name, bool
 // with such a name and no state is kept: a user's own mesh (an output never replaces it).
 std::vector<std::string> without_batch_outputs(const std::vector<std::string>& inputs, const std::string& dir);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 std::string duration_text(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
@@ -70,4 +70,4 @@ void BatchProgress::clear() {
   drawn_width_ = 0;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

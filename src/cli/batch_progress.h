@@ -6,7 +6,7 @@
 #include <chrono>
 #include <string>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // "45 s", "3 min 20 s", "2 h 5 min".
 std::string duration_text(double seconds);
@@ -36,4 +36,4 @@ class BatchProgress {
   std::chrono::steady_clock::time_point model_start_{};
 };
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

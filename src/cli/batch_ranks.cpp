@@ -7,7 +7,7 @@
 
 #include "mpi_world.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 void put_u64(std::vector<uint8_t>& b, uint64_t v) {
@@ -94,4 +94,4 @@ std::vector<ModelResult> gather_results(const std::vector<ModelResult>& mine) {
   return all;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

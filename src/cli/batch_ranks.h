@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // What a rank made of one model, for rank 0 to log.
 struct ModelResult {
@@ -37,4 +37,4 @@ std::vector<ModelResult> unpack_results(const std::vector<uint8_t>& bytes);
 // and receives every rank's, in model order, each with its rank.
 std::vector<ModelResult> gather_results(const std::vector<ModelResult>& mine);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -16,7 +16,7 @@
 #include "json_valid.h"
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using meshsal::Error;
@@ -219,4 +219,4 @@ bool up_to_date(const ModelState& saved, const InputFingerprint& input, const st
   return true;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // An input file as it is now.
 struct InputFingerprint {
@@ -57,4 +57,4 @@ bool valid_record(const std::string& record);
 bool up_to_date(const ModelState& saved, const InputFingerprint& input, const std::string& options,
                 const std::vector<std::string>& outputs);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

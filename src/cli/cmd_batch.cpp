@@ -53,7 +53,7 @@
 #include "gpu/gpu_session.h"
 #endif
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using namespace meshsal;
@@ -851,4 +851,4 @@ RunFn setup(CLI::App& sub) {
 const bool registered = register_command({"batch", "Saliency (and best views, simplified meshes) of many models", 15, setup, true});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -29,7 +29,7 @@
 #include "gpu/vk_context.h"
 #endif
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Args {
@@ -382,4 +382,4 @@ RunFn setup(CLI::App& sub) {
 const bool registered = register_command({"bench", "Benchmark saliency stages on real meshes", 40, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

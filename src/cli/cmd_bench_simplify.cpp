@@ -29,7 +29,7 @@
 #include <meshoptimizer.h>
 #endif
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using meshsal::Mesh;
@@ -365,7 +365,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
   std::vector<std::pair<std::string, double>> sal_times;
   for (const std::string& path : paths) {
     const std::string model = std::filesystem::path(path).filename().string();
-    const Mesh mesh = load_mesh(path, nullptr, meshsal_cli::load_options());
+    const Mesh mesh = load_mesh(path, nullptr, meshsal::cli::load_options());
     SaliencyOptions so;
     so.cancel = interrupt_flag();
     so.backend = Backend::Cpu;
@@ -441,4 +441,4 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
   return 0;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // The weighting parameters the benchmark sweeps (--sweep): short (the benchmark's plot), wide
 // (the search behind the balanced preset) or none.
@@ -27,4 +27,4 @@ struct SimplifyBenchArgs {
 // Runs the benchmark; prints a table (or one JSON object with --json). Returns the exit code.
 int run_simplify_benchmark(const SimplifyBenchArgs& args);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

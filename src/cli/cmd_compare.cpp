@@ -19,7 +19,7 @@
 #include "saliency_output.h"
 #include "interrupt.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Args {
@@ -109,4 +109,4 @@ const bool registered = register_command(
     {"compare", "Hausdorff, RMS and salient-region error of a simplified mesh", 25, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

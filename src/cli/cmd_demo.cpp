@@ -20,7 +20,7 @@
 #include "saliency_output.h"
 #include "interrupt.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Args {
@@ -133,4 +133,4 @@ RunFn setup(CLI::App& sub) {
 const bool registered = register_command({"demo", "Run saliency on the built-in demo mesh", 0, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

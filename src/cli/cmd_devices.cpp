@@ -14,7 +14,7 @@
 #include "gpu/vk_context.h"
 #endif
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // --json: one JSON array on one line, an object per device as the library lists them
 // (meshsal::list_devices; Python's meshsal.devices() gives the same keys); [] without any.
@@ -112,4 +112,4 @@ static bool registered = register_command(
      "staging area; MESHSAL_FORCE_STAGING=1 forces that on any device)",
      90, setup_devices});
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

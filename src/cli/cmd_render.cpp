@@ -20,7 +20,7 @@
 #include "view_json.h"
 #include "interrupt.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Options {
@@ -102,4 +102,4 @@ RunFn setup(CLI::App& app) {
 bool registered = register_command({"render", "PNG picture of a mesh coloured by saliency, or a side-by-side comparison", 70, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

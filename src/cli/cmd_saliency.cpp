@@ -19,7 +19,7 @@
 #include "mpi_tile_exchange.h"
 #include "mpi_world.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Args {
@@ -147,4 +147,4 @@ RunFn setup(CLI::App& sub) {
 const bool registered = register_command({"saliency", "Compute the saliency map of a mesh file", 10, setup, true});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

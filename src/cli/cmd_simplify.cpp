@@ -20,7 +20,7 @@
 #include "interrupt.h"
 #include "core/peak_memory.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Args {
@@ -244,4 +244,4 @@ const bool registered = register_command(
     {"simplify", "Simplify a mesh, guided by saliency (or plain quadric error)", 20, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -19,7 +19,7 @@
 #include "view/picture.h"
 #include "view_json.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Options {
@@ -83,4 +83,4 @@ const bool registered =
     register_command({"view", "HTML page that shows a mesh's saliency in the browser (three.js, offline)", 65, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

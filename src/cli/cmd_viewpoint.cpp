@@ -21,7 +21,7 @@
 #include "view_json.h"
 #include "interrupt.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 struct Options {
@@ -100,4 +100,4 @@ RunFn setup(CLI::App& app) {
 bool registered = register_command({"viewpoint", "best view direction by visible saliency (JSON), pictures", 60, setup});
 
 }  // namespace
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // Runs the chosen command after parsing; returns the process exit code.
 using RunFn = std::function<int()>;
@@ -32,4 +32,4 @@ struct UsageError : std::runtime_error {
 // Called from a static initialiser in each cmd_*.cpp: `static bool reg = register_command({...});`
 bool register_command(Command command);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

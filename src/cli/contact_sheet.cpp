@@ -15,7 +15,7 @@
 #define STBI_NO_STDIO_WARNINGS
 #include <stb/stb_image.h>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using meshsal::Image;
@@ -170,4 +170,4 @@ meshsal::Image contact_sheet(const std::vector<SheetItem>& items) {
   return sheet;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

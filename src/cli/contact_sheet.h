@@ -11,7 +11,7 @@
 
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 constexpr int kSheetThumb = 256;
 constexpr int kSheetLabel = 34;
@@ -33,4 +33,4 @@ struct SheetItem {
 // for an empty list.
 meshsal::Image contact_sheet(const std::vector<SheetItem>& items);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -8,7 +8,7 @@
 #include "core/html_text.h"
 #include "io/atomic_write.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using meshsal::html_escaped;
@@ -57,4 +57,4 @@ void write_gallery(const std::string& path, const std::vector<GalleryItem>& item
   meshsal::write_file_atomically(path, [&](std::FILE* f) { meshsal::write_all(f, html.data(), html.size(), path); });
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

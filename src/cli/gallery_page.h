@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 struct GalleryItem {
   std::string name;     // the input's file name
@@ -17,4 +17,4 @@ struct GalleryItem {
 // model marked with its status and message. Written atomically; throws Error.
 void write_gallery(const std::string& path, const std::vector<GalleryItem>& items);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -2,7 +2,7 @@
 
 #include <signal.h>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 std::atomic<bool> interrupted{false};
@@ -45,4 +45,4 @@ int interrupted_exit() { return 128 + first_signal.load(); }
 
 const std::atomic<bool>* interrupt_flag() { return &interrupted; }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -13,7 +13,7 @@
 #pragma once
 #include <atomic>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // SIGINT, and with `all_signals` the others above. A signal a shell set to be ignored
 // (SIGINT in a background job, SIGHUP under nohup) stays ignored.
@@ -26,4 +26,4 @@ const std::atomic<bool>* interrupt_flag();
 // reports it.
 int interrupted_exit();
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -6,7 +6,7 @@
 
 #include "json_string.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 JsonObject& JsonObject::raw(const std::string& key, const std::string& json) {
   if (!body_.empty()) body_ += ", ";
@@ -67,4 +67,4 @@ void JsonObject::print() const {
   std::fflush(stdout);
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 class JsonObject {
  public:
@@ -32,4 +32,4 @@ class JsonObject {
 // A name as a snake_case key: "gaussian sweep" -> "gaussian_sweep" (spaces and dashes to _).
 std::string json_key(std::string name);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

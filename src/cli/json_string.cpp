@@ -4,7 +4,7 @@
 
 #include "core/utf8.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 std::string hex_escape(const char* form, unsigned value) {
@@ -37,4 +37,4 @@ std::string json_string(const std::string& text) {
 
 std::string printable(const std::string& text) { return meshsal::visible_text(text); }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // `text` as a JSON string literal, quotes included, valid JSON and valid UTF-8 whatever
 // the bytes: quotes and backslashes escaped, control characters (C0, DEL and C1) as
@@ -19,4 +19,4 @@ std::string json_string(const std::string& text);
 // escape sequences to the terminal nor reorder what the line shows.
 std::string printable(const std::string& text);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

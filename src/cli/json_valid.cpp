@@ -5,7 +5,7 @@
 
 #include "core/utf8.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 // Recursive descent over one JSON value (RFC 8259, no extensions).
@@ -112,4 +112,4 @@ bool is_json_line(const std::string& text) {
   return meshsal::valid_utf8(text) && is_json(text);
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // True when `text` is exactly one JSON value (RFC 8259, no extensions; blanks around it
 // allowed; nesting deeper than 64 is refused).
@@ -13,4 +13,4 @@ bool is_json(const std::string& text);
 // character (no newline, no CR) anywhere.
 bool is_json_line(const std::string& text);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -10,7 +10,7 @@
 
 #include "io/text_scan.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 std::string mesh_extension(const std::string& path) {
   std::string name = path.substr(path.find_last_of('/') + 1);  // npos + 1 == 0
@@ -64,4 +64,4 @@ meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexPro
   return mesh;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -5,7 +5,7 @@
 
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // The format a file name gives: its extension in lower case, a trailing .gz dropped
 // (".ply" for "Scan.PLY.gz"); "" when it has none.
@@ -32,4 +32,4 @@ meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties
 meshsal::Mesh load_input(const std::string& path, bool quiet,
                          meshsal::VertexProperties* properties = nullptr, bool attributes = false);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -12,7 +12,7 @@
 #include "interrupt.h"
 #include "mpi_world.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 static std::vector<Command>& registry() {
   static std::vector<Command> commands;
@@ -60,7 +60,7 @@ static bool uses_ranks(int argc, char** argv) {
   return false;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli
 
 // How this process ends after a thrown error or a usage line: under MPI before the work
 // every rank agrees (the line printed once, by rank 0; no MPI_Abort); during the work a
@@ -87,7 +87,7 @@ static int done(int status) {
 }
 
 static int run_main(int argc, char** argv) {
-  using namespace meshsal_cli;
+  using namespace meshsal::cli;
   // Process-wide, so the program's choice, not the library's (which never sets it): the
   // command's stages reuse each other's freed memory instead of page-faulting it in again.
   meshsal::keep_freed_memory_for_reuse();
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
   // (MPI_Init, which may take its own arguments out of argv: mpi_world.h). Any other runs
   // on rank 0 alone, as one process; the other ranks end at once, silently, with 0, rather
   // than each do the whole work and write the same files.
-  if (meshsal_cli::uses_ranks(argc, argv)) meshsal::cli::mpi_start(&argc, &argv);
+  if (meshsal::cli::uses_ranks(argc, argv)) meshsal::cli::mpi_start(&argc, &argv);
   else if (meshsal::cli::mpi_launcher_rank() > 0) return 0;
   const int status = run_main(argc, argv);
   meshsal::cli::mpi_stop();

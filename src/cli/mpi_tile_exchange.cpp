@@ -4,7 +4,7 @@
 
 #include "mpi_world.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 int MpiTileExchange::rank() const { return meshsal::cli::mpi_world().rank; }
 
@@ -18,4 +18,4 @@ unsigned default_mpi_tiles(int ranks) {
   return unsigned(std::max(2.0, std::ceil(std::sqrt(2.0 * ranks))));
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

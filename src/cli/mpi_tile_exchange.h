@@ -3,7 +3,7 @@
 #pragma once
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 class MpiTileExchange : public meshsal::TileExchange {
  public:
@@ -16,4 +16,4 @@ class MpiTileExchange : public meshsal::TileExchange {
 // fewest with at least 2 N tiles on a surface (N^2 of them meet it), so every rank has work.
 unsigned default_mpi_tiles(int ranks);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

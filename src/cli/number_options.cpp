@@ -9,7 +9,7 @@
 #include "core/number_text.h"
 #include "saliency/saliency.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 namespace {
 
 using meshsal::number_text;
@@ -143,4 +143,4 @@ CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::str
       ->check(whole_in(0, kMaxThreadsOption));
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // Most threads any command starts (--threads): more gains nothing and can exhaust the
 // process limit. The library caps the same way (meshsal::kMaxThreads).
@@ -44,4 +44,4 @@ CLI::Option* add_elevation_option(CLI::App& app, std::string* text);
 // Adds `--threads N` bound to `threads`, 0..kMaxThreadsOption (0 = all cores).
 CLI::Option* add_threads_option(CLI::App& app, unsigned& threads, const std::string& help);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 using meshsal::Error;
 
@@ -19,4 +19,4 @@ void prepare_output_folder(const std::string& dir) {
     throw Error(dir + ": cannot write: folder '" + dir + "' is not writable (" + std::strerror(errno) + ")");
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -7,7 +7,7 @@
 
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 using meshsal::check_outputs;
 using meshsal::OutputFile;
@@ -16,4 +16,4 @@ using meshsal::OutputFile;
 // is writable. Throws Error.
 void prepare_output_folder(const std::string& dir);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <unistd.h>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 bool stderr_is_terminal() { return isatty(fileno(stderr)) != 0; }
 
@@ -36,4 +36,4 @@ void Progress::finish() {
   drawn_ = false;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <string>
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 class Progress {
  public:
@@ -24,4 +24,4 @@ class Progress {
 // True when stderr is a terminal (progress is only drawn there).
 bool stderr_is_terminal();
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

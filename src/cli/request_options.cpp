@@ -11,7 +11,7 @@
 #include "saliency/saliency.h"
 #include "saliency_output.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 void add_saliency_options(CLI::App& app, RequestText& t) {
   app.add_option("--backend", t.backend,
@@ -157,4 +157,4 @@ meshsal::Request request_from(const RequestText& t, Progress* progress) {
   return r;
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

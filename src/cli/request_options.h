@@ -11,7 +11,7 @@
 
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 struct RequestText {
   // S (add_saliency_options)
@@ -60,4 +60,4 @@ void add_output_flags(CLI::App& app, RequestText& t, const std::string& json_hel
 class Progress;
 meshsal::Request request_from(const RequestText& t, Progress* progress);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

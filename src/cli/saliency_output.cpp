@@ -13,7 +13,7 @@
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 using namespace meshsal;
 
@@ -136,9 +136,9 @@ void add_precision_option(CLI::App& app, std::string* name) {
       ->capture_default_str();
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 void add_method_option(CLI::App& app, std::string* name) {
   app.add_option("--method", *name,
@@ -149,4 +149,4 @@ void add_method_option(CLI::App& app, std::string* name) {
       ->capture_default_str();
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -10,7 +10,7 @@ namespace CLI {
 class App;
 }
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 // Saliency S over the mesh points: min, mean, max and percentiles (nearest rank).
 struct SaliencyStats {
@@ -49,4 +49,4 @@ void add_precision_option(CLI::App& app, std::string* name);
 // meshsal::parse_method() turns it into the option.
 void add_method_option(CLI::App& app, std::string* name);
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -1,6 +1,6 @@
 #include "view_json.h"
 
-namespace meshsal_cli {
+namespace meshsal::cli {
 
 JsonObject& add_view(JsonObject& j, const meshsal::ViewFrame& frame, const meshsal::ViewAngles& view) {
   const double deg = 180.0 / 3.14159265358979323846;
@@ -10,4 +10,4 @@ JsonObject& add_view(JsonObject& j, const meshsal::ViewFrame& frame, const meshs
       .number("phi_deg", view.phi * deg).numbers("direction", {d[0], d[1], d[2]});
 }
 
-}  // namespace meshsal_cli
+}  // namespace meshsal::cli

@@ -1,12 +1,12 @@
 // meshsal: exp(-x) by its degree-7 Taylor polynomial, the one copy on the CPU side. The
-// GPU side's copy is shaders/exp_poly7.glsl; tests/test_exp_poly7.cpp reads that
+// GPU side's copy is shaders/exp_poly7.glsl; tests/core/test_exp_poly7.cpp reads that
 // file and holds its coefficients equal to these, bit for bit.
 //   - The exact sweep's default plan (gaussian_filter.cpp, sweep.glsl) uses it as is on
 //     0 <= x <= 0.02: truncation error < x^8/8! < 1e-18 relative, so it is exp(-x) to
 //     rounding (measured: 1.1e-16 relative at most).
 //   - The fast method (gaussian_filter_fast.cpp, fast_query.comp) uses exp_neg_cutoff(x) =
 //     exp_neg_poly7(x/4)^4 on 0 <= x < 2 (inside the 2-sigma cutoff): largest relative error
-//     6.05e-7 (6.0512e-7 as x -> 2; tests/test_exp_poly7.cpp measures it over the range),
+//     6.05e-7 (6.0512e-7 as x -> 2; tests/core/test_exp_poly7.cpp measures it over the range),
 //     far below the error of the method's cells. The CPU queries evaluate it in float
 //     (float or v8f: 1.12e-6 at most, measured there).
 // Estrin's scheme (below), a multiply then an add per step (never an fma: the build has

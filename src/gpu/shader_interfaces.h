@@ -1,7 +1,7 @@
 // meshsal: what the C++ side of every compute shader (shaders/*.comp) assumes about it, in
 // one place: the push-constant block, a copy of the shader's `layout(push_constant) uniform
 // Push` member for member, and how many storage buffers it binds (bindings 0..n-1, the
-// buffers vk::DescriptorPool::bind is given). tests/test_shader_interfaces.cpp reads the
+// buffers vk::DescriptorPool::bind is given). tests/gpu/test_shader_interfaces.cpp reads the
 // compiled SPIR-V and checks each against it, so a change on one side only fails there.
 // Plain C++ (no Vulkan): the test includes it without a device.
 #pragma once
@@ -37,7 +37,7 @@ struct TestPush {
   float tol;
   uint32_t views, budget;
 };
-struct SelftestPush { uint32_t base, n; float a; };  // tests/test_gpu_selftest.cpp
+struct SelftestPush { uint32_t base, n; float a; };  // tests/gpu/test_gpu_selftest.cpp
 // sweep.glsl's (every sweep*.comp).
 struct SweepPush {
   uint32_t base, n, nx, ny, nz;

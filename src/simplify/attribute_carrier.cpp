@@ -8,7 +8,7 @@
 #include "simplify/triangle_bits.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 void AttributeCarrier::take(const Mesh& mesh, const std::vector<uint32_t>& order) {
   const size_t nv = order.size();
@@ -62,5 +62,5 @@ void AttributeCarrier::write(const Mesh& in, const std::vector<uint32_t>& origin
   }
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

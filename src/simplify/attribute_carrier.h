@@ -8,7 +8,7 @@
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 class AttributeCarrier {
  public:
@@ -30,5 +30,5 @@ class AttributeCarrier {
   int normal_at_[3] = {-1, -1, -1}; // which attributes are nx ny nz (-1: none)
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

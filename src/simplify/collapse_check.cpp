@@ -7,7 +7,7 @@
 #include "simplify/triangle_bits.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 Check CollapseCheck::edge(const CheckSurface& s, uint32_t a, uint32_t b, const double np[3]) {
   if (!s.seams || !s.seams->seam_edge(a, b)) return side(s, a, b, np, false);
@@ -160,5 +160,5 @@ Check CollapseCheck::side(const CheckSurface& s, uint32_t a, uint32_t b, const d
   return Check::Ok;
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -13,7 +13,7 @@
 #include "simplify/vertex_record.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 enum class Check { Ok, NotEdge, Refused };
 
@@ -44,5 +44,5 @@ class CollapseCheck {
   std::vector<uint32_t> opp_, flip_a_, flip_b_;
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -9,7 +9,7 @@
 #include "simplify/edge_queue.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 class CollapseQueue {
  public:
@@ -73,5 +73,5 @@ class CollapseQueue {
   size_t sweep_at_ = 0;                      // queue size that triggers the next sweep
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // 16 bytes, so that the heap stays cache friendly. The order key is the cost rounded to
 // float (ties then break on the vertex indices); the exact cost is recomputed on collapse.
@@ -216,5 +216,5 @@ class EdgeQueue {
   size_t size_ = 0;       // entries in the heap and the buckets
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

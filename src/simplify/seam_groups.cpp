@@ -4,7 +4,7 @@
 #include <string>
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 void SeamGroups::build(const std::vector<uint32_t>& pv, const std::vector<uint32_t>& inv,
                        const std::vector<uint32_t>& corners, bool lock_border,
@@ -98,5 +98,5 @@ void write_position_vertex(const Mesh& in, const std::vector<uint32_t>& origin, 
   if (!split) out->position_vertex.clear();
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

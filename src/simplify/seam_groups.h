@@ -10,7 +10,7 @@
 #include "simplify/triangle_fans.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 struct SeamGroups {
   static constexpr uint32_t NONE = UINT32_MAX;
@@ -59,5 +59,5 @@ struct SeamGroups {
 // (`origin`: output vertex -> input vertex); left empty when no group kept two members.
 void write_position_vertex(const Mesh& in, const std::vector<uint32_t>& origin, Mesh* out);
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -43,7 +43,7 @@ size_t resolve_target_faces(const SimplifyOptions& options, size_t input_faces) 
   return target;
 }
 
-using namespace simplify_detail;
+using namespace detail;
 
 bool simplify_keeps_mesh(const SimplifyOptions& options, size_t face_count) {
   return options.target_faces > 0 ? options.target_faces >= face_count : options.ratio == 1;

@@ -16,7 +16,7 @@ namespace meshsal {
 // memory locality, identically in both), so with the same input both produce the same
 // collapse sequence. O(steps * edges). It shares the cost, check and collapse code with
 // simplify_mesh, so it only catches ordering bugs; the collapse check has its own oracle
-// (tests/test_simplify_check_oracle.cpp).
+// (tests/simplify/test_simplify_check_oracle.cpp).
 Mesh simplify_bruteforce(const Mesh& mesh, const SimplifyOptions& options,
                          const std::vector<double>* vertex_weights = nullptr,
                          SimplifyReport* report = nullptr);

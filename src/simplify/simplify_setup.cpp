@@ -9,7 +9,7 @@
 #include "simplify/simplify_state.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 namespace {
 
@@ -260,5 +260,5 @@ void State::take_locks_seams_and_attributes(const Mesh& mesh, bool lock_border) 
   attributes.take(mesh, order);
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

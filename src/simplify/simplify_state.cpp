@@ -9,7 +9,7 @@
 #include "core/model_frame.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 int State::apply(uint32_t a, uint32_t b, const double np[3], double cost, uint32_t kept[2],
                  uint32_t removed[2]) {
@@ -133,5 +133,5 @@ Mesh State::output(SimplifyReport* report) const {
   return out;
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -20,7 +20,7 @@
 #include "simplify/vertex_record.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 struct State {
   // --- the input, and how internal vertices map to it ---
@@ -174,5 +174,5 @@ struct State {
   void take_locks_seams_and_attributes(const Mesh& mesh, bool lock_border);
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

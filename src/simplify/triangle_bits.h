@@ -7,7 +7,7 @@
 #include "core/vec3.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 inline uint32_t select_u32(bool c, uint32_t x, uint32_t y) {  // c ? x : y
   const uint32_t m = 0u - uint32_t(c);
@@ -24,5 +24,5 @@ inline void other_corners(const uint32_t* v, uint32_t c, uint32_t* x, uint32_t* 
 }
 
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -6,7 +6,7 @@
 #include "simplify/triangle_bits.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 void TriangleFans::build(size_t vertex_count) {
   const size_t nt = corners.size() / 3;
@@ -82,5 +82,5 @@ void TriangleFans::repack(const std::vector<uint8_t>& vertex_live) {
   pool.swap(fresh);
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -8,7 +8,7 @@
 #include "simplify/edge_queue.h"  // keep_if
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 class TriangleFans {
  public:
@@ -58,5 +58,5 @@ class TriangleFans {
   void repack(const std::vector<uint8_t>& vertex_live);
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

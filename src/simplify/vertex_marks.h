@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 struct VertexMarks {
   std::vector<uint32_t> mark;  // per vertex: the stamp it was last marked with
@@ -27,5 +27,5 @@ struct VertexMarks {
   }
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -3,7 +3,7 @@
 #include "simplify/quadric.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // Two cache lines of one record instead of a miss in each of three arrays.
 struct alignas(64) VertexRecord {
@@ -14,5 +14,5 @@ struct alignas(64) VertexRecord {
   double p[3];  // internal coordinates
 };
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

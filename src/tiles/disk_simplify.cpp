@@ -10,7 +10,7 @@
 
 namespace meshsal {
 
-using namespace simplify_detail;
+using namespace detail;
 
 namespace {
 

@@ -48,8 +48,8 @@ struct DiskMesh {
 
 // One pass: which triangles it simplifies and how.
 struct DiskPass {
-  simplify_detail::TileGrid grid;
-  simplify_detail::PassBudget budget;
+  detail::TileGrid grid;
+  detail::PassBudget budget;
   // Strip passes: a triangle is selected when it touches `selected_near`, and a triangle
   // can be a guard only when it touches `guard_near` (the selected triangles' corners).
   // Null: the first pass, every triangle selected.
@@ -61,7 +61,7 @@ struct DiskPass {
 // vertices are written into its state), clearing the vertices the pass freed in
 // `pending`. `buffer_bytes`: how much the bucket buffers may hold before they go to disk.
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
-                   simplify_detail::PassTotals& totals, size_t buffer_bytes,
+                   detail::PassTotals& totals, size_t buffer_bytes,
                    const std::function<void(double)>& progress);
 
 // The strips of the next pass (simplify_tiled.cpp's strip_triangles with one ring): near1

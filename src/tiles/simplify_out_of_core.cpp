@@ -28,7 +28,7 @@
 
 namespace meshsal {
 
-using namespace simplify_detail;
+using namespace detail;
 
 namespace {
 

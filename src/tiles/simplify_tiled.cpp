@@ -24,7 +24,7 @@
 
 namespace meshsal {
 
-using namespace simplify_detail;
+using namespace detail;
 
 namespace {
 

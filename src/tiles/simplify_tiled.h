@@ -5,7 +5,7 @@
 #include <cstddef>
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // The most tiles along the longest axis (1025^3 shifted cells still fit a 64-bit id).
 constexpr unsigned kMaxSimplifyTiles = 1024;
@@ -23,5 +23,5 @@ constexpr double kStripShifts[kMaxStripPasses] = {0.5, 0.25, 0.75};
 // strip re-simplifies more of it and loses more.
 constexpr int kStripRings = 1;
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

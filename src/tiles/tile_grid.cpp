@@ -5,7 +5,7 @@
 #include <cmath>
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 TileGrid::TileGrid(const BoundingBox& box, unsigned tiles, double shift) : shift_(shift) {
   double longest = 0;
@@ -60,5 +60,5 @@ std::vector<std::pair<uint64_t, uint32_t>> triangles_by_cell(const Mesh& mesh, c
   return cells;
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

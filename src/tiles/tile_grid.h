@@ -8,7 +8,7 @@
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // `tiles` cubes along the longest axis of `box`, the grid anchored at box.min; `shift` 0.5
 // moves every cut by half a tile (the strips' grid: its cuts fall mid-way between the first
@@ -37,5 +37,5 @@ class TileGrid {
 std::vector<std::pair<uint64_t, uint32_t>> triangles_by_cell(const Mesh& mesh, const std::vector<uint32_t>& triangles,
                                                              const TileGrid& grid);
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -9,7 +9,7 @@
 #include "tiles/simplify_tiled.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 size_t first_pass_goal(const TilePiece& tile, double ratio) {
   // A triangle with two pinned corners lies on the cut: pass 1 cannot remove it (about
@@ -124,5 +124,5 @@ std::vector<size_t> pass_goals(const PassBudget& budget, const std::vector<size_
   return level_goals(counts, faces, collapses);
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

@@ -11,7 +11,7 @@
 #include "tiles/tile_pieces.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // What a pass keeps of its groups' faces (pass_collapses); each group's share then comes
 // from the common error level.
@@ -43,7 +43,7 @@ TilePiece simplify_group(const TilePiece& tile, const std::vector<double>* weigh
 
 // Rounds: each keeps at most this share of the faces it starts from (its first pass over
 // every triangle, then its strips), so a round's cuts are at most twice as fine as its
-// result. Measured (tests/test_simplify_tiled.cpp, igea_134k at 1%, 4 tiles): one round
+// result. Measured (tests/tiles/test_simplify_tiled.cpp, igea_134k at 1%, 4 tiles): one round
 // straight to the target left the cuts at full resolution, a strip pass had to remove
 // 80% of what was left from bands a few triangles wide, and the RMS error was 3.5x the
 // untiled run's; halving rounds: 1.1x.
@@ -93,5 +93,5 @@ std::vector<uint32_t> freed_ids(const TilePiece& tile);
 // a triangle spans several pin nearly every vertex on every grid).
 bool strip_grid(unsigned tiles, int step, unsigned* grid_tiles, double* shift);
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

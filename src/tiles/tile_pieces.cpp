@@ -10,7 +10,7 @@
 #include "simplify/simplify.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 VertexTriangles vertex_triangles(const Mesh& mesh) {
   VertexTriangles r;
@@ -167,5 +167,5 @@ Mesh merge_pieces(const std::vector<TilePiece>& pieces, const Mesh& like, std::v
   return out;
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

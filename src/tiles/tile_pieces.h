@@ -7,7 +7,7 @@
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // One tile: what the per-tile step needs, and all it needs (an out-of-core driver can
 // build it from the tile's triangles and the 1-ring around them).
@@ -54,5 +54,5 @@ TilePiece simplify_tile(const TilePiece& tile, const std::vector<double>* weight
 // come from `like`.
 Mesh merge_pieces(const std::vector<TilePiece>& pieces, const Mesh& like, std::vector<uint32_t>* ids);
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

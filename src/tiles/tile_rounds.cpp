@@ -1,7 +1,7 @@
 #include "tiles/tile_rounds.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 void run_rounds(TilePasses& passes, const BoundingBox& box, unsigned tiles, uint64_t target) {
   for (uint64_t now = passes.triangles(); now > target; now = passes.triangles()) {
@@ -21,5 +21,5 @@ void run_rounds(TilePasses& passes, const BoundingBox& box, unsigned tiles, uint
   }
 }
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal

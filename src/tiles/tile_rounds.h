@@ -10,7 +10,7 @@
 #include "tiles/tile_pass.h"
 
 namespace meshsal {
-namespace simplify_detail {
+namespace detail {
 
 // One driver's passes over its mesh.
 class TilePasses {
@@ -29,5 +29,5 @@ class TilePasses {
 // pass on `tiles` tiles over `box`, then the strips along its cuts (strip_grid).
 void run_rounds(TilePasses& passes, const BoundingBox& box, unsigned tiles, uint64_t target);
 
-}  // namespace simplify_detail
+}  // namespace detail
 }  // namespace meshsal
