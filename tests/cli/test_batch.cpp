@@ -7,6 +7,7 @@
 #include "json_check.h"
 #include "saliency/saliency.h"
 #include "test_batch_util.h"
+#include "test_util.h"
 
 using namespace meshsal;
 using namespace meshsal_test;
@@ -212,7 +213,7 @@ TEST_CASE("batch: output names stay distinct when inputs share a name", "[batch]
 
 TEST_CASE("batch: on a terminal a progress line shows models done, the current one and the time left", "[batch]") {
   if (std::system("command -v script > /dev/null 2>&1") != 0) {
-    WARN("skipped: script(1) (bsdutils) is missing: no terminal to test the progress line on");
+    meshsal_test::skip_case("script(1) (bsdutils) is missing: no terminal to test the progress line on");
     return;
   }
   const fs::path dir = batch_scratch("progress");

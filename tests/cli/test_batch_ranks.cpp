@@ -7,7 +7,7 @@
 #include "cli/batch_ranks.h"
 #include "cli/mpi_world.h"
 
-using meshsal_cli::ModelResult;
+using meshsal::cli::ModelResult;
 
 TEST_CASE("batch ranks: results survive the trip as bytes, cut bytes are refused", "[batch]") {
   ModelResult a;
@@ -22,8 +22,8 @@ TEST_CASE("batch ranks: results survive the trip as bytes, cut bytes are refused
   b.index = 8;
   b.status = "failed";
   b.error = "b.obj: line 3: bad";
-  const std::vector<uint8_t> bytes = meshsal_cli::pack_results({a, b});
-  const std::vector<ModelResult> back = meshsal_cli::unpack_results(bytes);
+  const std::vector<uint8_t> bytes = meshsal::cli::pack_results({a, b});
+  const std::vector<ModelResult> back = meshsal::cli::unpack_results(bytes);
   REQUIRE(back.size() == 2);
   CHECK(back[0].index == 7);
   CHECK(back[0].status == "done");
@@ -35,11 +35,11 @@ TEST_CASE("batch ranks: results survive the trip as bytes, cut bytes are refused
   CHECK(back[1].status == "failed");
   CHECK(back[1].error == b.error);
   CHECK_FALSE(back[1].has_view);
-  CHECK(meshsal_cli::unpack_results(meshsal_cli::pack_results({})).empty());
+  CHECK(meshsal::cli::unpack_results(meshsal::cli::pack_results({})).empty());
   for (size_t cut : {size_t(1), size_t(9), bytes.size() / 2, bytes.size() - 1}) {
     INFO(cut);
     const std::vector<uint8_t> part(bytes.begin(), bytes.begin() + long(cut));
-    CHECK_THROWS_AS(meshsal_cli::unpack_results(part), std::runtime_error);
+    CHECK_THROWS_AS(meshsal::cli::unpack_results(part), std::runtime_error);
   }
 }
 
@@ -61,7 +61,7 @@ TEST_CASE("batch ranks: without mpirun one inactive rank, and the collectives gi
   ModelResult r;
   r.index = 4;
   r.status = "done";
-  const std::vector<ModelResult> all = meshsal_cli::gather_results({r});
+  const std::vector<ModelResult> all = meshsal::cli::gather_results({r});
   REQUIRE(all.size() == 1);
   CHECK(all[0].index == 4);
   mpi_stop();

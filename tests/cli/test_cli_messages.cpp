@@ -128,7 +128,7 @@ TEST_CASE("cli compare: --saliency-from like the other commands", "[cli]") {
 // their stages on stderr like the other long commands; through a pipe they stay silent.
 TEST_CASE("cli: viewpoint and compare show progress on a terminal", "[cli]") {
   if (std::system("command -v script > /dev/null 2>&1") != 0) {
-    WARN("skipped: util-linux `script` is not installed");
+    meshsal_test::skip_case("util-linux `script` is not installed");
     return;
   }
   meshsal_test::TempDir dir;

@@ -6,8 +6,8 @@
 
 #include "cli/json_string.h"
 
-using meshsal_cli::json_string;
-using meshsal_cli::printable;
+using meshsal::cli::json_string;
+using meshsal::cli::printable;
 
 TEST_CASE("json_string: quotes, controls and bytes that are not UTF-8 are escaped", "[cli]") {
   CHECK(json_string("plain/path.obj") == "\"plain/path.obj\"");

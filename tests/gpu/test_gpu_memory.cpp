@@ -11,6 +11,7 @@
 
 #include "gpu/gpu_saliency.h"
 #include "test_gpu_selftest.h"
+#include "test_util.h"
 #include "gpu/gpu_visibility.h"
 #include "saliency/saliency.h"
 #include "cli/synthetic.h"
@@ -55,7 +56,7 @@ TEST_CASE("forced staging: buffers are unmapped and transfers go through the sta
 TEST_CASE("unified memory is mapped, with no staging copies", "[gpu]") {
   vk::Context ctx(-1, true);
   if (!ctx.info.unified_memory) {
-    WARN("skipped: the device has no unified memory");
+    meshsal_test::skip_case("the device has no unified memory");
     return;
   }
   ctx.use_staging = false;

@@ -34,7 +34,7 @@ size_t bit_differences(const std::vector<double>& a, const std::vector<double>& 
 // Saliency (curvature, raw maps, S and Sm) on both paths, compared bit for bit.
 void check_paths_agree(const Mesh& mesh, Method method, std::vector<double> scales) {
   if (!cpu_avx2_available()) {
-    WARN("skipped: no AVX2+FMA on this CPU (or not an x86-64 build): only the baseline path exists");
+    meshsal_test::skip_case("no AVX2+FMA on this CPU (or not an x86-64 build): only the baseline path exists");
     return;
   }
   SaliencyOptions o;

@@ -10,7 +10,7 @@
 
 #include "simplify/edge_queue.h"
 
-using namespace meshsal::simplify_detail;
+using namespace meshsal::detail;
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "simplify/attribute_carrier.h"
 
 using namespace meshsal;
-using simplify_detail::AttributeCarrier;
+using detail::AttributeCarrier;
 
 namespace {
 

@@ -291,13 +291,13 @@ std::vector<Case> test_meshes() {
 const char* name(oracle::Verdict v) {
   return v == oracle::Verdict::Ok ? "ok" : v == oracle::Verdict::NotEdge ? "not an edge" : "refused";
 }
-oracle::Verdict verdict(simplify_detail::Check c) {
-  using simplify_detail::Check;
+oracle::Verdict verdict(detail::Check c) {
+  using detail::Check;
   return c == Check::Ok ? oracle::Verdict::Ok : c == Check::NotEdge ? oracle::Verdict::NotEdge : oracle::Verdict::Refused;
 }
 
 // The oracle's view of the simplifier's state: live triangles, positions, groups.
-oracle::Surface surface_of(const simplify_detail::State& s, const Mesh& in, double min_cos) {
+oracle::Surface surface_of(const detail::State& s, const Mesh& in, double min_cos) {
   oracle::Surface o;
   for (size_t t = 0; t < s.fans.triangle_count(); ++t)
     if (s.fans.live[t])
@@ -332,7 +332,7 @@ TEST_CASE("collapse check agrees with a set-based oracle on random collapses", "
         SimplifyOptions opt;
         opt.target_faces = std::max<size_t>(2, c.mesh.triangle_count() / 8);
         opt.min_normal_cos = min_cos;
-        simplify_detail::State s;
+        detail::State s;
         s.init(c.mesh, opt, nullptr, nullptr);
         for (int step = 0; step < 400 && s.faces > s.target; ++step) {
           const oracle::Surface o = surface_of(s, c.mesh, min_cos);
@@ -381,7 +381,7 @@ TEST_CASE("collapse check agrees with a set-based oracle on random collapses", "
           if (s.both_locked(a, b)) continue;
           double np[3];
           const double cost = s.cost(a, b, np);
-          if (s.check_edge(a, b, np) != simplify_detail::Check::Ok) continue;
+          if (s.check_edge(a, b, np) != detail::Check::Ok) continue;
           uint32_t kept[2], removed[2];
           s.apply(a, b, np, cost, kept, removed);
         }

@@ -7,7 +7,7 @@
 
 #include "simplify/collapse_queue.h"
 
-using namespace meshsal::simplify_detail;
+using namespace meshsal::detail;
 
 namespace {
 

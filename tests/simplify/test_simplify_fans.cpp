@@ -11,7 +11,7 @@
 #include "simplify/triangle_fans.h"
 
 using namespace meshsal;
-using simplify_detail::TriangleFans;
+using detail::TriangleFans;
 
 namespace {
 

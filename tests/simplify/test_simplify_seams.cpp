@@ -9,8 +9,8 @@
 #include "simplify/triangle_fans.h"
 
 using namespace meshsal;
-using simplify_detail::SeamGroups;
-using simplify_detail::TriangleFans;
+using detail::SeamGroups;
+using detail::TriangleFans;
 
 namespace {
 
@@ -130,9 +130,9 @@ TEST_CASE("seam groups: position_vertex of the output", "[simplify]") {
   in.position_vertex = {0, 1, 0, 3, 1};
   Mesh out;
   // Survivors 1, 2, 4 (input ids): 2 is 0's twin with 0 gone, 4 is 1's twin.
-  simplify_detail::write_position_vertex(in, {1, 2, 4}, &out);
+  detail::write_position_vertex(in, {1, 2, 4}, &out);
   CHECK(out.position_vertex == std::vector<uint32_t>{0, 1, 0});
   // No group kept two members: no position_vertex at all.
-  simplify_detail::write_position_vertex(in, {1, 2, 3}, &out);
+  detail::write_position_vertex(in, {1, 2, 3}, &out);
   CHECK(out.position_vertex.empty());
 }

@@ -12,7 +12,7 @@
 namespace meshsal_test {
 
 
-inline bool json_valid(const std::string& text) { return meshsal_cli::is_json(text); }
+inline bool json_valid(const std::string& text) { return meshsal::cli::is_json(text); }
 
 // The number after the first "KEY": in `text`; NaN when absent.
 inline double json_number(const std::string& text, const std::string& key) {

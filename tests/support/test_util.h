@@ -49,6 +49,17 @@ inline std::vector<std::string>& missing_data() {
   return missing;
 }
 
+// Why the running test case (or a part of it) cannot run on this machine: a tool, a CPU
+// feature, a device, root. The listener in test_main.cpp prints "SKIPPED: not run here:
+// <reason>" at the end of a case with no failures, and ctest reports the case as skipped
+// (SKIP_REGULAR_EXPRESSION, CMakeLists.txt), not passed. The caller returns, or leaves out
+// the part that cannot run.
+inline std::vector<std::string>& skip_reasons() {
+  static std::vector<std::string> reasons;
+  return reasons;
+}
+inline void skip_case(const std::string& reason) { skip_reasons().push_back(reason); }
+
 // Path of a mesh in ../shared/data/meshes, or "" if it is absent: recorded as a skip, or a
 // failure under MESHSAL_REQUIRE_DATA=1. The caller returns (MESHSAL_REQUIRE_MESH) or, in a
 // loop over meshes, goes on to the next one (MESHSAL_MESH_OR_CONTINUE).
