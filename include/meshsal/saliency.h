@@ -43,6 +43,9 @@ constexpr double kAutoPairBudget = 2e9;  // neighbour pairs (its time: docs/benc
 
 class TileExchange;  // processes that share one tiled computation (tiles.h)
 
+// The most scales SaliencyOptions::scales may hold (every front end's --scales and scales=).
+constexpr size_t kMaxScaleCount = 16;
+
 struct SaliencyOptions {
   // Limits (Error otherwise): eps_frac in (0, 0.1], 1..16 scales each in (0, 100], and
   // 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the bbox diagonal).

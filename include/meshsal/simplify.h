@@ -185,6 +185,9 @@ Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
                             const std::vector<double>* saliency = nullptr,
                             SimplifyReport* report = nullptr, double* alpha_out = nullptr);
 
+// The most levels one chain of levels of detail may have (simplify_lod, --lod, lod=).
+constexpr size_t kMaxLodLevels = 16;
+
 // One level of a chain of levels of detail (simplify_lod).
 struct LodLevel {
   Mesh mesh;                     // the level, attributes and materials carried

@@ -169,7 +169,7 @@ std::vector<double> scales_from(const py::handle& scales) {
   if (py::isinstance<py::str>(scales)) return meshsal::parse_scales(scales.cast<std::string>());
   // More than the library's 16 are read only to be refused by its check.
   std::vector<double> out;
-  for (const py::object& s : sequence_items(scales, "scales", "a sequence of numbers or a str such as '2,3,4,5,6'", 16))
+  for (const py::object& s : sequence_items(scales, "scales", "a sequence of numbers or a str such as '2,3,4,5,6'", meshsal::kMaxScaleCount))
     out.push_back(number_arg(s, "scales"));
   return out;
 }

@@ -28,8 +28,9 @@ meshsal::RequestResult run_in_python_terms(const meshsal::Request& request) {
 std::vector<meshsal::SimplifyOptions> lod_levels(const py::object& lod) {
   if (py::isinstance<py::str>(lod)) return meshsal::parse_lod_levels(lod.cast<std::string>());
   const std::vector<py::object> items =
-      sequence_items(lod, "lod", "a list of ratios (float) and face counts (int), or a str such as '0.5,0.2'", 16);
-  if (items.empty() || items.size() > 16) throw py::value_error("lod must list 1 to 16 levels");
+      sequence_items(lod, "lod", "a list of ratios (float) and face counts (int), or a str such as '0.5,0.2'", meshsal::kMaxLodLevels);
+  if (items.empty() || items.size() > meshsal::kMaxLodLevels)
+    throw py::value_error("lod must list 1 to " + std::to_string(meshsal::kMaxLodLevels) + " levels");
   std::vector<meshsal::SimplifyOptions> levels;
   for (const py::object& item : items) {
     meshsal::SimplifyOptions o;

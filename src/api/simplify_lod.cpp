@@ -21,10 +21,8 @@ namespace {
 // The attribute that carries S from level to level: a name no file gives.
 const char* const kCarriedSaliency = "\x01meshsal lod saliency";
 
-constexpr size_t kMaxLodLevels = 16;
-
 // One kind of level throughout (a ratio's faces and a count compare only once the mesh is
-// read), each fewer than the one before, at most 16: what parse_lod_levels reads and every
+// read), each fewer than the one before, at most kMaxLodLevels: what parse_lod_levels reads and every
 // chain simplify_lod takes, so that a bad list fails before the input is read.
 void check_lod_levels(const std::vector<SimplifyOptions>& levels) {
   if (levels.empty()) throw Error("lod: no level given");

@@ -24,12 +24,11 @@ std::vector<size_t> fast_scale_order(const std::vector<double>& scales);
 // The distinct sigmas (in eps units) the filter needs for these scales: each k and 2k, sorted.
 std::vector<double> filter_sigma_units(const std::vector<double>& scales);
 
-// Limits of the options: eps_frac in (0, kMaxEpsFrac], 1..kMaxScaleCount scales each in
+// Limits of the options: eps_frac in (0, kMaxEpsFrac], 1..kMaxScaleCount (meshsal/saliency.h) scales each in
 // (0, kMaxScale], and 2 x largest scale x eps_frac <= 1 (the widest Gaussian at most the
 // bounding-box diagonal).
 constexpr double kMaxEpsFrac = 0.1;
 constexpr double kMaxScale = 100;
-constexpr size_t kMaxScaleCount = 16;
 constexpr unsigned kMaxTiles = 64;  // SaliencyOptions::tiles
 
 // Throws Error when options break the limits above (compute_saliency* call it).
