@@ -125,6 +125,15 @@ SaliencyResult compute_saliency(const float* positions, size_t vertex_count,
                                 const uint32_t* indices, size_t index_count,
                                 const SaliencyOptions& options);
 
+// S over the mesh points of `result` (is_point): how many, min, mean, max and percentiles
+// (nearest rank: the smallest value with at least p% of the points at or below it); all 0
+// without points. What every front end reports of a saliency run.
+struct SaliencyStats {
+  size_t points = 0;
+  double min = 0, mean = 0, max = 0, p10 = 0, p50 = 0, p90 = 0, p99 = 0;
+};
+SaliencyStats saliency_stats(const SaliencyResult& result);
+
 // The saliency output of `meshsal saliency`: S of `result` (computed for `mesh`) written
 // with the mesh in the format the name gives (write_saliency_ply, write_gltf, write_mesh),
 // and with dump_scales its curvature and raw maps beside it (curvature, saliency_raw_0..;

@@ -97,22 +97,16 @@ py::dict saliency_file(const py::object& input, const py::object& output, const 
     d["stages"] = stages_dict(o.stages);
   } else {
     const meshsal::SaliencyResult& s = res.saliency;
-    size_t points = 0;
-    double lo = 0, hi = 0, sum = 0;
-    for (size_t v = 0; v < s.saliency.size(); ++v)
-      if (s.is_point[v]) {
-        lo = points ? std::min(lo, s.saliency[v]) : s.saliency[v], hi = points ? std::max(hi, s.saliency[v]) : s.saliency[v];
-        sum += s.saliency[v], ++points;
-      }
+    const meshsal::SaliencyStats st = meshsal::saliency_stats(s);
     d["vertices"] = res.mesh.vertex_count();
-    d["points"] = points;
+    d["points"] = st.points;
     d["faces"] = res.mesh.triangle_count();
     d["tiles"] = s.tiles;
     d["eps"] = s.eps;
     d["pairs"] = s.pairs;
-    d["saliency_min"] = lo;
-    d["saliency_mean"] = points ? sum / double(points) : 0.0;
-    d["saliency_max"] = hi;
+    d["saliency_min"] = st.min;
+    d["saliency_mean"] = st.mean;
+    d["saliency_max"] = st.max;
     d["device"] = s.backend_name;
     d["stages"] = stages_dict(s.stages);
   }

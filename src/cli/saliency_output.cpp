@@ -8,7 +8,6 @@
 
 #include "command.h"
 #include "json_object.h"
-#include "core/kth_smallest.h"
 #include "core/mesh_points.h"
 #include "io/colormap.h"
 #include "meshsal/meshsal.h"
@@ -17,34 +16,9 @@ namespace meshsal::cli {
 
 using namespace meshsal;
 
-SaliencyStats saliency_stats(const SaliencyResult& r) {
-  std::vector<double> s;
-  for (size_t v = 0; v < r.saliency.size(); ++v)
-    if (v < r.is_point.size() && r.is_point[v]) s.push_back(r.saliency[v]);
-  SaliencyStats st;
-  if (s.empty()) return st;
-  double sum = 0;
-  for (double x : s) sum += x;
-  // Nearest rank: the smallest value with at least p% of the points at or below it.
-  auto rank = [&](double p) {
-    const size_t k = static_cast<size_t>(std::ceil(p / 100.0 * double(s.size())));
-    return std::min(s.size() - 1, k == 0 ? 0 : k - 1);
-  };
-  const std::vector<double> q = kth_smallest(s, {0, rank(10), rank(50), rank(90), rank(99), s.size() - 1});
-  st.min = q[0];
-  st.max = q[5];
-  st.mean = sum / double(s.size());
-  st.p10 = q[1];
-  st.p50 = q[2];
-  st.p90 = q[3];
-  st.p99 = q[4];
-  return st;
-}
-
 JsonObject saliency_json(const std::string& input, const std::string& output, const Mesh& mesh,
                          const SaliencyResult& r, double load_seconds) {
-  size_t points = 0;
-  for (uint8_t f : r.is_point) points += f;
+  const SaliencyStats st = saliency_stats(r);
   JsonObject stages;
   double total = 0;
   for (const StageTime& s : r.stages) {
@@ -54,12 +28,11 @@ JsonObject saliency_json(const std::string& input, const std::string& output, co
     stages.number(key, s.seconds);
     total += s.seconds;
   }
-  const SaliencyStats st = saliency_stats(r);
   JsonObject stats;
   stats.number("min", st.min).number("mean", st.mean).number("max", st.max).number("p10", st.p10)
       .number("p50", st.p50).number("p90", st.p90).number("p99", st.p99);
   JsonObject j;
-  j.text("mesh", input).text("output", output).count("vertices", mesh.vertex_count()).count("points", points)
+  j.text("mesh", input).text("output", output).count("vertices", mesh.vertex_count()).count("points", st.points)
       .count("faces", mesh.triangle_count()).number("eps", r.eps).text("device", r.backend_name)
       .text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
       .number("read_seconds", load_seconds).number("seconds", total).object("stages", stages)
@@ -96,9 +69,8 @@ void print_saliency_json(const std::string& input, const std::string& output, co
 }
 
 void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double load_seconds) {
-  size_t points = 0;
-  for (uint8_t f : r.is_point) points += f;
-  std::printf("vertices   %zu (%zu on triangles)\n", mesh.vertex_count(), points);
+  const SaliencyStats st = saliency_stats(r);
+  std::printf("vertices   %zu (%zu on triangles)\n", mesh.vertex_count(), st.points);
   std::printf("faces      %zu triangles\n", mesh.triangle_count());
   std::printf("eps        %.6g\n", r.eps);
   std::printf("backend    %s\n", r.backend_name.c_str());
@@ -114,7 +86,6 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   }
   std::printf("saliency   %8.3f s total, %.3g neighbour pairs, %.3g pairs/s\n", total,
               double(r.pairs), total > 0 ? double(r.pairs) / total : 0.0);
-  const SaliencyStats st = saliency_stats(r);
   std::printf("S          min %g, mean %g, max %g; percentiles 10: %g, 50: %g, 90: %g, 99: %g\n", st.min,
               st.mean, st.max, st.p10, st.p50, st.p90, st.p99);
 }

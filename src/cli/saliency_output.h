@@ -12,12 +12,6 @@ class App;
 
 namespace meshsal::cli {
 
-// Saliency S over the mesh points: min, mean, max and percentiles (nearest rank).
-struct SaliencyStats {
-  double min = 0, mean = 0, max = 0, p10 = 0, p50 = 0, p90 = 0, p99 = 0;
-};
-SaliencyStats saliency_stats(const meshsal::SaliencyResult& result);
-
 // Prints vertices, faces, eps, backend, time per stage, pairs/s and the statistics of S
 // to stdout.
 void print_saliency_summary(const meshsal::Mesh& mesh, const meshsal::SaliencyResult& result,
