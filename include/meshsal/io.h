@@ -71,29 +71,38 @@ struct LoadReport {
 // vertices, numbered in order of first appearance (the count goes to `report`); a binary
 // STL is recognised by its size (84 + 50 n bytes), whatever its header says, and an STL
 // with a non-finite coordinate is refused. The result is validated. Throws Error with a
-// one-line message that names `path` on any problem. If `properties` is given, scalar PLY
-// vertex properties are returned there. Only regular files and FIFOs are read (devices
-// such as /dev/zero are refused).
-Mesh load_mesh(const std::string& path, VertexProperties* properties = nullptr,
-               const LoadOptions& options = {}, LoadReport* report = nullptr);
+// one-line message that names `path` on any problem. Only regular files and FIFOs are read
+// (devices such as /dev/zero are refused).
+Mesh load_mesh(const std::string& path, const LoadOptions& options = {});
 
-// The same from bytes in memory: `name` picks the format by its extension, as a path
+// What read_mesh returns: the mesh and what else the file told.
+struct LoadedMesh {
+  Mesh mesh;
+  // A PLY's scalar vertex properties besides x,y,z (e.g. "quality"), whatever
+  // LoadOptions::attributes says; empty for the other formats.
+  VertexProperties properties;
+  LoadReport report;
+};
+
+// load_mesh with the file's scalar properties and the report of what loading did.
+LoadedMesh read_mesh(const std::string& path, const LoadOptions& options = {});
+
+// The same two from bytes in memory: `name` picks the format by its extension, as a path
 // does, and starts every error message.
-Mesh load_mesh_bytes(std::string_view bytes, const std::string& name,
-                     VertexProperties* properties = nullptr, const LoadOptions& options = {},
-                     LoadReport* report = nullptr);
+Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options = {});
+LoadedMesh read_mesh_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options = {});
 
 struct PlyFloatProperty {
   std::string name;
   const std::vector<double>* values;  // one per vertex, written as float
 };
 
-// Writes binary little-endian PLY: positions, the given float properties, optional uchar
-// red/green/blue (3 per vertex) and the triangles. Written to a fresh temporary file in the
+// Writes binary little-endian PLY: positions, the given float properties, uchar
+// red/green/blue when `rgb` is not empty (3 per vertex) and the triangles. Written to a fresh temporary file in the
 // same folder and renamed, so a failure never leaves a half-written file in place.
 void write_ply(const std::string& path, const Mesh& mesh,
                const std::vector<PlyFloatProperty>& properties,
-               const std::vector<uint8_t>* rgb = nullptr);
+               const std::vector<uint8_t>& rgb = {});
 
 // Writes OBJ (v and f lines), the same atomic way.
 void write_obj(const std::string& path, const Mesh& mesh);
@@ -102,11 +111,11 @@ void write_obj(const std::string& path, const Mesh& mesh);
 // property quality = S, then `extra` (e.g. curvature and the raw maps of --dump-scales), and
 // red/green/blue = the colour scale of S over the mesh points (the pictures' scale:
 // minimum..maximum of S, square-root position). The mesh points are `is_point` when given
-// (SaliencyResult::is_point, one per vertex), else the vertices a triangle uses. The mesh's
+// (SaliencyResult::is_point, one per vertex) when not empty, else the vertices a triangle uses. The mesh's
 // own attributes come before them, unless one of these replaces them.
 void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
                         const std::vector<PlyFloatProperty>& extra = {},
-                        const std::vector<uint8_t>* is_point = nullptr);
+                        const std::vector<uint8_t>& is_point = {});
 
 struct ColorRange;  // the pictures' colour scale (view.h)
 
@@ -139,8 +148,8 @@ struct GltfLevel {
 // survey coordinates keep their precision. The levels' meshes should share the frame
 // (levels of one input do); levels[0]'s materials and frame are the file's.
 void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels);
-// One mesh, with its saliency when given.
-void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
+// One mesh, with its saliency when `saliency` is not empty (one value per vertex).
+void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency = {});
 
 // ---- One mesh document, every format -----------------------------------------------------
 // A Mesh is the one document every reader fills and every writer writes. Its per-vertex
@@ -214,9 +223,10 @@ std::vector<std::string> mesh_side_files(const std::string& path, const Mesh& me
 // Writes `mesh` in the format its name gives (mesh_output_format), keeping what the format
 // can hold (above): PLY (write_ply, or write_saliency_ply with S), glTF and GLB
 // (write_gltf), OBJ (write_obj; S as vertex colours), OFF (COFF with S's colours, or the
-// mesh's own), STL (binary; positions only). S given for an STL is an Error naming the
-// formats that keep it, as is an unknown suffix. Atomic as write_ply.
-void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency = nullptr);
+// mesh's own), STL (binary; positions only); S is written when `saliency` is not empty (one
+// value per vertex). S given for an STL is an Error naming the formats that keep it, as is
+// an unknown suffix. Atomic as write_ply.
+void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency = {});
 
 // One file a call is about to write (check_outputs).
 struct OutputFile {

@@ -18,6 +18,10 @@
 //  - Functions are reentrant: calls on different data may run on different threads at the
 //    same time. A result never refers to its inputs (everything returned is owned by value).
 //  - Results do not depend on the number of threads.
+//  - Options in, result out: a function takes its settings as an options struct and returns
+//    what it computes, as a struct when it is more than one thing (LoadedMesh, Simplified);
+//    no result comes back through a pointer argument. An optional per-vertex input is a
+//    vector passed empty when absent (never a null pointer).
 // The method's fixed choices are documented in docs/method.md of the repository.
 #pragma once
 
@@ -33,5 +37,5 @@
 #include "meshsal/request.h"   // Request and run_request
 
 // The version: CMake's project(VERSION) is the one source; the build checks that these agree.
-#define MESHSAL_VERSION 300  // major * 10000 + minor * 100 + patch
-#define MESHSAL_VERSION_STRING "0.3.0"
+#define MESHSAL_VERSION 400  // major * 10000 + minor * 100 + patch
+#define MESHSAL_VERSION_STRING "0.4.0"

@@ -68,10 +68,9 @@ struct Request {
   bool dump_scales = false;
   // simplified_output: the mesh simplified toward `simplify`'s target (faces, ratio or
   // error), its attributes and materials carried, S carried as a PLY's `quality` or a
-  // glTF's _SALIENCY where the format keeps it. tiles > 1: simplify_mesh_tiled.
+  // glTF's _SALIENCY where the format keeps it. simplify.tiles > 1: simplify_mesh_tiled.
   std::string simplified_output;
   SimplifyOptions simplify;
-  unsigned tiles = 0;
   // lod_output: a chain of levels of detail, `lod` (parse_lod_levels), S computed once and
   // carried (write_lod: one glTF with MSFT_lod, or a file per level).
   std::string lod_output;

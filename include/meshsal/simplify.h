@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct SimplifyOptions {
   // Vertices on an open border (or a non-manifold edge) are neither moved nor removed:
   // the border keeps its exact vertices and positions.
   bool lock_border = false;
+  // simplify_mesh_tiled and simplify_file: cubic tiles along the longest axis (tiles.h);
+  // 0 or 1: one tile, the whole mesh. simplify_mesh itself does not tile and refuses more.
+  unsigned tiles = 0;
   const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
 };
 
@@ -69,6 +73,13 @@ struct SimplifyReport {
   std::vector<uint32_t> vertex_origin; // output vertex -> the input vertex it survived as
 };
 
+// What simplify_mesh (and the other simplifiers) return.
+struct Simplified {
+  Mesh mesh;              // the simplified mesh, attributes and materials carried
+  SimplifyReport report;  // what the simplification did
+  double alpha = 0;       // simplify_with_saliency: the weights' alpha (SaliencyWeights); else 0
+};
+
 // True when `options` ask for at least `face_count` faces (target_faces >= face_count, or
 // no target_faces and ratio 1): simplify_mesh and simplify_with_saliency then return the
 // mesh unchanged (SimplifyReport::unchanged, as meshoptimizer does), so that a script over
@@ -84,16 +95,15 @@ bool simplify_keeps_mesh(const SimplifyOptions& options, size_t face_count);
 // collapse onto one keeps it in place, and a seam edge between two positions with one twin
 // each side collapses along the seam on both sides at once; so a UV seam stays closed and
 // every triangle's texture coordinates come from one side. With lock_border, border
-// vertices (seam vertices included) are neither moved nor removed. vertex_weights (may be null): one weight W >= 0 per input vertex; each
+// vertices (seam vertices included) are neither moved nor removed. vertex_weights (empty: none): one weight W >= 0 per input vertex; each
 // vertex quadric is multiplied by W once before any collapse (the paper's section 4; build
 // W with saliency_weights()). The output is manifold and oriented where the input is, never
 // has fewer faces than the target, and has exactly the target when reachable (otherwise
-// report->note says why). Output vertices follow the input order of the survivors. A
+// report.note says why). Output vertices follow the input order of the survivors. A
 // target at or above the face count returns the mesh as it is (simplify_keeps_mesh).
-// Throws Error on a bad target or weights.
-Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
-                   const std::vector<double>* vertex_weights = nullptr,
-                   SimplifyReport* report = nullptr);
+// Throws Error on a bad target or weights, and for options.tiles > 1 (simplify_mesh_tiled).
+Simplified simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>& vertex_weights = {});
 
 // How the smoothed saliency Sm becomes the weights W (docs/method.md, "Weightings").
 enum class WeightCurve {
@@ -136,12 +146,15 @@ constexpr Weighting kDefaultWeighting = Weighting::Balanced;
 // The SaliencyWeightOptions of a named weighting (None: the options are not used).
 SaliencyWeightOptions weight_preset(Weighting weighting);
 
+// What saliency_weights returns.
+struct SaliencyWeights {
+  std::vector<double> weights;  // W per vertex
+  double alpha = 0;             // the alpha_percentile of Sm over the mesh points
+};
+
 // W(v) for every mesh point (is_point != 0) by options.curve (above); 0 for other vertices.
-// alpha is the alpha_percentile of Sm over the mesh points; `alpha_out` receives it.
-std::vector<double> saliency_weights(const std::vector<double>& smoothed,
-                                     const std::vector<uint8_t>& is_point,
-                                     const SaliencyWeightOptions& options,
-                                     double* alpha_out = nullptr);
+SaliencyWeights saliency_weights(const std::vector<double>& smoothed, const std::vector<uint8_t>& is_point,
+                                 const SaliencyWeightOptions& options);
 
 // Smoothed saliency Sm = G(S, 3 eps) over the mesh points, eps = eps_frac * bbox diagonal,
 // with the exact averages.
@@ -168,22 +181,21 @@ struct SimplificationWeights {
 };
 
 // The per-vertex weights W of saliency-guided simplification: saliency (computed with
-// `saliency_options`, or taken from `saliency` when it is not null: one S per vertex),
+// `saliency_options`, or taken from `saliency` when it is not empty: one S per vertex),
 // smoothed to Sm = G(S, 3 eps) with saliency_options.method (smooth_saliency), then
 // saliency_weights(). A mesh split at seams (Mesh::position_vertex) is weighed welded (the
 // twins get their position's values). Every front end (simplify, batch, Python) calls this.
 SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWeightOptions& weight_options,
                                              const SaliencyOptions& saliency_options,
-                                             const std::vector<double>* saliency = nullptr);
+                                             const std::vector<double>& saliency = {});
 
 // Saliency-guided simplification in one call: saliency (computed with `saliency_options`,
-// or taken from `saliency` when it is not null: one S per vertex), smoothed, turned into
-// weights and used by simplify_mesh. `alpha_out` receives alpha.
-Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
-                            const SaliencyWeightOptions& weight_options,
-                            const SaliencyOptions& saliency_options,
-                            const std::vector<double>* saliency = nullptr,
-                            SimplifyReport* report = nullptr, double* alpha_out = nullptr);
+// or taken from `saliency` when it is not empty: one S per vertex), smoothed, turned into
+// weights and used by simplify_mesh; Simplified::alpha is the weights' alpha.
+Simplified simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
+                                  const SaliencyWeightOptions& weight_options,
+                                  const SaliencyOptions& saliency_options,
+                                  const std::vector<double>& saliency = {});
 
 // The most levels one chain of levels of detail may have (simplify_lod, --lod, lod=).
 constexpr size_t kMaxLodLevels = 16;
@@ -204,18 +216,18 @@ struct LodLevel {
 // saliency is computed once on `mesh` (saliency_options; or taken from `saliency`) and
 // carried down the chain as a vertex attribute, interpolated along each collapse; each
 // level is simplified from the level before with weights from S on that mesh
-// (simplification_weights). Without (null), plain quadrics. Simplifying from the level
+// (simplification_weights). Without (nullopt), plain quadrics. Simplifying from the level
 // before measured better than from the input at equal faces (README, "Levels of detail in
 // one run"; docs/benchmarks.md).
 std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyOptions>& levels,
-                                   const SaliencyWeightOptions* weight_options, const SaliencyOptions& saliency_options,
-                                   const std::vector<double>* saliency = nullptr);
+                                   const std::optional<SaliencyWeightOptions>& weight_options,
+                                   const SaliencyOptions& saliency_options, const std::vector<double>& saliency = {});
 
-// Writes a chain: a .glb or .gltf holds `mesh` (with its saliency, may be null) as LOD0 and
+// Writes a chain: a .glb or .gltf holds `mesh` (with its saliency, may be empty) as LOD0 and
 // each level as LOD1.. (write_gltf: one mesh each, linked by MSFT_lod); an .obj or .ply
 // path gets one file per level, lod_level_path(path, 1..) (a PLY with the level's S as
 // `quality`), and `mesh` is not written.
-void write_lod(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency,
+void write_lod(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
                const std::vector<LodLevel>& levels);
 // "dir/out_lod2.obj" for ("dir/out.obj", 2): the file of level `level` of write_lod.
 std::string lod_level_path(const std::string& path, size_t level);
@@ -244,10 +256,10 @@ struct SurfaceComparison {
   size_t forward_samples = 0, backward_samples = 0;
 };
 
-// Point-to-surface distances both ways (BVH). `saliency` (may be null): one value per vertex
+// Point-to-surface distances both ways (BVH). `saliency` (empty: none): one value per vertex
 // of the original; its top salient_fraction of mesh points give salient_error.
 SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified,
-                                   const std::vector<double>* saliency,
+                                   const std::vector<double>& saliency,
                                    const CompareOptions& options = {});
 
 }  // namespace meshsal

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
                               const SaliencyOptions& options, const OutOfCoreOptions& out_of_core);
 
 // simplify_mesh by tiles, for meshes larger than memory (simplify_file runs the same
-// passes on disk). `tiles` cubic tiles along the longest axis of the mesh points' bounding
+// passes on disk). options.tiles cubic tiles along the longest axis of the mesh points' bounding
 // box, the grid anchored at its minimum; each triangle belongs to the tile of its
 // centroid. Rounds, each keeping at most half the faces it starts from: a first pass
 // simplifies every tile alone, the vertices it shares with other tiles pinned (neither
@@ -88,17 +89,17 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
 // simplify_mesh; each pass starts its quadrics afresh from the surface the last one left.
 // Attributes and materials are carried; vertex_origin maps to input vertices, output
 // vertices follow their input order. The face count lands at or above the target
-// (report->note when above): within 1% unless the tiles are small against the output's
+// (report.note when above): within 1% unless the tiles are small against the output's
 // triangles. The RMS error stays near simplify_mesh's while a tile holds many output
 // triangles and grows when tiles are only a few output triangles wide; it takes several
 // times simplify_mesh's time (measured: the README's --tiles table; docs/benchmarks.md).
-// report->error: the largest collapse error, in units of the whole mesh's diagonal; no
+// report.error: the largest collapse error, in units of the whole mesh's diagonal; no
 // collapse sequence. tiles 0 or 1, or a target at or above
 // the face count: simplify_mesh itself. Throws Error as simplify_mesh does, and for tiles >
 // 1024, options.target_error, options.record_collapses or a mesh split at seams
 // (Mesh::position_vertex), which the tiled path does not take.
-Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
-                         const std::vector<double>* vertex_weights = nullptr, SimplifyReport* report = nullptr);
+Simplified simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options,
+                               const std::vector<double>& vertex_weights = {});
 
 struct OutOfCoreSimplifyReport {
   SimplifyReport simplify;        // faces, collapses, error, note (no vertex_origin, no sequence)
@@ -116,8 +117,8 @@ struct OutOfCoreSimplifyReport {
 // (binary PLY; other formats converted once); the saliency (smoothed, method Auto taken as
 // Fast) runs a tile at a time, Sm's percentile and mean are found by streaming, and each
 // pass of the tiled simplifier reads one group of triangles and its guards at a time.
-// weights: the weighting (the Rank curve needs every point's rank and is refused); null:
-// plain quadrics. tiles: at least this many along the longest axis; with a memory limit,
+// weights: the weighting (the Rank curve needs every point's rank and is refused); nullopt:
+// plain quadrics. options.tiles: at least this many along the longest axis (0 taken as 1); with a memory limit,
 // the fewest that fit it (an Error names the smallest workable limit when none does).
 // Writes the bytes that simplify_mesh_tiled with the same tile count, weights from the
 // same saliency (S as `quality`) and write_ply give. Positions and S only: other vertex
@@ -125,8 +126,8 @@ struct OutOfCoreSimplifyReport {
 // and, before any work, for an output as saliency_file() refuses it (not a .ply name, or
 // the input file itself, through a link too).
 OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
-                                      const SimplifyOptions& options, const SaliencyWeightOptions* weights,
-                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& out_of_core,
-                                      unsigned tiles = 1);
+                                      const SimplifyOptions& options,
+                                      const std::optional<SaliencyWeightOptions>& weights,
+                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& out_of_core);
 
 }  // namespace meshsal

@@ -239,16 +239,16 @@ struct RenderStyle {
 
 // The mesh seen from `view` (orthographic, square image framed by the mesh's projected
 // extent in that view, centred), Lambert-shaded, coloured by `score` (one value per vertex,
-// may be null: plain grey) on the colour scale of style.range. Only the mesh: the CLI's
+// empty: plain grey) on the colour scale of style.range. Only the mesh: the CLI's
 // pictures add a title line and a colour bar. Throws Error for a style out of range.
-Image render_view(const Mesh& mesh, const std::vector<double>* score, const ViewAngles& view,
+Image render_view(const Mesh& mesh, const std::vector<double>& score, const ViewAngles& view,
                   const RenderStyle& style = {});
 
 // The same from a camera made by view_camera (or best_viewpoint) for this mesh: the picture
 // of camera.view with camera.up_axis as the up axis (style.up is not read), pixel for pixel
 // that of render_view(mesh, score, camera.view, style with up = camera.up_axis). (Its own
 // name: an overload of render_view would make render_view(mesh, s, {}, style) ambiguous.)
-Image render_camera_view(const Mesh& mesh, const std::vector<double>* score, const ViewCamera& camera,
+Image render_camera_view(const Mesh& mesh, const std::vector<double>& score, const ViewCamera& camera,
                          const RenderStyle& style = {});
 
 // Writes a PNG (atomically, as write_ply). Throws Error naming the file.

@@ -32,7 +32,13 @@ py::object load(const py::object& path_obj, bool properties, bool attributes, co
   meshsal::VertexProperties props;
   try {
     py::gil_scoped_release unlocked;
-    mesh = meshsal::load_mesh(path, properties ? &props : nullptr, options);
+    if (properties) {
+      meshsal::LoadedMesh read = meshsal::read_mesh(path, options);
+      mesh = std::move(read.mesh);
+      props = std::move(read.properties);
+    } else {
+      mesh = meshsal::load_mesh(path, options);
+    }
   } catch (const meshsal::Cancelled&) {
     throw;
   } catch (const meshsal::Error& e) {
@@ -67,7 +73,7 @@ void save(const py::object& path_obj, const py::object& vertices, const py::obje
   if (!saliency.is_none()) s = vertex_values(saliency, mesh.vertex_count(), "saliency");
   try {
     py::gil_scoped_release unlocked;
-    meshsal::write_mesh(path, mesh, s.empty() ? nullptr : &s);
+    meshsal::write_mesh(path, mesh, s);
   } catch (const meshsal::Error& e) {
     raise_file_error(e, path_obj);
   }

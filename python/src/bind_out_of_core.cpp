@@ -143,7 +143,7 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
   // The library's names and presets, as --weights (meshsal.Error for another name).
   r.weighting = meshsal::parse_weighting(weights);
   r.weight_options = meshsal::weight_preset(r.weighting);
-  r.tiles = count_arg(tiles, "tiles");
+  r.simplify.tiles = count_arg(tiles, "tiles");
   r.out_of_core = out_of_core(memory_limit, temp_dir);
   r.input = path_bytes(input);
   if (!saliency_from.is_none()) r.saliency_from = path_bytes(saliency_from);
@@ -188,7 +188,7 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
     d["tile_estimate"] = o.tile_estimate;
     d["stages"] = stages_dict(o.stages);
   } else {
-    d["tiles"] = std::max(1u, r.tiles);
+    d["tiles"] = std::max(1u, r.simplify.tiles);
   }
   d["outputs"] = py::cast(res.outputs);
   for (const std::string& n : res.notes) notices.push_back("note: " + n);

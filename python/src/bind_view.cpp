@@ -178,9 +178,9 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
       use_saliency_device(vo, so);
       vo.optimiser.cancel = so.cancel;
       const meshsal::Viewpoint b = meshsal::best_viewpoint(mesh, score, vo);
-      image = meshsal::render_camera_view(mesh, grey ? nullptr : &score, b.camera, style);
+      image = meshsal::render_camera_view(mesh, grey ? std::vector<double>{} : score, b.camera, style);
     } else {
-      image = meshsal::render_view(mesh, grey ? nullptr : &score, meshsal::ViewAngles{theta / kDeg, phi / kDeg}, style);
+      image = meshsal::render_view(mesh, grey ? std::vector<double>{} : score, meshsal::ViewAngles{theta / kDeg, phi / kDeg}, style);
     }
   }
   const py::ssize_t h = image.height, w = image.width;

@@ -37,8 +37,8 @@ PYBIND11_MODULE(_meshsal, m) {
       PyErr_SetString(error_class, e.what());
     }
   });
-  m.attr("version") = MESHSAL_VERSION;               // 300 for 0.3.0, as the C header's
-  m.attr("__version__") = MESHSAL_VERSION_STRING;   // "0.3.0", the project's one version
+  m.attr("version") = MESHSAL_VERSION;               // 400 for 0.4.0, as the C header's
+  m.attr("__version__") = MESHSAL_VERSION_STRING;   // "0.4.0", the project's one version
   py::options options;
   options.disable_function_signatures();  // each docstring starts with its own signature
   meshsal_py::bind_io(m);

@@ -44,12 +44,12 @@ std::vector<std::string> check_side_files(RequestRun& run, const std::string& pa
   return side;
 }
 
-void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>& saliency) {
   const std::vector<std::string> side = check_side_files(run, path, mesh);
   write_mesh(path, mesh, saliency);
   run.result.outputs.push_back(path);
   run.result.outputs.insert(run.result.outputs.end(), side.begin(), side.end());
-  add_note(run, mesh_output_note(path, mesh, saliency != nullptr));
+  add_note(run, mesh_output_note(path, mesh, !saliency.empty()));
 }
 
 double RequestRun::timer_seconds() const { return timer.seconds(); }

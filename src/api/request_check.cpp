@@ -36,7 +36,7 @@ void check_request(const Request& r) {
   const bool out_of_core = r.out_of_core.memory_limit > 0;
   const bool views = !r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view;
   const SimplifyOptions& s = r.simplify;
-  if (r.tiles > 1 && s.target_error > 0) refuse("--tiles takes --target-faces N or --ratio R, not --target-error");
+  if (r.simplify.tiles > 1 && s.target_error > 0) refuse("--tiles takes --target-faces N or --ratio R, not --target-error");
   const bool lod = !r.lod_output.empty() || (r.simplify_in_memory && !r.lod.empty());
   if (simplifying || (r.simplify_in_memory && !lod)) {
     if (s.target_faces > 0 && s.ratio > 0) refuse("give only one of --target-faces N and --ratio R");
@@ -46,7 +46,7 @@ void check_request(const Request& r) {
     if (r.lod.empty()) refuse("--lod needs at least one level");
     if (!simplifying && has_target(s))
       refuse("--lod names every level: give it without --target-faces, --ratio or --target-error");
-    if (r.tiles > 1 || out_of_core) refuse("--lod runs in memory, in one piece: not with --tiles or --memory-limit");
+    if (r.simplify.tiles > 1 || out_of_core) refuse("--lod runs in memory, in one piece: not with --tiles or --memory-limit");
   }
   if (!r.saliency_from.empty() && r.weighting == Weighting::None && r.saliency_output.empty() && !views)
     refuse("--saliency-from needs --weights saliency or balanced");

@@ -57,8 +57,9 @@ void read_input(RequestRun& run) {
       const std::string format = input_format(r.input);
       LoadOptions o = r.load;
       o.attributes = r.saliency_from_input && (format == ".ply" || format == ".glb" || format == ".gltf");
-      LoadReport report;
-      run.plain_read = load_mesh(r.input, nullptr, o, &report);
+      LoadedMesh read = read_mesh(r.input, o);
+      const LoadReport& report = read.report;
+      run.plain_read = std::move(read.mesh);
       for (const VertexAttribute& a : run.plain_read.attributes) run.input_has_saliency |= a.name == kSaliencyAttribute;
       run.plain_read.attributes.clear();
       run.plain_read.material_library_text.clear();
@@ -77,8 +78,9 @@ void read_input(RequestRun& run) {
       // The input read again with its attributes (a caller gave it read plainly).
       LoadOptions o = r.load;
       o.attributes = true;
-      LoadReport report;
-      run.attributed_read = load_mesh(r.input, nullptr, o, &report);
+      LoadedMesh read = read_mesh(r.input, o);
+      const LoadReport& report = read.report;
+      run.attributed_read = std::move(read.mesh);
       note_read(run, report, run.attributed_read, !run.plain);
       run.result.load = report;
       run.attributed = &run.attributed_read;

@@ -60,7 +60,8 @@ void make_views(RequestRun& run);
 // A mesh written by the request: write_mesh with S (or none), its side files checked
 // first, the file and side files added to result.outputs, and mesh_output_note's note
 // added to result.notes.
-void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh, const std::vector<double>* saliency);
+void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& mesh,
+                        const std::vector<double>& saliency = {});
 
 // The side files of a mesh output (mesh_side_files), checked as its main file was.
 std::vector<std::string> check_side_files(RequestRun& run, const std::string& path, const Mesh& mesh);

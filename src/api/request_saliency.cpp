@@ -102,7 +102,7 @@ void write_saliency(const std::string& path, const Mesh& mesh, const SaliencyRes
       for (size_t i = 0; i < s.raw.size(); ++i) names.push_back("saliency_raw_" + std::to_string(i));
       for (size_t i = 0; i < s.raw.size(); ++i) props.push_back({names[i], &s.raw[i]});
     }
-    return write_saliency_ply(path, mesh, s.saliency, props, &s.is_point);
+    return write_saliency_ply(path, mesh, s.saliency, props, s.is_point);
   }
   Mesh with_maps;
   if (dump_scales) {
@@ -118,7 +118,7 @@ void write_saliency(const std::string& path, const Mesh& mesh, const SaliencyRes
     level.is_point = &s.is_point;
     return write_gltf(path, {level});
   }
-  write_mesh(path, written, &s.saliency);
+  write_mesh(path, written, s.saliency);
 }
 
 void write_saliency_output(RequestRun& run) {
@@ -155,7 +155,7 @@ void write_saliency_output(RequestRun& run) {
       set_vertex_attribute(with_maps, "curvature", s.curvature);
       for (size_t i = 0; i < s.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), s.raw[i]);
     }
-    write_request_mesh(run, path, with_maps, &s.saliency);
+    write_request_mesh(run, path, with_maps, s.saliency);
   }
   run.attributed_s = s.saliency;
   run.attributed_s_device = s.backend_name;

@@ -21,10 +21,10 @@ bool same_vertices(const Mesh& a, const Mesh& b) {
 // simplifier carried (the `quality` attribute) as _SALIENCY and COLOR_0.
 void write_simplified(RequestRun& run, const std::string& path, const Mesh& mesh) {
   const std::string format = mesh_output_format(path);
-  if (format != ".glb" && format != ".gltf") return write_request_mesh(run, path, mesh, nullptr);
+  if (format != ".glb" && format != ".gltf") return write_request_mesh(run, path, mesh);
   Mesh plain = mesh;
   const std::vector<double> s = take_vertex_attribute(plain, kSaliencyAttribute);
-  write_request_mesh(run, path, plain, s.empty() ? nullptr : &s);
+  write_request_mesh(run, path, plain, s);
 }
 
 }  // namespace
@@ -36,9 +36,9 @@ void make_simplified(RequestRun& run) {
   if (!opt.cancel) opt.cancel = r.saliency.cancel;
   if (r.out_of_core.memory_limit > 0) {
     // The tiled simplifier on disk, its own saliency (simplify_file).
-    out.simplify_out_of_core = simplify_file(r.input, r.simplified_output, opt,
-                                             r.weighting == Weighting::None ? nullptr : &r.weight_options, r.saliency,
-                                             r.out_of_core, std::max(1u, r.tiles));
+    std::optional<SaliencyWeightOptions> weights;
+    if (r.weighting != Weighting::None) weights = r.weight_options;
+    out.simplify_out_of_core = simplify_file(r.input, r.simplified_output, opt, weights, r.saliency, r.out_of_core);
     out.simplify = out.simplify_out_of_core.simplify;
     out.alpha = out.simplify_out_of_core.alpha;
     out.outputs.push_back(r.simplified_output);
@@ -49,9 +49,9 @@ void make_simplified(RequestRun& run) {
   // A target at or above the face count keeps the mesh as it is (the library's rule), with
   // no saliency computed for it.
   if (simplify_keeps_mesh(opt, mesh.triangle_count())) {
-    SimplifyReport rep;
-    out.simplified = simplify_mesh(mesh, opt, nullptr, &rep);
-    out.simplify = rep;
+    Simplified kept = simplify_mesh(mesh, opt);
+    out.simplified = std::move(kept.mesh);
+    out.simplify = std::move(kept.report);
     const size_t target = opt.target_faces > 0 ? opt.target_faces : mesh.triangle_count();
     add_note(run, "the target (" + std::to_string(target) + " faces) is at or above the mesh's " +
                       std::to_string(mesh.triangle_count()) + " faces: " +
@@ -71,15 +71,16 @@ void make_simplified(RequestRun& run) {
     if (run.has_plain_s && !run.plain_s.smoothed.empty() && same_vertices(mesh, *run.plain) && mesh.position_vertex.empty()) {
       // S was computed with its Sm on this very mesh: the weights simplification_weights()
       // would compute from it.
-      weights = saliency_weights(run.plain_s.smoothed, referenced_vertices(mesh), r.weight_options, &out.alpha);
+      SaliencyWeights w = saliency_weights(run.plain_s.smoothed, referenced_vertices(mesh), r.weight_options);
+      weights = std::move(w.weights);
+      out.alpha = w.alpha;
       out.weights_device = run.plain_s.backend_name;
       if (carry_s) set_vertex_attribute(mesh, kSaliencyAttribute, run.plain_s.saliency);
     } else {
       std::vector<double> from_file;
-      const bool read = !r.saliency_from.empty() || r.saliency_values;
       if (r.saliency_values) from_file = *r.saliency_values;
       else if (!r.saliency_from.empty()) from_file = load_saliency(r.saliency_from, mesh);
-      SimplificationWeights w = simplification_weights(mesh, r.weight_options, r.saliency, read ? &from_file : nullptr);
+      SimplificationWeights w = simplification_weights(mesh, r.weight_options, r.saliency, from_file);
       weights = std::move(w.weights);
       out.alpha = w.alpha;
       out.weights_device = w.device;
@@ -89,10 +90,10 @@ void make_simplified(RequestRun& run) {
     }
   }
   out.weights_seconds = weights_time.seconds();
-  SimplifyReport rep;
-  const std::vector<double>* w = weights.empty() ? nullptr : &weights;
-  out.simplified = r.tiles > 1 ? simplify_mesh_tiled(mesh, opt, r.tiles, w, &rep) : simplify_mesh(mesh, opt, w, &rep);
-  out.simplify = rep;
+  Simplified made = opt.tiles > 1 ? simplify_mesh_tiled(mesh, opt, weights) : simplify_mesh(mesh, opt, weights);
+  out.simplified = std::move(made.mesh);
+  out.simplify = std::move(made.report);
+  const SimplifyReport& rep = out.simplify;
   if (!r.simplified_output.empty()) write_simplified(run, r.simplified_output, out.simplified);
   if (!rep.reached && (opt.target_faces > 0 || opt.ratio > 0)) add_note(run, rep.note);
   // The input too coarse for its floats: said once (a computed S already said it).
@@ -116,7 +117,9 @@ void make_lod(RequestRun& run) {
   }
   SaliencyOptions so = r.saliency;
   so.raw_maps = false;  // only S is used
-  out.lod = simplify_lod(mesh, levels, weighted ? &r.weight_options : nullptr, so, weighted ? &s : nullptr);
+  std::optional<SaliencyWeightOptions> weights;
+  if (weighted) weights = r.weight_options;
+  out.lod = simplify_lod(mesh, levels, weights, so, s);
   for (size_t i = 0; i < out.lod.size(); ++i)
     if (!out.lod[i].report.reached || out.lod[i].report.unchanged)
       add_note(run, "LOD" + std::to_string(i + 1) + ": " + out.lod[i].report.note);
@@ -135,7 +138,7 @@ void make_lod(RequestRun& run) {
       add_note(run, mesh_output_note(out.lod_files[i], out.lod[i].mesh, false));
     }
   }
-  write_lod(r.lod_output, mesh, weighted ? &s : nullptr, out.lod);
+  write_lod(r.lod_output, mesh, s, out.lod);
   for (size_t i = 0; i < out.lod_files.size(); ++i) {
     out.outputs.push_back(out.lod_files[i]);
     if (i < side.size()) out.outputs.insert(out.outputs.end(), side[i].begin(), side[i].end());

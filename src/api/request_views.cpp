@@ -71,8 +71,8 @@ void make_views(RequestRun& run) {
       out.visible_score = visible.U, out.visible_total = visible.total;
     } else {
       LoadOptions o = r.load;
-      const Mesh plain = load_mesh(r.compare[0], nullptr, o);
-      const Mesh salient = load_mesh(r.compare[1], nullptr, o);
+      const Mesh plain = load_mesh(r.compare[0], o);
+      const Mesh salient = load_mesh(r.compare[1], o);
       // Each panel is labelled with its file's name.
       picture = compare_picture(mesh, shown, plain, salient, out.view, style, name, file_name_of(r.compare[0]),
                                 file_name_of(r.compare[1]));

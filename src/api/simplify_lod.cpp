@@ -86,8 +86,8 @@ std::vector<SimplifyOptions> parse_lod_levels(const std::string& text) {
 }
 
 std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyOptions>& levels,
-                                   const SaliencyWeightOptions* weight_options, const SaliencyOptions& saliency_options,
-                                   const std::vector<double>* saliency) {
+                                   const std::optional<SaliencyWeightOptions>& weight_options,
+                                   const SaliencyOptions& saliency_options, const std::vector<double>& saliency) {
   const CancelScope cancel(saliency_options.cancel);
   check_lod_levels(levels);
   // Every level's face target: a ratio's of the input's faces (none left is an error, as
@@ -99,11 +99,11 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
   Mesh current = mesh;
   std::vector<double> s;
   if (weight_options) {
-    if (saliency) {
-      if (saliency->size() != mesh.vertex_count())
-        throw Error("saliency has " + std::to_string(saliency->size()) + " values, the mesh has " +
+    if (!saliency.empty()) {
+      if (saliency.size() != mesh.vertex_count())
+        throw Error("saliency has " + std::to_string(saliency.size()) + " values, the mesh has " +
                     std::to_string(mesh.vertex_count()) + " vertices");
-      s = *saliency;
+      s = saliency;
     } else {
       SaliencyOptions so = saliency_options;
       so.raw_maps = false;  // only S is carried down the chain
@@ -117,19 +117,25 @@ std::vector<LodLevel> simplify_lod(const Mesh& mesh, const std::vector<SimplifyO
     o.ratio = 0;
     LodLevel level;
     if (simplify_keeps_mesh(o, current.triangle_count())) {
-      level.mesh = simplify_mesh(current, o, nullptr, &level.report);  // unchanged, as plain simplify
+      Simplified r = simplify_mesh(current, o);  // unchanged, as plain simplify
+      level.mesh = std::move(r.mesh);
+      level.report = std::move(r.report);
       level.saliency = s;
     } else if (weight_options) {
       // This level's weights from S on the mesh it starts from (smoothed there, as
       // --saliency-from does), S carried to its output.
-      const SimplificationWeights w = simplification_weights(current, *weight_options, saliency_options, &s);
+      const SimplificationWeights w = simplification_weights(current, *weight_options, saliency_options, s);
       set_vertex_attribute(current, kCarriedSaliency, s);
-      level.mesh = simplify_mesh(current, o, &w.weights, &level.report);
+      Simplified r = simplify_mesh(current, o, w.weights);
+      level.mesh = std::move(r.mesh);
+      level.report = std::move(r.report);
       level.saliency = take_vertex_attribute(level.mesh, kCarriedSaliency);
       take_vertex_attribute(current, kCarriedSaliency);
       s = level.saliency;
     } else {
-      level.mesh = simplify_mesh(current, o, nullptr, &level.report);
+      Simplified r = simplify_mesh(current, o);
+      level.mesh = std::move(r.mesh);
+      level.report = std::move(r.report);
     }
     current = level.mesh;
     out.push_back(std::move(level));

@@ -14,7 +14,7 @@ namespace meshsal {
 
 SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWeightOptions& weight_options,
                                              const SaliencyOptions& saliency_options,
-                                             const std::vector<double>* saliency) {
+                                             const std::vector<double>& saliency) {
   const CancelScope cancel(saliency_options.cancel);
   // Vertices split at attribute seams: weigh the position-welded surface, then copy.
   if (!mesh.position_vertex.empty()) {
@@ -26,12 +26,12 @@ SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWei
   }
   SimplificationWeights out;
   std::vector<double> smoothed;
-  if (saliency) {
-    if (saliency->size() != mesh.vertex_count())
-      throw Error("saliency has " + std::to_string(saliency->size()) + " values, the mesh has " +
+  if (!saliency.empty()) {
+    if (saliency.size() != mesh.vertex_count())
+      throw Error("saliency has " + std::to_string(saliency.size()) + " values, the mesh has " +
                   std::to_string(mesh.vertex_count()) + " vertices");
-    smoothed = smooth_saliency(mesh, *saliency, saliency_options);
-    out.saliency = *saliency;
+    smoothed = smooth_saliency(mesh, saliency, saliency_options);
+    out.saliency = saliency;
   } else {
     SaliencyOptions so = saliency_options;
     so.smoothed = true;
@@ -41,7 +41,9 @@ SimplificationWeights simplification_weights(const Mesh& mesh, const SaliencyWei
     out.device = r.backend_name;
     out.saliency = std::move(r.saliency);
   }
-  out.weights = saliency_weights(smoothed, referenced_vertices(mesh), weight_options, &out.alpha);
+  SaliencyWeights w = saliency_weights(smoothed, referenced_vertices(mesh), weight_options);
+  out.weights = std::move(w.weights);
+  out.alpha = w.alpha;
   return out;
 }
 
@@ -59,17 +61,16 @@ std::vector<double> smooth_saliency(const Mesh& mesh, const std::vector<double>&
   return gaussian_filter_fast(mesh, is_point, saliency, {3 * eps}, options.threads)[0];
 }
 
-Mesh simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
-                            const SaliencyWeightOptions& weight_options,
-                            const SaliencyOptions& saliency_options,
-                            const std::vector<double>* saliency, SimplifyReport* report,
-                            double* alpha_out) {
+Simplified simplify_with_saliency(const Mesh& mesh, const SimplifyOptions& options,
+                                  const SaliencyWeightOptions& weight_options,
+                                  const SaliencyOptions& saliency_options, const std::vector<double>& saliency) {
   // The whole mesh asked for: no saliency to compute.
-  if (simplify_keeps_mesh(options, mesh.triangle_count())) return simplify_mesh(mesh, options, nullptr, report);
+  if (simplify_keeps_mesh(options, mesh.triangle_count())) return simplify_mesh(mesh, options);
   const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
   const SimplificationWeights w = simplification_weights(mesh, weight_options, saliency_options, saliency);
-  if (alpha_out) *alpha_out = w.alpha;
-  return simplify_mesh(mesh, options, &w.weights, report);
+  Simplified r = simplify_mesh(mesh, options, w.weights);
+  r.alpha = w.alpha;
+  return r;
 }
 
 }  // namespace meshsal

@@ -82,7 +82,7 @@ ViewPageReport write_view_page(const std::string& path, const Mesh& mesh, const 
     set_vertex_attribute(with_s, "\x01meshsal page saliency", saliency);
     SimplifyOptions so;
     so.target_faces = options.max_faces;
-    shown = simplify_mesh(with_s, so);
+    shown = simplify_mesh(with_s, so).mesh;
     shown_s = take_vertex_attribute(shown, "\x01meshsal page saliency");
     report.simplified = true;
     // A closed surface keeps at least a tetrahedron's 4 faces, and a collapse may be refused

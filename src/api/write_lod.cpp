@@ -13,13 +13,13 @@ std::string lod_level_path(const std::string& path, size_t level) {
   return stem + "_lod" + std::to_string(level) + path.substr(path.size() - format.size());
 }
 
-void write_lod(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency,
+void write_lod(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
                const std::vector<LodLevel>& levels) {
   const std::string format = mesh_output_format(path);
   if (format == ".glb" || format == ".gltf") {
     std::vector<GltfLevel> gl(levels.size() + 1);
     gl[0].mesh = &mesh;
-    gl[0].saliency = saliency;
+    gl[0].saliency = saliency.empty() ? nullptr : &saliency;
     gl[0].name = "LOD0";
     for (size_t i = 0; i < levels.size(); ++i) {
       gl[i + 1].mesh = &levels[i].mesh;

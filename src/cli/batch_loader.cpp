@@ -33,16 +33,16 @@ void ModelLoader::run() {
     m.path = path;
     const meshsal::Timer t;
     try {
-      meshsal::LoadReport report;
-      m.mesh = load_input_mesh(path, nullptr, false, &report, true);  // as `meshsal saliency` reads it
-                                                                        // (but never waits on a pipe)
-      m.welded_corners = report.welded_corners;
+      meshsal::LoadedMesh read = load_input_mesh(path, false, true);  // as `meshsal saliency` reads it
+                                                                       // (but never waits on a pipe)
+      m.mesh = std::move(read.mesh);
+      m.welded_corners = read.report.welded_corners;
       // STL holds no attributes: the same mesh either way. Every other format may (a glTF's
       // UVs and materials, an OFF's colours): read again with them, as `meshsal simplify` does.
       if (attributes_ && mesh_extension(path) != ".stl") {
         m.has_attributed = true;
         try {
-          m.attributed = load_input_mesh(path, nullptr, true, nullptr, true);  // as `meshsal simplify`
+          m.attributed = load_input_mesh(path, true, true).mesh;  // as `meshsal simplify`
         } catch (const std::bad_alloc&) {
           m.attributed = {};
           m.attributed_error = path + ": out of memory while reading";

@@ -303,7 +303,7 @@ int run(const Args& a) {
   const meshsal::Timer wall;
   for (const std::string& p : paths) {
     const meshsal::Timer t0;
-    meshsal::Mesh mesh = meshsal::load_mesh(p, nullptr, load_options());
+    meshsal::Mesh mesh = meshsal::load_mesh(p, load_options());
     std::string model = std::filesystem::path(p).filename().string();
     for (int k = 0; k < a.subdivide; ++k) mesh = meshsal::subdivide_midpoint(mesh);
     if (a.subdivide) model += " /" + std::to_string(a.subdivide);
@@ -311,7 +311,7 @@ int run(const Args& a) {
       // The input of the tiles benchmark (tools/bench_tiles.sh): a mesh larger than the
       // data has, as a binary PLY.
       if (paths.size() != 1) throw UsageError("bench --write-mesh takes one mesh");
-      meshsal::write_ply(a.write_mesh, mesh, {}, nullptr);
+      meshsal::write_ply(a.write_mesh, mesh, {});
       std::printf("wrote %s: %zu vertices, %zu triangles\n", printable(a.write_mesh).c_str(), mesh.vertex_count(),
                   mesh.triangle_count());
       return 0;

@@ -365,7 +365,7 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
   std::vector<std::pair<std::string, double>> sal_times;
   for (const std::string& path : paths) {
     const std::string model = std::filesystem::path(path).filename().string();
-    const Mesh mesh = load_mesh(path, nullptr, meshsal::cli::load_options());
+    const Mesh mesh = load_mesh(path, meshsal::cli::load_options());
     SaliencyOptions so;
     so.cancel = interrupt_flag();
     so.backend = Backend::Cpu;
@@ -373,9 +373,9 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
     so.smoothed = true;
     const Timer ts;
     const SaliencyResult s = compute_saliency(mesh, so);
-    const std::vector<double> w_paper = saliency_weights(s.smoothed, s.is_point, {});
+    const std::vector<double> w_paper = saliency_weights(s.smoothed, s.is_point, {}).weights;
     sal_times.push_back({model, ts.seconds()});
-    const std::vector<double> w_balanced = saliency_weights(s.smoothed, s.is_point, balanced);
+    const std::vector<double> w_balanced = saliency_weights(s.smoothed, s.is_point, balanced).weights;
     CompareOptions co;
     co.cancel = interrupt_flag();
     co.threads = a.threads;
@@ -396,23 +396,23 @@ int run_simplify_benchmark(const SimplifyBenchArgs& a) {
         r.target = target;
         r.faces = out.triangle_count();
         r.seconds = seconds;
-        r.cmp = compare_surfaces(mesh, out, &s.saliency, co);
+        r.cmp = compare_surfaces(mesh, out, s.saliency, co);
         runs.push_back(r);
         return runs.back();
       };
       std::vector<Timed> methods;
-      methods.push_back({Weighting::None, [&] { return simplify_mesh(mesh, opt); }});
-      methods.push_back({Weighting::Saliency, [&] { return simplify_mesh(mesh, opt, &w_paper); }});
-      methods.push_back({Weighting::Balanced, [&] { return simplify_mesh(mesh, opt, &w_balanced); }});
+      methods.push_back({Weighting::None, [&] { return simplify_mesh(mesh, opt).mesh; }});
+      methods.push_back({Weighting::Saliency, [&] { return simplify_mesh(mesh, opt, w_paper).mesh; }});
+      methods.push_back({Weighting::Balanced, [&] { return simplify_mesh(mesh, opt, w_balanced).mesh; }});
 #ifdef MESHSAL_HAVE_MESHOPTIMIZER
       methods.push_back({"meshopt", [&] { return meshopt(mesh, target); }});
 #endif
       best_of_interleaved(a.repeat, methods);
       for (const Timed& m : methods) add(m.method, m.out, m.seconds).weighting = m.weighting;
       for (const SweepPoint& p : sweep) {
-        const std::vector<double> w = saliency_weights(p.raw ? s.saliency : s.smoothed, s.is_point, p.options);
+        const std::vector<double> w = saliency_weights(p.raw ? s.saliency : s.smoothed, s.is_point, p.options).weights;
         const Timer t0;
-        const Mesh out = simplify_mesh(mesh, opt, &w);
+        const Mesh out = simplify_mesh(mesh, opt, w).mesh;
         Run& r = add(p.label, out, t0.seconds());
         r.sweep = true;
         r.curve = curve_name(p.options.curve);

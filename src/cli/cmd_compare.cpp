@@ -56,7 +56,7 @@ int run(const Args& a) {
   co.salient_fraction = a.fraction;
   co.threads = a.text.threads;
   progress.update("comparing surfaces", 0.0);
-  const SurfaceComparison r = compare_surfaces(original, simplified, &s, co);
+  const SurfaceComparison r = compare_surfaces(original, simplified, s, co);
   progress.finish();
   // Every distance in model units and in % of the original's bounding-box diagonal.
   JsonObject j;

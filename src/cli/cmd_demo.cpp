@@ -82,9 +82,9 @@ int run(const Args& a) {
   SimplifyOptions so;
   so.cancel = interrupt_flag();
   so.ratio = 0.04;
-  std::vector<double> weights = saliency_weights(r.smoothed, r.is_point, {});
-  Mesh plain = simplify_mesh(mesh, so);
-  Mesh salient = simplify_mesh(mesh, so, &weights);
+  const std::vector<double> weights = saliency_weights(r.smoothed, r.is_point, {}).weights;
+  const Mesh plain = simplify_mesh(mesh, so).mesh;
+  const Mesh salient = simplify_mesh(mesh, so, weights).mesh;
   write_obj(a.dir + "/simplified_plain.obj", plain);
   write_obj(a.dir + "/simplified_saliency.obj", salient);
   if (human) std::printf("\nsimplified to %zu faces       plain quadrics   saliency-weighted\n",

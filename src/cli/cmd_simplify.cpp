@@ -167,7 +167,7 @@ int run(const Args& a) {
   if (a.has_ratio) r.simplify.ratio = a.ratio;
   r.simplify.target_error = a.target_error / 100;
   r.simplify.lock_border = a.lock_border;
-  r.tiles = unsigned(std::max(0LL, a.tiles));
+  r.simplify.tiles = unsigned(std::max(0LL, a.tiles));
   // Tiled simplification takes its weights from tiled saliency (the same map, computed a
   // tile at a time).
   if (a.tiles > 1) r.saliency.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));

@@ -39,29 +39,20 @@ meshsal::LoadOptions load_options() {
   return options;
 }
 
-meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
-                              bool attributes, meshsal::LoadReport* report, bool regular_only) {
+meshsal::LoadedMesh load_input_mesh(const std::string& path, bool attributes, bool regular_only) {
   meshsal::LoadOptions options = load_options();
   options.regular_files_only = regular_only;
   options.attributes = attributes;
-  return meshsal::load_mesh(path, properties, options, report);
+  return meshsal::read_mesh(path, options);
 }
 
-meshsal::Mesh load_input(const std::string& path, bool quiet, meshsal::VertexProperties* properties,
-                         bool attributes) {
-  meshsal::LoadReport report;
-  meshsal::Mesh mesh = load_input_mesh(path, properties, attributes, &report);
+meshsal::Mesh load_input(const std::string& path, bool quiet) {
+  meshsal::LoadedMesh read = load_input_mesh(path, false);
+  const meshsal::LoadReport& report = read.report;
   if (report.welded_corners && !quiet)
     std::fprintf(stderr, "note: %s: welded %llu STL corners into %zu shared vertices\n", printable(path).c_str(),
-                 static_cast<unsigned long long>(report.welded_corners), mesh.vertex_count());
-  // A command that carries attributes (simplify) would otherwise lose these silently.
-  if (attributes && !report.unread.empty() && !quiet) {
-    std::string what;
-    for (size_t i = 0; i < report.unread.size(); ++i) what += (i ? ", " : "") + report.unread[i];
-    std::fprintf(stderr, "note: %s: not carried to the output (only scalar vertex properties are): %s\n",
-                 printable(path).c_str(), printable(what).c_str());
-  }
-  return mesh;
+                 static_cast<unsigned long long>(report.welded_corners), read.mesh.vertex_count());
+  return std::move(read.mesh);
 }
 
 }  // namespace meshsal::cli

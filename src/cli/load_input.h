@@ -17,19 +17,15 @@ std::string mesh_extension(const std::string& path);
 // the variable is not a byte count.
 meshsal::LoadOptions load_options();
 
-// load_mesh with LoadOptions::attributes = `attributes` (OBJ vt/vn, PLY properties into
-// Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain
+// read_mesh with MESHSAL_MAX_INPUT's bound and LoadOptions::attributes = `attributes` (OBJ
+// vt/vn, PLY properties into Mesh::attributes). A PLY's UV seams (vertices split at one position, told from plain
 // duplicates by their properties: Mesh::position_vertex) are found either way, so that
 // saliency sees one surface there; its properties are then kept only when asked.
 // With `regular_only` a named pipe is refused too (LoadOptions::regular_files_only).
-meshsal::Mesh load_input_mesh(const std::string& path, meshsal::VertexProperties* properties,
-                              bool attributes, meshsal::LoadReport* report, bool regular_only = false);
+meshsal::LoadedMesh load_input_mesh(const std::string& path, bool attributes, bool regular_only = false);
 
-// load_input_mesh, then, unless `quiet`, one note on stderr when STL corners were welded:
-// "note: PATH: welded N STL corners into V shared vertices", and with `attributes` one
-// naming what of a PLY is not carried (LoadReport::unread: list properties, face
-// properties, other elements).
-meshsal::Mesh load_input(const std::string& path, bool quiet,
-                         meshsal::VertexProperties* properties = nullptr, bool attributes = false);
+// The mesh of load_input_mesh without attributes, then, unless `quiet`, one note on stderr
+// when STL corners were welded: "note: PATH: welded N STL corners into V shared vertices".
+meshsal::Mesh load_input(const std::string& path, bool quiet);
 
 }  // namespace meshsal::cli

@@ -296,8 +296,9 @@ double salient_region_error(const Mesh& mesh, const std::vector<double>& salienc
 }
 
 SurfaceComparison compare_surfaces(const Mesh& original, const Mesh& simplified_in,
-                                   const std::vector<double>* saliency,
+                                   const std::vector<double>& saliency_values,
                                    const CompareOptions& options) {
+  const std::vector<double>* saliency = saliency_values.empty() ? nullptr : &saliency_values;
   const CancelScope cancel(options.cancel);
   check_mesh(original, "the original mesh");
   check_mesh(simplified_in, "the simplified mesh");

@@ -98,9 +98,10 @@ Mesh load_named(const std::string& name, VertexProperties* properties, Load&& lo
 
 }  // namespace
 
-Mesh load_mesh(const std::string& path, VertexProperties* properties, const LoadOptions& options,
+namespace {
+
+Mesh load_file(const std::string& path, const LoadOptions& options, VertexProperties* properties,
                LoadReport* report) {
-  if (report) *report = LoadReport();
   bool gz = false;
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
@@ -112,15 +113,36 @@ Mesh load_mesh(const std::string& path, VertexProperties* properties, const Load
   });
 }
 
-Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                     const LoadOptions& options, LoadReport* report) {
-  if (report) *report = LoadReport();
+Mesh load_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options,
+                VertexProperties* properties, LoadReport* report) {
   bool gz = false;
   const std::string ext = check_extension(name, gz);
-  return load_named(name, properties,
-                    [&] {
+  return load_named(name, properties, [&] {
     return parse(bytes, name, ext, gz, properties, options.max_input_bytes, report, options.attributes, "");
   });
+}
+
+}  // namespace
+
+// load_mesh reads no properties: a PLY's scalars cost memory only read_mesh's callers want.
+Mesh load_mesh(const std::string& path, const LoadOptions& options) {
+  return load_file(path, options, nullptr, nullptr);
+}
+
+LoadedMesh read_mesh(const std::string& path, const LoadOptions& options) {
+  LoadedMesh r;
+  r.mesh = load_file(path, options, &r.properties, &r.report);
+  return r;
+}
+
+Mesh load_mesh_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+  return load_bytes(bytes, name, options, nullptr, nullptr);
+}
+
+LoadedMesh read_mesh_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+  LoadedMesh r;
+  r.mesh = load_bytes(bytes, name, options, &r.properties, &r.report);
+  return r;
 }
 
 }  // namespace meshsal

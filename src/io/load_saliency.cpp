@@ -60,7 +60,7 @@ std::vector<double> load_saliency(const std::string& path, const Mesh& mesh) {
                 "): read S from the .ply, .gltf or .glb that `meshsal saliency` writes");
   LoadOptions options;
   options.attributes = true;  // a glTF's _SALIENCY, a PLY's quality
-  const Mesh file = load_mesh(path, nullptr, options);
+  const Mesh file = load_mesh(path, options);
   const VertexAttribute* s = find_attribute(file, kSaliencyAttribute);
   if (!s)
     throw Error("'" + path + "' has no per-vertex `quality` property (nor a glTF `_SALIENCY`; write it with `meshsal saliency`)");

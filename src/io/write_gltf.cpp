@@ -391,10 +391,10 @@ void write_gltf(const std::string& path, const std::vector<GltfLevel>& levels) {
   write_file_atomically(path, [&](std::FILE* f) { write_all(f, bytes.data(), bytes.size(), path); });
 }
 
-void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+void write_gltf(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency) {
   GltfLevel level;
   level.mesh = &mesh;
-  level.saliency = saliency;
+  level.saliency = saliency.empty() ? nullptr : &saliency;
   write_gltf(path, {level});
 }
 

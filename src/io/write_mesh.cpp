@@ -7,9 +7,10 @@
 
 namespace meshsal {
 
-void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>* saliency) {
+void write_mesh(const std::string& path, const Mesh& mesh, const std::vector<double>& values) {
+  const std::vector<double>* saliency = values.empty() ? nullptr : &values;
   const std::string format = mesh_output_format(path);
-  if (format == ".glb" || format == ".gltf") return write_gltf(path, mesh, saliency);
+  if (format == ".glb" || format == ".gltf") return write_gltf(path, mesh, values);
   if (format == ".ply") {
     if (saliency) return write_saliency_ply(path, mesh, *saliency);
     return write_ply(path, mesh, {});

@@ -68,8 +68,9 @@ void write_records(std::FILE* f, const std::string& path, size_t count, size_t p
 }  // namespace
 
 void write_ply(const std::string& path, const Mesh& mesh,
-               const std::vector<PlyFloatProperty>& properties, const std::vector<uint8_t>* rgb) {
+               const std::vector<PlyFloatProperty>& properties, const std::vector<uint8_t>& rgb_bytes) {
   check_mesh(path, mesh);
+  const std::vector<uint8_t>* rgb = rgb_bytes.empty() ? nullptr : &rgb_bytes;
   const size_t nv = mesh.vertex_count();
   if (nv > 0x7FFFFFFFu) throw Error(path + ": cannot write: too many vertices for PLY int indices");
   for (const PlyFloatProperty& p : properties) {
@@ -145,7 +146,8 @@ void write_ply(const std::string& path, const Mesh& mesh,
 }
 
 void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
-                        const std::vector<PlyFloatProperty>& extra, const std::vector<uint8_t>* is_point) {
+                        const std::vector<PlyFloatProperty>& extra, const std::vector<uint8_t>& point_flags) {
+  const std::vector<uint8_t>* is_point = point_flags.empty() ? nullptr : &point_flags;
   check_mesh(path, mesh);
   if (saliency.size() != mesh.vertex_count())
     throw Error(path + ": cannot write: " + std::to_string(saliency.size()) + " saliency values for " +
@@ -158,7 +160,7 @@ void write_saliency_ply(const std::string& path, const Mesh& mesh, const std::ve
                 std::to_string(mesh.vertex_count()) + " vertices");
   const std::vector<uint8_t> rgb =
       colormap_values(saliency, is_point ? *is_point : referenced_vertices(mesh));
-  write_ply(path, mesh, props, &rgb);
+  write_ply(path, mesh, props, rgb);
 }
 
 }  // namespace meshsal

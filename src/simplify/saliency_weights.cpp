@@ -126,9 +126,8 @@ double weight_floor(double sum, size_t n, const SaliencyWeightOptions& options) 
   return sum > 0 ? options.floor * sum / double(n) : 1.0;
 }
 
-std::vector<double> saliency_weights(const std::vector<double>& smoothed,
-                                     const std::vector<uint8_t>& is_point,
-                                     const SaliencyWeightOptions& options, double* alpha_out) {
+SaliencyWeights saliency_weights(const std::vector<double>& smoothed, const std::vector<uint8_t>& is_point,
+                                 const SaliencyWeightOptions& options) {
   if (smoothed.size() != is_point.size())
     throw Error("saliency weights: " + std::to_string(smoothed.size()) +
                 " saliency values for " + std::to_string(is_point.size()) + " vertices");
@@ -137,7 +136,6 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
     if (is_point[i] && !(smoothed[i] >= 0 && std::isfinite(smoothed[i])))
       throw Error("saliency must be finite and >= 0 (vertex " + std::to_string(i) + ")");
   const double alpha = percentile(smoothed, is_point, options.alpha_percentile);
-  if (alpha_out) *alpha_out = alpha;
   std::vector<double> w(smoothed.size(), 0.0);
   if (options.curve == WeightCurve::Rank) {
     const std::vector<double> r = ranks(smoothed, is_point);
@@ -161,7 +159,7 @@ std::vector<double> saliency_weights(const std::vector<double>& smoothed,
     for (size_t i = 0; i < w.size(); ++i)
       if (is_point[i]) w[i] = std::max(w[i], lo);
   }
-  return w;
+  return {std::move(w), alpha};
 }
 
 }  // namespace meshsal

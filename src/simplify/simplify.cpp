@@ -125,9 +125,14 @@ void prefetch_ends(const State& s, const Entry& n) {
 // So the first current entry popped is the edge that a full scan would pick. A refused
 // edge waits in the refused lists of its ends until a collapse changes the 1-ring of one
 // of them; then its entry goes back into the queue.
-Mesh simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
-                   const std::vector<double>* vertex_weights, SimplifyReport* report) {
-  return simplify_pinned(mesh, options, vertex_weights, nullptr, report);
+Simplified simplify_mesh(const Mesh& mesh, const SimplifyOptions& options,
+                         const std::vector<double>& vertex_weights) {
+  if (options.tiles > 1)
+    throw Error("simplify_mesh does not tile (options.tiles " + std::to_string(options.tiles) +
+                "): simplify_mesh_tiled does");
+  Simplified r;
+  r.mesh = simplify_pinned(mesh, options, vertex_weights.empty() ? nullptr : &vertex_weights, nullptr, &r.report);
+  return r;
 }
 
 Mesh simplify_pinned(const Mesh& mesh, const SimplifyOptions& options, const std::vector<double>* vertex_weights,

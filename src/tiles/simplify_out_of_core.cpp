@@ -324,10 +324,12 @@ void finish_report(SimplifyReport& rep, bool keep, uint64_t faces, size_t target
 }  // namespace
 
 OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
-                                      const SimplifyOptions& options, const SaliencyWeightOptions* weights,
-                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& ooc,
-                                      unsigned tiles) {
+                                      const SimplifyOptions& options,
+                                      const std::optional<SaliencyWeightOptions>& weight_options,
+                                      const SaliencyOptions& saliency_options, const OutOfCoreOptions& ooc) {
   const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
+  const SaliencyWeightOptions* weights = weight_options ? &*weight_options : nullptr;  // null once unused
+  const unsigned tiles = std::max(1u, options.tiles);
   SaliencyOptions so = checked_options(options, weights, saliency_options, tiles);
   OutOfCoreSimplifyReport report;
   const Timer t0;

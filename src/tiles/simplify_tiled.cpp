@@ -143,10 +143,15 @@ class MemoryPasses final : public TilePasses {
 
 }  // namespace
 
-Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsigned tiles,
-                         const std::vector<double>* vertex_weights, SimplifyReport* report) {
-  if (tiles <= 1 || simplify_keeps_mesh(options, mesh.triangle_count()))
-    return simplify_mesh(mesh, options, vertex_weights, report);
+Simplified simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options,
+                               const std::vector<double>& weights) {
+  const unsigned tiles = options.tiles;
+  if (tiles <= 1 || simplify_keeps_mesh(options, mesh.triangle_count())) {
+    SimplifyOptions whole = options;
+    whole.tiles = 0;
+    return simplify_mesh(mesh, whole, weights);
+  }
+  const std::vector<double>* vertex_weights = weights.empty() ? nullptr : &weights;
   if (tiles > kMaxSimplifyTiles)
     throw Error("simplify: at most " + std::to_string(kMaxSimplifyTiles) + " tiles along the longest axis, got " +
                 std::to_string(tiles));
@@ -199,26 +204,25 @@ Mesh simplify_mesh_tiled(const Mesh& mesh, const SimplifyOptions& options, unsig
   MemoryPasses passes(work, vertex_weights, options, pending, totals);
   run_rounds(passes, box, tiles, target);
 
-  Mesh out = std::move(work.mesh);
-  carry_model_frame(mesh, work.ids, out);  // an unmoved vertex is written as it was read
-  if (report) {
-    *report = SimplifyReport{};
-    report->input_faces = faces;
-    report->target_faces = target;
-    report->output_faces = out.triangle_count();
-    report->output_vertices = out.vertex_count();
-    report->reached = report->output_faces == target;
-    report->warning = precision_warning(mesh);
-    if (!report->reached)
-      report->note = "tiled simplification stopped at " + std::to_string(out.triangle_count()) + " faces (target " +
-                     std::to_string(target) + "): the strips along the tile cuts could not give up more";
-    report->collapses = totals.collapses;
-    report->refused = totals.refused;
-    report->error = box.diagonal() > 0 ? totals.error / box.diagonal() : 0;
-    report->vertex_origin = std::move(work.ids);
-    report->seconds = t0.seconds();
-  }
-  return out;
+  Simplified r;
+  r.mesh = std::move(work.mesh);
+  carry_model_frame(mesh, work.ids, r.mesh);  // an unmoved vertex is written as it was read
+  SimplifyReport& report = r.report;
+  report.input_faces = faces;
+  report.target_faces = target;
+  report.output_faces = r.mesh.triangle_count();
+  report.output_vertices = r.mesh.vertex_count();
+  report.reached = report.output_faces == target;
+  report.warning = precision_warning(mesh);
+  if (!report.reached)
+    report.note = "tiled simplification stopped at " + std::to_string(report.output_faces) + " faces (target " +
+                  std::to_string(target) + "): the strips along the tile cuts could not give up more";
+  report.collapses = totals.collapses;
+  report.refused = totals.refused;
+  report.error = box.diagonal() > 0 ? totals.error / box.diagonal() : 0;
+  report.vertex_origin = std::move(work.ids);
+  report.seconds = t0.seconds();
+  return r;
 }
 
 }  // namespace meshsal

@@ -95,7 +95,7 @@ void store_input(TileStore& store, const std::string& input_path, int& converted
   converted_wide = positions_need_double(m) ? 1 : 0;
   m.double_positions = true;
   store.input = store.dir.file("input.ply");
-  write_ply(store.input, m, {}, nullptr);
+  write_ply(store.input, m, {});
 }
 
 // Pass A: the doubles as read to xyz.f64, the triangles to tri.u32; returns the point bits.

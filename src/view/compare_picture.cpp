@@ -60,7 +60,7 @@ Image compare_picture(const Mesh& original, const std::vector<double>* saliency,
   lines[0].push_back(saliency ? "coloured by saliency" : "");
   lines[0].push_back("");
   for (int i = 1; i < 3; ++i) {
-    const SurfaceComparison c = compare_surfaces(original, *meshes[i], saliency);
+    const SurfaceComparison c = compare_surfaces(original, *meshes[i], saliency ? *saliency : std::vector<double>{});
     const double pct = c.diagonal > 0 ? 100.0 / c.diagonal : 0.0;
     // 3 digits; below 1e-7 % of the diagonal it is rounding noise (a panel of the original itself).
     auto percent = [](double v) {

@@ -70,7 +70,7 @@ bool has(const Mesh& m, const std::string& name) {
 Mesh read(const std::string& path) {
   LoadOptions o;
   o.attributes = true;
-  return load_mesh(path, nullptr, o);
+  return load_mesh(path, o);
 }
 
 // Whether `kind` (a note's words) is named in what the run printed on stderr.

@@ -46,7 +46,7 @@ TEST_CASE("lod: the chain reaches each target, each level from the one before", 
   levels[1].ratio = 0.2;
   levels[2].ratio = 300.0 / 5120;  // all ratios or all counts
   const SaliencyWeightOptions wo = weight_preset(Weighting::Balanced);
-  const std::vector<LodLevel> chain = simplify_lod(m, levels, &wo, cpu());
+  const std::vector<LodLevel> chain = simplify_lod(m, levels, wo, cpu());
   REQUIRE(chain.size() == 3);
   CHECK(chain[0].mesh.triangle_count() == 2560);
   CHECK(chain[1].mesh.triangle_count() == 1024);
@@ -74,17 +74,17 @@ TEST_CASE("lod: the chain reaches each target, each level from the one before", 
   // The first level equals simplify_with_saliency with the same S.
   SimplifyOptions o;
   o.ratio = 0.5;
-  const Mesh direct = simplify_with_saliency(m, o, wo, cpu(), &s.saliency);
+  const Mesh direct = simplify_with_saliency(m, o, wo, cpu(), s.saliency).mesh;
   CHECK(direct.triangles == chain[0].mesh.triangles);
   // Levels must shrink; target_error is not a level.
   std::vector<SimplifyOptions> bad(2);
   bad[0].ratio = 0.2;
   bad[1].ratio = 0.5;
-  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), "lod: level 2 (0.5) is not below level 1 (0.2): list the "
+  CHECK_THROWS_WITH(simplify_lod(m, bad, std::nullopt, cpu()), "lod: level 2 (0.5) is not below level 1 (0.2): list the "
                                                            "levels from the most faces to the fewest");
   bad[1].ratio = 0;
   bad[1].target_faces = 300;
-  CHECK_THROWS_WITH(simplify_lod(m, bad, nullptr, cpu()), Catch::Contains("not both"));
+  CHECK_THROWS_WITH(simplify_lod(m, bad, std::nullopt, cpu()), Catch::Contains("not both"));
   CHECK_THROWS_WITH(parse_lod_levels("0.5,x"), Catch::Contains("comma-separated list of ratios in (0, 1) or of face counts"));
   CHECK_THROWS_WITH(parse_lod_levels("1.5"), Catch::Contains("ratios in (0, 1)"));
   const std::vector<SimplifyOptions> parsed = parse_lod_levels("0.5,0.125,1e-2");
@@ -127,8 +127,7 @@ TEST_CASE("lod: simplify --lod writes one GLB linked by MSFT_lod, or one file pe
   // A PLY level carries its saliency as quality.
   r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "out.ply").string()) + " --lod 0.5 --backend cpu -q", dir);
   REQUIRE(r.rc == 0);
-  VertexProperties props;
-  load_mesh((dir / "out_lod1.ply").string(), &props);
+  const VertexProperties props = read_mesh((dir / "out_lod1.ply").string()).properties;
   CHECK(props.count("quality") == 1);
   // Usage errors.
   r = run_cli("simplify " + quoted(in) + " -o " + quoted(glb) + " --lod 0.5 --ratio 0.1", dir);
@@ -200,7 +199,7 @@ TEST_CASE("lod: a level above the face count keeps the mesh, as plain simplify d
   levels[1].target_faces = 5120;
   levels[2].target_faces = 2000;
   const SaliencyWeightOptions wo = weight_preset(Weighting::Balanced);
-  const std::vector<LodLevel> chain = simplify_lod(m, levels, &wo, cpu());
+  const std::vector<LodLevel> chain = simplify_lod(m, levels, wo, cpu());
   REQUIRE(chain.size() == 3);
   for (int i : {0, 1}) {
     INFO("level " << i + 1);

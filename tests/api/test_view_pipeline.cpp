@@ -220,10 +220,10 @@ TEST_CASE("view pipeline: the camera of a view renders that view", "[view]") {
   style.up = UpAxis::Z;
   const ViewAngles view{0.7, -0.3};
   const ViewCamera c = view_camera(s, view, UpAxis::Z);
-  const Image a = render_view(s, &score, view, style);
+  const Image a = render_view(s, score, view, style);
   RenderStyle other = style;
   other.up = UpAxis::Y;  // not read: the camera has its up axis
-  const Image b = render_camera_view(s, &score, c, other);
+  const Image b = render_camera_view(s, score, c, other);
   CHECK(a.rgb == b.rgb);
   double dot = 0, du = 0, dd = 0, len = 0;
   for (int k = 0; k < 3; ++k) {

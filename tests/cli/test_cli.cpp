@@ -46,8 +46,9 @@ TEST_CASE("cli: saliency writes the SPEC PLY with the CPU path's numbers", "[cli
   CHECK(r.out.find("vertices   3485") != std::string::npos);
   CHECK(r.out.find("pairs/s") != std::string::npos);
 
-  VertexProperties props;
-  Mesh written = load_mesh(out.string(), &props);
+  LoadedMesh read = read_mesh(out.string());
+  const Mesh& written = read.mesh;
+  VertexProperties& props = read.properties;
   Mesh original = load_mesh(input);
   CHECK(meshsal_test::world_floats(written) == meshsal_test::world_floats(original));
   CHECK(written.triangles == original.triangles);
@@ -219,8 +220,9 @@ TEST_CASE("cli: demo writes a saliency PLY where the feature wins", "[cli]") {
   CliRun r = run_cli("demo -o " + (dir / "out").string() + " --subdivisions 5 --backend cpu", dir);
   INFO(r.err);
   REQUIRE(r.rc == 0);
-  VertexProperties props;
-  Mesh m = load_mesh((dir / "out" / "bumpy_sphere_saliency.ply").string(), &props);
+  LoadedMesh read = read_mesh((dir / "out" / "bumpy_sphere_saliency.ply").string());
+  const Mesh& m = read.mesh;
+  const VertexProperties& props = read.properties;
   CHECK(m.vertex_count() == 10242);
   REQUIRE(props.count("quality") == 1);
   CHECK(r.out.find("unique feature") != std::string::npos);

@@ -27,10 +27,10 @@ TEST_CASE("cli gltf: saliency -o x.glb holds the PLY's saliency, validator-clean
   // The GLB's _SALIENCY is the PLY's quality (both float).
   LoadOptions o;
   o.attributes = true;
-  VertexProperties ply;
-  load_mesh((dir / "m.ply").string(), &ply);
-  LoadReport lr;
-  const Mesh glb = load_mesh((dir / "m.glb").string(), nullptr, o, &lr);
+  VertexProperties ply = read_mesh((dir / "m.ply").string()).properties;
+  const LoadedMesh read = read_mesh((dir / "m.glb").string(), o);
+  const Mesh& glb = read.mesh;
+  const LoadReport& lr = read.report;
   CHECK(glb.vertex_count() == ply["quality"].size());
   // Every channel comes back: S (_SALIENCY) as the saliency attribute, the raw maps and
   // the curvature under their names; S read back from the GLB is the PLY's.
@@ -46,9 +46,8 @@ TEST_CASE("cli gltf: saliency -o x.glb holds the PLY's saliency, validator-clean
     REQUIRE(run_cli("saliency " + quoted((dir / from).string()) + " -o " + quoted((dir / (std::string("again_") + from + ".ply")).string()) +
                         " -q --backend cpu",
                     dir).rc == 0);
-  VertexProperties again_glb, again_ply;
-  load_mesh((dir / "again_m.glb.ply").string(), &again_glb);
-  load_mesh((dir / "again_m.ply.ply").string(), &again_ply);
+  VertexProperties again_glb = read_mesh((dir / "again_m.glb.ply").string()).properties;
+  VertexProperties again_ply = read_mesh((dir / "again_m.ply.ply").string()).properties;
   CHECK(again_glb["quality"] == again_ply["quality"]);
   // What glTF output does not go with.
   const auto r = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "x.glb").string()) + " --memory-limit 100M", dir);

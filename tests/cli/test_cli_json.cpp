@@ -93,8 +93,7 @@ TEST_CASE("cli --json: saliency, simplify, compare and viewpoint print one JSON 
   CHECK(json_number(r.out, "faces") == double(bumpy.triangle_count()));
   CHECK(json_number(r.out, "seconds") > 0);
   // The statistics of S match the quality the PLY holds (floats there).
-  meshsal::VertexProperties props;
-  meshsal::load_mesh(sal, &props);
+  const meshsal::VertexProperties props = meshsal::read_mesh(sal).properties;
   std::vector<float> s = props.at("quality");
   std::sort(s.begin(), s.end());
   double mean = 0;

@@ -22,8 +22,7 @@ using namespace meshsal_test;  // cli_run.h: run_cli, scratch_dir, check_usage_e
 namespace {
 
 std::vector<float> quality(const fs::path& ply) {
-  VertexProperties props;
-  load_mesh(ply.string(), &props);
+  VertexProperties props = read_mesh(ply.string()).properties;
   REQUIRE(props.count("quality") == 1);
   return props["quality"];
 }

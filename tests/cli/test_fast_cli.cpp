@@ -42,8 +42,9 @@ TEST_CASE("cli: saliency --method fast writes the map and says so", "[cli][fast]
   INFO(r.err);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("method     fast") != std::string::npos);
-  meshsal::VertexProperties props;
-  meshsal::Mesh m = meshsal::load_mesh((dir / "f.ply").string(), &props);
+  meshsal::LoadedMesh read = meshsal::read_mesh((dir / "f.ply").string());
+  const meshsal::Mesh& m = read.mesh;
+  meshsal::VertexProperties& props = read.properties;
   REQUIRE(props.count("quality") == 1);
   CHECK(props["quality"].size() == m.vertex_count());
   CliRun e = run_cli("saliency " + input + " -o " + (dir / "e.ply").string() + " --backend cpu", dir);

@@ -52,7 +52,7 @@ TEST_CASE("mpirun: a command that does not use the ranks runs on rank 0 alone", 
   if (skip_without_mpi()) return;
   const auto dir = scratch_dir("mpi_one_rank");
   const std::string in = (dir / "in.ply").string();
-  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {}, nullptr);
+  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {});
   // One simplification, one report, one file.
   const CliRun simplify = run_mpi(3, "simplify " + quoted(in) + " -o " + quoted((dir / "s.obj").string()) +
                                          " --ratio 0.5 --backend cpu --threads 1", dir);
@@ -88,7 +88,7 @@ TEST_CASE("mpirun saliency and batch: an error every rank finds before the work 
   if (skip_without_mpi()) return;
   const auto dir = scratch_dir("mpi_said_once");
   const std::string in = (dir / "in.ply").string();
-  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {}, nullptr);
+  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {});
   const std::string out = quoted((dir / "o.ply").string());
   struct Case {
     std::string args, said;

@@ -45,7 +45,7 @@ TEST_CASE("mpirun saliency: 2 and 3 ranks write the single-process bytes", "[mpi
   if (skip_without_mpi()) return;
   const auto dir = scratch_dir("mpi_saliency");
   const std::string in = (dir / "in.ply").string();
-  meshsal::write_ply(in, meshsal::make_bumpy_sphere(4), {}, nullptr);
+  meshsal::write_ply(in, meshsal::make_bumpy_sphere(4), {});
   for (const char* method : {"exact", "fast"}) {
     const std::string common = quoted(in) + " --backend cpu --threads 1 --method " + method;
     // One process, untiled: the reference the exact method must equal bit for bit.
@@ -76,13 +76,13 @@ TEST_CASE("mpirun saliency: a failing rank ends the run with its message", "[mpi
   if (skip_without_mpi()) return;
   const auto dir = scratch_dir("mpi_saliency_fail");
   const std::string in = (dir / "in.ply").string();
-  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {}, nullptr);
+  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {});
   // Rank 1 is given a file that does not exist: it fails while rank 0 waits in a collective.
   const std::string good = "saliency " + quoted(in) + " --backend cpu -o " + quoted((dir / "o.ply").string());
   const std::string bad = "saliency " + quoted((dir / "missing.ply").string()) + " --backend cpu -o " +
                           quoted((dir / "o.ply").string());
   // (MPI_Abort ends rank 0 where it stands: its temporary folder stays, in the test's own.)
-  for (const std::string mode : {std::string(), " --memory-limit 1G --temp-dir " + quoted(dir.string())}) {
+  for (const std::string& mode : {std::string(), " --memory-limit 1G --temp-dir " + quoted(dir.string())}) {
     INFO(mode);
     const CliRun r = run_mpi(np(1, good + mode) + " : " + np(1, bad + mode), dir);
     CHECK(r.rc == 1);

@@ -40,7 +40,7 @@ TEST_CASE("cli simplify: OBJ vt/vn and the saliency reach the output", "[simplif
   CHECK(text.find("/") != std::string::npos);  // f v/vt/vn
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh back = load_mesh(out_obj, nullptr, lo);
+  const Mesh back = load_mesh(out_obj, lo);
   CHECK(back.triangle_count() == 300);
   CHECK(back.attributes.size() == 5);
   CHECK_FALSE(back.position_vertex.empty());  // the seam is still there
@@ -48,15 +48,15 @@ TEST_CASE("cli simplify: OBJ vt/vn and the saliency reach the output", "[simplif
   // The saliency of the positions (the OBJ read without vt/vn), reused; the PLY output
   // carries the attributes and S as `quality`.
   REQUIRE(run_cli_merged("saliency " + q(in) + " -o " + q(sal) + " --backend cpu -q").rc == 0);
-  VertexProperties sal_props;
-  load_mesh(sal, &sal_props);
+  const VertexProperties sal_props = read_mesh(sal).properties;
   const std::vector<float>& s_in = sal_props.at("quality");
   r = run_cli_merged("simplify " + q(in) + " -o " + q(out_ply) + " --target-faces 300 --saliency-from " + q(sal));
   INFO(r.out);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("attributes u v nx ny nz quality") != std::string::npos);
-  VertexProperties props;
-  const Mesh ply = load_mesh(out_ply, &props);
+  const LoadedMesh read = read_mesh(out_ply);
+  const Mesh& ply = read.mesh;
+  const VertexProperties& props = read.properties;
   CHECK(ply.triangle_count() == 300);
   for (const char* name : {"u", "v", "nx", "ny", "nz", "quality"}) CHECK(props.count(name) == 1);
   const std::vector<float>& s_out = props.at("quality");

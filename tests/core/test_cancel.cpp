@@ -96,10 +96,10 @@ TEST_CASE("cancel: a set flag stops every long call with Cancelled", "[cancel]")
   CHECK(throws_cancelled([&] { best_viewpoint(m, score, vo); }));
   CompareOptions co;
   co.cancel = &stop;
-  CHECK(throws_cancelled([&] { compare_surfaces(m, m, nullptr, co); }));
+  CHECK(throws_cancelled([&] { compare_surfaces(m, m, {}, co); }));
   // Cancelled is an Error (code that catches Error still stops) and names itself.
   try {
-    compare_surfaces(m, m, nullptr, co);
+    compare_surfaces(m, m, {}, co);
   } catch (const Error& e) {
     CHECK(std::string(e.what()) == "cancelled");
   }
@@ -197,7 +197,7 @@ TEST_CASE("cli: SIGTERM stops an out-of-core run as Ctrl-C does, exit 143, its t
   const fs::path dir = scratch_dir("cancel_term");
   fs::create_directories(dir / "tmp");
   const std::string in = (dir / "sphere.ply").string(), out = (dir / "out.ply").string();
-  write_ply(in, slow_mesh(), {}, nullptr);
+  write_ply(in, slow_mesh(), {});
   const pid_t pid = ::fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {

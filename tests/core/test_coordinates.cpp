@@ -148,8 +148,8 @@ TEST_CASE("coordinates: simplification and distances of a survey scan are those 
     for (size_t i = 0; i < p0.size(); ++i) worst = std::max(worst, std::fabs(pu[i] - kShift[i % 3] - p0[i]));
     CHECK(worst <= 1e-7 * diag);
     // The distances between two files with two origins: as at the origin.
-    const SurfaceComparison c0 = compare_surfaces(load_mesh(s.origin_obj), m0, nullptr);
-    const SurfaceComparison cu = compare_surfaces(load_mesh(s.utm_obj), mu, nullptr);
+    const SurfaceComparison c0 = compare_surfaces(load_mesh(s.origin_obj), m0, {});
+    const SurfaceComparison cu = compare_surfaces(load_mesh(s.utm_obj), mu, {});
     CHECK(cu.rms == Approx(c0.rms).epsilon(1e-6));
     CHECK(cu.hausdorff == Approx(c0.hausdorff).epsilon(1e-6));
     CHECK(c0.rms > 0);

@@ -77,7 +77,7 @@ TEST_CASE("cli: every --memory-limit refuses a bad size as a usage error, before
 TEST_CASE("cli: a limit too small is said as given (1K, not 1M)", "[outofcore][cli]") {
   const auto dir = scratch_dir("memory_size_small");
   const std::string in = (dir / "sphere.ply").string();
-  write_ply(in, make_bumpy_sphere(3), {}, nullptr);
+  write_ply(in, make_bumpy_sphere(3), {});
   for (const std::string command : {"saliency", "simplify"}) {
     const CliRun r = run_cli(command + " " + quoted(in) + " -o " + quoted((dir / "o.ply").string()) +
                                  (command == "simplify" ? " --ratio 0.5" : "") + " --backend cpu --memory-limit 1K",

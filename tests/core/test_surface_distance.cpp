@@ -75,7 +75,7 @@ TEST_CASE("BVH closest distance equals brute force", "[simplify]") {
 
 TEST_CASE("compare: identical surfaces, offset planes, salient error", "[simplify]") {
   const Mesh plane = make_plane(2.0, 8);
-  SurfaceComparison r = compare_surfaces(plane, plane, nullptr);
+  SurfaceComparison r = compare_surfaces(plane, plane, {});
   CHECK(r.hausdorff < 1e-6);  // rounding of the area samples only
   CHECK(r.rms < 1e-6);
   CHECK(r.salient_error == -1.0);
@@ -84,7 +84,7 @@ TEST_CASE("compare: identical surfaces, offset planes, salient error", "[simplif
   // The same square lifted by 0.25 and coarser: every distance is exactly 0.25.
   Mesh lifted = make_plane(2.0, 3);
   for (size_t v = 0; v < lifted.vertex_count(); ++v) lifted.positions[3 * v + 2] = 0.25f;
-  r = compare_surfaces(plane, lifted, nullptr);
+  r = compare_surfaces(plane, lifted, {});
   CHECK(r.hausdorff == Approx(0.25));
   CHECK(r.rms == Approx(0.25));
   CHECK(r.forward_max == Approx(0.25));
@@ -94,7 +94,7 @@ TEST_CASE("compare: identical surfaces, offset planes, salient error", "[simplif
   // Sphere against a coarser inscribed icosphere: Hausdorff is the worst chordal gap, found
   // in the forward direction; RMS lies between 0 and it.
   const Mesh fine = make_sphere(1.0, 4), coarse = make_sphere(1.0, 1);
-  r = compare_surfaces(fine, coarse, nullptr);
+  r = compare_surfaces(fine, coarse, {});
   CHECK(r.hausdorff > 0.02);
   CHECK(r.hausdorff < 0.1);
   CHECK(r.forward_max >= r.backward_max);
@@ -104,12 +104,12 @@ TEST_CASE("compare: identical surfaces, offset planes, salient error", "[simplif
   // Salient error: the top 30% of the vertices (here by x) are each 0.25 from the lifted copy.
   std::vector<double> s(plane.vertex_count());
   for (size_t v = 0; v < s.size(); ++v) s[v] = plane.positions[3 * v];  // salient: large x
-  r = compare_surfaces(plane, lifted, &s);
+  r = compare_surfaces(plane, lifted, s);
   CHECK(r.salient_vertices == size_t(std::ceil(0.3 * plane.vertex_count())));
   CHECK(r.salient_error == Approx(0.25));
   const std::vector<double> wrong(3, 1.0);
-  CHECK_THROWS_AS(compare_surfaces(plane, lifted, &wrong), Error);
-  CHECK_THROWS_AS(compare_surfaces(plane, Mesh{}, nullptr), Error);
+  CHECK_THROWS_AS(compare_surfaces(plane, lifted, wrong), Error);
+  CHECK_THROWS_AS(compare_surfaces(plane, Mesh{}, {}), Error);
 }
 
 TEST_CASE("salient error measures only the most salient vertices", "[simplify]") {

@@ -31,9 +31,8 @@ inline std::string load(const uint8_t* data, size_t size, const std::string& nam
   options.max_input_bytes = 8u << 20;
   options.attributes = attributes;
   try {
-    meshsal::VertexProperties properties;
-    mesh = meshsal::load_mesh_bytes(std::string_view(reinterpret_cast<const char*>(data), size), name,
-                                    &properties, options);
+    // read_mesh_bytes, not load_mesh_bytes: the PLY property reader is fuzzed too.
+    mesh = meshsal::read_mesh_bytes(std::string_view(reinterpret_cast<const char*>(data), size), name, options).mesh;
     return "";
   } catch (const meshsal::Error& e) {
     return e.what();
@@ -124,7 +123,7 @@ inline std::string load_in_folder(const uint8_t* data, size_t size, const std::s
   options.max_input_bytes = 8u << 20;
   options.attributes = true;
   try {
-    const meshsal::Mesh mesh = meshsal::load_mesh(path, nullptr, options);
+    const meshsal::Mesh mesh = meshsal::load_mesh(path, options);
     for (double x : meshsal::model_positions(mesh))
       if (x == 4242) std::fprintf(stderr, "read secret.bin from outside the model's folder\n"), std::abort();
     if (mesh.gltf_assets)

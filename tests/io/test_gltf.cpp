@@ -42,11 +42,10 @@ std::string one_triangle(const std::string& nodes_and_scene, const std::string& 
          "\"buffers\":[" + b.buffer_json() + "]}";
 }
 
-Mesh load_text(const std::string& json, const std::string& name = "t.gltf", LoadReport* report = nullptr,
-               bool attributes = false) {
+Mesh load_text(const std::string& json, const std::string& name = "t.gltf", bool attributes = false) {
   LoadOptions o;
   o.attributes = attributes;
-  return load_mesh_bytes(json, name, nullptr, o, report);
+  return load_mesh_bytes(json, name, o);
 }
 
 std::vector<double> world(const Mesh& m) { return model_positions(m); }
@@ -275,7 +274,7 @@ TEST_CASE("gltf: OBJ -> GLB -> saliency equals the OBJ's at every vertex, transf
   // Straight through: the model's coordinates as floats under no node transform, as a
   // float PLY holds them (a reader that ignores nodes sees the model where the PLY puts it):
   // the positions and saliency of the PLY route bit for bit, the OBJ's to float rounding.
-  write_gltf(dir.file("m.glb"), obj, &want.saliency);
+  write_gltf(dir.file("m.glb"), obj, want.saliency);
   write_ply(dir.file("m.ply"), obj, {});
   const Mesh glb = load_mesh(dir.file("m.glb")), ply = load_mesh(dir.file("m.ply"));
   REQUIRE(glb.vertex_count() == obj.vertex_count());
@@ -330,10 +329,10 @@ TEST_CASE("gltf: what we write keeps attributes, materials and survey coordinate
   obj += "usemtl skin\nf 1/1/1 2/2/1 3/3/1\nusemtl eyes\nf 2/2/1 4/4/1 3/3/1\n";
   LoadOptions o;
   o.attributes = true;
-  const Mesh m = load_mesh_bytes(obj, "m.obj", nullptr, o);
+  const Mesh m = load_mesh_bytes(obj, "m.obj", o);
   std::vector<double> sal{0.1, 0.2, 0.3, 0.4};
-  write_gltf(dir.file("m.glb"), m, &sal);
-  const Mesh back = load_mesh(dir.file("m.glb"), nullptr, o);
+  write_gltf(dir.file("m.glb"), m, sal);
+  const Mesh back = load_mesh(dir.file("m.glb"), o);
   CHECK(world(back) == world(m));  // to the bit: the node carries the origin
   CHECK(back.materials == std::vector<std::string>{"skin", "eyes"});
   CHECK(back.triangle_material == std::vector<uint32_t>{0, 1});
@@ -351,9 +350,7 @@ TEST_CASE("gltf: what we write keeps attributes, materials and survey coordinate
   CHECK(red[3] > 100);
   CHECK(blue[0] > red[0]);
   // _SALIENCY comes back as the saliency attribute (kSaliencyAttribute), nothing unread.
-  LoadReport report;
-  load_mesh(dir.file("m.glb"), nullptr, o, &report);
-  CHECK(report.unread.empty());
+  CHECK(read_mesh(dir.file("m.glb"), o).report.unread.empty());
   const std::vector<float> s = attr(back, kSaliencyAttribute);
   CHECK(s == std::vector<float>{0.1f, 0.2f, 0.3f, 0.4f});
   // These coordinates are floats: written as they are, under no node transform. Where
@@ -365,7 +362,7 @@ TEST_CASE("gltf: what we write keeps attributes, materials and survey coordinate
   set_model_positions(survey, xyz.data(), m.vertex_count());
   REQUIRE(positions_need_double(survey));
   write_gltf(dir.file("survey.glb"), survey);
-  const std::vector<double> survey_back = world(load_mesh(dir.file("survey.glb"), nullptr, o));
+  const std::vector<double> survey_back = world(load_mesh(dir.file("survey.glb"), o));
   for (size_t i = 0; i < xyz.size(); ++i) CHECK(survey_back[i] == Approx(xyz[i]).margin(1e-6));
 }
 
@@ -373,14 +370,14 @@ TEST_CASE("gltf: every file we write passes the Khronos glTF-Validator", "[io][g
   TempDir dir;
   const Mesh sphere = make_bumpy_sphere(2);
   const SaliencyResult r = compute_saliency(sphere, cpu_exact());
-  write_gltf(dir.file("s.glb"), sphere, &r.saliency);
-  write_gltf(dir.file("s.gltf"), sphere, &r.saliency);
+  write_gltf(dir.file("s.glb"), sphere, r.saliency);
+  write_gltf(dir.file("s.gltf"), sphere, r.saliency);
   // With attributes and materials, and a LOD chain.
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nvn 0 0 1\nvn 0 0 0\n"
                     "usemtl a\nf 1/1/1 2/2/1 3/3/1\nusemtl b\nf 2/2/2 4/4/1 3/3/1\n";
   LoadOptions o;
   o.attributes = true;
-  const Mesh m = load_mesh_bytes(obj, "m.obj", nullptr, o);
+  const Mesh m = load_mesh_bytes(obj, "m.obj", o);
   write_gltf(dir.file("m.glb"), m);
   std::vector<GltfLevel> levels(2);
   levels[0].mesh = &sphere;
@@ -420,10 +417,10 @@ TEST_CASE("gltf: a textured material is carried to the output unchanged", "[io][
       "\"buffers\":[" + b.buffer_json() + "]}";
   LoadOptions o;
   o.attributes = true;
-  const Mesh m = load_text(json, "t.gltf", nullptr, true);
+  const Mesh m = load_text(json, "t.gltf", true);
   REQUIRE(m.gltf_assets != nullptr);
   write_gltf(dir.file("out.glb"), m);
-  const Mesh back = load_mesh(dir.file("out.glb"), nullptr, o);
+  const Mesh back = load_mesh(dir.file("out.glb"), o);
   REQUIRE(back.gltf_assets != nullptr);
   const GltfAssets& a = *back.gltf_assets;
   REQUIRE(a.images.size() == 1);

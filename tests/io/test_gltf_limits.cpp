@@ -45,10 +45,10 @@ std::string triangle(const std::string& top = "", const std::string& attributes 
          "\"buffers\":[" + b.buffer_json() + "]}";
 }
 
-Mesh load_text(const std::string& json, const std::string& name = "t.gltf", LoadReport* report = nullptr, bool attributes = false) {
+Mesh load_text(const std::string& json, const std::string& name = "t.gltf", bool attributes = false) {
   LoadOptions o;
   o.attributes = attributes;
-  return load_mesh_bytes(json, name, nullptr, o, report);
+  return load_mesh_bytes(json, name, o);
 }
 
 std::string nested_arrays(size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
@@ -93,7 +93,7 @@ TEST_CASE("gltf limits: a count is checked against the file before anything is a
   const std::string sparse_normal =
       ",{\"componentType\":5126,\"count\":100000000,\"type\":\"VEC3\",\"sparse\":{\"count\":1,"
       "\"indices\":{\"bufferView\":1,\"componentType\":5125},\"values\":{\"bufferView\":0}}}";
-  CHECK_THROWS_WITH(load_text(triangle("", ",\"NORMAL\":2", sparse_normal), "t.gltf", nullptr, true),
+  CHECK_THROWS_WITH(load_text(triangle("", ",\"NORMAL\":2", sparse_normal), "t.gltf", true),
                     Catch::Contains("NORMAL: 100000000 elements where POSITION has 3"));
   // The same as POSITION itself: more zeros than the file could hold dense.
   std::string t = triangle("", "", sparse_normal);
@@ -108,7 +108,7 @@ TEST_CASE("gltf limits: a count is checked against the file before anything is a
   const std::string negative =
       ",{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"sparse\":{\"count\":1,"
       "\"indices\":{\"bufferView\":1,\"componentType\":5125,\"byteOffset\":-4},\"values\":{\"bufferView\":0}}}";
-  CHECK_THROWS_WITH(load_text(triangle("", ",\"NORMAL\":2", negative), "t.gltf", nullptr, true),
+  CHECK_THROWS_WITH(load_text(triangle("", ",\"NORMAL\":2", negative), "t.gltf", true),
                     Catch::Contains("negative sparse byteOffset"));
 }
 
@@ -126,8 +126,9 @@ TEST_CASE("gltf limits: dangling texture, image and sampler references are dropp
       ",\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":5}},\"normalTexture\":{\"index\":0},"
       "\"extensions\":{\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1,\"clearcoatTexture\":{\"index\":9}}}}],"
       "\"textures\":[{\"source\":3,\"sampler\":2}],\"extensionsUsed\":[\"KHR_materials_clearcoat\"]";
-  LoadReport report;
-  const Mesh m = load_text(triangle(top, "", "", "", {}, ",\"material\":0"), "t.gltf", &report);
+  const LoadedMesh read = read_mesh_bytes(triangle(top, "", "", "", {}, ",\"material\":0"), "t.gltf");
+  const Mesh& m = read.mesh;
+  const LoadReport& report = read.report;
   REQUIRE(m.gltf_assets != nullptr);
   const GltfAssets& a = *m.gltf_assets;
   // Texture 0 lost its image, so it is gone and the material's normal map with it.
@@ -169,7 +170,7 @@ TEST_CASE("gltf limits: images sharing one bufferView are carried once", "[io][g
   write_gltf(dir.file("out.glb"), m);
   CHECK(std::filesystem::file_size(dir.file("out.glb")) < 65536 + 200000);
   LoadOptions o;
-  const Mesh back = load_mesh(dir.file("out.glb"), nullptr, o);
+  const Mesh back = load_mesh(dir.file("out.glb"), o);
   REQUIRE(back.gltf_assets != nullptr);
   CHECK(back.gltf_assets->image_bytes.size() == 1);
   CHECK(back.gltf_assets->image_source[1999] == 0);

@@ -27,7 +27,7 @@ void expect_error(const std::string& path, const std::string& problem, const Loa
   INFO("file: " << path);
   std::string msg;
   try {
-    meshsal::load_mesh(path, nullptr, options);
+    meshsal::load_mesh(path, options);
   } catch (const meshsal::Error& e) {
     msg = e.what();
   }
@@ -377,7 +377,7 @@ TEST_CASE("loaders: a polygon with more than 65536 corners is refused, the large
   const std::string obj_attr = obj;
   meshsal::LoadOptions with_attributes;
   with_attributes.attributes = true;
-  CHECK_THROWS_WITH(meshsal::load_mesh(obj_attr, nullptr, with_attributes),
+  CHECK_THROWS_WITH(meshsal::load_mesh(obj_attr, with_attributes),
                     Catch::Contains("face with more than 65536 vertices"));
   const std::string off = dir.write("big.off", "OFF\n" + std::to_string(big) + " 1 0\n" + vertices(big, "") +
                                                    std::to_string(big) + face(big, "").substr(0));

@@ -15,8 +15,7 @@ using meshsal_test::TempDir;
 namespace {
 
 void check_counts(const std::string& path, size_t v, size_t t) {
-  VertexProperties props;
-  Mesh m = meshsal::load_mesh(path, &props);
+  const Mesh m = meshsal::read_mesh(path).mesh;  // the properties read too
   CHECK(m.vertex_count() == v);
   CHECK(m.triangle_count() == t);
 }
@@ -52,8 +51,9 @@ TEST_CASE("load igea_loop2_2149k.ply.gz", "[.][io-big]") {
 
 TEST_CASE("load bun_zipper_res3.ply: values and extra properties", "[io]") {
   MESHSAL_REQUIRE_MESH(p, "bun_zipper_res3.ply");
-  VertexProperties props;
-  Mesh m = meshsal::load_mesh(p, &props);
+  meshsal::LoadedMesh read = meshsal::read_mesh(p);
+  const Mesh& m = read.mesh;
+  VertexProperties& props = read.properties;
   REQUIRE(m.vertex_count() == 1889);
   REQUIRE(m.triangle_count() == 3851);
   // First data line: -0.0369122 0.127512 0.00276757 0.850855 0.5
@@ -69,8 +69,9 @@ TEST_CASE("load bun_zipper_res3.ply: values and extra properties", "[io]") {
 
 TEST_CASE("load dragon_50k.ply: binary with normals as extra properties", "[io]") {
   MESHSAL_REQUIRE_MESH(p, "dragon_50k.ply");
-  VertexProperties props;
-  Mesh m = meshsal::load_mesh(p, &props);
+  meshsal::LoadedMesh read = meshsal::read_mesh(p);
+  const Mesh& m = read.mesh;
+  VertexProperties& props = read.properties;
   CHECK(m.vertex_count() == 50002);
   CHECK(m.triangle_count() == 100000);
   REQUIRE(props.size() == 3);
@@ -153,8 +154,9 @@ TEST_CASE("PLY ascii: comments, obj_info, CRLF, extra typed properties, other el
       "0 4 0 1 2 3\r\n"
       "9 3 1 4 2\r\n"
       "0 1\r\n";
-  VertexProperties props;
-  Mesh m = meshsal::load_mesh(dir.write("forms.ply", ply), &props);
+  meshsal::LoadedMesh read = meshsal::read_mesh(dir.write("forms.ply", ply));
+  const Mesh& m = read.mesh;
+  VertexProperties& props = read.properties;
   check_small(m);
   REQUIRE(props.size() == 2);
   CHECK(props["red"] == std::vector<float>{10, 11, 12, 13, 255});
@@ -207,8 +209,9 @@ TEST_CASE("PLY binary little and big endian, skipped lists and elements", "[io]"
   TempDir dir;
   for (bool big : {false, true}) {
     INFO((big ? "big endian" : "little endian"));
-    VertexProperties props;
-    Mesh m = meshsal::load_mesh(dir.write(big ? "be.ply" : "le.ply", binary_ply(big)), &props);
+    meshsal::LoadedMesh read = meshsal::read_mesh(dir.write(big ? "be.ply" : "le.ply", binary_ply(big)));
+    const Mesh& m = read.mesh;
+    VertexProperties& props = read.properties;
     check_small(m);
     REQUIRE(props.size() == 2);
     CHECK(props["tag"] == std::vector<float>{0, -1, -2, -3, -4});
@@ -217,7 +220,7 @@ TEST_CASE("PLY binary little and big endian, skipped lists and elements", "[io]"
   check_small(meshsal::load_mesh(dir.write_gz("le.PLY.gz", binary_ply(false))));
 }
 
-TEST_CASE("PLY without a properties pointer ignores extras", "[io]") {
+TEST_CASE("PLY read by load_mesh (no properties) ignores extras", "[io]") {
   TempDir dir;
   check_small(meshsal::load_mesh(dir.write("le.ply", binary_ply(false))));
 }

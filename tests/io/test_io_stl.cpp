@@ -59,8 +59,9 @@ TEST_CASE("STL binary: a closed sphere welds to a closed mesh (V - E + F = 2)", 
   TempDir dir;
   const Mesh sphere = meshsal::make_sphere(1.0, 2);  // 162 vertices, 320 triangles
   const std::string path = dir.write("sphere.stl", binary_stl(sphere));
-  meshsal::LoadReport report;
-  const Mesh m = meshsal::load_mesh(path, nullptr, {}, &report);
+  const meshsal::LoadedMesh read = meshsal::read_mesh(path);
+  const Mesh& m = read.mesh;
+  const meshsal::LoadReport& report = read.report;
   REQUIRE(m.triangle_count() == 320);
   CHECK(m.vertex_count() == 162);
   CHECK(report.welded_corners == 3 * 320 - 162);
@@ -88,11 +89,11 @@ TEST_CASE("STL binary whose header starts with 'solid' is read as binary", "[io]
 
 TEST_CASE("STL ASCII: welded, first-appearance order, gz, CRLF, BOM, several solids", "[io][stl]") {
   TempDir dir;
-  meshsal::LoadReport report;
-  Mesh m = meshsal::load_mesh(dir.write("square.stl", kTwoFacets), nullptr, {}, &report);
+  meshsal::LoadedMesh read = meshsal::read_mesh(dir.write("square.stl", kTwoFacets));
+  Mesh m = std::move(read.mesh);
   CHECK(meshsal_test::world_floats(m) == std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
   CHECK(m.triangles == std::vector<uint32_t>{0, 1, 2, 1, 3, 2});
-  CHECK(report.welded_corners == 2);
+  CHECK(read.report.welded_corners == 2);
 
   std::string crlf;
   for (char c : kTwoFacets) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
@@ -103,14 +104,14 @@ TEST_CASE("STL ASCII: welded, first-appearance order, gz, CRLF, BOM, several sol
   const std::string second =
       "solid part2\nfacet normal 0 0 1 outer loop vertex -0 0 0 vertex 0 1 0 vertex -1 0 0\n"
       "endloop endfacet\nendsolid\n";
-  m = meshsal::load_mesh(dir.write("two.stl", kTwoFacets + second), nullptr, {}, &report);
+  read = meshsal::read_mesh(dir.write("two.stl", kTwoFacets + second));
+  m = std::move(read.mesh);
   CHECK(m.vertex_count() == 5);
   CHECK(m.triangles == std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 0, 2, 4});
-  CHECK(report.welded_corners == 4);
+  CHECK(read.report.welded_corners == 4);
 
   // Other formats report nothing welded.
-  meshsal::load_mesh(dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), nullptr, {}, &report);
-  CHECK(report.welded_corners == 0);
+  CHECK(meshsal::read_mesh(dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).report.welded_corners == 0);
 }
 
 TEST_CASE("STL bad input: truncated, counts against size, NaN, garbled", "[io][stl]") {

@@ -39,10 +39,11 @@ TEST_CASE("write_ply round trip: positions bit-exact, triangles, properties, col
   std::vector<double> curvature = {5, 4, 3, 2, 1};
   std::vector<uint8_t> rgb = {0, 1, 2, 255, 254, 253, 10, 20, 30, 40, 50, 60, 70, 80, 90};
   const std::string path = dir.file("out.ply");
-  meshsal::write_ply(path, m, {{"quality", &quality}, {"curvature", &curvature}}, &rgb);
+  meshsal::write_ply(path, m, {{"quality", &quality}, {"curvature", &curvature}}, rgb);
 
-  VertexProperties props;
-  Mesh back = meshsal::load_mesh(path, &props);
+  meshsal::LoadedMesh read = meshsal::read_mesh(path);
+  const Mesh& back = read.mesh;
+  VertexProperties& props = read.properties;
   CHECK(same_bits(meshsal_test::world_floats(back), m.positions));
   CHECK(back.triangles == m.triangles);
   REQUIRE(props.size() == 5);
@@ -62,7 +63,7 @@ TEST_CASE("write_ply header follows SPEC section 4", "[io]") {
   std::vector<double> q(5, 1.0);
   std::vector<uint8_t> rgb(15, 7);
   const std::string path = dir.file("spec.ply");
-  meshsal::write_ply(path, m, {{"quality", &q}}, &rgb);
+  meshsal::write_ply(path, m, {{"quality", &q}}, rgb);
   const std::string bytes = meshsal_test::read_file(path);
   const std::string header =
       "ply\nformat binary_little_endian 1.0\ncomment written by meshsal\n"
@@ -83,8 +84,9 @@ TEST_CASE("write_ply without properties or colours", "[io]") {
   Mesh m = awkward_mesh();
   const std::string path = dir.file("plain.ply");
   meshsal::write_ply(path, m, {});
-  VertexProperties props;
-  Mesh back = meshsal::load_mesh(path, &props);
+  const meshsal::LoadedMesh read = meshsal::read_mesh(path);
+  const Mesh& back = read.mesh;
+  const VertexProperties& props = read.properties;
   CHECK(same_bits(meshsal_test::world_floats(back), m.positions));
   CHECK(back.triangles == m.triangles);
   CHECK(props.empty());
@@ -118,7 +120,7 @@ TEST_CASE("an existing file is replaced only when the write succeeds", "[io]") {
   CHECK_THROWS_WITH(meshsal::write_ply(path, m, {{"quality", &wrong_size}}),
                     Catch::Contains("quality") && Catch::Contains(path));
   std::vector<uint8_t> short_rgb(14, 0);
-  CHECK_THROWS_AS(meshsal::write_ply(path, m, {}, &short_rgb), meshsal::Error);
+  CHECK_THROWS_AS(meshsal::write_ply(path, m, {}, short_rgb), meshsal::Error);
   Mesh bad = m;
   bad.triangles[4] = 99;
   CHECK_THROWS_AS(meshsal::write_ply(path, bad, {}), meshsal::Error);
@@ -153,8 +155,7 @@ TEST_CASE("write_saliency_ply: quality = S, the extra properties, and colours ov
   const std::vector<double> s{0.5, 1.0, 0.25, 2.0, 100.0}, h{1, 2, 3, 4, 5};
   const std::string p = dir.file("s.ply");
   meshsal::write_saliency_ply(p, m, s, {{"curvature", &h}});
-  VertexProperties props;
-  meshsal::load_mesh(p, &props);
+  VertexProperties props = meshsal::read_mesh(p).properties;
   CHECK(props.count("quality") == 1);
   CHECK(props.count("curvature") == 1);
   CHECK(props.count("red") == 1);
@@ -165,7 +166,7 @@ TEST_CASE("write_saliency_ply: quality = S, the extra properties, and colours ov
   CHECK(props["blue"][4] > props["red"][4]);  // outside the mesh points: the low end's blue
   const std::string q = dir.file("q.ply");
   const std::vector<uint8_t> mask{1, 1, 1, 1, 0};
-  meshsal::write_saliency_ply(q, m, s, {{"curvature", &h}}, &mask);
+  meshsal::write_saliency_ply(q, m, s, {{"curvature", &h}}, mask);
   CHECK(meshsal_test::read_file(p) == meshsal_test::read_file(q));
   CHECK_THROWS_WITH(meshsal::write_saliency_ply(p, m, std::vector<double>(3, 1.0)),
                     Catch::Contains("3 saliency values for 5 vertices"));

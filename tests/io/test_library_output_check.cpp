@@ -43,7 +43,7 @@ void run_saliency_file(const std::string& input, const std::string& output) {
 void run_simplify_file(const std::string& input, const std::string& output) {
   meshsal::SimplifyOptions o;
   o.ratio = 0.5;
-  meshsal::simplify_file(input, output, o, nullptr, cpu_options(), {});
+  meshsal::simplify_file(input, output, o, std::nullopt, cpu_options(), {});
 }
 
 }  // namespace

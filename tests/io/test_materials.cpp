@@ -93,7 +93,7 @@ TEST_CASE("OBJ materials: mtllib and usemtl are read, with or without attributes
     INFO("attributes " << attributes);
     LoadOptions lo;
     lo.attributes = attributes;
-    const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+    const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", lo);
     CHECK(m.material_libraries == std::vector<std::string>{"grid.mtl", "extra.mtl"});
     CHECK(m.materials == std::vector<std::string>{"left side", "B"});
     REQUIRE(m.triangle_material.size() == m.triangle_count());
@@ -121,7 +121,7 @@ TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]
   TempDir dir;
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", lo);
   write_obj(dir.file("out.obj"), m);
   const std::string text = read_file(dir.file("out.obj"));
   // The materials go into one library beside the output, named after it: here (the grid
@@ -134,7 +134,7 @@ TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]
   CHECK(count(text, "usemtl left side\nf ") == 1);
   CHECK(count(text, "usemtl B\nf ") == 1);
   CHECK(count(text, "usemtl") == 2);
-  const Mesh back = load_mesh(dir.file("out.obj"), nullptr, lo);
+  const Mesh back = load_mesh(dir.file("out.obj"), lo);
   CHECK(back.material_libraries == std::vector<std::string>{"out.mtl"});
   CHECK(back.material_library_text == std::vector<std::string>{read_file(dir.file("out.mtl"))});
   CHECK(back.materials == m.materials);
@@ -184,10 +184,10 @@ TEST_CASE("OBJ materials: write_obj writes mtllib and usemtl back", "[materials]
 TEST_CASE("OBJ materials: simplify_mesh keeps each surviving triangle's material", "[materials]") {
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", nullptr, lo);
+  const Mesh m = load_mesh_bytes(grid_obj(), "grid.obj", lo);
   SimplifyOptions so;
   so.ratio = 0.2;
-  const Mesh out = simplify_mesh(m, so);
+  const Mesh out = simplify_mesh(m, so).mesh;
   CHECK(out.triangle_count() < m.triangle_count() / 3);
   CHECK(out.material_libraries == m.material_libraries);
   check_halves(out);
@@ -220,7 +220,7 @@ TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep the materia
   CHECK(read_file((dir / "in" / "small.mtl").string()) == library);
   CHECK(count(text, "usemtl left side\n") == 1);
   CHECK(count(text, "usemtl B\n") == 1);
-  check_halves(load_mesh((dir / "in" / "small.obj").string(), nullptr, lo));
+  check_halves(load_mesh((dir / "in" / "small.obj").string(), lo));
 
   // Elsewhere: the same files, and a note to copy the texture the materials name.
   r = run_cli("simplify " + quoted(in.string()) + " -o " + quoted((dir / "small.obj").string()) +
@@ -245,7 +245,7 @@ TEST_CASE("OBJ materials: meshsal simplify and batch --simplify keep the materia
   CHECK(count(batch_text, "usemtl left side\n") == 1);
   CHECK(count(batch_text, "usemtl B\n") == 1);
   CHECK(read_file((dir / "out" / "batch.jsonl").string()).find("wood.png") != std::string::npos);
-  check_halves(load_mesh((dir / "out" / "grid_simplified.obj").string(), nullptr, lo));
+  check_halves(load_mesh((dir / "out" / "grid_simplified.obj").string(), lo));
   fs::remove_all(dir);
 }
 
@@ -256,10 +256,11 @@ TEST_CASE("OBJ materials: the input's libraries are read from its folder and wri
   const std::string lib = "# the grid's colours\nnewmtl left side\nKd 1 0 0\nmap_Kd wood.png\n";
   dir.write("in/grid.mtl", lib);  // extra.mtl is missing: named in the report, its material made plain
   dir.write("in/grid.obj", grid_obj());
-  LoadReport report;
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh m = load_mesh(dir.file("in/grid.obj"), nullptr, lo, &report);
+  const LoadedMesh read = read_mesh(dir.file("in/grid.obj"), lo);
+  const Mesh& m = read.mesh;
+  const LoadReport& report = read.report;
   CHECK(m.material_library_text == std::vector<std::string>{lib, ""});
   CHECK(report.unread == std::vector<std::string>{"material library 'extra.mtl': no such file in the model's folder"});
   write_mesh(dir.file("out/small.obj"), m);

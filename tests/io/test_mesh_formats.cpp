@@ -26,7 +26,7 @@ std::vector<float> attr(const Mesh& mesh, const std::string& name) {
 Mesh with_attributes(const std::string& path) {
   LoadOptions o;
   o.attributes = true;
-  return load_mesh(path, nullptr, o);
+  return load_mesh(path, o);
 }
 
 // A small mesh with a colour per vertex (red = 10 v, green 200, blue 255 - 10 v).
@@ -110,7 +110,7 @@ TEST_CASE("mesh formats: OFF and STL are written and read back, S goes where it 
   // A binary STL: 84 + 50 bytes a triangle, its header never "solid".
   CHECK(std::filesystem::file_size(dir.file("s.stl")) == 84 + 50 * sphere.triangle_count());
   const std::vector<double> s(sphere.vertex_count(), 0.5);
-  CHECK_THROWS_WITH(write_mesh(dir.file("x.stl"), sphere, &s),
+  CHECK_THROWS_WITH(write_mesh(dir.file("x.stl"), sphere, s),
                     Catch::Contains("x.stl: cannot write: STL has no place for saliency (.ply, .gltf and .glb keep its values"));
   CHECK_FALSE(std::filesystem::exists(dir.file("x.stl")));
 }
@@ -132,7 +132,7 @@ TEST_CASE("mesh formats: vertex colours in OBJ (v x y z r g b) and COFF, both wa
   CHECK(load_mesh(dir.file("c.off")).attributes.empty());
   // S written as colours: the pictures' scale, lowest blue, highest dark red.
   const std::vector<double> s{0, 1, 2, 3};
-  write_mesh(dir.file("s.obj"), m, &s);
+  write_mesh(dir.file("s.obj"), m, s);
   const Mesh back = with_attributes(dir.file("s.obj"));
   CHECK(attr(back, "red") == std::vector<float>{73, attr(back, "red")[1], attr(back, "red")[2], 155});
   CHECK(attr(back, "blue")[0] == 221);
@@ -146,19 +146,19 @@ TEST_CASE("mesh formats: COFF and NOFF columns as other writers put them", "[io]
       "CNSTOFF\n3 1 0\n0 0 0 0 0 1 255 0 0 255 0.25 0.5\n1 0 0 0 0 1 0 255 0 255 1 0\n0 1 0 0 0 1 0 0 255 255 0 1\n3 0 1 2\n";
   LoadOptions o;
   o.attributes = true;
-  const Mesh a = load_mesh_bytes(ints, "a.off", nullptr, o);
+  const Mesh a = load_mesh_bytes(ints, "a.off", o);
   CHECK(attr(a, "red") == std::vector<float>{255, 0, 0});
   CHECK(attr(a, "alpha") == std::vector<float>{255, 128, 0});
-  const Mesh b = load_mesh_bytes(fractions, "b.off", nullptr, o);
+  const Mesh b = load_mesh_bytes(fractions, "b.off", o);
   CHECK(attr(b, "green") == std::vector<float>{0, 255, 0});
   CHECK(attr(b, "blue") == std::vector<float>{0, 0, 128});
   CHECK(attr(b, "alpha") == std::vector<float>{255, 255, 255});
-  const Mesh c = load_mesh_bytes(both, "c.off", nullptr, o);
+  const Mesh c = load_mesh_bytes(both, "c.off", o);
   CHECK(attr(c, "nz") == std::vector<float>{1, 1, 1});
   CHECK(attr(c, "red") == std::vector<float>{255, 0, 0});
   CHECK(attr(c, "u") == std::vector<float>{0.25f, 1, 0});
   CHECK(attr(c, "v") == std::vector<float>{0.5f, 0, 1});
-  CHECK_THROWS_WITH(load_mesh_bytes("COFF\n3 1 0\n0 0 0 1 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n3 0 1 2\n", "d.off", nullptr, o),
+  CHECK_THROWS_WITH(load_mesh_bytes("COFF\n3 1 0\n0 0 0 1 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n3 0 1 2\n", "d.off", o),
                     Catch::Contains("d.off: line 3: vertex needs its colour"));
 }
 
@@ -167,12 +167,12 @@ TEST_CASE("mesh formats: S read back from PLY and glTF alike, refused from a for
   const Mesh sphere = make_bumpy_sphere(2);
   SaliencyOptions o;
   const std::vector<double> s = compute_saliency(sphere, o).saliency;
-  for (const char* name : {"s.ply", "s.glb", "s.gltf"}) write_mesh(dir.file(name), sphere, &s);
+  for (const char* name : {"s.ply", "s.glb", "s.gltf"}) write_mesh(dir.file(name), sphere, s);
   const std::vector<double> from_ply = load_saliency(dir.file("s.ply"), sphere);
   CHECK(load_saliency(dir.file("s.glb"), sphere) == from_ply);
   CHECK(load_saliency(dir.file("s.gltf"), sphere) == from_ply);
   for (size_t v = 0; v < s.size(); ++v) CHECK(from_ply[v] == double(float(s[v])));
-  write_mesh(dir.file("s.obj"), sphere, &s);
+  write_mesh(dir.file("s.obj"), sphere, s);
   CHECK_THROWS_WITH(load_saliency(dir.file("s.obj"), sphere),
                     Catch::Contains("cannot hold saliency values (OBJ keeps S only as colours)"));
   write_mesh(dir.file("plain.glb"), sphere);

@@ -22,7 +22,7 @@ namespace {
 Mesh load_ply_text(const std::string& text, bool attributes) {
   LoadOptions o;
   o.attributes = attributes;
-  return load_mesh_bytes(text, "seam.ply", nullptr, o);
+  return load_mesh_bytes(text, "seam.ply", o);
 }
 
 // Two triangles over the unit square; vertex 4 sits where vertex 2 is, with u = `u4`.
@@ -57,20 +57,21 @@ TEST_CASE("simplify keeps a PLY's UV seam closed", "[simplify][io]") {
   // The seamed sphere as an exporter writes it: split vertices in a PLY with u, v, nx, ny, nz.
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh obj = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 4)), "seamed.obj", nullptr, lo);
+  const Mesh obj = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 4)), "seamed.obj", lo);
   meshsal_test::TempDir dir;
   const std::string path = dir.file("seamed.ply");
   Mesh file = obj;
   file.position_vertex.clear();  // a PLY cannot say which vertices are twins
   write_ply(path, file, {});
-  const Mesh in = load_mesh(path, nullptr, lo);
+  const Mesh in = load_mesh(path, lo);
   REQUIRE(in.vertex_count() == obj.vertex_count());
   CHECK(in.position_vertex == obj.position_vertex);  // found again from the positions alone
 
   SimplifyOptions o;
   o.target_faces = 1000;
-  SimplifyReport rep;
-  const Mesh out = simplify_mesh(in, o, nullptr, &rep);
+  const Simplified s = simplify_mesh(in, o);
+  const Mesh& out = s.mesh;
+  const SimplifyReport& rep = s.report;
   CHECK(out.triangle_count() == 1000);
   const simplify_test::Topology topo = simplify_test::topology(position_welded(out));
   CHECK(topo.border_edges == 0);
@@ -87,7 +88,7 @@ TEST_CASE("simplify keeps a PLY's UV seam closed", "[simplify][io]") {
   // two sides no longer meet, even welded by position.
   Mesh torn = in;
   torn.position_vertex.clear();
-  torn = simplify_mesh(torn, o);
+  torn = simplify_mesh(torn, o).mesh;
   find_seam_twins(torn);
   CHECK(simplify_test::topology(position_welded(torn)).border_edges > 20);
 }
@@ -97,7 +98,7 @@ TEST_CASE("cli saliency of a PLY with a UV seam: the seam does not cut the surfa
   LoadOptions lo;
   lo.attributes = true;
   const Mesh sphere = make_sphere(1.0, 3);
-  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(sphere), "seamed.obj", nullptr, lo);
+  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(sphere), "seamed.obj", lo);
   const std::vector<uint32_t> pv = split.position_vertex;
   split.position_vertex.clear();
   meshsal_test::TempDir dir;
@@ -128,7 +129,7 @@ TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file",
   Mesh sphere = make_sphere(1.0, 3);
   for (size_t i = 0; i < sphere.positions.size(); ++i)
     sphere.positions[i] *= float(1 + 0.02 * std::sin(12.9898 * double(i)));
-  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(sphere), "seamed.obj", nullptr, lo);
+  Mesh split = load_mesh_bytes(attr_test::seamed_sphere_obj(sphere), "seamed.obj", lo);
   split.position_vertex.clear();
   meshsal_test::TempDir dir;
   const std::string in = dir.file("split.ply"), sal = dir.file("split_s.ply");
@@ -137,12 +138,12 @@ TEST_CASE("cli simplify of a seamed PLY with --saliency-from its saliency file",
   // S from the file (one value per vertex of the PLY, twins included) gives the weights the
   // computed S gives, to the file's float precision...
   {
-    const Mesh m = load_mesh(in, nullptr, lo);  // with its seams welded, as the commands load it
+    const Mesh m = load_mesh(in, lo);  // with its seams welded, as the commands load it
     const std::vector<double> s_file = load_saliency_ply(sal, m);
     SaliencyOptions so;
     so.backend = Backend::Cpu;
     const SaliencyWeightOptions wo = weight_preset(Weighting::Saliency);
-    const std::vector<double> w_file = simplification_weights(m, wo, so, &s_file).weights;
+    const std::vector<double> w_file = simplification_weights(m, wo, so, s_file).weights;
     const std::vector<double> w_computed = simplification_weights(m, wo, so).weights;
     REQUIRE(w_file.size() == w_computed.size());
     double largest = 0;

@@ -23,7 +23,7 @@ namespace {
 Mesh read(const std::string& path) {
   LoadOptions o;
   o.attributes = true;
-  return load_mesh(path, nullptr, o);
+  return load_mesh(path, o);
 }
 
 bool has(const Mesh& m, const std::string& name) {

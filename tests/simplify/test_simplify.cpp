@@ -21,8 +21,9 @@ static SimplifyOptions target(size_t faces) {
 TEST_CASE("simplify: exact face counts on a closed sphere", "[simplify]") {
   const Mesh sphere = make_sphere(1.0, 3);  // 1280 faces
   for (size_t n : {1278, 1000, 500, 100, 20, 4}) {
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(sphere, target(n), nullptr, &rep);
+    const Simplified s = simplify_mesh(sphere, target(n));
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     INFO("target " << n);
     CHECK(out.triangle_count() == n);
     CHECK(rep.reached);
@@ -32,29 +33,29 @@ TEST_CASE("simplify: exact face counts on a closed sphere", "[simplify]") {
     CHECK(out.vertex_count() == n / 2 + 2);
   }
   // Same face count: nothing to do.
-  CHECK(simplify_mesh(sphere, target(1280)).triangle_count() == 1280);
+  CHECK(simplify_mesh(sphere, target(1280)).mesh.triangle_count() == 1280);
 }
 
 TEST_CASE("simplify: unreachable targets stop above them and say why", "[simplify]") {
   const Mesh sphere = make_sphere(1.0, 2);  // 320 faces, closed: only even counts
-  SimplifyReport rep;
-  Mesh out = simplify_mesh(sphere, target(101), nullptr, &rep);
-  CHECK(out.triangle_count() == 102);
-  CHECK_FALSE(rep.reached);
-  CHECK(rep.note.find("even") != std::string::npos);
+  Simplified s = simplify_mesh(sphere, target(101));
+  CHECK(s.mesh.triangle_count() == 102);
+  CHECK_FALSE(s.report.reached);
+  CHECK(s.report.note.find("even") != std::string::npos);
   // Below the tetrahedron no collapse keeps a closed manifold.
-  out = simplify_mesh(sphere, target(2), nullptr, &rep);
-  CHECK(out.triangle_count() == 4);
-  CHECK_FALSE(rep.reached);
-  CHECK(rep.note.find("stopped at 4") != std::string::npos);
+  s = simplify_mesh(sphere, target(2));
+  CHECK(s.mesh.triangle_count() == 4);
+  CHECK_FALSE(s.report.reached);
+  CHECK(s.report.note.find("stopped at 4") != std::string::npos);
 }
 
 TEST_CASE("simplify: open meshes reach odd targets and keep their border", "[simplify]") {
   const Mesh plane = make_plane_with_bump(2.0, 12, 0.3, 0.3);  // 288 faces, open
   const size_t border_before = topology(plane).border_edges;
   for (size_t n : {287, 201, 77}) {
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(plane, target(n), nullptr, &rep);
+    const Simplified s = simplify_mesh(plane, target(n));
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     INFO("target " << n);
     CHECK(out.triangle_count() == n);
     CHECK(rep.reached);
@@ -66,7 +67,7 @@ TEST_CASE("simplify: open meshes reach odd targets and keep their border", "[sim
   }
   // The border of a flat square stays on the square: corners are kept by border quadrics.
   const Mesh flat = make_plane(2.0, 10);
-  const Mesh out = simplify_mesh(flat, target(20));
+  const Mesh out = simplify_mesh(flat, target(20)).mesh;
   float lo = 1e9f, hi = -1e9f;
   for (size_t v = 0; v < out.vertex_count(); ++v) {
     lo = std::min(lo, out.positions[3 * v]);
@@ -100,8 +101,9 @@ TEST_CASE("simplify: closed manifold inputs stay closed, manifold and oriented",
     for (double ratio : {0.5, 0.1, 0.02}) {
       SimplifyOptions o;
       o.ratio = ratio;
-      SimplifyReport rep;
-      const Mesh out = simplify_mesh(in, o, nullptr, &rep);
+      const Simplified s = simplify_mesh(in, o);
+      const Mesh& out = s.mesh;
+      const SimplifyReport& rep = s.report;
       INFO(name << " ratio " << ratio);
       CHECK(rep.target_faces == size_t(std::llround(ratio * in.triangle_count())));
       // A closed manifold mesh only has even face counts: odd targets end one above.
@@ -121,7 +123,7 @@ TEST_CASE("simplify: closed manifold inputs stay closed, manifold and oriented",
 TEST_CASE("simplify: no flipped or degenerate triangles on a sphere", "[simplify]") {
   const Mesh sphere = make_sphere(2.0, 4);  // 5120 faces
   for (size_t n : {2000, 200, 40}) {
-    const Mesh out = simplify_mesh(sphere, target(n));
+    const Mesh out = simplify_mesh(sphere, target(n)).mesh;
     INFO("target " << n);
     REQUIRE(out.triangle_count() == n);
     check_closed_result(sphere, out, n >= 200 ? 0.05 : 0.35);
@@ -146,8 +148,10 @@ TEST_CASE("simplify: no flipped or degenerate triangles on a sphere", "[simplify
 static void check_same_sequence(const Mesh& mesh, size_t faces, const std::vector<double>* w) {
   SimplifyOptions o = target(faces);
   o.record_collapses = true;
-  SimplifyReport fast, brute;
-  const Mesh a = simplify_mesh(mesh, o, w, &fast);
+  const Simplified s = simplify_mesh(mesh, o, w ? *w : std::vector<double>{});
+  const Mesh& a = s.mesh;
+  const SimplifyReport& fast = s.report;
+  SimplifyReport brute;
   const Mesh b = simplify_bruteforce(mesh, o, w, &brute);
   REQUIRE(fast.sequence.size() == brute.sequence.size());
   REQUIRE(fast.sequence.size() > 0);
@@ -193,8 +197,9 @@ TEST_CASE("simplify: weights steer the collapses away from weighted vertices", "
   std::vector<double> w(m.vertex_count(), 1.0);
   for (size_t v = 0; v < w.size(); ++v)
     if (m.positions[3 * v + 2] > 0) w[v] = 1000.0;
-  SimplifyReport rep;
-  const Mesh out = simplify_mesh(m, target(400), &w, &rep);
+  const Simplified s = simplify_mesh(m, target(400), w);
+  const Mesh& out = s.mesh;
+  const SimplifyReport& rep = s.report;
   REQUIRE(out.triangle_count() == 400);
   size_t upper = 0;
   for (size_t v = 0; v < out.vertex_count(); ++v)
@@ -211,22 +216,22 @@ TEST_CASE("simplify: bad input is refused with a clear error", "[simplify]") {
   const Mesh sphere = make_sphere(1.0, 1);  // 80 faces
   // (A target above the face count is no error: the mesh comes back unchanged, see
   // test_simplify_whole_mesh.cpp.)
-  CHECK_THROWS_WITH(simplify_mesh(sphere, SimplifyOptions{}), Catch::Contains("target face count"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, SimplifyOptions{}).mesh, Catch::Contains("target face count"));
   SimplifyOptions r;
   r.ratio = -0.5;
-  CHECK_THROWS_WITH(simplify_mesh(sphere, r), Catch::Contains("ratio must be in (0, 1]"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, r).mesh, Catch::Contains("ratio must be in (0, 1]"));
   r.ratio = 1.5;
-  CHECK_THROWS_WITH(simplify_mesh(sphere, r), Catch::Contains("ratio must be in (0, 1]"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, r).mesh, Catch::Contains("ratio must be in (0, 1]"));
   r.ratio = 0.001;
-  CHECK_THROWS_WITH(simplify_mesh(sphere, r), Catch::Contains("leaves no faces"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, r).mesh, Catch::Contains("leaves no faces"));
   std::vector<double> w(sphere.vertex_count() + 1, 1.0);
-  CHECK_THROWS_WITH(simplify_mesh(sphere, target(40), &w), Catch::Contains("vertex weights"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, target(40), w).mesh, Catch::Contains("vertex weights"));
   w.assign(sphere.vertex_count(), 1.0);
   w[3] = -1;
-  CHECK_THROWS_AS(simplify_mesh(sphere, target(40), &w), Error);
+  CHECK_THROWS_AS(simplify_mesh(sphere, target(40), w).mesh, Error);
   Mesh broken = sphere;
   broken.triangles[5] = 1000;
-  CHECK_THROWS_WITH(simplify_mesh(broken, target(40)), Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(simplify_mesh(broken, target(40)).mesh, Catch::Contains("out of range"));
 }
 
 TEST_CASE("simplify: degenerate input triangles are dropped, unreferenced vertices removed",
@@ -235,8 +240,9 @@ TEST_CASE("simplify: degenerate input triangles are dropped, unreferenced vertic
   const size_t faces = m.triangle_count();
   m.triangles.insert(m.triangles.end(), {0, 0, 1, 2, 3, 3});
   m.positions.insert(m.positions.end(), {5.f, 5.f, 5.f});  // unreferenced
-  SimplifyReport rep;
-  const Mesh out = simplify_mesh(m, target(100), nullptr, &rep);
+  const Simplified s = simplify_mesh(m, target(100));
+  const Mesh& out = s.mesh;
+  const SimplifyReport& rep = s.report;
   CHECK(rep.input_faces == faces);
   CHECK(out.triangle_count() == 100);
   CHECK(topology(out).unreferenced == 0);

@@ -23,7 +23,7 @@ namespace {
 Mesh load_text(const std::string& text, const std::string& name, bool attributes) {
   LoadOptions o;
   o.attributes = attributes;
-  return load_mesh_bytes(text, name, nullptr, o);
+  return load_mesh_bytes(text, name, o);
 }
 
 SaliencyOptions cpu_saliency() {
@@ -122,8 +122,9 @@ TEST_CASE("simplify keeps a UV seam closed and every texture coordinate on its s
   const Mesh in = load_text(attr_test::seamed_sphere_obj(sphere, &seam), "seamed.obj", true);
   SimplifyOptions o;
   o.target_faces = 1000;
-  SimplifyReport rep;
-  const Mesh out = simplify_mesh(in, o, nullptr, &rep);
+  const Simplified s = simplify_mesh(in, o);
+  const Mesh& out = s.mesh;
+  const SimplifyReport& rep = s.report;
   CHECK(out.triangle_count() == 1000);
   CHECK(rep.reached);
   const VertexAttribute* u = find(out, "u");
@@ -199,21 +200,21 @@ TEST_CASE("simplify keeps a UV seam closed and every texture coordinate on its s
   CHECK(worst_normal > 0.995);
   // Collapsing along the seam, far targets are reached, the welded surface still closed.
   o.target_faces = 20;
-  const Mesh small = simplify_mesh(in, o, nullptr, &rep);
-  CHECK(small.triangle_count() == 20);
-  CHECK(rep.reached);
-  const simplify_test::Topology small_topo = simplify_test::topology(position_welded(small));
+  const Simplified small = simplify_mesh(in, o);
+  CHECK(small.mesh.triangle_count() == 20);
+  CHECK(small.report.reached);
+  const simplify_test::Topology small_topo = simplify_test::topology(position_welded(small.mesh));
   CHECK(small_topo.nonmanifold_edges == 0);
   CHECK(small_topo.border_edges == 0);
   CHECK(small_topo.repeated_directed == 0);
   // With --lock-border the seam (a border of each side) is locked whole: the reduction
   // stops there, and the note says so.
   o.lock_border = true;
-  const Mesh locked = simplify_mesh(in, o, nullptr, &rep);
-  CHECK(locked.triangle_count() == 96);
-  CHECK_FALSE(rep.reached);
-  CHECK(rep.note.find("locked (seam or border) vertices in place; stopped at 96") != std::string::npos);
-  CHECK(simplify_test::topology(position_welded(locked)).nonmanifold_edges == 0);
+  const Simplified locked = simplify_mesh(in, o);
+  CHECK(locked.mesh.triangle_count() == 96);
+  CHECK_FALSE(locked.report.reached);
+  CHECK(locked.report.note.find("locked (seam or border) vertices in place; stopped at 96") != std::string::npos);
+  CHECK(simplify_test::topology(position_welded(locked.mesh)).nonmanifold_edges == 0);
 }
 
 TEST_CASE("simplify with locks and attributes: the heap matches the brute-force oracle", "[simplify]") {
@@ -233,8 +234,10 @@ TEST_CASE("simplify with locks and attributes: the heap matches the brute-force 
     o.target_error = c.error;
     o.lock_border = c.lock_border;
     o.record_collapses = true;
-    SimplifyReport fast, brute;
-    const Mesh a = simplify_mesh(*c.mesh, o, nullptr, &fast);
+    const Simplified s = simplify_mesh(*c.mesh, o);
+    const Mesh& a = s.mesh;
+    const SimplifyReport& fast = s.report;
+    SimplifyReport brute;
     const Mesh b = simplify_bruteforce(*c.mesh, o, nullptr, &brute);
     INFO("faces " << c.faces << " error " << c.error << " lock " << c.lock_border);
     REQUIRE(fast.sequence.size() == brute.sequence.size());
@@ -262,8 +265,7 @@ TEST_CASE("simplify: PLY vertex properties are interpolated and written back", "
   in.attributes = {q, red};
   SimplifyOptions o;
   o.target_faces = 60;
-  SimplifyReport rep;
-  const Mesh out = simplify_mesh(in, o, nullptr, &rep);
+  const Mesh out = simplify_mesh(in, o).mesh;
   REQUIRE(out.triangle_count() == 60);
   REQUIRE(out.attributes.size() == 2);
   double worst = 0;
@@ -276,8 +278,7 @@ TEST_CASE("simplify: PLY vertex properties are interpolated and written back", "
   write_ply(path, out, {});
   LoadOptions lo;
   lo.attributes = true;
-  VertexProperties props;
-  const Mesh back = load_mesh(path, &props, lo);
+  const Mesh back = read_mesh(path, lo).mesh;
   CHECK(back.positions == out.positions);
   CHECK(back.triangles == out.triangles);
   REQUIRE(back.attributes.size() == 2);
@@ -295,7 +296,7 @@ TEST_CASE("obj attributes survive write_obj and load_mesh, seams included", "[si
   const Mesh in = load_text(attr_test::seamed_sphere_obj(sphere), "seamed.obj", true);
   SimplifyOptions o;
   o.target_faces = 400;
-  const Mesh out = simplify_mesh(in, o);
+  const Mesh out = simplify_mesh(in, o).mesh;
   meshsal_test::TempDir dir;
   const std::string path = dir.file("out.obj");
   write_obj(path, out);
@@ -317,7 +318,7 @@ TEST_CASE("obj attributes survive write_obj and load_mesh, seams included", "[si
   CHECK(vn_lines == out.vertex_count());
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh back = load_mesh(path, nullptr, lo);
+  const Mesh back = load_mesh(path, lo);
   REQUIRE(back.vertex_count() == out.vertex_count());
   REQUIRE(back.attributes.size() == out.attributes.size());
   // The reader numbers twins after the v lines: compare through the positions' order.
@@ -339,8 +340,9 @@ TEST_CASE("simplify --target-error: a plane goes to 2 triangles, a sphere keeps 
   for (double e : {1e-4, 0.01, 0.05}) {
     SimplifyOptions o;
     o.target_error = e;
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(plane, o, nullptr, &rep);
+    const Simplified s = simplify_mesh(plane, o);
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     INFO("error " << e);
     CHECK(out.triangle_count() == 2);
     CHECK(rep.error <= e);
@@ -351,14 +353,15 @@ TEST_CASE("simplify --target-error: a plane goes to 2 triangles, a sphere keeps 
   // Below the first collapse's error nothing happens.
   SimplifyOptions tiny;
   tiny.target_error = 0.0002;
-  SimplifyReport tiny_rep;
-  CHECK(simplify_mesh(sphere, tiny, nullptr, &tiny_rep).triangle_count() == 5120);
-  CHECK(tiny_rep.error == 0);
+  const Simplified tiny_s = simplify_mesh(sphere, tiny);
+  CHECK(tiny_s.mesh.triangle_count() == 5120);
+  CHECK(tiny_s.report.error == 0);
   for (double e : {0.0005, 0.002, 0.02}) {
     SimplifyOptions o;
     o.target_error = e;
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(sphere, o, nullptr, &rep);
+    const Simplified s = simplify_mesh(sphere, o);
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     INFO("error " << e << ": " << out.triangle_count() << " faces, reached " << rep.error);
     CHECK(rep.error <= e);
     CHECK(rep.error > 0.5 * e);  // it went as far as the bound allows
@@ -372,11 +375,11 @@ TEST_CASE("simplify --target-error: a plane goes to 2 triangles, a sphere keeps 
   SimplifyOptions both;
   both.target_faces = 4000;
   both.target_error = 0.02;
-  SimplifyReport rep;
-  CHECK(simplify_mesh(sphere, both, nullptr, &rep).triangle_count() == 4000);
-  CHECK(rep.reached);
+  const Simplified s = simplify_mesh(sphere, both);
+  CHECK(s.mesh.triangle_count() == 4000);
+  CHECK(s.report.reached);
   both.target_error = -1;
-  CHECK_THROWS_WITH(simplify_mesh(sphere, both), Catch::Contains("target error must be in [0, 1]"));
+  CHECK_THROWS_WITH(simplify_mesh(sphere, both).mesh, Catch::Contains("target error must be in [0, 1]"));
 }
 
 TEST_CASE("simplify --lock-border: an open grid keeps every border vertex in place", "[simplify]") {
@@ -401,8 +404,9 @@ TEST_CASE("simplify --lock-border: an open grid keeps every border vertex in pla
     SimplifyOptions o;
     o.target_faces = 100;
     o.lock_border = lock;
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(grid, o, nullptr, &rep);
+    const Simplified s = simplify_mesh(grid, o);
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     CHECK(out.triangle_count() == 100);
     size_t kept_in_place = 0;
     std::set<uint32_t> border_vertices;

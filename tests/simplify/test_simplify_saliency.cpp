@@ -36,14 +36,14 @@ TEST_CASE("simplify: saliency weights keep the unique feature of the bumpy spher
   so.smoothed = true;
   const SaliencyResult s = compute_saliency_cpu(m, so);
   REQUIRE(s.smoothed.size() == m.vertex_count());
-  double alpha = 0;
-  const std::vector<double> w = saliency_weights(s.smoothed, s.is_point, {}, &alpha);
-  CHECK(alpha > 0);
+  const SaliencyWeights sw = saliency_weights(s.smoothed, s.is_point, {});
+  const std::vector<double>& w = sw.weights;
+  CHECK(sw.alpha > 0);
   for (size_t faces : {size_t(2000), size_t(4000)}) {
     SimplifyOptions o;
     o.target_faces = faces;
-    const Mesh plain = simplify_mesh(m, o);
-    const Mesh guided = simplify_mesh(m, o, &w);
+    const Mesh plain = simplify_mesh(m, o).mesh;
+    const Mesh guided = simplify_mesh(m, o, w).mesh;
     REQUIRE(plain.triangle_count() == faces);
     REQUIRE(guided.triangle_count() == faces);
     const double e_plain = mean_distance(m, feature, plain);
@@ -61,22 +61,23 @@ TEST_CASE("saliency weights: percentile threshold and amplification", "[simplify
   CHECK(percentile(sm, all, 30) == Approx(1.5));
   SaliencyWeightOptions o;  // lambda 100, 30th percentile
   o.floor = 0;              // the paper's literal rule (the default floor is tested below)
-  double alpha = -1;
-  std::vector<double> w = saliency_weights(sm, all, o, &alpha);
-  CHECK(alpha == Approx(1.5));
+  SaliencyWeights sw = saliency_weights(sm, all, o);
+  std::vector<double> w = sw.weights;
+  CHECK(sw.alpha == Approx(1.5));
   const std::vector<double> expected{0.0, 1.0, 200.0, 300.0, 400.0, 500.0};
   for (size_t i = 0; i < w.size(); ++i) CHECK(w[i] == Approx(expected[i]));
   // Vertices that are not mesh points get 0 and do not count for the percentile.
   std::vector<uint8_t> mask{1, 1, 1, 1, 1, 0};
-  w = saliency_weights({1.0, 1.0, 1.0, 1.0, 2.0, 9.0}, mask, o, &alpha);
-  CHECK(alpha == Approx(1.0));
+  sw = saliency_weights({1.0, 1.0, 1.0, 1.0, 2.0, 9.0}, mask, o);
+  w = sw.weights;
+  CHECK(sw.alpha == Approx(1.0));
   CHECK(w[5] == 0.0);
   CHECK(w[0] == Approx(100.0));  // Sm >= alpha is amplified
   // A floor lifts near-zero weights.
   o.floor = 0.5;
-  w = saliency_weights(sm, all, o, &alpha);
+  w = saliency_weights(sm, all, o).weights;
   CHECK(w[0] == Approx(0.5 * (0 + 1 + 200 + 300 + 400 + 500) / 6.0));
   CHECK(w[5] == Approx(500.0));
-  CHECK_THROWS(saliency_weights({1.0}, all, {}));
+  CHECK_THROWS(saliency_weights({1.0}, all, {}).weights);
   CHECK_THROWS(percentile(sm, all, 101));
 }

@@ -29,7 +29,6 @@ using meshsal_test::run_cli;
 TEST_CASE("weights: the three curves on known values", "[simplify]") {
   const std::vector<double> sm{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
   const std::vector<uint8_t> all(sm.size(), 1);
-  double alpha = 0;
 
   // Rank step (gamma 0): 1 + lambda on the ranks >= 0.7, i.e. k / 9 >= 0.7: k = 7, 8, 9.
   SaliencyWeightOptions o;
@@ -37,15 +36,16 @@ TEST_CASE("weights: the three curves on known values", "[simplify]") {
   o.alpha_percentile = 70;
   o.gamma = 0;
   o.lambda = 2;
-  std::vector<double> w = saliency_weights(sm, all, o, &alpha);
-  CHECK(alpha == Approx(6.3));
+  SaliencyWeights sw = saliency_weights(sm, all, o);
+  std::vector<double> w = sw.weights;
+  CHECK(sw.alpha == Approx(6.3));
   for (int k = 0; k < 10; ++k) CHECK(w[k] == (k >= 7 ? 3.0 : 1.0));
 
   // Rank ramp (gamma 1) from the 50th: 1 + lambda (r - 0.5) / 0.5.
   o.alpha_percentile = 50;
   o.gamma = 1;
   o.lambda = 4;
-  w = saliency_weights(sm, all, o);
+  w = saliency_weights(sm, all, o).weights;
   CHECK(w[4] == 1.0);
   CHECK(w[5] == Approx(1 + 4 * (5.0 / 9 - 0.5) / 0.5));
   CHECK(w[9] == Approx(5.0));
@@ -55,8 +55,9 @@ TEST_CASE("weights: the three curves on known values", "[simplify]") {
   o.gamma = 2;
   o.lambda = 1;
   o.cap = 3;
-  w = saliency_weights(sm, all, o, &alpha);
-  CHECK(alpha == Approx(4.5));
+  sw = saliency_weights(sm, all, o);
+  w = sw.weights;
+  CHECK(sw.alpha == Approx(4.5));
   CHECK(w[0] == 1.0);
   CHECK(w[3] == Approx(1 + (3 / 4.5) * (3 / 4.5)));
   CHECK(w[7] == Approx(1 + (7 / 4.5) * (7 / 4.5)));  // 2.42, under the cap
@@ -65,14 +66,14 @@ TEST_CASE("weights: the three curves on known values", "[simplify]") {
   // Vertices that are not mesh points get 0, whatever the curve.
   std::vector<uint8_t> mask = all;
   mask[9] = 0;
-  w = saliency_weights(sm, mask, weight_preset(Weighting::Balanced));
+  w = saliency_weights(sm, mask, weight_preset(Weighting::Balanced)).weights;
   CHECK(w[9] == 0.0);
 
   o.gamma = 17;
-  CHECK_THROWS_WITH(saliency_weights(sm, all, o), "gamma must be a finite number in [0, 16]");
+  CHECK_THROWS_WITH(saliency_weights(sm, all, o).weights, "gamma must be a finite number in [0, 16]");
   o.gamma = 1;
   o.cap = -1;
-  CHECK_THROWS_WITH(saliency_weights(sm, all, o), "cap must be a finite number in [0, 1e+06]");
+  CHECK_THROWS_WITH(saliency_weights(sm, all, o).weights, "cap must be a finite number in [0, 1e+06]");
 }
 
 TEST_CASE("weights: the named presets", "[simplify]") {
@@ -135,7 +136,7 @@ TEST_CASE("weights: the result names the saliency's device, seams or not", "[sim
   // Split at a UV seam: weighed on the position-welded mesh, the device still comes back.
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh seamed = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 3)), "seamed.obj", nullptr, lo);
+  const Mesh seamed = load_mesh_bytes(attr_test::seamed_sphere_obj(make_sphere(1.0, 3)), "seamed.obj", lo);
   REQUIRE_FALSE(seamed.position_vertex.empty());
   const SimplificationWeights computed = simplification_weights(seamed, wo, so);
   CHECK(computed.device.rfind("cpu", 0) == 0);  // "cpu (N threads)"
@@ -143,7 +144,7 @@ TEST_CASE("weights: the result names the saliency's device, seams or not", "[sim
   CHECK(computed.saliency.size() == seamed.vertex_count());
 
   // S given by the caller: no device computed it; the same weights come back.
-  const SimplificationWeights given = simplification_weights(seamed, wo, so, &computed.saliency);
+  const SimplificationWeights given = simplification_weights(seamed, wo, so, computed.saliency);
   CHECK(given.device.empty());
   CHECK(given.weights == computed.weights);
 }

@@ -24,8 +24,9 @@ TEST_CASE("simplify: a target at or above the face count returns the mesh as it 
   for (size_t target : {size_t(320), size_t(1000000)}) {
     SimplifyOptions opt;
     opt.target_faces = target;
-    SimplifyReport rep;
-    const Mesh out = simplify_mesh(m, opt, nullptr, &rep);
+    const Simplified s = simplify_mesh(m, opt);
+    const Mesh& out = s.mesh;
+    const SimplifyReport& rep = s.report;
     CHECK(out.positions == m.positions);
     CHECK(out.triangles == m.triangles);
     CHECK(rep.unchanged);
@@ -43,15 +44,15 @@ TEST_CASE("simplify: a target at or above the face count returns the mesh as it 
   so.cancel = &stop;
   SimplifyOptions opt;
   opt.target_faces = 500;
-  SimplifyReport rep;
-  CHECK(simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so, nullptr, &rep).triangles == m.triangles);
-  CHECK(rep.unchanged);
+  Simplified s = simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so);
+  CHECK(s.mesh.triangles == m.triangles);
+  CHECK(s.report.unchanged);
   // One face fewer is a simplification.
   opt.target_faces = 318;
   stop = false;
-  simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so, nullptr, &rep);
-  CHECK_FALSE(rep.unchanged);
-  CHECK(rep.output_faces == 318);
+  s = simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so);
+  CHECK_FALSE(s.report.unchanged);
+  CHECK(s.report.output_faces == 318);
 }
 
 TEST_CASE("batch --simplify with a face count above a model's writes it unchanged, exit 0", "[cli][batch]") {

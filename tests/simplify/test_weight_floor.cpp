@@ -29,10 +29,9 @@ Outcome simplify_plane(const SaliencyWeightOptions& wo) {
   so.backend = Backend::Cpu;
   SimplifyOptions opt;
   opt.ratio = 0.1;
-  SimplifyReport rep;
-  const Mesh out = simplify_with_saliency(m, opt, wo, so, nullptr, &rep);
-  const SurfaceComparison c = compare_surfaces(m, out, nullptr);
-  return {c.hausdorff / c.diagonal, rep.error};
+  const Simplified out = simplify_with_saliency(m, opt, wo, so);
+  const SurfaceComparison c = compare_surfaces(m, out.mesh, {});
+  return {c.hausdorff / c.diagonal, out.report.error};
 }
 
 }  // namespace
@@ -61,14 +60,14 @@ TEST_CASE("weight floor: a plane with one bump keeps its area at 10% with every 
 TEST_CASE("weight floor: saliency 0 everywhere gives plain quadrics, the literal rule 0", "[simplify]") {
   const std::vector<double> zero(5, 0.0);
   const std::vector<uint8_t> points{1, 1, 1, 1, 0};
-  const std::vector<double> w = saliency_weights(zero, points, SaliencyWeightOptions{});
+  const std::vector<double> w = saliency_weights(zero, points, SaliencyWeightOptions{}).weights;
   CHECK(w == std::vector<double>{1, 1, 1, 1, 0});
   SaliencyWeightOptions literal;
   literal.floor = 0;
-  CHECK(saliency_weights(zero, points, literal) == std::vector<double>(5, 0.0));
+  CHECK(saliency_weights(zero, points, literal).weights == std::vector<double>(5, 0.0));
   // Otherwise the floor is a share of the mean: Sm {0, 1, 2} (alpha 0.6) gives W {0, 100, 200},
   // mean 100, floor 0.1.
-  const std::vector<double> w2 = saliency_weights({0.0, 1.0, 2.0}, {1, 1, 1}, SaliencyWeightOptions{});
+  const std::vector<double> w2 = saliency_weights({0.0, 1.0, 2.0}, {1, 1, 1}, SaliencyWeightOptions{}).weights;
   CHECK(w2[0] == Approx(kDefaultWeightFloor * 100));
   CHECK(w2[1] == Approx(100.0));
   CHECK(w2[2] == Approx(200.0));
@@ -86,10 +85,10 @@ TEST_CASE("weight floor: the default leaves the paper's recipe on the bunny as i
   literal.floor = 0;
   // Measured (docs/method.md, "Weight floor"): a few vertices move, the distances stay to
   // 5 digits (Hausdorff, RMS and salient-region error).
-  const Mesh a = simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so, &s);
-  const Mesh b = simplify_with_saliency(m, opt, literal, so, &s);
+  const Mesh a = simplify_with_saliency(m, opt, SaliencyWeightOptions{}, so, s).mesh;
+  const Mesh b = simplify_with_saliency(m, opt, literal, so, s).mesh;
   CHECK(a.triangle_count() == b.triangle_count());
-  const SurfaceComparison ca = compare_surfaces(m, a, &s), cb = compare_surfaces(m, b, &s);
+  const SurfaceComparison ca = compare_surfaces(m, a, s), cb = compare_surfaces(m, b, s);
   CHECK(ca.hausdorff == Approx(cb.hausdorff).epsilon(1e-4));
   CHECK(ca.rms == Approx(cb.rms).epsilon(1e-4));
   CHECK(ca.salient_error == Approx(cb.salient_error).epsilon(1e-4));
@@ -101,7 +100,7 @@ TEST_CASE("weight floor: simplify and batch --simplify keep the plane, --weight-
   const std::string in = (dir / "plane.obj").string();
   write_obj(in, plane_with_bump());
   const auto hausdorff = [&](const std::string& out) {
-    return compare_surfaces(load_mesh(in), load_mesh(out), nullptr);
+    return compare_surfaces(load_mesh(in), load_mesh(out), {});
   };
   CliRun r = run_cli("simplify " + quoted(in) + " -o " + quoted((dir / "s.obj").string()) + " --ratio 0.1", dir);
   REQUIRE(r.rc == 0);

@@ -33,7 +33,7 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
   int i = 0;
   for (const Mesh& mesh : meshes) {
     const std::string in = (dir / ("in" + std::to_string(i++) + ".ply")).string();
-    write_ply(in, mesh, {}, nullptr);
+    write_ply(in, mesh, {});
     const Mesh loaded = load_mesh(in);
     for (Method method : {Method::Exact, Method::Fast})
       for (bool dump : {false, true}) {
@@ -46,7 +46,7 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
           for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
           for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
         }
-        write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, &r.is_point);
+        write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, r.is_point);
         SaliencyOptions o = cpu(method);
         o.tiles = 4;
         OutOfCoreOptions ooc;
@@ -87,7 +87,7 @@ TEST_CASE("out of core converts other formats once and gives the same bytes", "[
 TEST_CASE("out of core: --memory-limit holds the peak resident memory under the limit", "[outofcore][cli]") {
   const auto dir = scratch_dir("ooc_limit");
   const std::string in = (dir / "plane.ply").string();
-  write_ply(in, make_plane_with_bump(2.0, 600, 0.3, 0.2), {}, nullptr);  // 361,201 vertices
+  write_ply(in, make_plane_with_bump(2.0, 600, 0.3, 0.2), {});  // 361,201 vertices
   const CliRun whole = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "a.ply").string()) +
                                    " --method fast --backend cpu --json", dir);
   REQUIRE(whole.rc == 0);
@@ -111,7 +111,7 @@ TEST_CASE("out of core: --memory-limit holds the peak resident memory under the 
 TEST_CASE("out of core: bad limits and inputs are clear errors", "[outofcore][cli]") {
   const auto dir = scratch_dir("ooc_errors");
   const std::string in = (dir / "sphere.ply").string();
-  write_ply(in, make_bumpy_sphere(5), {}, nullptr);
+  write_ply(in, make_bumpy_sphere(5), {});
   // Too small for one tile: the error names the smallest workable limit, nothing is written.
   const CliRun small = run_cli("saliency " + quoted(in) + " -o " + quoted((dir / "b.ply").string()) +
                                    " --backend cpu --memory-limit 15M", dir);
@@ -153,11 +153,11 @@ TEST_CASE("out of core: a mesh within one tile, and hostile PLY files", "[outofc
   const auto dir = scratch_dir("ooc_hostile");
   const Mesh mesh = make_bumpy_sphere(3);
   const std::string in = (dir / "in.ply").string();
-  write_ply(in, mesh, {}, nullptr);
+  write_ply(in, mesh, {});
   // A limit far above the mesh: one tile, the in-memory bytes.
   const Mesh loaded = load_mesh(in);
   const SaliencyResult r = compute_saliency(loaded, cpu(Method::Exact));
-  write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, {}, &r.is_point);
+  write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, {}, r.is_point);
   OutOfCoreOptions ooc;
   ooc.memory_limit = uint64_t(4) << 30;
   ooc.temp_dir = dir.string();
@@ -211,9 +211,9 @@ TEST_CASE("out of core: a mesh within one tile, and hostile PLY files", "[outofc
 TEST_CASE("out of core: batch --memory-limit writes what batch writes in memory", "[outofcore][cli]") {
   const auto dir = scratch_dir("ooc_batch");
   std::filesystem::create_directories(dir / "in");
-  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {}, nullptr);
+  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {});
   write_obj((dir / "in" / "plane.obj").string(), make_plane_with_bump(2.0, 40, 0.3, 0.2));
-  write_ply((dir / "in" / "cube.ply").string(), make_cube(10), {}, nullptr);
+  write_ply((dir / "in" / "cube.ply").string(), make_cube(10), {});
   const std::string in = quoted((dir / "in").string());
   const CliRun whole = run_cli("batch " + in + " -o " + quoted((dir / "a").string()) + " --backend cpu -q", dir);
   REQUIRE(whole.rc == 0);
@@ -249,8 +249,8 @@ TEST_CASE("out of core: batch --memory-limit --simplify writes what simplify --m
           "[outofcore][cli][simplify]") {
   const auto dir = scratch_dir("ooc_batch_simplify");
   std::filesystem::create_directories(dir / "in");
-  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {}, nullptr);
-  write_ply((dir / "in" / "plane.ply").string(), make_plane_with_bump(2.0, 40, 0.3, 0.2), {}, nullptr);
+  write_ply((dir / "in" / "sphere.ply").string(), make_bumpy_sphere(4), {});
+  write_ply((dir / "in" / "plane.ply").string(), make_plane_with_bump(2.0, 40, 0.3, 0.2), {});
   const std::string in = quoted((dir / "in").string());
   const std::string common = " --backend cpu --method fast --memory-limit 200M --temp-dir " + quoted(dir.string());
   const CliRun batch = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) + " -q --simplify 0.1" + common, dir);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -23,17 +24,18 @@ using namespace meshsal_test;
 
 namespace {
 
-SimplifyOptions ratio(double r) {
+SimplifyOptions ratio(double r, unsigned tiles = 0) {
   SimplifyOptions o;
   o.ratio = r;
+  o.tiles = tiles;
   return o;
 }
 
 // What `meshsal simplify --tiles N` writes, through the library: the mesh as read from
 // `path`, weights from its (exact, untiled: the same bits as tiled) saliency with S as
-// `quality`, simplify_mesh_tiled, write_ply.
-void in_memory(const std::string& path, const std::string& out, const SimplifyOptions& o, unsigned tiles,
-               const SaliencyWeightOptions* weights) {
+// `quality`, simplify_mesh_tiled (o.tiles), write_ply.
+void in_memory(const std::string& path, const std::string& out, const SimplifyOptions& o,
+               const std::optional<SaliencyWeightOptions>& weights) {
   Mesh mesh = load_mesh(path);
   std::vector<double> w;
   if (weights) {
@@ -41,7 +43,7 @@ void in_memory(const std::string& path, const std::string& out, const SimplifyOp
     w = sw.weights;
     set_vertex_attribute(mesh, "quality", sw.saliency);
   }
-  write_ply(out, simplify_mesh_tiled(mesh, o, tiles, weights ? &w : nullptr), {}, nullptr);
+  write_ply(out, simplify_mesh_tiled(mesh, o, w).mesh, {});
 }
 
 
@@ -88,13 +90,13 @@ TEST_CASE("out-of-core simplification writes the in-memory tiled bytes", "[outof
   for (Case& c : cases) {
     INFO(c.name);
     const std::string in = (dir / (std::string(c.name) + ".ply")).string();
-    write_ply(in, c.mesh, {}, nullptr);
+    write_ply(in, c.mesh, {});
     const std::string a = (dir / "a.ply").string(), b = (dir / "b.ply").string();
-    in_memory(in, a, ratio(c.ratio), c.tiles, c.weighted ? &balanced : nullptr);
+    const std::optional<SaliencyWeightOptions> weights = c.weighted ? std::optional(balanced) : std::nullopt;
+    in_memory(in, a, ratio(c.ratio, c.tiles), weights);
     OutOfCoreOptions ooc;
     ooc.temp_dir = dir.string();
-    const OutOfCoreSimplifyReport r =
-        simplify_file(in, b, ratio(c.ratio), c.weighted ? &balanced : nullptr, cpu(Method::Exact), ooc, c.tiles);
+    const OutOfCoreSimplifyReport r = simplify_file(in, b, ratio(c.ratio, c.tiles), weights, cpu(Method::Exact), ooc);
     CHECK(r.tiles == c.tiles);
     CHECK(r.simplify.output_faces >= r.simplify.target_faces);
     CHECK(r.simplify.collapses > 0);
@@ -118,11 +120,11 @@ TEST_CASE("out-of-core simplification keeps the mesh as read when the target ask
   m.positions.insert(m.positions.end(), {5, 5, 5});  // an unreferenced vertex stays
   m.triangles.insert(m.triangles.end(), {0, 0, 1});  // and a degenerate triangle
   const std::string in = (dir / "in.ply").string();
-  write_ply(in, m, {}, nullptr);
-  write_ply((dir / "a.ply").string(), load_mesh(in), {}, nullptr);
+  write_ply(in, m, {});
+  write_ply((dir / "a.ply").string(), load_mesh(in), {});
   const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
   const OutOfCoreSimplifyReport r =
-      simplify_file(in, (dir / "b.ply").string(), ratio(1.0), &balanced, cpu(Method::Fast), {}, 2);
+      simplify_file(in, (dir / "b.ply").string(), ratio(1.0, 2), balanced, cpu(Method::Fast), {});
   CHECK(r.simplify.unchanged);
   CHECK(r.simplify.collapses == 0);
   CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
@@ -132,11 +134,11 @@ TEST_CASE("out-of-core simplification of a shared scan equals the in-memory tile
   MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
   const auto dir = scratch_dir("ooc_simplify_bunny");
   const std::string in = (dir / "bunny.ply").string();
-  write_ply(in, load_mesh(path), {}, nullptr);
+  write_ply(in, load_mesh(path), {});
   const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
-  in_memory(in, (dir / "a.ply").string(), ratio(0.1), 4, &balanced);
+  in_memory(in, (dir / "a.ply").string(), ratio(0.1, 4), balanced);
   const OutOfCoreSimplifyReport r =
-      simplify_file(in, (dir / "b.ply").string(), ratio(0.1), &balanced, cpu(Method::Exact), {}, 4);
+      simplify_file(in, (dir / "b.ply").string(), ratio(0.1, 4), balanced, cpu(Method::Exact), {});
   CHECK(file_bytes(dir / "a.ply") == file_bytes(dir / "b.ply"));
   CHECK(r.simplify.output_faces <= size_t(1.01 * double(r.simplify.target_faces)));
   CHECK(r.alpha > 0);
@@ -145,7 +147,7 @@ TEST_CASE("out-of-core simplification of a shared scan equals the in-memory tile
 TEST_CASE("simplify --memory-limit holds the limit and gives --tiles N's bytes", "[outofcore][simplify][cli]") {
   const auto dir = scratch_dir("ooc_simplify_cli");
   const std::string in = (dir / "plane.ply").string();
-  write_ply(in, make_plane_with_bump(2.0, 400, 0.3, 0.2), {}, nullptr);  // 160,801 vertices
+  write_ply(in, make_plane_with_bump(2.0, 400, 0.3, 0.2), {});  // 160,801 vertices
   const std::string common = "simplify " + quoted(in) + " --ratio 0.05 --backend cpu --json";
   const CliRun limited =
       run_cli(common + " -o " + quoted((dir / "b.ply").string()) + " --method fast --memory-limit 60M", dir);
@@ -158,7 +160,7 @@ TEST_CASE("simplify --memory-limit holds the limit and gives --tiles N's bytes",
   // With the exact method the tiled saliency is the untiled one: the same bytes as --tiles
   // in memory (a smaller mesh: the exact method is slow).
   const std::string small = (dir / "small.ply").string();
-  write_ply(small, make_plane_with_bump(2.0, 100, 0.3, 0.2), {}, nullptr);
+  write_ply(small, make_plane_with_bump(2.0, 100, 0.3, 0.2), {});
   const std::string exact = "simplify " + quoted(small) + " --ratio 0.1 --backend cpu --method exact --tiles 3 -o ";
   const CliRun mem = run_cli(exact + quoted((dir / "d.ply").string()), dir);
   const CliRun ooc = run_cli(exact + quoted((dir / "e.ply").string()) + " --memory-limit 1G", dir);
@@ -179,7 +181,7 @@ TEST_CASE("simplify --memory-limit holds the limit and gives --tiles N's bytes",
 TEST_CASE("simplify --memory-limit: what it does not take is a clear error", "[outofcore][simplify][cli]") {
   const auto dir = scratch_dir("ooc_simplify_errors");
   const std::string in = (dir / "sphere.ply").string();
-  write_ply(in, make_bumpy_sphere(5), {}, nullptr);
+  write_ply(in, make_bumpy_sphere(5), {});
   const std::string base = "simplify " + quoted(in) + " --ratio 0.1 --backend cpu ";
   const CliRun small = run_cli(base + "-o " + quoted((dir / "b.ply").string()) + " --memory-limit 20M", dir);
   CHECK(small.rc == 1);
@@ -211,10 +213,11 @@ TEST_CASE("simplify --memory-limit: what it does not take is a clear error", "[o
   CHECK(pipe.err.find("regular files only") != std::string::npos);
   SaliencyWeightOptions rank;
   rank.curve = WeightCurve::Rank;
-  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), ratio(0.1), &rank, cpu(Method::Fast), {}, 2),
+  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), ratio(0.1, 2), rank, cpu(Method::Fast), {}),
                     Catch::Contains("rank curve"));
   SimplifyOptions bound;
   bound.target_error = 0.01;
-  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), bound, nullptr, cpu(Method::Fast), {}, 2),
+  bound.tiles = 2;
+  CHECK_THROWS_WITH(simplify_file(in, (dir / "r.ply").string(), bound, std::nullopt, cpu(Method::Fast), {}),
                     Catch::Contains("not target_error"));
 }

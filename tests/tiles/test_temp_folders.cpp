@@ -62,7 +62,7 @@ pid_t start_cli(const std::vector<std::string>& args, const fs::path& err) {
 // eps), its tiles in `temp`.
 std::vector<std::string> slow_run(const fs::path& dir, const fs::path& temp) {
   const fs::path in = dir / "sphere.ply";
-  if (!fs::exists(in)) write_ply(in.string(), make_sphere(1.0, 7), {}, nullptr);
+  if (!fs::exists(in)) write_ply(in.string(), make_sphere(1.0, 7), {});
   return {"simplify", in.string(), "-o", (dir / "out.ply").string(), "--ratio", "0.1", "--eps-frac", "0.01",
           "--backend", "cpu", "--memory-limit", "1G", "--temp-dir", temp.string()};
 }
@@ -78,7 +78,7 @@ bool wait_for_folder(const fs::path& temp) {
 // A quick out-of-core run with its tiles in `temp`: its stderr.
 meshsal_test::CliRun quick_run(const fs::path& dir, const fs::path& temp) {
   const fs::path in = dir / "small.ply";
-  if (!fs::exists(in)) write_ply(in.string(), make_bumpy_sphere(3), {}, nullptr);
+  if (!fs::exists(in)) write_ply(in.string(), make_bumpy_sphere(3), {});
   return meshsal_test::run_cli("saliency " + meshsal_test::quoted(in.string()) + " -o " +
                                    meshsal_test::quoted((dir / "small_s.ply").string()) +
                                    " --backend cpu --memory-limit 100M --temp-dir " + meshsal_test::quoted(temp.string()),

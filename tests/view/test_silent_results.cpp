@@ -102,10 +102,11 @@ TEST_CASE("simplify: what a PLY holds that the output cannot carry is named", "[
   ply += "0 1\n";
   const std::string in = (dir / "in.ply").string();
   std::ofstream(in) << ply;
-  LoadReport report;
   LoadOptions lo;
   lo.attributes = true;
-  const Mesh loaded = load_mesh(in, nullptr, lo, &report);
+  const LoadedMesh read = read_mesh(in, lo);
+  const Mesh& loaded = read.mesh;
+  const LoadReport& report = read.report;
   CHECK(report.unread == std::vector<std::string>{"vertex list property 'texcoord'", "face property 'flags'", "element 'edge'"});
   REQUIRE(loaded.attributes.size() == 1);
   CHECK(loaded.attributes[0].name == "quality");
@@ -130,8 +131,7 @@ TEST_CASE("precision: a mesh beyond float precision is named as such, not blamed
   CHECK(precision_warning(m).find("(vertex " + std::to_string(far_vertex) + " at 1e+15, 0, 0;") != std::string::npos);
   SimplifyOptions opt;
   opt.target_faces = 10;
-  SimplifyReport rep;
-  simplify_mesh(m, opt, nullptr, &rep);
+  const SimplifyReport rep = simplify_mesh(m, opt).report;
   CHECK(rep.warning == precision_warning(m));
   if (!rep.reached) {
     CHECK(rep.note.find("the positions are too coarse at float precision") != std::string::npos);

@@ -19,10 +19,10 @@ int main(int argc, char** argv) {
     meshsal::Mesh mesh = meshsal::make_mesh(p, 6, t, 24);
     meshsal::SimplifyOptions so;
     so.target_faces = 6;
-    meshsal::Mesh out = meshsal::simplify_mesh(mesh, so);
+    meshsal::Mesh out = meshsal::simplify_mesh(mesh, so).mesh;
     meshsal::RenderStyle style;
     style.size = 32;
-    meshsal::Image img = meshsal::render_view(mesh, &r.saliency, {}, style);
+    meshsal::Image img = meshsal::render_view(mesh, r.saliency, {}, style);
     std::printf("vulkan=%d backend=%s pairs=%llu eps=%.6f faces=%zu image=%dx%d\n",
                 int(meshsal::built_with_vulkan()), r.backend_name.c_str(),
                 static_cast<unsigned long long>(r.pairs), r.eps, out.triangle_count(), img.width,
