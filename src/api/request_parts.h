@@ -12,6 +12,7 @@
 namespace meshsal {
 
 struct RequestRun {
+  RequestRun(const Request& r, RequestResult& out) : request(r), result(out) {}
   const Request& request;
   RequestResult& result;
   // The input read plainly (S, the saliency PLY, the views) and with its attributes (the
