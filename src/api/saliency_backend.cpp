@@ -7,6 +7,7 @@
 
 #include "meshsal/meshsal.h"
 #include "core/number_text.h"
+#include "core/parallel.h"
 #include "core/welded_view.h"
 #include "api/gpu_backend.h"
 #include "api/resolve_method.h"
@@ -24,6 +25,16 @@ void tell(const SaliencyOptions& options, const std::string& line) {
   if (options.notice) options.notice(line);
 }
 
+void tell_long_exact_sweep(const Mesh& mesh, const SaliencyOptions& options) {
+  if (!options.notice) return;
+  if (const std::string note = long_sweep_note(mesh, options); !note.empty()) tell(options, note);
+}
+
+SaliencyResult saliency_on_cpu(const Mesh& mesh, const SaliencyOptions& options) {
+  tell_long_exact_sweep(mesh, options);
+  return compute_saliency_cpu(mesh, options);
+}
+
 // Auto: a discrete or integrated GPU when there is one (or the --device given), else the
 // CPU; no Vulkan at all, or any failure on the GPU, falls back to the CPU with a one-line
 // notice.
@@ -37,11 +48,11 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
       throw;
     } catch (const Error& e) {
       tell(options, std::string("auto: the GPU path failed (") + e.what() + "), using the CPU path");
-      return compute_saliency_cpu(mesh, options);
+      return saliency_on_cpu(mesh, options);
     }
   }
   // A build without Vulkan has only the CPU path: the plain choice, not a fallback.
-  if (!built_with_vulkan()) return compute_saliency_cpu(mesh, options);
+  if (!built_with_vulkan()) return saliency_on_cpu(mesh, options);
   SaliencyOptions gpu = options;
   if (gpu.device < 0) {
     std::vector<DeviceInfo> devices;
@@ -51,12 +62,12 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
       throw;
     } catch (const Error& e) {
       tell(options, std::string("auto: no Vulkan (") + e.what() + "), using the CPU path");
-      return compute_saliency_cpu(mesh, options);
+      return saliency_on_cpu(mesh, options);
     }
     // Only lavapipe (or no device): the CPU path is the plain choice, not a fallback, so
     // no notice (backend_name says "cpu").
     gpu.device = pick_hardware_gpu(devices);
-    if (gpu.device < 0) return compute_saliency_cpu(mesh, options);
+    if (gpu.device < 0) return saliency_on_cpu(mesh, options);
   }
   try {
     return gpu_backend().saliency(mesh, gpu);
@@ -64,7 +75,7 @@ SaliencyResult compute_auto(const Mesh& mesh, const SaliencyOptions& options) {
     throw;  // stopped on purpose: no fallback
   } catch (const Error& e) {
     tell(options, std::string("auto: the GPU path failed (") + e.what() + "), using the CPU path");
-    return compute_saliency_cpu(mesh, options);
+    return saliency_on_cpu(mesh, options);
   }
 }
 
@@ -76,6 +87,7 @@ SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
     if (options.backend == Backend::Gpu)
       throw Error("tiles run on the CPU: use backend cpu or auto with tiles");
     if (options.session) throw Error("a Vulkan device session was given with tiles, which run on the CPU");
+    tell_long_exact_sweep(mesh, options);
     return compute_saliency_tiled(mesh, options);
   }
   // Exact and fast alike: the same device rule (compute_auto) and the same fallback.
@@ -83,7 +95,7 @@ SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
     case Backend::Cpu:
       if (options.session)
         throw Error("a Vulkan device session was given with the cpu backend: use backend gpu or auto, or no session");
-      return compute_saliency_cpu(mesh, options);
+      return saliency_on_cpu(mesh, options);
     case Backend::Auto:
       return compute_auto(mesh, options);
     case Backend::Gpu:
@@ -94,6 +106,30 @@ SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
 }
 
 }  // namespace
+
+// The exact CPU sweep's rate per thread, measured on a 2-core VM (igea_loop1_537k: 3.5e8
+// pairs/s on 2 threads, docs/benchmarks.md): what the long-run note estimates with.
+constexpr double kCpuPairsPerThreadSecond = 1.7e8;
+// An exact CPU sweep estimated longer than this is said at the start, with the way out.
+constexpr double kLongSweepSeconds = 60;
+
+std::string long_sweep_note(const Mesh& mesh, const SaliencyOptions& options) {
+  if (options.method != Method::Exact) return "";
+  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  const double eps = scale_unit(mesh, is_point, options.eps_frac);
+  const double largest = *std::max_element(options.scales.begin(), options.scales.end());
+  const double pairs = estimate_sweep_pairs(mesh, is_point, 4 * largest * eps);
+  const unsigned threads = resolve_threads(options.threads);
+  const double minutes = pairs / (kCpuPairsPerThreadSecond * threads) / 60;
+  if (minutes * 60 < kLongSweepSeconds) return "";
+  const bool hours = minutes >= 120;
+  const double count = std::round(hours ? minutes / 60 : minutes);
+  char cost[64];
+  std::snprintf(cost, sizeof cost, "%.0f %s%s", count, hours ? "hour" : "minute", count == 1 ? "" : "s");
+  return "note: the exact method will visit ~" + number_text(pairs) + " neighbour pairs here: about " + cost +
+         " on " + std::to_string(threads) + " CPU thread" + (threads == 1 ? "" : "s") +
+         "; --method fast (or auto) takes time linear in the vertices (its error against exact: docs/method.md)";
+}
 
 // Method::Auto: fast when the exact sweep would take more pairs than kAutoPairBudget.
 Method resolve_method(const Mesh& mesh, const SaliencyOptions& options) {
