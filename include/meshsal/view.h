@@ -87,11 +87,19 @@ constexpr int kMinMapWidth = 32;  // the view map picture (--map): kMinMapWidth.
 // What the front ends accept for the viewpoint search (--restarts, --views, --depth-tol).
 constexpr int kMaxViewRestarts = 1000, kMaxViewMapViews = 1000000, kMaxDepthTolPx = 1000;
 
+// The latitudes (degrees, in the frame of the up axis) the best view is searched within
+// unless told otherwise, by every front end (viewpoint, render --best, view, batch, Python):
+// a photographer's view of an object, a little above the horizon. Unconstrained, visible
+// saliency pulls the view below scans (into their holes, up a bust's nostrils or neck) or
+// straight down onto them; this band was chosen by looking at the shared scans' views
+// (docs/method.md, "Elevation range"). {-90, 90} is the paper's unconstrained search.
+constexpr double kDefaultElevationMin = 10, kDefaultElevationMax = 30;
+
 // A band of latitudes, in degrees, in the frame of the up axis: -90 <= min <= max <= 90.
-// The default is the whole sphere.
+// The default is kDefaultElevationMin..kDefaultElevationMax.
 struct ElevationRange {
-  double min = -90;
-  double max = 90;
+  double min = kDefaultElevationMin;
+  double max = kDefaultElevationMax;
 };
 
 // Everything that picks a view. Every front end fills this and calls best_viewpoint, so the

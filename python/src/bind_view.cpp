@@ -1,5 +1,6 @@
 // meshsal Python module: best_view() and render().
 #include <climits>
+#include <cstdio>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -52,7 +53,15 @@ std::vector<py::object> pair_items(const py::object& value, const char* name, co
   return t;
 }
 
-// elevation=(min, max) in degrees, or None (the whole sphere); the library checks the range.
+// "10 to 30": the default elevation band, for the docs.
+std::string default_band() {
+  char b[64];
+  std::snprintf(b, sizeof b, "%g to %g", meshsal::kDefaultElevationMin, meshsal::kDefaultElevationMax);
+  return b;
+}
+
+// elevation=(min, max) in degrees, or None (the default band, kDefaultElevationMin..Max);
+// the library checks the range.
 meshsal::ElevationRange elevation_range(const py::object& elevation) {
   meshsal::ElevationRange r;
   if (elevation.is_none()) return r;
@@ -206,7 +215,8 @@ the mesh points visible from it. score: one value per vertex (e.g. saliency().sa
 abs(curvature) for the paper's baseline); None computes the saliency first. Gradient ascent
 from `restarts` seeded random directions; views > 0 also scores that many Fibonacci-sphere
 directions exhaustively. elevation=(min, max): the latitudes in degrees (in the frame of
-`up`) the search may look from (default: all, -90 to 90). The same search as the CLI's
+`up`) the search may look from (default: )" + default_band() + R"(, a little above the horizon; (-90, 90):
+the whole sphere, the paper's search). The same search as the CLI's
 (one library call): the same settings give the same view. Returns the CLI's JSON keys: theta, phi (radians), theta_deg,
 phi_deg and direction (unit vector in the mesh's coordinates) in the frame of `up` ('x',
 'y', 'z', '-x', '-y', '-z': the axis that points up), visible_score (U, the score summed

@@ -53,7 +53,7 @@ int run(Options o) {
   j.text("mesh", o.input).count("vertices", result.mesh.vertex_count()).count("faces", result.mesh.triangle_count())
       .text("score", o.text.score).text("score_source", result.saliency_source).text("device", v.backend_name)
       .count("resolution", uint64_t(o.text.resolution)).number("depth_tol_px", o.text.depth_tol).text("up", o.text.up);
-  if (!o.text.elevation.empty()) j.numbers("elevation", {r.viewpoint.elevation.min, r.viewpoint.elevation.max});
+  j.numbers("elevation", {r.viewpoint.elevation.min, r.viewpoint.elevation.max});  // the band searched, default or given
   add_view(j, up_frame, v.view).number("visible_score", v.U).number("visible_fraction", v.visible_fraction);
   j.count("restarts", uint64_t(o.text.restarts)).count("seed", o.text.seed);
   if (!v.note.empty()) j.text("note", v.note);

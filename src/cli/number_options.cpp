@@ -59,10 +59,13 @@ CLI::Validator color_range_check() {
 }
 
 CLI::Option* add_elevation_option(CLI::App& app, std::string* text) {
+  char band[64];
+  std::snprintf(band, sizeof band, "%g,%g", meshsal::kDefaultElevationMin, meshsal::kDefaultElevationMax);
   return app
       .add_option("--elevation", *text,
-                  "MIN,MAX latitudes in degrees (in the frame of --up) the best view may look from, "
-                  "e.g. 0,60 (default: all, -90,90)")
+                  std::string("MIN,MAX latitudes in degrees (in the frame of --up) the best view may look from "
+                              "(default ") +
+                      band + ": a little above the horizon; -90,90: the whole sphere, the paper's search)")
       ->check(CLI::Validator(
           [](std::string& t) -> std::string {
             try {

@@ -154,6 +154,7 @@ TEST_CASE("view pipeline: the elevation range bounds the search", "[view]") {
   const Mesh s = make_bumpy_sphere(3);
   const std::vector<double> score = top_score(s);
   ViewpointOptions o = search_options(96, 4, 200);
+  o.elevation = {-90, 90};  // the paper's search, over the whole sphere
   const Viewpoint free = best_viewpoint(s, score, o);
   REQUIRE(free.view.phi * kDeg > 40);  // the optimum is high above the horizon
   o.elevation = {-30, 20};
@@ -177,10 +178,14 @@ TEST_CASE("view pipeline: the elevation range bounds the search", "[view]") {
   o.elevation = {10, 10};
   const Viewpoint ring = best_viewpoint(s, score, o);
   CHECK(ring.view.phi * kDeg == Approx(10).margin(1e-9));
-  // The whole sphere, given explicitly, is the default search.
-  o.elevation = {-90, 90};
-  const Viewpoint whole = best_viewpoint(s, score, o);
-  check_same_view(whole, free);
+  // The default band: a photographer's view, as high as it allows here.
+  o.elevation = ElevationRange{};
+  CHECK(o.elevation.min == kDefaultElevationMin);
+  CHECK(o.elevation.max == kDefaultElevationMax);
+  const Viewpoint band = best_viewpoint(s, score, o);
+  CHECK(band.view.phi * kDeg >= kDefaultElevationMin);
+  CHECK(band.view.phi * kDeg == Approx(kDefaultElevationMax).margin(1.5));
+  CHECK(ViewpointOptions{}.elevation.min == kDefaultElevationMin);
 }
 
 TEST_CASE("view pipeline: bad elevation ranges and names are refused with Error", "[view]") {

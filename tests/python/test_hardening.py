@@ -120,7 +120,8 @@ def test_best_view_with_nothing_to_see_gives_the_front_view_and_a_note():
     F = np.array([[0, 1, 2]])
     v = meshsal.best_view(V, F, backend="cpu")
     assert v["visible_score"] == 0
-    assert v["theta"] == 0 and v["phi"] == 0
+    # The front: theta 0, at the band's latitude nearest the horizon (the default band's lowest).
+    assert v["theta"] == 0 and v["phi_deg"] == pytest.approx(v["elevation"][0], abs=1e-9)
     assert v["note"].startswith("no view sees any score")
     with pytest.raises(meshsal.Error, match="a view score .* is >= 0"):
         meshsal.best_view(V, F, np.array([1.0, -1.0, 1.0]), backend="cpu")

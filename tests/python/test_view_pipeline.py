@@ -40,6 +40,9 @@ def test_one_view_in_every_front_end(elevation, other, mesh_path, cli, tmp_path)
     assert g9(b["visible_score"]) == vp["visible_score"] == bv["visible_score"]
     assert g9(b["visible_fraction"]) == vp["visible_fraction"] == bv["visible_fraction"]
     assert b["resolution"] == vp["resolution"] == (256 if other else 512)
+    # The band searched, said by both (the default one when none is given).
+    assert list(b["elevation"]) == vp["elevation"]
+    assert vp["elevation"][0] <= b["phi_deg"] <= vp["elevation"][1]
     if elevation is not None:
         assert b["elevation"] == elevation and vp["elevation"] == list(elevation)
         assert 0 <= b["phi_deg"] <= 40
