@@ -225,8 +225,8 @@ function start() {
   vec3 fw = max(fwidth(vBary), vec3(1e-6));
   vec3 near = 1.0 - smoothstep(0.5 * fw, 1.5 * fw, vBary);
   float edge = max(max(near.x, near.y), near.z);
-  float dense = smoothstep(0.12, 0.45, max(max(fw.x, fw.y), fw.z));
-  diffuseColor.rgb *= 1.0 - 0.65 * edge * (1.0 - 0.75 * dense);`);
+  float dense = smoothstep(0.15, 0.6, max(max(fw.x, fw.y), fw.z));
+  diffuseColor.rgb *= 1.0 - 0.6 * edge * (1.0 - 0.5 * dense);`);
     };
     m.customProgramCacheKey = () => 'meshsal-edges';
     return m;
