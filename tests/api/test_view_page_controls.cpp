@@ -90,7 +90,7 @@ std::string base64_decoded(const std::string& in) {
 
 }  // namespace
 
-TEST_CASE("view page: range, wireframe and best view change the pixels as they should; hover shows S",
+TEST_CASE("view page: range and wireframe change the pixels and best view gives the first frame back and hover shows S",
           "[cli][view][browser]") {
   REQUIRE(std::system("command -v chromium > /dev/null") == 0);  // tools/setup.sh installs it
   const auto dir = scratch_dir("view_page_controls");
@@ -158,7 +158,7 @@ TEST_CASE("view page: range, wireframe and best view change the pixels as they s
   CHECK(std::abs(std::stod(element_text(dom, "best-fraction")) - 100 * json_number(j, "visible_fraction")) <= 0.051);
 }
 
-TEST_CASE("batch --html: the gallery holds the viewer once, beside index.html; the pages load it",
+TEST_CASE("batch --html: the gallery holds the viewer once beside index.html and the pages load it",
           "[cli][view][batch][browser]") {
   const auto dir = scratch_dir("view_gallery_size");
   std::filesystem::create_directories(dir / "in");
