@@ -194,8 +194,17 @@ struct ViewPageOptions {
   // the saliency carried along; or as close as the simplifier gets, ViewPageReport), and
   // the page says so; 0 = never.
   size_t max_faces = 2000000;
-  // The ends of the colour scale the page opens with (ColorRange; minimum to maximum).
+  // The ends of the colour scale the page opens with (ColorRange; minimum to maximum); the
+  // page's range control and its "r" key come back to them.
   ColorRange range;
+  // The camera's view as the search scored it (Viewpoint::U and visible_fraction, what
+  // `meshsal viewpoint` reports), shown with its angles; < 0: not shown.
+  double visible_score = -1, visible_fraction = -1;
+  // "" (the default): the viewer inline, the page alone is all it needs. Else the URL,
+  // relative to the page, of the viewer file write_viewer_script writes (a gallery's pages
+  // share one: `batch --html` writes meshsal-viewer.js beside index.html), which the page
+  // loads with <script src>; the page then holds the model and its numbers only.
+  std::string viewer_script;
 };
 
 // True when this build has the web viewer (three.js bundled at build time from web/;
@@ -213,14 +222,22 @@ struct ViewPageReport {
 
 // Writes one self-contained HTML page (no network needed to open it): the mesh coloured by
 // `saliency` (one value per vertex) on the pictures' colour scale with its colour bar and
-// scale, orbit controls from `camera` (best_viewpoint's Viewpoint::camera for this mesh),
-// a toggle between saliency, plain shading and wireframe, and options.stats. The mesh is
-// embedded as a GLB (write_gltf's, in local coordinates), three.js (MIT licence, kept in
-// the page) inline. The title, statistics and note are shown as their bytes are (no markup,
+// scale, orbit controls from `camera` (best_viewpoint's Viewpoint::camera for this mesh)
+// with a button back to it, saliency or plain shading with or without lit edges, a
+// colour-range control, S and its percentile under the cursor, the view's angles and
+// options.stats, with keyboard shortcuts (web/page.html lists them). The mesh is embedded as
+// a small GLB (local coordinates, positions quantised to 16 bits of its bounding box, S as
+// float; meshopt-compressed when built with meshoptimizer), three.js (MIT licence, kept in
+// the page) inline unless options.viewer_script names a shared file. The title, statistics and note are shown as their bytes are (no markup,
 // bytes that are not UTF-8 and bidirectional controls escaped). Atomic as write_ply. Error
 // when built without the viewer.
 ViewPageReport write_view_page(const std::string& path, const Mesh& mesh, const std::vector<double>& saliency,
                                const ViewCamera& camera, const ViewPageOptions& options = {});
+
+// Writes the viewer's script (three.js and web/viewer.js, bundled at build time), for pages
+// written with ViewPageOptions::viewer_script naming it. Atomic as write_ply; Error when
+// built without the viewer.
+void write_viewer_script(const std::string& path);
 
 // An 8-bit RGB image, rows top to bottom.
 struct Image {

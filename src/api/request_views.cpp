@@ -101,6 +101,8 @@ void make_views(RequestRun& run) {
     ViewPageOptions po = r.page;
     if (po.title.empty()) po.title = name;
     if (po.stats.empty()) po.stats = page_stats(mesh, out.score, out.saliency_source, run.timer_seconds());
+    // The view's numbers as `meshsal viewpoint` reports them.
+    if (po.visible_score < 0) po.visible_score = out.viewpoint.U, po.visible_fraction = out.viewpoint.visible_fraction;
     out.page = write_view_page(r.page_output, mesh, out.score, out.viewpoint.camera, po);
     out.outputs.push_back(r.page_output);
     if (out.page.simplified)

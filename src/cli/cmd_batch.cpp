@@ -94,6 +94,9 @@ struct GpuCounts {
 };
 
 const double kDeg = 180.0 / 3.14159265358979323846;
+// --html: the viewer (three.js and web/viewer.js) once beside the gallery, which every
+// model page loads, rather than inline in each.
+const char* const kViewerFile = "meshsal-viewer.js";
 
 // The seconds of a step of the request ("views", "simplify", ...), 0 when it did not run.
 double step_seconds(const RequestResult& r, const std::string& name) {
@@ -348,6 +351,8 @@ Plan make_plan(const Options& o) {
   req.simplify.target_error = o.target_error / 100;
   req.simplify.lock_border = o.lock_border;
   if (!o.lod.empty()) req.lod = parse_lod_levels(o.lod);
+  // The model pages share one viewer file beside the gallery (kViewerFile).
+  if (o.html) req.page.viewer_script = kViewerFile;
   check_render_style(req.style);
   return p;
 }
@@ -357,6 +362,7 @@ struct Models {
   std::vector<std::string> inputs, names;  // names: NAME of each model's outputs
   std::vector<ModelOutputs> outs;
   std::string log_path, gallery;  // gallery: "" without --html
+  std::string viewer;             // DIR/meshsal-viewer.js, the pages' script: "" without --html
   // Whether an input lives in the output folder: then a model's state file is made before
   // its outputs, so that they are known for outputs even when the run stops part way.
   bool inputs_in_output_folder = false;
@@ -390,19 +396,22 @@ Models find_models(const Options& o, const Plan& p) {
   ms.inputs_in_output_folder = any_input_in_folder(inputs, o.out_dir);
   ms.log_path = o.log.empty() ? o.out_dir + "/batch.jsonl" : o.log;
   ms.gallery = o.html ? o.out_dir + "/index.html" : "";
+  ms.viewer = o.html ? o.out_dir + "/" + kViewerFile : "";
   ms.names = output_names(inputs);
   for (size_t i = 0; i < inputs.size(); ++i)
     ms.outs.push_back(model_outputs(o.out_dir, ms.names[i], o.view || o.html, p.simplifying,
                                     p.request.out_of_core.memory_limit != 0, o.html, !p.request.lod.empty()));
   check_batch_outputs_apart(o.out_dir,
-                            {{ms.log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {ms.gallery, "--html's gallery"}},
+                            {{ms.log_path, "--log"}, {o.contact_sheet, "--contact-sheet"}, {ms.gallery, "--html's gallery"},
+                             {ms.viewer, "--html's viewer script"}},
                             inputs, ms.names, ms.outs);
   // The list files are inputs too: the log appended to one would be read as models next time.
   std::vector<std::string> read = inputs;
   if (!o.list_file.empty() && o.list_file != "-") read.push_back(o.list_file);
   for (const std::string& item : o.inputs)
     if (item.size() > 1 && item[0] == '@') read.push_back(item.substr(1));
-  check_outputs({{ms.log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {ms.gallery, "--html", {}}},
+  check_outputs({{ms.log_path, "--log", {}}, {o.contact_sheet, "--contact-sheet", {".png"}}, {ms.gallery, "--html", {}},
+                 {ms.viewer, "--html", {}}},
                 read);
   if (o.html && !built_with_viewer())
     throw Error("--html: this meshsal was built without the web viewer (web/node_modules was missing at build "
@@ -482,6 +491,9 @@ class BatchRun {
       if (ranks_ == 1 || (!model_notes_ && writer_)) tell(line);
     };
     req.viewpoint.notice = req.saliency.notice;
+    // The pages' viewer first, so that each page works as soon as it is written (checked
+    // with the other outputs in find_models; rewritten by each run, as the gallery is).
+    if (writer_ && o.html) write_viewer_script(ms.viewer);
     t_run_.restart();
   }
   BatchRun(const BatchRun&) = delete;  // the requests' callbacks hold `this`
@@ -706,6 +718,7 @@ class BatchRun {
     if (o_.text.json) {
       std::vector<std::string> written{log_path};
       if (!o_.contact_sheet.empty() && !sheet_failed && !interrupted_) written.push_back(o_.contact_sheet);
+      if (o_.html) written.push_back(ms_.viewer);
       if (o_.html && !gallery_failed && !interrupted_) written.push_back(ms_.gallery);
       JsonObject().count("models", ms_.inputs.size()).count("computed", computed_).count("skipped", skipped_)
           .count("failed", failed_).flag("interrupted", interrupted_).count("ranks", uint64_t(ranks_))
@@ -719,6 +732,7 @@ class BatchRun {
                   computed_, skipped_, failed_, interrupted_ ? ", then interrupted" : "", t_run_.seconds(),
                   on_ranks.c_str(), printable(log_path).c_str());
       if (!o_.contact_sheet.empty() && !sheet_failed) std::printf("wrote  %s\n", printable(o_.contact_sheet).c_str());
+      if (o_.html) std::printf("wrote  %s\n", printable(ms_.viewer).c_str());
       if (o_.html && !gallery_failed && !interrupted_) std::printf("wrote  %s\n", printable(ms_.gallery).c_str());
       std::fflush(stdout);
     }
@@ -768,7 +782,8 @@ RunFn setup(CLI::App& sub) {
       "pipelines for the whole run; the next model is read while the current one computes).\n"
       "Per model, in DIR: NAME_saliency.ply (as `meshsal saliency`), with --view NAME_view.png\n"
       "(the best view, as `meshsal viewpoint -o`), with --html NAME_view.html (as `meshsal view`)\n"
-      "and the gallery DIR/index.html, with --lod NAME_lod.glb (as `simplify --lod`), and with\n"
+      "and the gallery DIR/index.html (the pages' viewer once beside it: DIR/meshsal-viewer.js),\n"
+      "with --lod NAME_lod.glb (as `simplify --lod`), and with\n"
       "--simplify and/or --target-error NAME_simplified.obj: the same file\n"
       "`meshsal simplify IN -o OUT.obj` writes with the same\n"
       "options (--ratio R or --target-faces N as --simplify, --target-error, --lock-border,\n"
