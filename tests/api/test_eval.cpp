@@ -317,6 +317,20 @@ TEST_CASE("eval: evaluate_files reads, joins or carries, and refuses what it can
   REQUIRE(rt.notes.size() == 1);
   CHECK(rt.notes[0].find("1 of " + std::to_string(n + 1) + " ground-truth rows matched no vertex") != std::string::npos);
 
+  // The same rows gzipped: read alike.
+  const std::string rows_gz = dir.write_gz("gt.txt.gz", text);
+  const meshsal::EvalReport rz = meshsal::evaluate_files(pred, rows_gz);
+  CHECK(rz.gt_is_text);
+  CHECK(*rz.raw.cc == *rt.raw.cc);
+
+  // PRED as glTF: S as _SALIENCY, read as quality; the same scores.
+  const std::string pred_glb = dir.file("pred.glb");
+  meshsal::write_gltf(pred_glb, m, p);
+  const meshsal::EvalReport rg = meshsal::evaluate_files(pred_glb, gt);
+  REQUIRE(rg.raw.cc);
+  CHECK(*rg.raw.cc == *direct.cc);
+  CHECK(*rg.raw.auc_5 == *direct.auc_5);
+
   // Another attribute of PRED.
   meshsal::EvalOptions oa;
   oa.attribute = "other";

@@ -43,6 +43,16 @@ def test_evaluate_matches_the_cli(tmp_path, cli):
     assert d["unmatched_rows"] == j["unmatched_rows"] == 1
     assert d["unmatched_lines"] == j["unmatched_lines"] == [len(V) + 1]
     assert d["raw"]["cc"] == pytest.approx(j["raw"]["cc"], rel=1e-8)
+    # GT on a coarser sphere, carried by --transfer nearest.
+    V2, F2 = bumpy_sphere(rings=8, segments=16)
+    coarse = tmp_path / "coarse.ply"
+    meshsal.save(coarse, V2, F2, np.maximum(0, V2[:, 1]))
+    j = cli.json("eval", pred, coarse, "--transfer", "nearest", "--json")
+    d = meshsal.evaluate(pred, coarse, transfer="nearest")
+    assert d["transfer"] == j["transfer"] == "nearest"
+    for key in ("cc", "auc_20", "auc_5", "nss", "kld", "sim"):
+        assert d["raw"][key] == pytest.approx(j["raw"][key], rel=1e-8), key
+    assert d["transfer_max_distance"] == pytest.approx(j["transfer_max_distance"], rel=1e-8)
 
 
 def test_evaluate_arrays_and_errors(tmp_path):
