@@ -90,7 +90,7 @@ TEST_CASE("eval: scores worked out by hand", "[eval]") {
   CHECK(*neg.kld == Approx(std::log(1.5)));
 }
 
-TEST_CASE("eval: undefined scores are nullopt with a note, never NaN", "[eval]") {
+TEST_CASE("eval: undefined scores are nullopt with a note and never NaN", "[eval]") {
   // p constant: CC and NSS undefined (std 0); AUC 1/2 (every pair ties); P uniform 1/3,
   // G = 0 1/3 2/3: SIM = 1/3 + 1/3, KLD = 1/3 ln 1 + 2/3 ln 2.
   const EvalScores c = evaluate_scores({2, 2, 2}, {0, 1, 2});
@@ -146,7 +146,7 @@ TEST_CASE("eval: AUC by sorting with average ranks equals the O(n^2) pair count"
   }
 }
 
-TEST_CASE("eval: text rows are read with their line numbers, refused with the line", "[eval][io]") {
+TEST_CASE("eval: text rows are read with their line numbers and refused naming the line", "[eval][io]") {
   using meshsal::parse_vertex_rows;
   // A header, comments, commas or spaces; the value in the last column by default.
   const meshsal::VertexRows r = parse_vertex_rows("x,y,z,fixations,weight\n# comment\n\n0,0,0,5,0.5\n1 0 0 7 0.25\n",
@@ -208,7 +208,7 @@ TEST_CASE("eval: rows join the vertex at their position within 1e-6 of the diago
             .find("rows at lines 1 and 6 give vertex 0 two values (3 and 6)") != std::string::npos);
 }
 
-TEST_CASE("eval: transfer_nearest takes the nearest point's value, the lowest index of ties", "[eval]") {
+TEST_CASE("eval: transfer_nearest takes the nearest point's value and the lowest index of ties", "[eval]") {
   const meshsal::Mesh target = meshsal::make_sphere(1.0, 2);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.2, 1.2);
@@ -245,7 +245,7 @@ TEST_CASE("eval: transfer_nearest takes the nearest point's value, the lowest in
   CHECK(meshsal::transfer_nearest(xyz, values, one).values[0] == 10);
 }
 
-TEST_CASE("eval: smoothing is the library's Gaussian filter, unused vertices kept", "[eval]") {
+TEST_CASE("eval: smoothing is the library's Gaussian filter and keeps unused vertices", "[eval]") {
   meshsal::Mesh m = meshsal::make_sphere(1.0, 2);
   const size_t n = m.vertex_count();
   for (int k = 0; k < 3; ++k) m.positions.push_back(0.f);  // an unused vertex at the centre
@@ -260,7 +260,7 @@ TEST_CASE("eval: smoothing is the library's Gaussian filter, unused vertices kep
   CHECK(error_of([&] { meshsal::smooth_vertex_values(m, p, 0.6); }).find("(0, 0.5]") != std::string::npos);
 }
 
-TEST_CASE("eval: evaluate_files reads, joins or carries, and refuses what it cannot score", "[eval]") {
+TEST_CASE("eval: evaluate_files reads and joins or carries and refuses what it cannot score", "[eval]") {
   meshsal_test::TempDir dir;
   const meshsal::Mesh m = meshsal::make_sphere(1.0, 2);
   const size_t n = m.vertex_count();

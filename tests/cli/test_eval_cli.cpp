@@ -26,7 +26,7 @@ std::string after(const std::string& text, const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("cli eval: --json holds evaluate_files' scores, the table the same, --smooth beside", "[eval][cli]") {
+TEST_CASE("cli eval: --json holds evaluate_files' scores and the table the same with --smooth beside", "[eval][cli]") {
   meshsal_test::TempDir dir;
   const meshsal::Mesh m = meshsal::make_sphere(1.0, 2);
   const size_t n = m.vertex_count();
@@ -88,7 +88,7 @@ TEST_CASE("cli eval: --json holds evaluate_files' scores, the table the same, --
   CHECK(uj.out.find("\"nss\": null") != std::string::npos);
 }
 
-TEST_CASE("cli eval: text rows, unmatched rows reported, --transfer nearest, errors", "[eval][cli]") {
+TEST_CASE("cli eval: text rows with unmatched rows reported and --transfer nearest and errors", "[eval][cli]") {
   meshsal_test::TempDir dir;
   const meshsal::Mesh m = meshsal::make_sphere(1.0, 1);
   const size_t n = m.vertex_count();
