@@ -35,6 +35,7 @@
 #include "meshsal/view.h"      // viewpoints, cameras, pictures, viewer pages
 #include "meshsal/text.h"      // the option parsers (parse_*) and names
 #include "meshsal/request.h"   // Request and run_request
+#include "meshsal/eval.h"      // scoring a prediction against ground truth (meshsal eval)
 
 // The version: CMake's project(VERSION) is the one source; the build checks that these agree.
 #define MESHSAL_VERSION 400  // major * 10000 + minor * 100 + patch

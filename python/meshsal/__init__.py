@@ -36,6 +36,7 @@ best_view = _short_type_errors(_meshsal.best_view)
 built_with_vulkan = _short_type_errors(_meshsal.built_with_vulkan)
 defaults = _short_type_errors(_meshsal.defaults)
 devices = _short_type_errors(_meshsal.devices)
+evaluate = _short_type_errors(_meshsal.evaluate)
 keep_freed_memory = _short_type_errors(_meshsal.keep_freed_memory)
 load = _short_type_errors(_meshsal.load)
 release_cached_devices = _short_type_errors(_meshsal.release_cached_devices)
@@ -49,6 +50,6 @@ simplify_file = _short_type_errors(_meshsal.simplify_file)
 # FileNotFoundError and PermissionError are left out: `from meshsal import *` would hide
 # the built-in ones (which they subclass).
 __all__ = ["Device", "Error", "SaliencyResult", "SimplifyResult", "best_view", "built_with_vulkan",
-           "defaults", "devices", "keep_freed_memory", "load", "release_cached_devices", "render", "saliency",
+           "defaults", "devices", "evaluate", "keep_freed_memory", "load", "release_cached_devices", "render", "saliency",
            "saliency_file", "save", "simplify", "simplify_file", "version", "__version__"]
 

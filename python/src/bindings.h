@@ -13,5 +13,6 @@ void bind_view(py::module_& m);      // best_view, render
 void bind_heap(py::module_& m);      // keep_freed_memory
 void bind_device(py::module_& m);    // Device, release_cached_devices
 void bind_out_of_core(py::module_& m);  // saliency_file, simplify_file
+void bind_eval(py::module_& m);      // evaluate
 
 }  // namespace meshsal_py

@@ -48,4 +48,5 @@ PYBIND11_MODULE(_meshsal, m) {
   meshsal_py::bind_heap(m);
   meshsal_py::bind_device(m);
   meshsal_py::bind_out_of_core(m);
+  meshsal_py::bind_eval(m);
 }

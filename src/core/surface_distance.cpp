@@ -176,6 +176,37 @@ double surface_distance(const TriangleBvh& bvh, const double p[3]) {
   return std::sqrt(best);
 }
 
+ClosestTriangle closest_triangle(const TriangleBvh& bvh, const double p[3]) {
+  // As surface_distance, but boxes at exactly the best distance are searched too, so that
+  // of equally close triangles the lowest index wins whatever the tree's order.
+  double best = HUGE_VAL;
+  uint32_t best_t = UINT32_MAX;
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const TriangleBvh::Node& n = bvh.nodes[stack.back()];
+    stack.pop_back();
+    if (box_distance_sq(n, p) > best) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const double* c = &bvh.corners[9 * size_t(i)];
+        const double d = point_triangle_distance_sq(p, c, c + 3, c + 6);
+        if (d < best || (d == best && bvh.order[i] < best_t)) best = d, best_t = bvh.order[i];
+      }
+      continue;
+    }
+    const double dl = box_distance_sq(bvh.nodes[n.first], p);
+    const double dr = box_distance_sq(bvh.nodes[n.first + 1], p);
+    if (dl < dr) {
+      if (dr <= best) stack.push_back(n.first + 1);
+      if (dl <= best) stack.push_back(n.first);
+    } else {
+      if (dl <= best) stack.push_back(n.first);
+      if (dr <= best) stack.push_back(n.first + 1);
+    }
+  }
+  return {std::sqrt(best), best_t};
+}
+
 double surface_distance_bruteforce(const Mesh& mesh, const double p[3]) {
   check_mesh(mesh, "surface");
   double best = HUGE_VAL;

@@ -32,6 +32,15 @@ TriangleBvh build_triangle_bvh(const Mesh& mesh);
 // Distance from p to the closest point of the surface.
 double surface_distance(const TriangleBvh& bvh, const double p[3]);
 
+// The closest triangle to p and its distance: the index into the mesh's triangles (of
+// ties, the lowest), for a value carried from the nearest point (transfer_nearest: each
+// point a degenerate triangle).
+struct ClosestTriangle {
+  double distance = 0;
+  uint32_t triangle = 0;
+};
+ClosestTriangle closest_triangle(const TriangleBvh& bvh, const double p[3]);
+
 // Distance from p to the closest triangle by testing every triangle (the test oracle).
 double surface_distance_bruteforce(const Mesh& mesh, const double p[3]);
 

@@ -164,7 +164,7 @@ TEST_CASE("cli: help explains every command and option", "[cli]") {
   const auto commands = help_entries(top.out, "Subcommands:");
   std::vector<std::string> names;
   for (const auto& [name, summary] : commands) names.push_back(name);
-  CHECK(names == std::vector<std::string>{"batch", "bench", "compare", "demo", "devices", "render", "saliency",
+  CHECK(names == std::vector<std::string>{"batch", "bench", "compare", "demo", "devices", "eval", "render", "saliency",
                                           "simplify", "view", "viewpoint"});
   for (const auto& [name, summary] : commands) {
     const CliRun own = run_cli(name + " --help", dir);
