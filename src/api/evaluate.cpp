@@ -10,18 +10,13 @@
 
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
+#include "core/number_text.h"
 #include "core/surface_distance.h"
 #include "meshsal/meshsal.h"
 #include "saliency/gaussian_filter.h"
 
 namespace meshsal {
 namespace {
-
-std::string number_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
 
 // AUC-q of p against the top q of g (EvalScores): positives from the (1 - q) quantile of g,
 // the Mann-Whitney statistic from the average ranks of p. `rank` holds p's average ranks
@@ -64,8 +59,8 @@ EvalScores evaluate_scores(const std::vector<double>& p, const std::vector<doubl
   const size_t n = p.size();
   if (n < 2) throw Error("scoring needs at least 2 vertices with ground truth, got " + std::to_string(n));
   for (size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(p[i])) throw Error("prediction value " + std::to_string(i) + " is " + number_text(p[i]));
-    if (!std::isfinite(g[i])) throw Error("ground-truth value " + std::to_string(i) + " is " + number_text(g[i]));
+    if (!std::isfinite(p[i])) throw Error("prediction value " + std::to_string(i) + " is " + number_text(p[i], 9));
+    if (!std::isfinite(g[i])) throw Error("ground-truth value " + std::to_string(i) + " is " + number_text(g[i], 9));
   }
   EvalScores s;
   s.vertices = n;
@@ -163,7 +158,7 @@ NearestValues transfer_nearest(const std::vector<double>& source_xyz, const std:
 std::vector<double> smooth_vertex_values(const Mesh& mesh, const std::vector<double>& values, double sigma_frac,
                                          unsigned threads) {
   if (!(sigma_frac > 0 && sigma_frac <= 0.5))
-    throw Error("the smoothing sigma must be in (0, 0.5] of the bounding-box diagonal, got " + number_text(sigma_frac));
+    throw Error("the smoothing sigma must be in (0, 0.5] of the bounding-box diagonal, got " + number_text(sigma_frac, 9));
   if (values.size() != mesh.vertex_count())
     throw Error("smoothing: " + std::to_string(values.size()) + " values for a mesh of " +
                 std::to_string(mesh.vertex_count()) + " vertices");

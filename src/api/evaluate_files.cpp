@@ -9,16 +9,11 @@
 
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
+#include "core/number_text.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 namespace {
-
-std::string number_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
 
 // The file's name without a trailing .gz: what decides mesh or text.
 bool is_mesh_name(const std::string& path) {
@@ -45,7 +40,7 @@ std::vector<double> attribute_values(const Mesh& mesh, const std::string& path, 
   std::vector<double> out(found->values.begin(), found->values.end());
   for (size_t v = 0; v < out.size(); ++v)
     if (!std::isfinite(out[v]))
-      throw Error(path + ": attribute '" + name + "' of vertex " + std::to_string(v) + " is " + number_text(out[v]));
+      throw Error(path + ": attribute '" + name + "' of vertex " + std::to_string(v) + " is " + number_text(out[v], 9));
   return out;
 }
 
@@ -63,9 +58,9 @@ void check_same_vertices(const Mesh& pred, const Mesh& gt, const std::string& gt
     model_position(pred, v, b);
     const double d = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
     if (!(d <= tol))
-      throw Error(gt_path + ": vertex " + std::to_string(v) + " is at (" + number_text(a[0]) + ", " + number_text(a[1]) +
-                  ", " + number_text(a[2]) + "), in PRED at (" + number_text(b[0]) + ", " + number_text(b[1]) + ", " +
-                  number_text(b[2]) + ")" + hint);
+      throw Error(gt_path + ": vertex " + std::to_string(v) + " is at (" + number_text(a[0], 9) + ", " + number_text(a[1], 9) +
+                  ", " + number_text(a[2], 9) + "), in PRED at (" + number_text(b[0], 9) + ", " + number_text(b[1], 9) + ", " +
+                  number_text(b[2], 9) + ")" + hint);
   }
 }
 
@@ -81,7 +76,7 @@ std::string lines_text(const std::vector<size_t>& lines, size_t total) {
 EvalReport evaluate_files(const std::string& pred_path, const std::string& gt_path, const EvalOptions& options) {
   if (!(options.smooth >= 0 && options.smooth <= 0.5))
     throw Error("the smoothing sigma must be in (0, 0.5] of the bounding-box diagonal (0: none), got " +
-                number_text(options.smooth));
+                number_text(options.smooth, 9));
   if (options.gt_column != 0 && options.gt_column < 4)
     throw Error("the ground truth's value column must be 4 or more (x y z come first), got " +
                 std::to_string(options.gt_column));

@@ -10,4 +10,10 @@ std::string number_text(double x) {
   return buf;
 }
 
+std::string number_text(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
 }  // namespace meshsal

@@ -7,4 +7,7 @@ namespace meshsal {
 
 std::string number_text(double x);
 
+// The same with `digits` significant digits ("%.*g"), for figures printed in full.
+std::string number_text(double x, int digits);
+
 }  // namespace meshsal
