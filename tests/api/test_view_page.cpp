@@ -15,32 +15,19 @@
 #include "cli/synthetic.h"
 #include "core/html_text.h"
 #include "core/utf8.h"
+#include "chromium.h"
 #include "cli_run.h"
 #include "meshsal/meshsal.h"
 #include "png_check.h"
 
 using namespace meshsal;
+using meshsal_test::chromium;
 using meshsal_test::quoted;
+using meshsal_test::text_of;
 using meshsal_test::run_cli;
 using meshsal_test::scratch_dir;
 
 namespace {
-
-std::string text_of(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Headless Chromium on `page` (WebGL through SwiftShader); `what`: --dump-dom or
-// --screenshot=FILE. Its output goes to `out`.
-int chromium(const std::string& what, const std::string& page, const std::string& out) {
-  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu-sandbox --use-angle=swiftshader "
-                          "--enable-unsafe-swiftshader --hide-scrollbars --window-size=900,600 "
-                          "--virtual-time-budget=20000 " + what + " 'file://" + page + "' > '" + out + "' 2>/dev/null";
-  return WEXITSTATUS(std::system(cmd.c_str()));
-}
 
 }  // namespace
 
@@ -58,14 +45,14 @@ TEST_CASE("view: the page draws the model in colour in headless Chromium, with n
   CHECK(html.find("src=\"http") == std::string::npos);  // nothing to fetch: it opens offline
   CHECK(html.find("<link") == std::string::npos);
 
-  REQUIRE(chromium("--dump-dom", page, (dir / "dom.html").string()) == 0);
+  REQUIRE(chromium("--dump-dom", "file://" + page, (dir / "dom.html").string()) == 0);
   const std::string dom = text_of(dir / "dom.html");
   INFO(dom.substr(0, 400));
   CHECK(dom.find("data-status=\"drawn\"") != std::string::npos);  // first frame drawn, no error logged
   CHECK(dom.find("data-status=\"error") == std::string::npos);
 
   const std::string shot = (dir / "shot.png").string();
-  REQUIRE(chromium("--screenshot=" + shot, page, (dir / "chromium.txt").string()) == 0);
+  REQUIRE(chromium("--screenshot=" + shot, "file://" + page, (dir / "chromium.txt").string()) == 0);
   const Image img = meshsal_test::read_png(shot);
   REQUIRE(img.width == 900);
   // The model fills the middle of the view (left of the 300-pixel panel) in the saliency

@@ -12,33 +12,20 @@
 #include <catch2/catch.hpp>
 
 #include "cli/synthetic.h"
+#include "chromium.h"
 #include "cli_run.h"
 #include "gltf_util.h"
 #include "meshsal/meshsal.h"
 #include "png_check.h"
 
 using namespace meshsal;
+using meshsal_test::chromium;
 using meshsal_test::quoted;
+using meshsal_test::text_of;
 using meshsal_test::run_cli;
 using meshsal_test::scratch_dir;
 
 namespace {
-
-std::string text_of(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Headless Chromium on `url` (WebGL through SwiftShader); `what`: --dump-dom or
-// --screenshot=FILE; its standard output goes to `out`.
-int chromium(const std::string& what, const std::string& url, const std::string& out) {
-  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu-sandbox --use-angle=swiftshader "
-                          "--enable-unsafe-swiftshader --hide-scrollbars --window-size=900,600 "
-                          "--virtual-time-budget=20000 " + what + " '" + url + "' > '" + out + "' 2>/dev/null";
-  return WEXITSTATUS(std::system(cmd.c_str()));
-}
 
 Image shot(const std::filesystem::path& dir, const std::string& page, const std::string& hook, const std::string& name) {
   const std::string png = (dir / (name + ".png")).string();
