@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "meshsal/device.h"
 #include "meshsal/mesh.h"
+#include "meshsal/view.h"
 
 namespace meshsal {
 
@@ -42,6 +44,28 @@ enum class Method { Exact, Fast, Auto };
 constexpr double kAutoPairBudget = 2e9;  // neighbour pairs (its time: docs/benchmarks.md)
 
 class TileExchange;  // processes that share one tiled computation (tiles.h)
+
+// What S models (docs/method.md, "The perceptual model"; every front end's --model).
+// Lee2005: the paper's geometric saliency, SPEC section 1 (the default, exact as ever).
+// Perceptual: a prediction of where people look at the rendered object: the exposure of
+//   each point over the views of the default elevation band around `up` (occlusion, how
+//   squarely it faces the view and how near the view's centre it falls), times
+//   1 + height + global rarity + coarse saliency (each cue normalised to [0, 1], equal
+//   weights fixed in advance), smoothed on the surface to the size of a human fixation
+//   (kFixationSigmaFrac of the diagonal) and scaled to a maximum of 1.
+// The cues alone, unsmoothed, each scaled to a maximum of 1:
+//   Exposure: the mean over those views of visible x max(0, n.d) (no centre bias);
+//   Centre:   the mean over those views of visible x the view's centre bias;
+//   Height:   the height along `up`, 0 at the lowest mesh point, 1 at the highest;
+//   Rarity:   the self-information -log p of each point's multi-scale curvature
+//             descriptor among all the points' (global rarity);
+//   Coarse:   the paper's saliency at twice the scales (an octave coarser).
+enum class Model { Lee2005, Perceptual, Exposure, Centre, Height, Rarity, Coarse };
+
+// The perceptual model's smoothing: a Gaussian of this fraction of the bounding-box
+// diagonal, the size of a human fixation (1.5 degrees of visual angle) when the object's
+// bounding sphere fills 30 degrees of the view (docs/method.md).
+constexpr double kFixationSigmaFrac = 0.05;
 
 // The most scales SaliencyOptions::scales may hold (every front end's --scales and scales=).
 constexpr size_t kMaxScaleCount = 16;
@@ -88,6 +112,12 @@ struct SaliencyOptions {
   unsigned tiles = 0;
   // With tiles: processes sharing the tiles (null: this process computes them all).
   TileExchange* exchange = nullptr;
+  // What S models (see Model). The models other than Lee2005 run in memory, in one piece
+  // (Error with tiles), and read `up` (the axis the views circle and the height rises
+  // along); eps_frac, scales (Coarse: twice each), method, backend and threads hold for
+  // them too. On a GPU backend the exposure's z-buffers run on the device.
+  Model model = Model::Lee2005;
+  UpAxis up = UpAxis::Y;
 };
 
 struct StageTime {
@@ -114,6 +144,11 @@ struct SaliencyResult {
   std::string backend_name;               // "cpu (N threads)" or the Vulkan device name
   size_t tiles = 0;                       // tiles of the grid (SaliencyOptions::tiles), 0: untiled
   int ranks = 1;                          // processes that shared them (TileExchange)
+  Model model = Model::Lee2005;           // what `saliency` models (SaliencyOptions::model)
+  // The perceptual model's cues, each per vertex and named as the models are ("exposure",
+  // "height", "rarity", "coarse"; Perceptual's "exposure" is seen through the centre bias),
+  // before they are combined; empty for Lee2005. write_saliency writes them with dump_scales.
+  std::vector<std::pair<std::string, std::vector<double>>> cues;
 };
 
 // Saliency of every vertex, on options.backend. Throws Error on an invalid mesh or option,

@@ -30,10 +30,15 @@ Method parse_method(const std::string& name);
 // "auto", "cpu" or "gpu"; throws Error on anything else.
 Backend parse_backend(const std::string& name);
 
+// "lee2005", "perceptual", "exposure", "centre" (or "center"), "height", "rarity" or
+// "coarse"; throws Error on anything else.
+Model parse_model(const std::string& name);
+
 // The names the parsers above read, for each value (the front ends' option texts).
 const char* precision_name(Precision precision);
 const char* method_name(Method method);
 const char* backend_name(Backend backend);
+const char* model_name(Model model);
 
 // Parses "2,3,4,5,6" into scales; throws Error on anything else (empty, <= 0, > 100, junk).
 std::vector<double> parse_scales(const std::string& text);

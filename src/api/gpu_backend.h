@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meshsal/meshsal.h"
+#include "view/exposure.h"
 #include "view/viewpoint.h"
 
 namespace meshsal {
@@ -18,6 +19,12 @@ struct ViewScorerSetup {
   std::string backend_name;          // "cpu (N threads)" or "vulkan: <device>"
   int batch = 64;                    // good batch size for exhaustive maps
   std::shared_ptr<void> keep_alive;  // owns the GPU state the scorer uses
+};
+
+// Exposure (view/exposure.h) as the GPU computed it, and where.
+struct ExposureRun {
+  std::vector<double> exposure;
+  std::string backend_name;  // "vulkan: <device>"
 };
 
 struct GpuBackend {
@@ -35,6 +42,14 @@ struct GpuBackend {
                                     const std::vector<double>& score, const VisibilityOptions& options);
   // Closes the process-wide cache's devices (gpu::release_cached_devices).
   void (*release_cached_devices)();
+  // The GPU twin of exposure_cpu (the same contract) on device `device` (-1: choose), and
+  // on a handle open_device made.
+  ExposureRun (*exposure)(const Mesh& mesh, const std::vector<float>& normals, const ViewFrame& frame,
+                          const std::vector<ViewAngles>& views, ExposureWeighting weighting,
+                          const VisibilityOptions& options, int device);
+  ExposureRun (*exposure_on)(const std::shared_ptr<void>& device, const Mesh& mesh, const std::vector<float>& normals,
+                             const ViewFrame& frame, const std::vector<ViewAngles>& views,
+                             ExposureWeighting weighting, const VisibilityOptions& options);
 };
 
 // The linked backend, or nullptr in a library without Vulkan (gpu_backend_*.cpp).

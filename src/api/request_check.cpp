@@ -50,6 +50,9 @@ void check_request(const Request& r) {
   }
   if (!r.saliency_from.empty() && r.weighting == Weighting::None && r.saliency_output.empty() && !views)
     refuse("--saliency-from needs --weights saliency or balanced");
+  if (r.saliency.model != Model::Lee2005 && (out_of_core || r.saliency.tiles > 1))
+    refuse(std::string("--model ") + model_name(r.saliency.model) +
+           " computes S in memory, in one piece: not with --memory-limit, nor with saliency --tiles");
   if (out_of_core) {
     if (views) refuse("--memory-limit makes no views: not with --view, --html, --best, --map or a picture");
     if (!r.saliency_output.empty() && mesh_output_format(r.saliency_output) != ".ply")

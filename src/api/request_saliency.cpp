@@ -100,7 +100,9 @@ void write_saliency(const std::string& path, const Mesh& mesh, const SaliencyRes
     if (dump_scales) {
       props.push_back({"curvature", &s.curvature});
       for (size_t i = 0; i < s.raw.size(); ++i) names.push_back("saliency_raw_" + std::to_string(i));
+      for (const auto& cue : s.cues) names.push_back("cue_" + cue.first);
       for (size_t i = 0; i < s.raw.size(); ++i) props.push_back({names[i], &s.raw[i]});
+      for (size_t i = 0; i < s.cues.size(); ++i) props.push_back({names[s.raw.size() + i], &s.cues[i].second});
     }
     return write_saliency_ply(path, mesh, s.saliency, props, s.is_point);
   }
@@ -109,6 +111,7 @@ void write_saliency(const std::string& path, const Mesh& mesh, const SaliencyRes
     with_maps = mesh;
     set_vertex_attribute(with_maps, "curvature", s.curvature);
     for (size_t i = 0; i < s.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), s.raw[i]);
+    for (const auto& cue : s.cues) set_vertex_attribute(with_maps, "cue_" + cue.first, cue.second);
   }
   const Mesh& written = dump_scales ? with_maps : mesh;
   if (format == ".glb" || format == ".gltf") {
@@ -154,6 +157,7 @@ void write_saliency_output(RequestRun& run) {
     if (r.dump_scales) {
       set_vertex_attribute(with_maps, "curvature", s.curvature);
       for (size_t i = 0; i < s.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), s.raw[i]);
+    for (const auto& cue : s.cues) set_vertex_attribute(with_maps, "cue_" + cue.first, cue.second);
     }
     write_request_mesh(run, path, with_maps, s.saliency);
   }

@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "core/welded_view.h"
 #include "api/gpu_backend.h"
+#include "api/perceptual_model.h"
 #include "api/resolve_method.h"
 #include "core/mesh_points.h"
 #include "saliency/gaussian_filter_fast.h"
@@ -157,11 +158,14 @@ SaliencyResult compute_saliency(const Mesh& mesh, const SaliencyOptions& options
     for (std::vector<double>& raw : r.raw) copy_to_twins(mesh, raw);
     copy_to_twins(mesh, r.saliency);
     copy_to_twins(mesh, r.smoothed);
+    for (auto& cue : r.cues) copy_to_twins(mesh, cue.second);
     return r;
   }
   check_saliency_options(options_in);
   if (options_in.notice)
     if (const std::string w = precision_warning(mesh); !w.empty()) options_in.notice("warning: " + w);
+  // The models other than the paper's (the perceptual model, its cues alone).
+  if (options_in.model != Model::Lee2005) return compute_model_saliency(mesh, options_in);
   SaliencyOptions options = options_in;
   options.method = resolve_method(mesh, options_in);
   SaliencyResult r = run_backend(mesh, options);

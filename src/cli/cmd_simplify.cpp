@@ -169,8 +169,8 @@ int run(const Args& a) {
   r.simplify.lock_border = a.lock_border;
   r.simplify.tiles = unsigned(std::max(0LL, a.tiles));
   // Tiled simplification takes its weights from tiled saliency (the same map, computed a
-  // tile at a time).
-  if (a.tiles > 1) r.saliency.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
+  // tile at a time); the models other than the paper's are had whole.
+  if (a.tiles > 1 && r.saliency.model == meshsal::Model::Lee2005) r.saliency.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
   if (!a.lod.empty()) {
     r.lod = parse_lod_levels(a.lod);
     r.lod_output = a.output;

@@ -13,7 +13,29 @@
 
 namespace meshsal::cli {
 
+namespace {
+
+// --up, once per command (the saliency and view groups both take it).
+CLI::Option* add_up_option(CLI::App& app, RequestText& t) {
+  if (CLI::Option* given = app.get_option_no_throw("--up")) return given;
+  return app.add_option("--up", t.up,
+                        "the model's up axis (pictures, the view's angles, and the views and height of --model "
+                        "perceptual): x, y, z, -x, -y or -z")
+      ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}));
+}
+
+}  // namespace
+
 void add_saliency_options(CLI::App& app, RequestText& t) {
+  app.add_option("--model", t.model,
+                 "What S models: lee2005 (the paper's geometric saliency), perceptual (a prediction of where "
+                 "people look at the rendered object: exposure over views from 10-30 degrees above the horizon "
+                 "around --up, with occlusion and centre bias, times 1 + height + rarity + coarse saliency, "
+                 "smoothed to a fixation's size; docs/method.md), or one of its cues alone: exposure, centre, "
+                 "height, rarity, coarse")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"lee2005", "perceptual", "exposure", "centre", "center", "height", "rarity", "coarse"}));
+  add_up_option(app, t);
   app.add_option("--backend", t.backend,
                  "auto (a GPU when present, else the CPU), gpu (any Vulkan device, lavapipe included) or cpu")
       ->capture_default_str();
@@ -38,8 +60,7 @@ CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t, const std::
 
 std::vector<CLI::Option*> add_view_options(CLI::App& app, RequestText& t) {
   std::vector<CLI::Option*> out;
-  out.push_back(app.add_option("--up", t.up, "the model's up axis (pictures and the view's angles): x, y, z, -x, -y or -z")
-                    ->capture_default_str()->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"})));
+  out.push_back(add_up_option(app, t));
   out.push_back(add_elevation_option(app, &t.elevation));
   out.push_back(app.add_option("--restarts", t.restarts, "best view: gradient-ascent restarts from random directions")
                     ->capture_default_str()->check(whole_in(1, meshsal::kMaxViewRestarts)));
@@ -122,6 +143,8 @@ meshsal::Request request_from(const RequestText& t, Progress* progress) {
   so.precision = as_option([&] { return meshsal::parse_precision(t.precision); });
   so.method = as_option([&] { return meshsal::parse_method(t.method); });
   so.device = t.device;
+  so.model = as_option([&] { return meshsal::parse_model(t.model); });
+  so.up = parse_up_axis(t.up);
   if (progress) so.progress = [progress](const char* stage, double f) { progress->update(stage, f); };
   so.notice = [quiet = t.quiet](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s\n", printable(line).c_str());

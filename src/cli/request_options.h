@@ -15,7 +15,7 @@ namespace meshsal::cli {
 
 struct RequestText {
   // S (add_saliency_options)
-  std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6";
+  std::string backend = "auto", precision = "auto", method = "exact", scales = "2,3,4,5,6", model = "lee2005";
   double eps_frac = 0.003;
   int device = -1;
   unsigned threads = 0;
@@ -35,7 +35,8 @@ struct RequestText {
   bool quiet = false, json = false;
 };
 
-// --backend --precision --method --device --scales --eps-frac --threads.
+// --model --up --backend --precision --method --device --scales --eps-frac --threads (--up once:
+// add_view_options takes it too).
 void add_saliency_options(CLI::App& app, RequestText& t);
 // --saliency-from FILE (a PLY or glTF that keeps S); `names` may add an older spelling.
 CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t, const std::string& names = "--saliency-from");

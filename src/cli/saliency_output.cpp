@@ -34,7 +34,7 @@ JsonObject saliency_json(const std::string& input, const std::string& output, co
   JsonObject j;
   j.text("mesh", input).text("output", output).count("vertices", mesh.vertex_count()).count("points", st.points)
       .count("faces", mesh.triangle_count()).number("eps", r.eps).text("device", r.backend_name)
-      .text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
+      .text("model", meshsal::model_name(r.model)).text("precision", r.mixed_precision ? "mixed" : "double").count("rechecked", r.rechecked)
       .number("read_seconds", load_seconds).number("seconds", total).object("stages", stages)
       .count("pairs", r.pairs).count("tiles", r.tiles).count("ranks", size_t(r.ranks))
       .object("saliency", stats);
@@ -74,6 +74,8 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   std::printf("faces      %zu triangles\n", mesh.triangle_count());
   std::printf("eps        %.6g\n", r.eps);
   std::printf("backend    %s\n", r.backend_name.c_str());
+  if (r.model != meshsal::Model::Lee2005)
+    std::printf("model      %s (docs/method.md, \"The perceptual model\")\n", meshsal::model_name(r.model));
   if (r.method == Method::Fast)
     std::printf("method     fast (cell aggregates; error against exact: docs/method.md)\n");
   if (r.mixed_precision)

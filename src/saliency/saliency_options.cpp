@@ -33,6 +33,46 @@ void check_saliency_options(const SaliencyOptions& options) {
   if (options.tiles > kMaxTiles)
     throw Error("tiles must be at most " + std::to_string(kMaxTiles) + " along the longest axis, got " +
                 std::to_string(options.tiles));
+  if (options.model != Model::Lee2005) {
+    if (options.tiles > 1 || options.exchange)
+      throw Error(std::string("model ") + model_name(options.model) +
+                  " runs in memory, in one piece: not with tiles (it needs every view of the whole mesh)");
+    // Coarse scales are twice the given ones, within the same limits.
+    if ((options.model == Model::Perceptual || options.model == Model::Coarse) &&
+        (2 * largest > kMaxScale || 4 * largest * options.eps_frac > 1))
+      throw Error(std::string("model ") + model_name(options.model) + " takes the saliency at twice the scales: the largest, " +
+                  number_text(largest) + ", must be at most " + number_text(std::min(kMaxScale / 2, 1 / (4 * options.eps_frac))) +
+                  " here");
+  }
+}
+
+}  // namespace meshsal
+
+namespace meshsal {
+
+// The models' names (text.h): here, below every layer that names them in a message.
+Model parse_model(const std::string& name) {
+  if (name == "lee2005") return Model::Lee2005;
+  if (name == "perceptual") return Model::Perceptual;
+  if (name == "exposure") return Model::Exposure;
+  if (name == "centre" || name == "center") return Model::Centre;
+  if (name == "height") return Model::Height;
+  if (name == "rarity") return Model::Rarity;
+  if (name == "coarse") return Model::Coarse;
+  throw Error("model must be lee2005, perceptual, exposure, centre, height, rarity or coarse, got '" + name + "'");
+}
+
+const char* model_name(Model model) {
+  switch (model) {
+    case Model::Lee2005: return "lee2005";
+    case Model::Perceptual: return "perceptual";
+    case Model::Exposure: return "exposure";
+    case Model::Centre: return "centre";
+    case Model::Height: return "height";
+    case Model::Rarity: return "rarity";
+    case Model::Coarse: return "coarse";
+  }
+  return "?";
 }
 
 }  // namespace meshsal

@@ -237,23 +237,8 @@ template <class Visit>
 static void test_vertices(const std::vector<float>& proj, const std::vector<float>& zbuf, int res,
                           float tol, Visit visit) {
   size_t n = proj.size() / 3;
-  const float fres = float(res);
-  for (size_t i = 0; i < n; ++i) {
-    float px = proj[3 * i], py = proj[3 * i + 1];
-    if (!(px >= 0.0f && py >= 0.0f && px < fres && py < fres)) continue;
-    int x = int(px), y = int(py);
-    if (x > res - 1 || y > res - 1) continue;
-    float z = zbuf[size_t(y) * res + x];
-    if (std::isinf(z)) {
-      // The point fell on an empty pixel: it lies on the silhouette between pixel centres.
-      // Test it against the nearest surface around (3x3), so that points just behind the
-      // silhouette do not leak through.
-      for (int yy = (y > 0 ? y - 1 : 0); yy <= (y < res - 1 ? y + 1 : y); ++yy)
-        for (int xx = (x > 0 ? x - 1 : 0); xx <= (x < res - 1 ? x + 1 : x); ++xx)
-          z = std::fmin(z, zbuf[size_t(yy) * res + xx]);
-    }
-    if (proj[3 * i + 2] <= z + tol) visit(i);
-  }
+  for (size_t i = 0; i < n; ++i)
+    if (passes_depth_test({proj[3 * i], proj[3 * i + 1], proj[3 * i + 2]}, zbuf.data(), res, tol)) visit(i);
 }
 
 std::vector<uint8_t> visible_vertices_cpu(const Mesh& mesh, const ViewFrame& frame,

@@ -15,13 +15,36 @@
 // tol behind an occluder, are borderline by nature.
 // U(view) = sum of score over visible mesh points.
 #pragma once
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "view/camera.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
+
+// The test above for one point projected into a view whose z-buffer is `zbuf` (res x res):
+// true when it is visible. tol = depth_tol_px / res. shaders/visibility_test.comp's
+// visible() and shaders/exposure_test.comp's are its GPU twins.
+inline bool passes_depth_test(const Projected& p, const float* zbuf, int res, float tol) {
+  const float fres = float(res);
+  if (!(p.px >= 0.0f && p.py >= 0.0f && p.px < fres && p.py < fres)) return false;
+  const int x = int(p.px), y = int(p.py);
+  if (x > res - 1 || y > res - 1) return false;
+  float z = zbuf[size_t(y) * res + x];
+  if (z == std::numeric_limits<float>::infinity()) {
+    // The point fell on an empty pixel: it lies on the silhouette between pixel centres.
+    // Test it against the nearest surface around (3x3), so that points just behind the
+    // silhouette do not leak through.
+    for (int yy = (y > 0 ? y - 1 : 0); yy <= (y < res - 1 ? y + 1 : y); ++yy)
+      for (int xx = (x > 0 ? x - 1 : 0); xx <= (x < res - 1 ? x + 1 : x); ++xx)
+        z = std::fmin(z, zbuf[size_t(yy) * res + xx]);
+  }
+  return p.depth <= z + tol;
+}
 
 // Checks resolution (kMinImageSize..kMaxImageSize) and tolerance (>= 0); throws Error otherwise.
 void check_visibility_options(const VisibilityOptions& options);
