@@ -84,6 +84,7 @@ py::dict defaults() {
   const meshsal::Request r;
   py::dict d;
   d["method"] = meshsal::method_name(r.saliency.method);
+  d["model"] = meshsal::model_name(r.saliency.model);
   d["backend"] = meshsal::backend_name(r.saliency.backend);
   d["precision"] = meshsal::precision_name(r.saliency.precision);
   d["eps_frac"] = r.saliency.eps_frac;

@@ -70,11 +70,12 @@ meshsal::RequestResult run_files(meshsal::Request& r, const py::object& input, c
 py::dict saliency_file(const py::object& input, const py::object& output, const py::object& memory_limit,
                        const py::object& temp_dir, const py::object& tiles, bool dump_scales, const py::object& scales,
                        const py::object& eps_frac, const std::string& method, const std::string& backend,
-                       const std::string& precision, const py::object& device, const py::object& threads) {
+                       const std::string& precision, const py::object& device, const py::object& threads,
+                       const std::string& model, const std::string& up) {
   std::vector<std::string> notices;
   meshsal::Request r;
   r.output_option = "the output";
-  r.saliency = saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
+  r.saliency = saliency_options({scales, eps_frac, method, backend, precision, device, threads, model, up}, &notices);
   r.saliency.tiles = count_arg(tiles, "tiles");
   r.out_of_core = out_of_core(memory_limit, temp_dir);
   r.input = path_bytes(input);
@@ -121,11 +122,12 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
                        const py::object& memory_limit, const py::object& temp_dir, const py::object& tiles,
                        bool lock_border, const std::string& weights, const py::object& saliency_from,
                        const py::object& eps_frac, const std::string& method, const std::string& backend,
-                       const std::string& precision, const py::object& device, const py::object& threads) {
+                       const std::string& precision, const py::object& device, const py::object& threads,
+                       const std::string& model, const std::string& up) {
   std::vector<std::string> notices;
   meshsal::Request r;
   r.output_option = "the output";
-  r.saliency = saliency_options({py::none(), eps_frac, method, backend, precision, device, threads}, &notices);
+  r.saliency = saliency_options({py::none(), eps_frac, method, backend, precision, device, threads, model, up}, &notices);
   // Both targets as given: the library's rules (check_request) say which combine.
   if (!target_faces.is_none()) r.simplify.target_faces = size_t(integer_arg(target_faces, "target_faces", 1, 4000000000LL));
   if (!ratio.is_none()) {
@@ -203,10 +205,10 @@ void bind_out_of_core(py::module_& m) {
         py::arg("memory_limit") = py::none(), py::arg("temp_dir") = py::none(), py::arg("tiles") = 0u,
         py::arg("dump_scales").noconvert() = false, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto", py::arg("device") = -1,
-        py::arg("threads") = 0u,
+        py::arg("threads") = 0u, py::arg("model") = "lee2005", py::arg("up") = "y",
         R"(saliency_file(input, output, *, memory_limit=None, temp_dir=None, tiles=0, dump_scales=False,
               scales=None, eps_frac=0.003, method='exact', backend='auto', precision='auto',
-              device=-1, threads=0) -> dict
+              device=-1, threads=0, model='lee2005', up='y') -> dict
 
 `meshsal saliency IN -o OUT` (the library's one pipeline, the same bytes): the saliency of
 the mesh file `input` written with the mesh to `output` in the format its name gives (.ply,
@@ -234,10 +236,11 @@ naming the value.)");
         py::arg("weights") = meshsal::weighting_name(meshsal::kDefaultWeighting), py::arg("saliency_from") = py::none(),
         py::arg("eps_frac") = 0.003, py::arg("method") = "exact", py::arg("backend") = "auto",
         py::arg("precision") = "auto", py::arg("device") = -1, py::arg("threads") = 0u,
+        py::arg("model") = "lee2005", py::arg("up") = "y",
         R"(simplify_file(input, output, *, target_faces=None, ratio=None, target_error=None, lod=None,
               memory_limit=None, temp_dir=None, tiles=0, lock_border=False, weights='balanced',
               saliency_from=None, eps_frac=0.003, method='exact', backend='auto',
-              precision='auto', device=-1, threads=0) -> dict
+              precision='auto', device=-1, threads=0, model='lee2005', up='y') -> dict
 
 `meshsal simplify IN -o OUT` (the library's one pipeline, the same bytes): the mesh file
 `input` simplified toward target_faces, ratio (give one) and/or target_error (% of the

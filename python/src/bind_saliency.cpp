@@ -19,20 +19,21 @@ namespace {
 // What saliency() returns: numpy arrays (owned, no copy of the library's vectors) and the
 // run's facts, as `meshsal saliency --json` reports them.
 struct SaliencyOut {
-  py::object saliency, curvature, smoothed, raw, is_point, stages, notices;
+  py::object saliency, curvature, smoothed, raw, is_point, stages, notices, cues;
   double eps = 0;
   unsigned long long pairs = 0, rechecked = 0, tiles = 0;
-  std::string method, backend, precision;
+  std::string method, backend, precision, model;
 };
 
 SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool raw_maps, bool smoothed,
                      const py::object& scales, const py::object& eps_frac, const std::string& method,
                      const std::string& backend, const std::string& precision, const py::object& device,
-                     const py::object& threads, const py::object& tiles) {
+                     const py::object& threads, const py::object& tiles, const std::string& model,
+                     const std::string& up) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   std::vector<std::string> notices;
   meshsal::SaliencyOptions options =
-      saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
+      saliency_options({scales, eps_frac, method, backend, precision, device, threads, model, up}, &notices);
   options.smoothed = smoothed;
   options.tiles = count_arg(tiles, "tiles");
   options.raw_maps = raw_maps;  // kept (8 bytes per vertex per scale) only when returned
@@ -69,6 +70,10 @@ SaliencyOut saliency(const py::object& vertices, const py::object& faces, bool r
   out.method = r.method == meshsal::Method::Fast ? "fast" : "exact";
   out.backend = r.backend_name;
   out.precision = r.mixed_precision ? "mixed" : "double";
+  out.model = meshsal::model_name(r.model);
+  py::dict cues;
+  for (auto& cue : r.cues) cues[py::str(cue.first)] = to_numpy(std::move(cue.second));
+  out.cues = cues;
   return out;
 }
 
@@ -93,6 +98,10 @@ void bind_saliency(py::module_& m) {
       .def_readonly("backend", &SaliencyOut::backend, "'cpu (N threads)' or the Vulkan device's name")
       .def_readonly("precision", &SaliencyOut::precision, "the sweep's arithmetic: 'double' or 'mixed'")
       .def_readonly("stages", &SaliencyOut::stages, "dict: wall seconds per stage")
+      .def_readonly("model", &SaliencyOut::model, "what S models: 'lee2005', 'perceptual' or a cue's name")
+      .def_readonly("cues", &SaliencyOut::cues,
+                    "dict of float64 (n,): the perceptual model's cues by name (exposure, height, rarity, "
+                    "coarse), the one cue of a cue model; empty for 'lee2005'")
       .def_readonly("notices", &SaliencyOut::notices, "list of str: the library's notices (e.g. a CPU fallback)")
       .def("__repr__", [](const SaliencyOut& r) {
         return "<meshsal.SaliencyResult: " + std::to_string(py::len(r.saliency)) + " vertices, backend '" +
@@ -102,8 +111,10 @@ void bind_saliency(py::module_& m) {
         py::arg("raw_maps").noconvert() = false, py::arg("smoothed").noconvert() = false, py::arg("scales") = py::none(),
         py::arg("eps_frac") = 0.003, py::arg("method") = "exact", py::arg("backend") = "auto",
         py::arg("precision") = "auto", py::arg("device") = -1, py::arg("threads") = 0u, py::arg("tiles") = 0u,
+        py::arg("model") = "lee2005", py::arg("up") = "y",
         (std::string(R"(saliency(vertices, faces, *, raw_maps=False, smoothed=False, scales=None, eps_frac=0.003,
-         method='exact', backend='auto', precision='auto', device=-1, threads=0, tiles=0) -> SaliencyResult
+         method='exact', backend='auto', precision='auto', device=-1, threads=0, tiles=0,
+         model='lee2005', up='y') -> SaliencyResult
 
 Mesh saliency of every vertex (`meshsal saliency`): the result's .saliency is the PLY's
 `quality`, .curvature and .raw (raw_maps=True) what --dump-scales adds, .smoothed

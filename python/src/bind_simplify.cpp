@@ -90,7 +90,8 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
                      const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
                      const py::object& position_vertex, const py::object& scales, const py::object& eps_frac,
                      const std::string& method, const std::string& backend, const std::string& precision,
-                     const py::object& device, const py::object& threads, std::vector<SimplifyOut>* lod_out,
+                     const py::object& device, const py::object& threads, const std::string& model,
+                     const std::string& up, std::vector<SimplifyOut>* lod_out,
                      const std::vector<meshsal::SimplifyOptions>* lod) {
   meshsal::Mesh mesh = mesh_with_attributes(vertices, faces, attributes, position_vertex);
   const size_t n = mesh.vertex_count();
@@ -143,7 +144,7 @@ SimplifyOut simplify(const py::object& vertices, const py::object& faces, const 
   if (!saliency.is_none()) s = vertex_values(saliency, n, "saliency");
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
-      saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
+      saliency_options({scales, eps_frac, method, backend, precision, device, threads, model, up}, &notices);
   options.threads = so.threads;
 
   SimplifyOut out;
@@ -190,11 +191,12 @@ py::object simplify_any(const py::object& vertices, const py::object& faces, con
                         const py::object& alpha_arg, const py::object& floor_arg, const py::object& attributes,
                         const py::object& position_vertex, const py::object& scales, const py::object& eps_frac,
                         const std::string& method, const std::string& backend, const std::string& precision,
-                        const py::object& device, const py::object& threads, const py::object& lod) {
+                        const py::object& device, const py::object& threads, const py::object& lod,
+                        const std::string& model, const std::string& up) {
   if (lod.is_none())
     return py::cast(simplify(vertices, faces, target_faces, ratio, target_error, lock_border, weights, saliency,
                              lambda_arg, alpha_arg, floor_arg, attributes, position_vertex, scales, eps_frac, method,
-                             backend, precision, device, threads, nullptr, nullptr));
+                             backend, precision, device, threads, model, up, nullptr, nullptr));
   std::vector<meshsal::SimplifyOptions> levels;
   try {
     levels = lod_levels(lod);
@@ -203,8 +205,8 @@ py::object simplify_any(const py::object& vertices, const py::object& faces, con
   }
   std::vector<SimplifyOut> out;
   simplify(vertices, faces, target_faces, ratio, target_error, lock_border, weights, saliency, lambda_arg, alpha_arg,
-           floor_arg, attributes, position_vertex, scales, eps_frac, method, backend, precision, device, threads, &out,
-           &levels);
+           floor_arg, attributes, position_vertex, scales, eps_frac, method, backend, precision, device, threads, model,
+           up, &out, &levels);
   return py::cast(std::move(out));
 }
 
@@ -260,10 +262,12 @@ void bind_simplify(py::module_& m) {
         py::arg("position_vertex") = py::none(), py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
         py::arg("device") = -1, py::arg("threads") = 0u, py::arg("lod") = py::none(),
+        py::arg("model") = "lee2005", py::arg("up") = "y",
         ("simplify(vertices, faces, target_faces=None, *, ratio=None, target_error=None, lock_border=False,\n"
          "         weights='" + default_weights + R"(', saliency=None, lambda_=None, alpha_percentile=None,
          weight_floor=0.001, attributes=None, position_vertex=None, scales=None, eps_frac=0.003,
-         method='exact', backend='auto', precision='auto', device=-1, threads=0, lod=None)
+         method='exact', backend='auto', precision='auto', device=-1, threads=0, lod=None,
+         model='lee2005', up='y')
     -> SimplifyResult, or with lod a list of them
 
 Garland-Heckbert edge collapses (`meshsal simplify`, the same library calls, so the same

@@ -77,7 +77,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
                    const py::object& resolution_arg, const py::object& depth_tol_arg, const std::string& up,
                    const py::object& elevation, const py::object& scales, const py::object& eps_frac,
                    const std::string& method, const std::string& backend, const std::string& precision,
-                   const py::object& device, const py::object& threads) {
+                   const py::object& device, const py::object& threads, const std::string& model) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   // The CLI's ranges (the library checks resolution and depth_tol itself).
   const int restarts = int(integer_arg(restarts_arg, "restarts", 1, meshsal::kMaxViewRestarts));
@@ -96,7 +96,7 @@ py::dict best_view(const py::object& vertices, const py::object& faces, const py
   const bool computed = given.empty();
   std::vector<std::string> notices;
   meshsal::SaliencyOptions so =
-      saliency_options({scales, eps_frac, method, backend, precision, device, threads}, &notices);
+      saliency_options({scales, eps_frac, method, backend, precision, device, threads, model, up}, &notices);
   vo.optimiser.restarts = restarts;
   vo.optimiser.seed = seed;
   vo.views = views;
@@ -140,7 +140,8 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
                  const py::object& elevation, const py::object& size, const py::object& color_range, bool grey,
                  bool flat, bool edges, const py::object& supersample, const py::object& scales,
                  const py::object& eps_frac, const std::string& method, const std::string& backend,
-                 const std::string& precision, const py::object& device, const py::object& threads) {
+                 const std::string& precision, const py::object& device, const py::object& threads,
+                 const std::string& model) {
   const meshsal::Mesh mesh = mesh_from_arrays(vertices, faces);
   const double theta = number_arg(theta_arg, "theta"), phi = number_arg(phi_arg, "phi");
   if (!(theta >= -360 && theta <= 360))
@@ -171,7 +172,7 @@ py::array render(const py::object& vertices, const py::object& faces, const py::
   std::vector<double> given;
   if (!values.is_none()) given = vertex_values(values, mesh.vertex_count(), "values");
   meshsal::SaliencyOptions so =
-      saliency_options({scales, eps_frac, method, backend, precision, device, threads}, nullptr);
+      saliency_options({scales, eps_frac, method, backend, precision, device, threads, model, up}, nullptr);
   meshsal::Image image;
   {
     const InterruptibleCall call;  // Ctrl-C stops it (interrupt.h)
@@ -205,10 +206,10 @@ void bind_view(py::module_& m) {
         py::arg("elevation") = py::none(),
         py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003, py::arg("method") = "exact",
         py::arg("backend") = "auto", py::arg("precision") = "auto", py::arg("device") = -1,
-        py::arg("threads") = 0u,
+        py::arg("threads") = 0u, py::arg("model") = "lee2005",
         (std::string(R"(best_view(vertices, faces, score=None, *, restarts=8, seed=1, views=0, resolution=512,
           depth_tol=2.0, up='y', elevation=None, scales=None, eps_frac=0.003, method='exact', backend='auto',
-          precision='auto', device=-1, threads=0) -> dict
+          precision='auto', device=-1, threads=0, model='lee2005') -> dict
 
 The view direction that sees the most score (`meshsal viewpoint`): U = the sum of score over
 the mesh points visible from it. score: one value per vertex (e.g. saliency().saliency, or
@@ -232,11 +233,11 @@ The GIL is released while it computes.
         py::arg("grey").noconvert() = false, py::arg("flat").noconvert() = false, py::arg("edges").noconvert() = false,
         py::arg("supersample") = 2, py::arg("scales") = py::none(), py::arg("eps_frac") = 0.003,
         py::arg("method") = "exact", py::arg("backend") = "auto", py::arg("precision") = "auto",
-        py::arg("device") = -1, py::arg("threads") = 0u,
+        py::arg("device") = -1, py::arg("threads") = 0u, py::arg("model") = "lee2005",
         (std::string(R"(render(vertices, faces, values=None, *, theta=0, phi=0, best=False, up='y', elevation=None, size=512,
        color_range=None, grey=False, flat=False, edges=False, supersample=2, scales=None,
        eps_frac=0.003, method='exact', backend='auto', precision='auto', device=-1,
-       threads=0) -> numpy.ndarray uint8 (size, size, 3)
+       threads=0, model='lee2005') -> numpy.ndarray uint8 (size, size, 3)
 
 A picture of the mesh (`meshsal render`, without its title line and colour bar): seen from
 theta, phi (degrees; theta 0 looks from the front, 90 from the right, phi 90 from above, in

@@ -34,6 +34,8 @@ meshsal::SaliencyOptions saliency_options(const SaliencyArgs& a, std::vector<std
   o.method = meshsal::parse_method(a.method);  // the library's parsers (meshsal.Error is a ValueError)
   o.backend = meshsal::parse_backend(a.backend);
   o.precision = meshsal::parse_precision(a.precision);
+  o.model = meshsal::parse_model(a.model);
+  o.up = meshsal::parse_up_axis(a.up);
   if (!a.device || a.device.is_none() || py::isinstance<py::bool_>(a.device)) {
     throw py::type_error("device must be an int (a devices() index, -1 = choose) or a meshsal.Device, got " +
                          std::string(py::str(a.device.get_type().attr("__name__"))));
@@ -68,6 +70,11 @@ Saliency arguments (as the CLI's options, same defaults):
   precision   the GPU sweep's arithmetic: 'auto' (default), 'mixed' or 'double'
   device      Vulkan device index (see devices()), -1 = choose; or a meshsal.Device
               (open across calls: no device start-up or kernel compilation per call)
-  threads     CPU threads, 0 = all cores)";
+  threads     CPU threads, 0 = all cores
+  model       what S models: 'lee2005' (the paper's, default), 'perceptual' (where people
+              look at the rendered object: docs/method.md), or one of its cues alone:
+              'exposure', 'centre', 'height', 'rarity', 'coarse'
+  up          the up axis of the perceptual model's views and height: 'y' (default), 'z',
+              'x', '-x', '-y', '-z' (render and best_view: also the picture's and views'))";
 
 }  // namespace meshsal_py

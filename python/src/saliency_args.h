@@ -1,6 +1,6 @@
 // meshsal Python module: the saliency keyword arguments every function that computes
 // saliency shares (the CLI's --scales, --eps-frac, --method, --backend, --precision,
-// --device, --threads), turned into SaliencyOptions. Notices (e.g. the CPU fallback of
+// --device, --threads, --model, --up), turned into SaliencyOptions. Notices (e.g. the CPU fallback of
 // backend='auto') are collected in `notices`, since the call runs without the GIL.
 #pragma once
 #include <string>
@@ -22,6 +22,8 @@ struct SaliencyArgs {
   std::string precision = "auto";
   py::object device;             // an int (a devices() index, -1 = choose) or a meshsal.Device
   py::object threads;            // an integer >= 0 (0 = all cores)
+  std::string model = "lee2005";  // what S models (the CLI's --model)
+  std::string up = "y";           // the up axis of the perceptual model's views and height (--up)
 };
 
 // SaliencyOptions from the arguments: device= goes to options.device (an int) or

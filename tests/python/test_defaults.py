@@ -27,7 +27,7 @@ def test_every_function_takes_the_librarys_defaults():
 
 def test_the_command_line_shows_the_same_defaults(cli):
     d = meshsal.defaults()
-    flags = {"--method": d["method"], "--precision": d["precision"], "--backend": d["backend"],
+    flags = {"--method": d["method"], "--model": d["model"], "--precision": d["precision"], "--backend": d["backend"],
              "--eps-frac": d["eps_frac"], "--scales": ",".join(f"{s:g}" for s in d["scales"]),
              "--weights": d["weights"], "--weight-floor": d["weight_floor"], "--restarts": d["restarts"],
              "--seed": d["seed"], "--resolution": d["resolution"], "--depth-tol": d["depth_tol"], "--size": d["size"],
