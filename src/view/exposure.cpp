@@ -75,9 +75,13 @@ std::vector<double> exposure_cpu(const Mesh& mesh, const std::vector<float>& nor
         if (!is_point[i]) continue;
         const float* p = pos + 3 * i;
         double s = sum[i];
+        const float* nn = &normals[3 * i];
         for (size_t v = 0; v < count; ++v) {
+          // Facing away: the score is 0 whatever the depth test says (about half the pairs).
+          const float* d = ev[v].direction;
+          if (weighting.facing && !(nn[0] * d[0] + nn[1] * d[1] + nn[2] * d[2] > 0.0f)) continue;
           const Projected q = project(ev[v].rows, p[0], p[1], p[2], half);
-          if (passes_depth_test(q, zbuf[v].data(), res, tol)) s += exposure_weight(ev[v], p, &normals[3 * i], weighting);
+          if (passes_depth_test(q, zbuf[v].data(), res, tol)) s += exposure_weight(ev[v], p, nn, weighting);
         }
         sum[i] = s;
       }
