@@ -3,6 +3,7 @@
 // meshsal::core gets gpu_backend_none.cpp instead, so which backend a program has is
 // decided by the library it links, with no registration at start-up.
 #include "api/gpu_backend.h"
+#include "gpu/gpu_exposure.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/gpu_session.h"
 #include "gpu/gpu_visibility.h"
@@ -95,8 +96,33 @@ ViewScorerSetup view_scorer_on(const std::shared_ptr<void>& device, const Mesh& 
   return s;
 }
 
+ExposureRun exposure(const Mesh& mesh, const std::vector<float>& normals, const ViewFrame& frame,
+                     const std::vector<ViewAngles>& views, ExposureWeighting weighting,
+                     const VisibilityOptions& options, int device) {
+  // One call on the process's cached device (gpu_session.h), as view_scorer's lease.
+  gpu::DeviceLease lease = gpu::lease_device(device, vk::validation_requested_by_env());
+  vk::Context& ctx = lease.context();
+  try {
+    GpuExposure gpu(ctx, mesh, normals, frame, options);
+    return {gpu.exposure(views, weighting), "vulkan: " + ctx.info.name};
+  } catch (const std::exception& e) {
+    lease.discard_if_broken(e.what());
+    throw;
+  }
+}
+
+ExposureRun exposure_on(const std::shared_ptr<void>& device, const Mesh& mesh, const std::vector<float>& normals,
+                        const ViewFrame& frame, const std::vector<ViewAngles>& views, ExposureWeighting weighting,
+                        const VisibilityOptions& options) {
+  auto* held = static_cast<gpu::HeldDevice*>(device.get());
+  std::lock_guard<std::mutex> busy(held->busy);
+  GpuExposure gpu(held->ctx, mesh, normals, frame, options);
+  return {gpu.exposure(views, weighting), "vulkan: " + held->ctx.info.name};
+}
+
 const GpuBackend backend{devices,     saliency,       view_scorer, open_device,
-                         saliency_on, view_scorer_on, gpu::release_cached_devices};
+                         saliency_on, view_scorer_on, gpu::release_cached_devices,
+                         exposure,    exposure_on};
 
 }  // namespace
 

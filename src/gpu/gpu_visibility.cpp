@@ -16,12 +16,6 @@ namespace meshsal {
 namespace {
 using gpu::shader::RasterPush;  // the push blocks: gpu/shader_interfaces.h
 using gpu::shader::TestPush;
-const uint32_t kViewsPerGroup = 4;  // VIEWS_PER_GROUP in both shaders
-const uint32_t kRasterMost = 4096, kTestMost = 2048;  // invocations per view (CPU plan)
-// Lavapipe (gallivm) ends every loop of an invocation, silently, once its loops have taken
-// 65535 steps in all. On CPU devices the shaders count their steps and flag an invocation
-// that may reach that (a little below, to keep a margin for the loops they do not count).
-const uint32_t kCpuLoopBudget = 60000;
 }  // namespace
 
 // Invocations per view: each loops over items with this stride. About 16 items each, at
@@ -38,8 +32,41 @@ uint32_t visibility_lanes(uint32_t items, uint32_t most, uint32_t views, bool cp
   return l;
 }
 
-namespace {
-}  // namespace
+int visibility_batch(const vk::Context& ctx, int resolution, int max_batch) {
+  const uint64_t layer = uint64_t(resolution) * uint64_t(resolution) * 4;
+  if (layer > ctx.properties.limits.maxStorageBufferRange)
+    throw Error("resolution " + std::to_string(resolution) + " is too large for '" + ctx.info.name + "'");
+  uint64_t cap = std::min<uint64_t>(64ull << 20, ctx.properties.limits.maxStorageBufferRange);
+  int fit = int(std::max<uint64_t>(1, cap / layer));
+  fit = std::min<int>(fit, 1024);
+  fit = std::min<int>(fit, int(ctx.properties.limits.maxComputeWorkGroupCount[1]));
+  return max_batch > 0 ? std::min(max_batch, fit) : fit;
+}
+
+vk::Kernel& visibility_raster_kernel(vk::Context& ctx) {
+  // One copy of the SPIR-V in the program: the kernel cache knows a shader by its address.
+  return vk::cached_kernel<gpu::shader::VisibilityRaster>(ctx, spv_visibility_raster_comp,
+                                                         sizeof spv_visibility_raster_comp, "visibility_raster");
+}
+
+void record_depth_buffers(vk::Context& ctx, VkCommandBuffer cmd, const vk::Kernel& raster, VkDescriptorSet set,
+                          const vk::Buffer& zbuf, uint32_t res, uint32_t triangles, uint32_t views,
+                          bool cpu_device) {
+  vkCmdFillBuffer(cmd, zbuf.handle(), 0, VkDeviceSize(res) * res * 4 * views, 0x7f800000u);  // +inf
+  vk::barrier(cmd);
+  const uint32_t lanes = visibility_lanes(triangles, kVisibilityRasterMost, views, cpu_device);
+  RasterPush rp{0, lanes, res, triangles, views, cpu_device ? kCpuLoopBudget : 0};
+  vk::dispatch(ctx, cmd, raster, set, &rp, 0, lanes, 64,
+               (views + kVisibilityViewsPerGroup - 1) / kVisibilityViewsPerGroup);
+}
+
+void check_loop_budget(uint32_t over_budget, const vk::Context& ctx) {
+  if (over_budget)
+    throw Error("the visibility shaders would pass the Vulkan driver's limit of 65535 loop "
+                "steps per invocation on '" + ctx.info.name + "' (lavapipe), which would "
+                "silently give wrong results at this resolution; use a lower --resolution "
+                "or --backend cpu");
+}
 
 struct GpuVisibility::State {
   bool cpu_device = false;
@@ -74,13 +101,7 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
   s.cpu_device = ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 
   const uint64_t layer = uint64_t(options.resolution) * uint64_t(options.resolution) * 4;
-  uint64_t cap = std::min<uint64_t>(64ull << 20, ctx.properties.limits.maxStorageBufferRange);
-  int fit = int(std::max<uint64_t>(1, cap / layer));
-  fit = std::min<int>(fit, 1024);
-  fit = std::min<int>(fit, int(ctx.properties.limits.maxComputeWorkGroupCount[1]));
-  s.batch = max_batch > 0 ? std::min(max_batch, fit) : fit;
-  if (layer > ctx.properties.limits.maxStorageBufferRange)
-    throw Error("resolution " + std::to_string(options.resolution) + " is too large for '" + ctx.info.name + "'");
+  s.batch = visibility_batch(ctx, options.resolution, max_batch);
 
   s.pos = vk::Buffer(ctx, mesh.positions.size() * 4, "vertex positions");
   s.pos.upload(mesh.positions.data(), mesh.positions.size() * 4);
@@ -93,11 +114,12 @@ GpuVisibility::GpuVisibility(vk::Context& ctx, const Mesh& mesh, const std::vect
   // One value per view and work group; a smaller batch has more groups per view.
   size_t partials = 0;
   for (uint32_t views = 1; views <= uint32_t(s.batch); ++views)
-    partials = std::max<size_t>(partials, size_t(views) * visibility_lanes(s.vertices, kTestMost, views, s.cpu_device) / 64);
+    partials = std::max<size_t>(
+        partials, size_t(views) * visibility_lanes(s.vertices, kVisibilityTestMost, views, s.cpu_device) / 64);
   s.partial = vk::Buffer(ctx, partials * 4, "visibility partial sums");
 
   s.status = vk::Buffer(ctx, 16, "visibility status");
-  s.raster = &vk::cached_kernel<gpu::shader::VisibilityRaster>(ctx, spv_visibility_raster_comp, sizeof spv_visibility_raster_comp, "visibility_raster");
+  s.raster = &visibility_raster_kernel(ctx);
   s.test = &vk::cached_kernel<gpu::shader::VisibilityTest>(ctx, spv_visibility_test_comp, sizeof spv_visibility_test_comp, "visibility_test");
   s.pool = std::make_unique<vk::DescriptorPool>(ctx, 2, 11);
   s.raster_set = s.pool->bind(*s.raster, {&s.pos, &s.tri, &s.rows, &s.zbuf, &s.status});
@@ -114,7 +136,6 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
   State& s = *s_;
   std::vector<double> U(views.size(), 0.0);
   const uint32_t res = uint32_t(s.options.resolution);
-  const VkDeviceSize layer = VkDeviceSize(res) * res * 4;
   std::vector<ViewRows> rows;
   std::vector<float> partial;
   for (size_t first = 0; first < views.size(); first += size_t(s.batch)) {
@@ -126,8 +147,7 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     if (!inline_rows) s.rows.upload(rows.data(), row_bytes);
     vk::RecordedDownload readback, read_status;
     const uint32_t budget = s.cpu_device ? kCpuLoopBudget : 0;
-    const uint32_t raster_lanes = visibility_lanes(s.triangles, kRasterMost, count, s.cpu_device);
-    const uint32_t test_lanes = visibility_lanes(s.vertices, kTestMost, count, s.cpu_device);
+    const uint32_t test_lanes = visibility_lanes(s.vertices, kVisibilityTestMost, count, s.cpu_device);
     const uint32_t groups = test_lanes / 64;
     const size_t partial_bytes = size_t(count) * groups * 4;
     const size_t status_at = (partial_bytes + 255) / 256 * 256;  // after the sums
@@ -135,16 +155,12 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     vk::submit(s.ctx, "visibility", [&](VkCommandBuffer cmd) {
       // The view matrices go in the command buffer itself: no transfer of their own.
       if (inline_rows) vkCmdUpdateBuffer(cmd, s.rows.handle(), 0, row_bytes, rows.data());
-      vkCmdFillBuffer(cmd, s.zbuf.handle(), 0, layer * count, 0x7f800000u);  // +inf
       vkCmdFillBuffer(cmd, s.status.handle(), 0, VK_WHOLE_SIZE, 0);
-      vk::barrier(cmd);
-      RasterPush rp{0, raster_lanes, res, s.triangles, count, budget};
-      vk::dispatch(s.ctx, cmd, *s.raster, s.raster_set, &rp, 0, raster_lanes, 64,
-                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
+      record_depth_buffers(s.ctx, cmd, *s.raster, s.raster_set, s.zbuf, res, s.triangles, count, s.cpu_device);
       vk::barrier(cmd);
       TestPush tp{0, test_lanes, res, s.vertices, float(s.options.depth_tol_px / s.options.resolution), count, budget};
       vk::dispatch(s.ctx, cmd, *s.test, s.test_set, &tp, 0, test_lanes, 64,
-                   (count + kViewsPerGroup - 1) / kViewsPerGroup);
+                   (count + kVisibilityViewsPerGroup - 1) / kVisibilityViewsPerGroup);
       // Read back in the same submission; vk::submit() ends with the barrier that makes
       // the partial sums (or their staging copy) visible to the host.
       readback.record(s.ctx, cmd, s.partial, 0, partial_bytes);
@@ -155,11 +171,7 @@ std::vector<double> GpuVisibility::score(const std::vector<ViewAngles>& views) {
     readback.finish(partial.data());
     uint32_t over_budget = 0;
     read_status.finish(&over_budget);
-    if (over_budget)
-      throw Error("the visibility shaders would pass the Vulkan driver's limit of 65535 loop "
-                  "steps per invocation on '" + s.ctx.info.name + "' (lavapipe), which would "
-                  "silently give wrong results at this resolution; use a lower --resolution "
-                  "or --backend cpu");
+    check_loop_budget(over_budget, s.ctx);
     s.values_read += partial.size();
     for (uint32_t v = 0; v < count; ++v) {
       double sum = 0;

@@ -37,6 +37,14 @@ struct TestPush {
   float tol;
   uint32_t views, budget;
 };
+// exposure_test.comp's: TestPush's members, then the weighting (ExposureWeighting's flags,
+// 0 or 1) and the centre bias's 2 vx, 2 vy.
+struct ExposurePush {
+  uint32_t base, n, res, vertices;
+  float tol;
+  uint32_t views, budget, facing, centre;
+  float two_vx, two_vy;
+};
 struct SelftestPush { uint32_t base, n; float a; };  // tests/gpu/test_gpu_selftest.cpp
 // sweep.glsl's (every sweep*.comp).
 struct SweepPush {
@@ -55,6 +63,7 @@ struct Interface {
 };
 
 // One line per shaders/NAME.comp (the test lists the same names).
+using ExposureTest = Interface<ExposurePush, 8>;
 using FastAggregateCells = Interface<CellsPush, 5>;
 using FastAggregatePieces = Interface<RangePush, 5>;
 using FastCellKey = Interface<CellKeyPush, 3>;

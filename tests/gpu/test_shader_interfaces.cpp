@@ -22,6 +22,7 @@
 
 #include "gpu/shader_interfaces.h"
 
+#include "exposure_test_comp.h"
 #include "fast_aggregate_cells_comp.h"
 #include "fast_aggregate_pieces_comp.h"
 #include "fast_cell_key_comp.h"
@@ -248,6 +249,12 @@ template <> std::vector<Member> members_of<TestPush>() {
   return {MEMBER(TestPush, base), MEMBER(TestPush, n), MEMBER(TestPush, res), MEMBER(TestPush, vertices),
           MEMBER(TestPush, tol), MEMBER(TestPush, views), MEMBER(TestPush, budget)};
 }
+template <> std::vector<Member> members_of<ExposurePush>() {
+  return {MEMBER(ExposurePush, base), MEMBER(ExposurePush, n), MEMBER(ExposurePush, res),
+          MEMBER(ExposurePush, vertices), MEMBER(ExposurePush, tol), MEMBER(ExposurePush, views),
+          MEMBER(ExposurePush, budget), MEMBER(ExposurePush, facing), MEMBER(ExposurePush, centre),
+          MEMBER(ExposurePush, two_vx), MEMBER(ExposurePush, two_vy)};
+}
 template <> std::vector<Member> members_of<SelftestPush>() {
   return {MEMBER(SelftestPush, base), MEMBER(SelftestPush, n), MEMBER(SelftestPush, a)};
 }
@@ -276,6 +283,7 @@ Case make_case(const char* name, const uint32_t* spirv, size_t spirv_bytes) {
 // Every shaders/*.comp, with the interface the C++ side uses it with.
 std::vector<Case> all_cases() {
   return {
+      SHADER(ExposureTest, exposure_test),
       SHADER(FastAggregateCells, fast_aggregate_cells), SHADER(FastAggregatePieces, fast_aggregate_pieces),
       SHADER(FastCellKey, fast_cell_key),               SHADER(FastCenterSurround, fast_center_surround),
       SHADER(FastFinish, fast_finish),                  SHADER(FastGroupCentroids, fast_group_centroids),
