@@ -19,12 +19,14 @@ layout(std430, binding = 4) buffer Status { uint over_budget; };
 layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; uint budget; } pc;
 const uint VIEWS_PER_GROUP = 4u;  // views rasterised per invocation (positions loaded once)
 
+// `precise`: no fused multiply-adds (drivers fuse freely, lavapipe does), so the projection,
+// and the rasteriser's weights and depths, are the CPU twin's bits (its build contracts none).
 vec3 project_point(vec3 p, uint view, float half_res) {
   vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
-  float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
-  float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
-  float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
-  float d = (1.0 - nz) * 0.5;
+  precise float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
+  precise float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
+  precise float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
+  precise float d = (1.0 - nz) * 0.5;
   return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
 }
 
@@ -33,7 +35,7 @@ uint rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, u
   vec3 a = project_point(pa, view, half_res);
   vec3 b = project_point(pb, view, half_res);
   vec3 c = project_point(pc_, view, half_res);
-  float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  precise float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
   if (!(abs(area) > 1e-12)) return 0u;
   float s = area > 0.0 ? 1.0 : -1.0;
   float inv = 1.0 / abs(area);
@@ -46,11 +48,12 @@ uint rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, u
     float cy = float(y) + 0.5;
     for (int x = x0; x <= x1; ++x) {
       float cx = float(x) + 0.5;
-      float w0 = s * ((c.x - b.x) * (cy - b.y) - (c.y - b.y) * (cx - b.x));
-      float w1 = s * ((a.x - c.x) * (cy - c.y) - (a.y - c.y) * (cx - c.x));
-      float w2 = s * ((b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x));
+      precise float w0 = s * ((c.x - b.x) * (cy - b.y) - (c.y - b.y) * (cx - b.x));
+      precise float w1 = s * ((a.x - c.x) * (cy - c.y) - (a.y - c.y) * (cx - c.x));
+      precise float w2 = s * ((b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x));
       if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
-      uint z = floatBitsToUint((w0 * a.z + w1 * b.z + w2 * c.z) * inv);
+      precise float depth = (w0 * a.z + w1 * b.z + w2 * c.z) * inv;
+      uint z = floatBitsToUint(depth);
       uint at = zbase + uint(y * res + x);
       if (z < zbuf[at]) atomicMin(zbuf[at], z);  // most hidden fragments skip the atomic
     }

@@ -16,12 +16,14 @@ layout(push_constant) uniform Push { uint base; uint n; uint res; uint vertices;
 const uint VIEWS_PER_GROUP = 4u;
 shared float sums[VIEWS_PER_GROUP][64];
 
+// `precise`: no fused multiply-adds (drivers fuse freely, lavapipe does), so the projection,
+// and the rasteriser's weights and depths, are the CPU twin's bits (its build contracts none).
 vec3 project_point(vec3 p, uint view, float half_res) {
   vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
-  float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
-  float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
-  float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
-  float d = (1.0 - nz) * 0.5;
+  precise float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
+  precise float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
+  precise float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
+  precise float d = (1.0 - nz) * 0.5;
   return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
 }
 

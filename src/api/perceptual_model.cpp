@@ -145,7 +145,8 @@ SaliencyResult compute_model_saliency(const Mesh& mesh, const SaliencyOptions& o
     progress(options, "rarity", 1);
     stage_done("rarity");
   }
-  r.curvature = curvature.empty() ? std::vector<double>(n, 0.0) : curvature;
+  // H for every model (--score curvature colours and searches by it).
+  r.curvature = curvature.empty() ? mean_curvature_morton(mesh, box, options.threads) : curvature;
 
   // Height along up.
   ViewFrame frame = frame_mesh(mesh, options.up);

@@ -184,6 +184,9 @@ TEST_CASE("cli: help explains every command and option", "[cli]") {
       {"-h,--help", "Print this"},
       {"-o,--output", "TEXT REQUIRED"},
       {"--backend", "TEXT=auto"},
+      {"--model", "TEXT:{lee2005,perceptual,exposure,centre,center,height,rarity,coarse}=" +
+                      std::string(model_name(lib.model))},
+      {"--up", "TEXT:{x,y,z,-x,-y,-z}=y"},
       {"--precision", "TEXT:{auto,mixed,double}=auto"},
       {"--method", "TEXT:{exact,fast,auto}=" + std::string(lib.method == Method::Exact ? "exact" : "?")},
       {"--device", "INT:in [-1, 255]"},
