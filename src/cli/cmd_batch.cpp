@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "api/viewpoint_backend.h"
 #include "core/mesh_points.h"
 #include "batch_inputs.h"
@@ -722,6 +723,7 @@ class BatchRun {
       if (o_.html && !gallery_failed && !interrupted_) written.push_back(ms_.gallery);
       JsonObject().count("models", ms_.inputs.size()).count("computed", computed_).count("skipped", skipped_)
           .count("failed", failed_).flag("interrupted", interrupted_).count("ranks", uint64_t(ranks_))
+          .count("threads_per_rank", meshsal::resolve_threads(p_.request.saliency.threads))
           .text("log", log_path).strings("outputs", written).number("seconds", t_run_.seconds()).print();
     } else if (!o_.text.quiet) {
       std::string on_ranks;  // how the computed models were shared (none with one process)

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <memory>
 
+#include "core/parallel.h"
 #include "command.h"
 #include "json_string.h"
 #include "core/timer.h"
@@ -65,8 +66,9 @@ void print_out_of_core(const Args& a, const meshsal::OutOfCoreReport& r, uint64_
   std::printf("vertices   %llu (%llu on triangles)\n", (unsigned long long)r.vertices, (unsigned long long)r.points);
   std::printf("faces      %llu triangles\n", (unsigned long long)r.triangles);
   std::printf("eps        %.6g\n", r.eps);
-  std::printf("tiles      %zu (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)\n", r.tiles,
-              r.tile_estimate / 1048576.0, peak / 1048576.0, limit / 1048576.0);
+  std::printf("tiles      %zu (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)%s\n", r.tiles,
+              r.tile_estimate / 1048576.0, peak / 1048576.0, limit / 1048576.0,
+              r.ranks > 1 ? (", shared by " + std::to_string(r.ranks) + " ranks").c_str() : "");
   for (const meshsal::StageTime& s : r.stages) std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);
   std::printf("S          min %g, mean %g, max %g\n", r.saliency_min, r.saliency_mean, r.saliency_max);
   std::printf("wrote      %s\n", printable(a.output).c_str());
@@ -96,6 +98,7 @@ int run(Args a) {
   if (r.out_of_core.memory_limit > 0) {
     if (a.text.json)
       out_of_core_json(a.input, a.output, result.out_of_core, r.saliency.method, r.out_of_core.memory_limit, result.seconds, peak)
+          .count("threads_per_rank", resolve_threads(r.saliency.threads))
           .print();
     else if (!a.text.quiet)
       print_out_of_core(a, result.out_of_core, r.out_of_core.memory_limit, peak);
@@ -103,7 +106,7 @@ int run(Args a) {
   }
   if (a.text.json) {
     JsonObject j = saliency_json(a.input, a.output, result.mesh, result.saliency, result.load_seconds);
-    j.count("peak_rss", peak);
+    j.count("peak_rss", peak).count("threads_per_rank", resolve_threads(r.saliency.threads));
     j.strings("outputs", result.outputs);
     j.print();
   } else if (!a.text.quiet) {

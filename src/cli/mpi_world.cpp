@@ -3,6 +3,7 @@
 #include "mpi_world.h"
 
 #include <algorithm>
+#include <thread>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
@@ -95,10 +96,22 @@ void mpi_start(int* argc, char*** argv) {
   w.active = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  // The ranks that share this machine (and so its cores).
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, w.rank, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &w.local_size);
+  MPI_Comm_free(&node);
 #else
   (void)argc;
   (void)argv;
 #endif
+}
+
+unsigned mpi_default_threads() {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const MpiWorld& w = world();
+  if (!w.active) return cores;
+  return std::max(1u, cores / unsigned(std::max(1, w.local_size)));
 }
 
 void mpi_stop() {

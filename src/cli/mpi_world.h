@@ -14,6 +14,7 @@ struct MpiWorld {
   bool active = false;  // MPI_Init was called (started by mpirun/srun, built with MPI)
   int rank = 0;
   int size = 1;
+  int local_size = 1;  // the ranks on this rank's machine (MPI_COMM_TYPE_SHARED), this one included
 };
 
 // The world mpi_start() found (one inactive rank 0 of 1 before it, or without MPI).
@@ -69,6 +70,11 @@ void mpi_barrier();
 // set); 0 when none started this one. A build without MPI uses it to refuse a batch that N
 // copies of itself would each run whole.
 int mpi_launcher_size();
+
+// The CPU threads a rank uses by default: the machine's cores shared among the ranks on it
+// (mpi_world().local_size; at least 1), so that N ranks on one machine do not start N times
+// its cores. All the cores when not active.
+unsigned mpi_default_threads();
 
 // This process's rank as mpirun or srun's environment says (OMPI_COMM_WORLD_RANK,
 // PMIX_RANK, PMI_RANK), without MPI_Init; 0 when none started it. A command that does not

@@ -5,6 +5,7 @@
 #include "command.h"
 #include "interrupt.h"
 #include "load_input.h"
+#include "mpi_world.h"
 #include "json_string.h"
 #include "number_options.h"
 #include "progress.h"
@@ -49,7 +50,10 @@ void add_saliency_options(CLI::App& app, RequestText& t) {
       ->capture_default_str()->check(scales_list());
   app.add_option("--eps-frac", t.eps_frac, "eps as a fraction of the bounding-box diagonal")
       ->capture_default_str()->check(finite_in(0, meshsal::kMaxEpsFrac, true));
-  add_threads_option(app, t.threads, "CPU threads (0 = all cores)");
+  add_threads_option(app, t.threads,
+                     "CPU threads (0 = all cores; under mpirun the default is each machine's cores shared among "
+                     "its ranks)")
+      ->each([&t](const std::string&) { t.threads_given = true; });
 }
 
 CLI::Option* add_saliency_from_option(CLI::App& app, RequestText& t, const std::string& names) {
@@ -138,7 +142,8 @@ meshsal::Request request_from(const RequestText& t, Progress* progress) {
   so.cancel = interrupt_flag();
   so.eps_frac = t.eps_frac;
   so.scales = parse_scales(t.scales);
-  so.threads = t.threads;
+  // Ranks on one machine share its cores unless told otherwise.
+  so.threads = !t.threads_given && mpi_world().active ? mpi_default_threads() : t.threads;
   so.backend = parse_backend(t.backend);
   so.precision = as_option([&] { return meshsal::parse_precision(t.precision); });
   so.method = as_option([&] { return meshsal::parse_method(t.method); });
@@ -158,7 +163,7 @@ meshsal::Request request_from(const RequestText& t, Progress* progress) {
   vo.optimiser.seed = t.seed;
   vo.visibility.resolution = t.resolution;
   vo.visibility.depth_tol_px = t.depth_tol;
-  vo.visibility.threads = t.threads;
+  vo.visibility.threads = so.threads;
   vo.backend = so.backend;
   vo.device = t.device;
   vo.optimiser.progress = so.progress;
@@ -173,7 +178,7 @@ meshsal::Request request_from(const RequestText& t, Progress* progress) {
   if (t.lambda_given) r.weight_options.lambda = t.lambda;
   if (t.alpha_given) r.weight_options.alpha_percentile = t.alpha_percentile;
   r.weight_options.floor = t.weight_floor;
-  r.simplify.threads = t.threads;
+  r.simplify.threads = so.threads;
   r.simplify.cancel = so.cancel;
   if (!t.memory_limit.empty()) r.out_of_core.memory_limit = parse_memory_size(t.memory_limit);
   r.out_of_core.temp_dir = t.temp_dir;

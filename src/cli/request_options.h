@@ -19,6 +19,7 @@ struct RequestText {
   double eps_frac = 0.003;
   int device = -1;
   unsigned threads = 0;
+  bool threads_given = false;  // --threads on the command line (else, under mpirun: mpi_default_threads)
   std::string saliency_from;  // add_saliency_from_option
   // The views (add_view_options) and pictures (add_picture_options)
   std::string up = "y", elevation, score = "saliency", color_range;

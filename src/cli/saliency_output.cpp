@@ -74,6 +74,8 @@ void print_saliency_summary(const Mesh& mesh, const SaliencyResult& r, double lo
   std::printf("faces      %zu triangles\n", mesh.triangle_count());
   std::printf("eps        %.6g\n", r.eps);
   std::printf("backend    %s\n", r.backend_name.c_str());
+  if (r.tiles > 0)
+    std::printf("tiles      %zu%s\n", r.tiles, r.ranks > 1 ? (" shared by " + std::to_string(r.ranks) + " ranks").c_str() : "");
   if (r.model != meshsal::Model::Lee2005)
     std::printf("model      %s (docs/method.md, \"The perceptual model\")\n", meshsal::model_name(r.model));
   if (r.method == Method::Fast)

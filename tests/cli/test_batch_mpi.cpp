@@ -6,6 +6,7 @@
 
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/synthetic.h"
@@ -169,4 +170,17 @@ TEST_CASE("batch mpi: a rank that fails ends every rank with its message and sta
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("error: batch: rank 1 has other models to compute than rank 0") != std::string::npos);
   CHECK_FALSE(fs::exists(out / "batch.jsonl"));
+}
+
+TEST_CASE("batch mpi: ranks on one machine share its cores and the summary says how many each", "[batch][mpi]") {
+  if (skip_without_mpi()) return;
+  const fs::path dir = batch_scratch("mpi_threads");
+  const fs::path in = six_models(dir);
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const BatchRun r = run_mpi(np(2, "batch " + (in / "ball.obj").string() + " -o " + (dir / "out").string() +
+                                       " --backend cpu --json"), dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(json_number(r.out, "ranks") == 2);
+  CHECK(json_number(r.out, "threads_per_rank") == std::max(1u, cores / 2));
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "cli/synthetic.h"
 #include "cli_run.h"
@@ -70,6 +71,33 @@ TEST_CASE("mpirun saliency: 2 and 3 ranks write the single-process bytes", "[mpi
       }
     }
   }
+}
+
+TEST_CASE("mpirun saliency: ranks on one machine share its cores unless --threads says", "[mpi]") {
+  if (skip_without_mpi()) return;
+  const auto dir = scratch_dir("mpi_threads");
+  const std::string in = (dir / "in.ply").string();
+  meshsal::write_ply(in, meshsal::make_bumpy_sphere(3), {});
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  for (int ranks : {1, 2, 3}) {
+    for (const std::string mode : {"", " --memory-limit 1G"}) {
+      INFO("ranks " << ranks << mode);
+      const fs::path out = dir / "np.ply";
+      const CliRun r = run_mpi(np(ranks, "saliency " + quoted(in) + " --backend cpu --json" + mode + " -o " +
+                                             quoted(out.string())), dir);
+      INFO(r.err);
+      REQUIRE(r.rc == 0);
+      CHECK(json_number(r.out, "threads_per_rank") == std::max(1u, cores / unsigned(ranks)));
+      const CliRun given = run_mpi(np(ranks, "saliency " + quoted(in) + " --backend cpu --threads 3 --json" + mode +
+                                                 " -o " + quoted(out.string())), dir);
+      REQUIRE(given.rc == 0);
+      CHECK(json_number(given.out, "threads_per_rank") == 3);
+    }
+  }
+  // One process: every core, as --threads 0 says.
+  const CliRun one = run_cli("saliency " + quoted(in) + " --backend cpu --json -o " + quoted((dir / "one.ply").string()), dir);
+  REQUIRE(one.rc == 0);
+  CHECK(json_number(one.out, "threads_per_rank") == cores);
 }
 
 TEST_CASE("mpirun saliency: a failing rank ends the run with its message", "[mpi]") {
