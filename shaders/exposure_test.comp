@@ -12,6 +12,7 @@
 // multiply then an add, as the CPU build (-ffp-contract=off) computes them, so that both
 // sides make the same visibility decisions.
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
 layout(std430, binding = 1) readonly buffer Normals { float normal[]; };
@@ -28,34 +29,8 @@ layout(push_constant) uniform Push {
   uint base; uint n; uint res; uint vertices; float tol; uint views; uint budget;
   uint facing; uint centre; float two_vx; float two_vy;
 } pc;
-
-vec3 project_point(vec3 p, uint view, float half_res) {
-  vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
-  precise float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
-  precise float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
-  precise float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
-  float d = (1.0 - nz) * 0.5;
-  return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
-}
-
-// visibility_test.comp's visible(); steps: the loop steps taken, for the budget.
-bool visible(vec3 q, uint view, int res, inout uint steps) {
-  vec3 p = project_point(q, view, 0.5 * float(res));
-  float fres = float(res);
-  if (!(p.x >= 0.0 && p.y >= 0.0 && p.x < fres && p.y < fres)) return false;
-  int x = int(p.x), y = int(p.y);
-  if (x > res - 1 || y > res - 1) return false;
-  uint zbase = view * uint(res) * uint(res);
-  float z = uintBitsToFloat(zbuf[zbase + uint(y * res + x)]);
-  if (isinf(z)) {
-    // Empty pixel (on the silhouette): the nearest surface of the 3x3 around it.
-    steps += 12u;
-    for (int yy = max(y - 1, 0); yy <= min(y + 1, res - 1); ++yy)
-      for (int xx = max(x - 1, 0); xx <= min(x + 1, res - 1); ++xx)
-        z = min(z, uintBitsToFloat(zbuf[zbase + uint(yy * res + xx)]));
-  }
-  return p.z <= z + pc.tol;
-}
+#include "view_projection.glsl"
+#include "depth_test.glsl"
 
 // exposure_weight(): the score of a visible point p with unit normal n in one view.
 float weight(vec3 p, vec3 n, uint view) {
@@ -63,7 +38,7 @@ float weight(vec3 p, vec3 n, uint view) {
   if (pc.facing != 0u) {
     vec3 d = dir[view].xyz;
     precise float f = n.x * d.x + n.y * d.y + n.z * d.z;
-    s = f > 0.0 ? f : 0.0;
+    s = abs(f);
   }
   if (pc.centre != 0u) {
     vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u];

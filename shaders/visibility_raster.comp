@@ -7,6 +7,7 @@
 // Same rule as raster_depth() in visibility.cpp. zbuf holds res*res uints per view, cleared
 // to +inf (0x7f800000) before.
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Positions { float pos[]; };
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
@@ -18,17 +19,7 @@ layout(std430, binding = 4) buffer Status { uint over_budget; };
 // in over_budget (the host then refuses the result instead of returning wrong depths).
 layout(push_constant) uniform Push { uint base; uint n; uint res; uint triangles; uint views; uint budget; } pc;
 const uint VIEWS_PER_GROUP = 4u;  // views rasterised per invocation (positions loaded once)
-
-// `precise`: no fused multiply-adds (drivers fuse freely, lavapipe does), so the projection,
-// and the rasteriser's weights and depths, are the CPU twin's bits (its build contracts none).
-vec3 project_point(vec3 p, uint view, float half_res) {
-  vec4 r0 = rows[3u * view], r1 = rows[3u * view + 1u], r2 = rows[3u * view + 2u];
-  precise float nx = r0.x * p.x + r0.y * p.y + r0.z * p.z + r0.w;
-  precise float ny = r1.x * p.x + r1.y * p.y + r1.z * p.z + r1.w;
-  precise float nz = r2.x * p.x + r2.y * p.y + r2.z * p.z + r2.w;
-  precise float d = (1.0 - nz) * 0.5;
-  return vec3((nx + 1.0) * half_res, (1.0 - ny) * half_res, d > 0.0 ? d : 0.0);
-}
+#include "view_projection.glsl"
 
 // Returns the loop steps it took (an upper bound: rows + pixels of the box).
 uint rasterise(vec3 pa, vec3 pb, vec3 pc_, uint view, int res, float half_res, uint zbase) {

@@ -54,7 +54,7 @@ class TileExchange;  // processes that share one tiled computation (tiles.h)
 //   weights fixed in advance), smoothed on the surface to the size of a human fixation
 //   (kFixationSigmaFrac of the diagonal) and scaled to a maximum of 1.
 // The cues alone, unsmoothed, each scaled to a maximum of 1:
-//   Exposure: the mean over those views of visible x max(0, n.d) (no centre bias);
+//   Exposure: the mean over those views of visible x |n.d| (no centre bias);
 //   Centre:   the mean over those views of visible x the view's centre bias;
 //   Height:   the height along `up`, 0 at the lowest mesh point, 1 at the highest;
 //   Rarity:   the self-information -log p of each point's multi-scale curvature
@@ -145,9 +145,10 @@ struct SaliencyResult {
   size_t tiles = 0;                       // tiles of the grid (SaliencyOptions::tiles), 0: untiled
   int ranks = 1;                          // processes that shared them (TileExchange)
   Model model = Model::Lee2005;           // what `saliency` models (SaliencyOptions::model)
-  // The perceptual model's cues, each per vertex and named as the models are ("exposure",
-  // "height", "rarity", "coarse"; Perceptual's "exposure" is seen through the centre bias),
-  // before they are combined; empty for Lee2005. write_saliency writes them with dump_scales.
+  // The cues of a model other than Lee2005, each per vertex, before they are combined: a
+  // cue model's one cue under its name; Perceptual's "exposure_centre" (the exposure seen
+  // through the centre bias), "height", "rarity" and "coarse". Empty for Lee2005.
+  // write_saliency writes them with dump_scales (as cue_NAME).
   std::vector<std::pair<std::string, std::vector<double>>> cues;
 };
 

@@ -100,7 +100,7 @@ void bind_saliency(py::module_& m) {
       .def_readonly("stages", &SaliencyOut::stages, "dict: wall seconds per stage")
       .def_readonly("model", &SaliencyOut::model, "what S models: 'lee2005', 'perceptual' or a cue's name")
       .def_readonly("cues", &SaliencyOut::cues,
-                    "dict of float64 (n,): the perceptual model's cues by name (exposure, height, rarity, "
+                    "dict of float64 (n,): the perceptual model's cues by name (exposure_centre, height, rarity, "
                     "coarse), the one cue of a cue model; empty for 'lee2005'")
       .def_readonly("notices", &SaliencyOut::notices, "list of str: the library's notices (e.g. a CPU fallback)")
       .def("__repr__", [](const SaliencyOut& r) {

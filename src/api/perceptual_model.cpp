@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "api/gpu_backend.h"
-#include "api/resolve_method.h"
+#include "core/number_text.h"
 #include "core/mesh_points.h"
 #include "core/parallel.h"
 #include "core/timer.h"
@@ -37,7 +37,7 @@ void progress(const SaliencyOptions& options, const char* stage, double fraction
 // a mean over 48 views, not one view's exact edge).
 VisibilityOptions exposure_visibility(const SaliencyOptions& options) {
   VisibilityOptions v;
-  v.resolution = 256;
+  v.resolution = kExposureResolution;
   v.depth_tol_px = 2.0;
   v.threads = options.threads;
   return v;
@@ -81,12 +81,33 @@ ExposureRun exposure_on_backend(const Mesh& mesh, const std::vector<float>& norm
   }
 }
 
-// The Gaussian average of `values` at sigma (model units) by `method` (Exact or Fast).
+// The Gaussian average of `values` at sigma (model units) by `method` (Exact or Fast); its
+// pairs added to *pairs.
 std::vector<std::vector<double>> average(const Mesh& mesh, const std::vector<uint8_t>& is_point,
                                          const std::vector<double>& values, const std::vector<double>& sigmas,
-                                         Method method, unsigned threads) {
-  if (method == Method::Fast) return gaussian_filter_fast(mesh, is_point, values, sigmas, threads);
-  return gaussian_filter(mesh, is_point, values, sigmas, threads);
+                                         Method method, unsigned threads, uint64_t* pairs) {
+  FilterStats stats;
+  std::vector<std::vector<double>> out =
+      method == Method::Fast ? gaussian_filter_fast(mesh, is_point, values, sigmas, threads, &stats)
+                             : gaussian_filter(mesh, is_point, values, sigmas, threads, &stats);
+  *pairs += stats.pairs;
+  return out;
+}
+
+// Method::Auto decided as compute_saliency decides it, over the model's widest exact sweep:
+// the coarse saliency's (4 x its largest scale x eps) or, for Perceptual, the smoothing's
+// (2 x kFixationSigmaFrac x the diagonal), whichever reaches further.
+Method decide_method(const Mesh& mesh, const std::vector<uint8_t>& is_point, const BoundingBox& box,
+                     const SaliencyOptions& options, const SaliencyOptions& coarse) {
+  if (options.method != Method::Auto) return options.method;
+  const double eps = options.eps_frac * box.diagonal();
+  double radius = 4 * *std::max_element(coarse.scales.begin(), coarse.scales.end()) * eps;
+  if (options.model == Model::Perceptual) radius = std::max(radius, 2 * kFixationSigmaFrac * box.diagonal());
+  const double pairs = estimate_sweep_pairs(mesh, is_point, radius);
+  if (pairs <= kAutoPairBudget) return Method::Exact;
+  tell(options, "method auto: the exact sweeps would visit ~" + number_text(pairs) + " neighbour pairs (budget " +
+                    number_text(kAutoPairBudget) + "), using the fast method");
+  return Method::Fast;
 }
 
 }  // namespace
@@ -115,7 +136,9 @@ SaliencyResult compute_model_saliency(const Mesh& mesh, const SaliencyOptions& o
   for (double& k : coarse_options.scales) k *= 2;
   coarse_options.raw_maps = false;
   coarse_options.smoothed = false;
-  Method method = options.method;
+  const Method method = decide_method(mesh, is_point, box, options, coarse_options);
+  coarse_options.method = method;
+  r.method = method;
 
   // Coarse: the paper's saliency an octave coarser; its curvature serves the rarity too.
   std::vector<double> coarse, curvature;
@@ -124,14 +147,11 @@ SaliencyResult compute_model_saliency(const Mesh& mesh, const SaliencyOptions& o
     for (const StageTime& s : c.stages) r.stages.push_back({"coarse " + s.name, s.seconds, s.peak_bytes});
     coarse = std::move(c.saliency);
     curvature = std::move(c.curvature);
-    method = c.method;
     r.pairs += c.pairs;
     r.backend_name = c.backend_name;
     scale_to_max(coarse, is_point);
     clock.restart();
   }
-  if (method == Method::Auto) method = resolve_method(mesh, coarse_options);
-  r.method = method;
 
   // Rarity of the multi-scale curvature descriptor.
   std::vector<double> rarity;
@@ -140,7 +160,7 @@ SaliencyResult compute_model_saliency(const Mesh& mesh, const SaliencyOptions& o
     if (curvature.empty()) curvature = mean_curvature_morton(mesh, box, options.threads);
     std::vector<double> sigmas;
     for (double k : rarity_descriptor_scales()) sigmas.push_back(k * r.eps);
-    rarity = global_rarity(average(mesh, is_point, curvature, sigmas, method, options.threads), is_point);
+    rarity = global_rarity(average(mesh, is_point, curvature, sigmas, method, options.threads, &r.pairs), is_point);
     scale_to_max(rarity, is_point);
     progress(options, "rarity", 1);
     stage_done("rarity");
@@ -179,11 +199,12 @@ SaliencyResult compute_model_saliency(const Mesh& mesh, const SaliencyOptions& o
     for (size_t i = 0; i < n; ++i)
       if (is_point[i]) p[i] = exposure[i] * (1 + height[i] + rarity[i] + coarse[i]);
     progress(options, "smoothing", 0);
-    r.saliency = average(mesh, is_point, p, {kFixationSigmaFrac * box.diagonal()}, method, options.threads)[0];
+    r.saliency =
+        average(mesh, is_point, p, {kFixationSigmaFrac * box.diagonal()}, method, options.threads, &r.pairs)[0];
     scale_to_max(r.saliency, is_point);
     progress(options, "smoothing", 1);
     stage_done("smoothing");
-    r.cues.push_back({"exposure", std::move(exposure)});
+    r.cues.push_back({"exposure_centre", std::move(exposure)});
     r.cues.push_back({"height", std::move(height)});
     r.cues.push_back({"rarity", std::move(rarity)});
     r.cues.push_back({"coarse", std::move(coarse)});

@@ -50,9 +50,15 @@ void check_request(const Request& r) {
   }
   if (!r.saliency_from.empty() && r.weighting == Weighting::None && r.saliency_output.empty() && !views)
     refuse("--saliency-from needs --weights saliency or balanced");
-  if (r.saliency.model != Model::Lee2005 && (out_of_core || r.saliency.tiles > 1))
-    refuse(std::string("--model ") + model_name(r.saliency.model) +
-           " computes S in memory, in one piece: not with --memory-limit, nor with saliency --tiles");
+  if (r.saliency.model != Model::Lee2005) {
+    const std::string model = std::string("--model ") + model_name(r.saliency.model);
+    if (out_of_core || r.saliency.tiles > 1 || r.saliency.exchange)
+      refuse(model + " computes S in memory, in one piece: not with --memory-limit, saliency's --tiles or mpirun "
+                     "(which shares S in tiles)");
+    // S given or read back is what it is: the model would silently not apply.
+    if (!r.saliency_from.empty() || r.saliency_values)
+      refuse(model + " computes S: not with --saliency-from or a given saliency, which is used as it is");
+  }
   if (out_of_core) {
     if (views) refuse("--memory-limit makes no views: not with --view, --html, --best, --map or a picture");
     if (!r.saliency_output.empty() && mesh_output_format(r.saliency_output) != ".ply")

@@ -18,7 +18,8 @@ namespace {
 std::string find_saliency_file(RequestRun& run) {
   const Request& r = run.request;
   if (!r.saliency_from.empty()) return r.saliency_from;
-  if (!r.saliency_from_input || !run.input_has_saliency) return "";
+  // A model other than the paper's asked for: computed, whatever the input holds.
+  if (!r.saliency_from_input || !run.input_has_saliency || r.saliency.model != Model::Lee2005) return "";
   add_note(run, r.input + ": using its own saliency (per-vertex quality, as `meshsal saliency` writes it), "
                           "not computing it again");
   return r.input;
@@ -157,7 +158,7 @@ void write_saliency_output(RequestRun& run) {
     if (r.dump_scales) {
       set_vertex_attribute(with_maps, "curvature", s.curvature);
       for (size_t i = 0; i < s.raw.size(); ++i) set_vertex_attribute(with_maps, "saliency_raw_" + std::to_string(i), s.raw[i]);
-    for (const auto& cue : s.cues) set_vertex_attribute(with_maps, "cue_" + cue.first, cue.second);
+      for (const auto& cue : s.cues) set_vertex_attribute(with_maps, "cue_" + cue.first, cue.second);
     }
     write_request_mesh(run, path, with_maps, s.saliency);
   }

@@ -242,6 +242,7 @@ std::string options_line(const Options& o) {
   }
   // Only when not the defaults, so that the records of earlier runs stay up to date.
   if (o.html) line += " html=1";
+  if (t.model != "lee2005") line += " model=" + std::string(meshsal::model_name(meshsal::parse_model(t.model)));
   if (!o.lod.empty()) line += " lod=" + o.lod + " lock_border=" + std::to_string(int(o.lock_border));
   if (!t.elevation.empty()) line += " elevation=" + t.elevation;
   if (!t.color_range.empty()) line += " color_range=" + t.color_range;

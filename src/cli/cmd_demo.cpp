@@ -75,7 +75,11 @@ int run(const Args& a) {
   if (human) std::printf("\n                 mean |curvature|   mean saliency\n");
   if (human) std::printf("unique feature   %16.3f   %13.3f\n", mean_over(r.curvature, feature), mean_over(r.saliency, feature));
   if (human) std::printf("repeated bumps   %16.3f   %13.3f\n", mean_over(r.curvature, bumps), mean_over(r.saliency, bumps));
-  if (human) std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
+  // The demo's point is the paper's model's; another model's S is only shown.
+  if (human && r.model == Model::Lee2005)
+    std::printf("Curvature rates the bumps at least as high; saliency singles out the feature.\n");
+  if (human && r.model != Model::Lee2005)
+    std::printf("S here is --model %s's (docs/method.md, \"The perceptual model\").\n", model_name(r.model));
   if (human) std::printf("wrote %s (open in MeshLab: colour = saliency)\n", printable(out).c_str());
 
   // Simplification to 4% of the faces, plain quadrics against saliency-weighted ones.

@@ -141,7 +141,7 @@ RunFn setup(CLI::App& sub) {
                      "smallest workable one. CPU only.");
   sub.add_flag("--dump-scales", a->dump_scales,
                "Also write `curvature` and the raw maps saliency_raw_0.. as vertex properties (--model "
-               "perceptual: its cues cue_exposure, cue_height, cue_rarity, cue_coarse)");
+               "perceptual: its cues cue_exposure_centre, cue_height, cue_rarity, cue_coarse)");
   add_output_flags(sub, a->text,
                    "Print the summary as one JSON object on stdout (mesh, device, seconds, stages, "
                    "saliency min/mean/max/p10/p50/p90/p99, outputs)");

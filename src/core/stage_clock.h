@@ -27,6 +27,9 @@ class StageClock {
     stages_.push_back({name, seconds, peak});
     timer_.restart();
   }
+  // The next stage starts now: the time since the last lap was recorded elsewhere (a call
+  // that laps its own stages into the same report), so that the stages add up.
+  void resume() { timer_.restart(); }
 
  private:
   std::vector<StageTime>& stages_;

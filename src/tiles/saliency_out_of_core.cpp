@@ -180,6 +180,9 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
                               const SaliencyOptions& options_in, const OutOfCoreOptions& ooc) {
   const CancelScope cancel(options_in.cancel);
   check_saliency_options(options_in);
+  if (options_in.model != Model::Lee2005)
+    throw Error(std::string("model ") + model_name(options_in.model) +
+                " computes S in memory, in one piece: saliency_file takes the paper's model only");
   if (options_in.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
   SaliencyOptions options = options_in;
   if (options.method == Method::Auto) options.method = Method::Fast;
@@ -199,7 +202,8 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
   share_tile_store(store, input, options, ooc.memory_limit, progress);
   clock.lap("tiling");
-  tile_saliency(store, options, report);
+  tile_saliency(store, options, report);  // laps its own stages
+  clock.resume();
   if (rank == 0) {
     write_output(output, store, options, ooc, report, progress);
     clock.lap("writing");

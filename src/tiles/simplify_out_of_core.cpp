@@ -226,6 +226,9 @@ SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWe
       throw Error("simplify: the rank curve needs every point's rank at once: out of core takes the threshold and "
                   "continuous curves");
     check_saliency_options(so);
+    if (so.model != Model::Lee2005)
+      throw Error(std::string("model ") + model_name(so.model) +
+                  " computes S in memory, in one piece: simplify_file takes the paper's model only");
     if (so.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
     if (so.exchange) throw Error("simplify: out of core runs in one process (no TileExchange)");
   }

@@ -58,9 +58,12 @@ std::vector<double> exposure_cpu(const Mesh& mesh, const std::vector<float>& nor
   if (views.empty()) return sum;
   // A batch of views as wide as the threads: their z-buffers are made side by side (each
   // raster holds its own projection of the mesh, 12 bytes a vertex, while it runs), then
-  // every vertex adds its scores over the batch in view order.
+  // every vertex adds its scores over the batch in view order. At most kExposureScratch
+  // bytes of projections and z-buffers at once, whatever the thread count.
   const unsigned threads = resolve_threads(options.threads);
-  const size_t batch = std::min<size_t>(views.size(), std::max<unsigned>(1, threads));
+  const size_t per_view = 12 * n + 4 * size_t(res) * size_t(res);
+  const size_t batch = std::max<size_t>(
+      1, std::min<size_t>({views.size(), size_t(threads), kExposureScratch / per_view}));
   std::vector<std::vector<float>> zbuf(batch);
   std::vector<ExposureView> ev(batch);
   for (size_t first = 0; first < views.size(); first += batch) {
@@ -77,9 +80,6 @@ std::vector<double> exposure_cpu(const Mesh& mesh, const std::vector<float>& nor
         double s = sum[i];
         const float* nn = &normals[3 * i];
         for (size_t v = 0; v < count; ++v) {
-          // Facing away: the score is 0 whatever the depth test says (about half the pairs).
-          const float* d = ev[v].direction;
-          if (weighting.facing && !(nn[0] * d[0] + nn[1] * d[1] + nn[2] * d[2] > 0.0f)) continue;
           const Projected q = project(ev[v].rows, p[0], p[1], p[2], half);
           if (passes_depth_test(q, zbuf[v].data(), res, tol)) s += exposure_weight(ev[v], p, nn, weighting);
         }
@@ -105,7 +105,7 @@ std::vector<double> exposure_plain_cpu(const Mesh& mesh, const std::vector<float
       if (!seen[i]) continue;
       double w = 1;
       const float* nn = &normals[3 * i];
-      if (weighting.facing) w = std::max(0.0, nn[0] * d[0] + nn[1] * d[1] + nn[2] * d[2]);
+      if (weighting.facing) w = std::fabs(nn[0] * d[0] + nn[1] * d[1] + nn[2] * d[2]);
       if (weighting.centre) {
         // The point's place in the frame, in double, straight from the camera's definition.
         double x = 0, y = 0;

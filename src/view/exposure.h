@@ -5,9 +5,12 @@
 // Over a fixed set of views (exposure_views: rings around the up axis across the default
 // elevation band), each point scores, per view in which it is visible (the z-buffer test of
 // visibility.h, same camera and rule as the viewpoint search),
-//   max(0, n . d)                   with `facing`: the image area a unit of surface takes
+//   |n . d|                         with `facing`: the image area a unit of surface takes
 //                                   up (a fixation lands on the image, so a surface seen
-//                                   at a slant gathers fewer per unit of its area);
+//                                   at a slant gathers fewer per unit of its area); the
+//                                   magnitude, so that the winding does not matter (the
+//                                   z-buffer already hides the far side of a closed
+//                                   surface; the inside of an open one is seen);
 //   exp(-x^2/(2 vx) - y^2/(2 vy))   with `centre`: the centre bias of the view, x and y the
 //                                   point's place in the frame ([-1, 1] across the bounding
 //                                   sphere), vx = 0.22 and vy = 0.45 vx, the anisotropic
@@ -18,6 +21,7 @@
 // (shaders/exposure_test.comp) evaluates; the sum over views runs in view order in double.
 #pragma once
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +29,10 @@
 #include "view/camera.h"
 
 namespace meshsal {
+
+// The z-buffers' side: a mean over 48 views wants no more (the viewpoint search's 512 decides
+// one view's edge).
+constexpr int kExposureResolution = 256;
 
 // The views: kExposureLongitudes longitudes (every 22.5 degrees from theta 0) on each of
 // kExposureLatitudes latitudes spread evenly over kDefaultElevationMin..Max (10, 20 and 30
@@ -55,7 +63,7 @@ inline float exposure_weight(const ExposureView& v, const float p[3], const floa
   float s = 1.0f;
   if (w.facing) {
     const float f = n[0] * v.direction[0] + n[1] * v.direction[1] + n[2] * v.direction[2];
-    s = f > 0.0f ? f : 0.0f;
+    s = std::fabs(f);
   }
   if (w.centre) {
     const float* r0 = v.rows.row[0];
@@ -71,9 +79,13 @@ inline float exposure_weight(const ExposureView& v, const float p[3], const floa
 // normals both twins take.
 std::vector<float> exposure_normals(const Mesh& mesh, unsigned threads = 0);
 
+// The most bytes of projections and z-buffers exposure_cpu holds at once (views rasterised
+// side by side: 12 bytes a vertex and the z-buffer each).
+constexpr size_t kExposureScratch = size_t(1) << 30;
+
 // Exposure of every vertex (0 for vertices that are not mesh points) over `views`, on the
-// CPU: the z-buffers of a batch of views are rasterised in parallel, then each vertex adds
-// its scores over the batch's views in order. options: the z-buffer's side, depth
+// CPU: the z-buffers of a batch of views are rasterised in parallel (as many as the threads
+// within kExposureScratch), then each vertex adds its scores over the batch's views in order. options: the z-buffer's side, depth
 // tolerance and threads. `normals` as exposure_normals. The same values on any thread count.
 std::vector<double> exposure_cpu(const Mesh& mesh, const std::vector<float>& normals, const ViewFrame& frame,
                                  const std::vector<ViewAngles>& views, ExposureWeighting weighting,

@@ -8,7 +8,11 @@
 #include "cli/synthetic.h"
 #include "core/mesh_points.h"
 #include "meshsal/meshsal.h"
+#include "saliency/curvature.h"
+#include "saliency/gaussian_filter.h"
 #include "saliency/perceptual_cues.h"
+#include "view/camera.h"
+#include "view/exposure.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -81,11 +85,67 @@ TEST_CASE("perceptual: a sphere hidden inside another gets nothing and S tops at
   CHECK(inner_max == 0.0);
   // The cues, named as the models, one value per vertex.
   REQUIRE(s.cues.size() == 4);
-  const char* names[] = {"exposure", "height", "rarity", "coarse"};
+  const char* names[] = {"exposure_centre", "height", "rarity", "coarse"};
   for (size_t k = 0; k < 4; ++k) {
     CHECK(s.cues[k].first == names[k]);
     CHECK(s.cues[k].second.size() == both.vertex_count());
   }
+}
+
+namespace {
+
+// exposure_cpu over the model's views and z-buffers, scaled to a maximum of 1.
+std::vector<double> scaled_exposure(const Mesh& m, ExposureWeighting w, UpAxis up = UpAxis::Y) {
+  VisibilityOptions v;
+  v.resolution = kExposureResolution;
+  std::vector<double> e = exposure_cpu(m, exposure_normals(m), frame_mesh(m, up), exposure_views(), w, v);
+  scale_to_max(e, referenced_vertices(m));
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("perceptual: S is the smoothed product of its cues") {
+  const Mesh m = make_bumpy_sphere(3);
+  const std::vector<uint8_t> is_point = referenced_vertices(m);
+  const SaliencyResult s = compute_saliency(m, model_options(Model::Perceptual));
+  REQUIRE(s.cues.size() == 4);
+  const std::vector<double>& x = s.cues[0].second;
+  const std::vector<double>& h = s.cues[1].second;
+  const std::vector<double>& r = s.cues[2].second;
+  const std::vector<double>& c = s.cues[3].second;
+  // The exposure through the centre bias, as exposure_cpu makes it.
+  CHECK(x == scaled_exposure(m, {true, true}));
+  std::vector<double> p(m.vertex_count(), 0.0);
+  for (size_t i = 0; i < p.size(); ++i)
+    if (is_point[i]) p[i] = x[i] * (1 + h[i] + r[i] + c[i]);
+  const double diagonal = mesh_points_bbox(m, is_point).diagonal();
+  std::vector<double> expect = gaussian_filter(m, is_point, p, {kFixationSigmaFrac * diagonal})[0];
+  scale_to_max(expect, is_point);
+  CHECK(s.saliency == expect);
+}
+
+TEST_CASE("perceptual: the winding of the faces does not matter") {
+  const Mesh m = make_bumpy_sphere(3);
+  Mesh turned = m;
+  for (size_t t = 0; t < turned.triangle_count(); ++t) std::swap(turned.triangles[3 * t + 1], turned.triangles[3 * t + 2]);
+  // Exposure alone: the same bits (|n.d| of an exactly negated normal).
+  CHECK(compute_saliency(m, model_options(Model::Exposure)).saliency ==
+        compute_saliency(turned, model_options(Model::Exposure)).saliency);
+  // The whole model: the rarity's bins of a negated curvature may split a tie the other way.
+  const std::vector<double> a = compute_saliency(m, model_options(Model::Perceptual)).saliency;
+  const std::vector<double> b = compute_saliency(turned, model_options(Model::Perceptual)).saliency;
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::fabs(a[i] - b[i]));
+  CHECK(worst < 0.02);
+  // An open sheet seen from above scores the same wound up or down.
+  Mesh sheet = make_plane(2.0, 8);
+  for (size_t i = 0; i < sheet.vertex_count(); ++i) std::swap(sheet.positions[3 * i + 1], sheet.positions[3 * i + 2]);
+  Mesh down = sheet;
+  for (size_t t = 0; t < down.triangle_count(); ++t) std::swap(down.triangles[3 * t + 1], down.triangles[3 * t + 2]);
+  const SaliencyResult up_s = compute_saliency(sheet, model_options(Model::Exposure));
+  CHECK(*std::max_element(up_s.saliency.begin(), up_s.saliency.end()) == 1.0);
+  CHECK(up_s.saliency == compute_saliency(down, model_options(Model::Exposure)).saliency);
 }
 
 TEST_CASE("a cue alone is its function scaled to a maximum of 1") {
@@ -101,6 +161,21 @@ TEST_CASE("a cue alone is its function scaled to a maximum of 1") {
   std::vector<double> lee = compute_saliency(m, twice).saliency;
   scale_to_max(lee, is_point);
   CHECK(c.saliency == lee);
+  // Exposure and centre: exposure_cpu with the one factor each; rarity from the Morton curvature.
+  CHECK(compute_saliency(m, model_options(Model::Exposure)).saliency == scaled_exposure(m, {true, false}));
+  CHECK(compute_saliency(m, model_options(Model::Centre)).saliency == scaled_exposure(m, {false, true}));
+  SaliencyOptions turned = model_options(Model::Centre);
+  turned.up = UpAxis::X;
+  CHECK(compute_saliency(m, turned).saliency == scaled_exposure(m, {false, true}, UpAxis::X));
+  {
+    const double eps = scale_unit(m, is_point, 0.003);
+    std::vector<double> sigmas;
+    for (double k : rarity_descriptor_scales()) sigmas.push_back(k * eps);
+    const std::vector<double> hc = mean_curvature_morton(m, mesh_points_bbox(m, is_point));
+    std::vector<double> rarity = global_rarity(gaussian_filter(m, is_point, hc, sigmas), is_point);
+    scale_to_max(rarity, is_point);
+    CHECK(compute_saliency(m, model_options(Model::Rarity)).saliency == rarity);
+  }
   for (Model model : {Model::Exposure, Model::Centre, Model::Rarity}) {
     const SaliencyResult r = compute_saliency(m, model_options(model));
     INFO(model_name(model));
@@ -154,4 +229,13 @@ TEST_CASE("the models other than the paper's refuse tiles and say what they need
   r.saliency.model = Model::Exposure;
   r.out_of_core.memory_limit = 700u << 20;
   CHECK_THROWS_WITH(check_request(r), Catch::Contains("--model exposure computes S in memory"));
+  r.out_of_core.memory_limit = 0;
+  r.saliency_from = "s.ply";
+  CHECK_THROWS_WITH(check_request(r), Catch::Contains("not with --saliency-from"));
+  // The library's out-of-core entry points take the paper's model only.
+  SaliencyOptions ooc;
+  ooc.model = Model::Perceptual;
+  OutOfCoreOptions limit;
+  limit.memory_limit = 700u << 20;
+  CHECK_THROWS_WITH(saliency_file("in.ply", "out.ply", ooc, limit), Catch::Contains("takes the paper's model only"));
 }

@@ -27,7 +27,7 @@ TEST_CASE("cli --model perceptual: the library's S and its cues in the PLY and t
   REQUIRE(meshsal_test::json_valid(r.out));
   CHECK(r.out.find("\"model\": \"perceptual\"") != std::string::npos);
   const meshsal::LoadedMesh back = meshsal::read_mesh(out);
-  for (const char* cue : {"cue_exposure", "cue_height", "cue_rarity", "cue_coarse", "quality"})
+  for (const char* cue : {"cue_exposure_centre", "cue_height", "cue_rarity", "cue_coarse", "quality"})
     CHECK(back.properties.count(cue) == 1);
   meshsal::SaliencyOptions o;
   o.model = meshsal::Model::Perceptual;
@@ -57,13 +57,26 @@ TEST_CASE("cli --model: batch writes the bytes saliency writes and simplify and 
   REQUIRE(b.rc == 0);
   CHECK(meshsal_test::read_file(dir.file("s.ply")) == meshsal_test::read_file(dir.file("out/ball_saliency.ply")));
   CHECK(meshsal_test::read_file(dir.file("out/batch.jsonl")).find("\"model\": \"perceptual\"") != std::string::npos);
-  const CliRun s = run_cli("simplify " + quoted(in) + " -o " + quoted(dir.file("small.obj")) +
-                               " --ratio 0.3 --model perceptual -q", dir.path);
-  INFO(s.err);
-  CHECK(s.rc == 0);
-  const CliRun v = run_cli("viewpoint " + quoted(in) + " --model exposure --restarts 2 --json", dir.path);
+  // simplify and viewpoint: the model's S changes what they make.
+  for (const char* model : {"lee2005", "perceptual"}) {
+    const CliRun s = run_cli("simplify " + quoted(in) + " -o " + quoted(dir.file(std::string(model) + ".obj")) +
+                                 " --ratio 0.3 -q --model " + model, dir.path);
+    INFO(s.err);
+    REQUIRE(s.rc == 0);
+  }
+  CHECK(meshsal_test::read_file(dir.file("lee2005.obj")) != meshsal_test::read_file(dir.file("perceptual.obj")));
+  const CliRun v = run_cli("viewpoint " + quoted(in) + " --model height --restarts 2 --json", dir.path);
+  const CliRun l = run_cli("viewpoint " + quoted(in) + " --restarts 2 --json", dir.path);
   INFO(v.err);
-  CHECK(v.rc == 0);
+  REQUIRE(v.rc == 0);
+  REQUIRE(l.rc == 0);
+  CHECK(meshsal_test::json_number(v.out, "visible_score") != meshsal_test::json_number(l.out, "visible_score"));
+  // A batch run again with another model computes again (its record names the model).
+  const CliRun again = run_cli("batch " + quoted(in) + " -o " + quoted(dir.file("out")) + " --model height --json", dir.path);
+  INFO(again.err);
+  REQUIRE(again.rc == 0);
+  CHECK(meshsal_test::json_number(again.out, "computed") == 1);
+  CHECK(meshsal_test::read_file(dir.file("s.ply")) != meshsal_test::read_file(dir.file("out/ball_saliency.ply")));
 }
 
 TEST_CASE("cli --model: an unknown model is a usage error naming the models", "[cli]") {
@@ -78,4 +91,8 @@ TEST_CASE("cli --model: an unknown model is a usage error naming the models", "[
                                " --model perceptual --memory-limit 700M", dir.path);
   CHECK(t.rc == 2);
   CHECK(t.err.find("in memory, in one piece") != std::string::npos);
+  const CliRun f = run_cli("simplify " + quoted(in) + " -o " + quoted(dir.file("f.obj")) + " --ratio 0.5 --saliency-from " +
+                               quoted(in) + " --model height", dir.path);
+  CHECK(f.rc == 2);
+  CHECK(f.err.find("not with --saliency-from") != std::string::npos);
 }

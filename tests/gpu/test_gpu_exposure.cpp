@@ -30,16 +30,17 @@ std::string name_of(ExposureWeighting w) {
   return w.facing && w.centre ? "facing and centre" : w.facing ? "facing only" : "centre only";
 }
 
-// Ties: vertices whose visibility differs in some view between the twins. None: the raster
-// and the tests are `precise` (no fused multiply-adds), so their z-buffers and projections
-// are depth_buffer_cpu's bits. (Without it lavapipe's fused z-buffers differed by up to 593
-// ulp and one (vertex, view) pair in about 2 million on the bumpy sphere below fell on the
-// other side of z + tolerance.)
-const double kTiesPerVertex = 0;
+// Ties: vertices whose visibility differs in some view between the twins. None on CPU
+// devices (lavapipe): the raster and the tests are `precise` (no fused multiply-adds), so
+// their z-buffers and projections are depth_buffer_cpu's bits. (Without it lavapipe's fused
+// z-buffers differed by up to 593 ulp and one (vertex, view) pair in about 2 million on the
+// bumpy sphere below fell on the other side of z + tolerance.) A hardware GPU's division
+// 1 / area need not be correctly rounded: there, rare ties, at most one vertex in 10^4.
+double ties_allowed(bool cpu_device) { return cpu_device ? 0 : 1e-4; }
 
 // max |gpu - cpu| <= 1e-5 max(cpu) but at rare ties (each off by at most a view's score,
 // 1 / views), and exposure > 0 on the same vertices.
-void check_close(const std::vector<double>& cpu, const std::vector<double>& gpu, size_t views) {
+void check_close(const std::vector<double>& cpu, const std::vector<double>& gpu, size_t views, bool cpu_device) {
   REQUIRE(gpu.size() == cpu.size());
   const double top = *std::max_element(cpu.begin(), cpu.end());
   REQUIRE(top > 0);
@@ -60,7 +61,7 @@ void check_close(const std::vector<double>& cpu, const std::vector<double>& gpu,
                           << "), max cpu " << top << ", " << seen << " of " << cpu.size() << " vertices exposed, "
                           << differ << " exposed on one side only");
   CHECK(worst <= 1e-5 * top);
-  CHECK(double(ties) <= kTiesPerVertex * double(cpu.size()));
+  CHECK(double(ties) <= ties_allowed(cpu_device) * double(cpu.size()));
   CHECK(worst_tie <= 1.0 / double(views) + 1e-5 * top);
   CHECK(differ == 0);
 }
@@ -76,7 +77,8 @@ uint64_t compare(const Mesh& mesh, const VisibilityOptions& options, int max_bat
   GpuExposure gpu(ctx, mesh, normals, frame, options, max_batch);
   for (ExposureWeighting w : kWeightings) {
     INFO(name_of(w));
-    check_close(exposure_cpu(mesh, normals, frame, views, w, options), gpu.exposure(views, w), views.size());
+    check_close(exposure_cpu(mesh, normals, frame, views, w, options), gpu.exposure(views, w), views.size(),
+                ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU);
   }
   CHECK(gpu.submissions() == 3 * uint64_t((views.size() + gpu.batch() - 1) / gpu.batch()));
   CHECK(vk::validation_message_count() == messages);
@@ -199,9 +201,9 @@ TEST_CASE("gpu exposure: the backend entries on the cached device and on a held 
   const std::vector<double> cpu = exposure_cpu(m, normals, frame, views, {}, at(256));
   const ExposureRun cached = backend.exposure(m, normals, frame, views, {}, at(256), -1);
   CHECK(cached.backend_name.rfind("vulkan: ", 0) == 0);
-  check_close(cpu, cached.exposure, views.size());
   DeviceInfo info;
   const std::shared_ptr<void> held = backend.open_device(-1, &info);
+  check_close(cpu, cached.exposure, views.size(), info.type == "cpu");
   const ExposureRun on = backend.exposure_on(held, m, normals, frame, views, {}, at(256));
   CHECK(on.backend_name == "vulkan: " + info.name);
   CHECK(on.exposure == cached.exposure);  // the same device, the same bits
