@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the loaders with libFuzzer (a pre-submit tool, not part of CI).
-#   tools/fuzz.sh [SECONDS] [TARGET...]     targets: obj off ply stl gltf glb gz saliency plystream (default: all)
+# Fuzzes the loaders (and the ground-truth rows of meshsal eval) with libFuzzer (a pre-submit tool, not part of CI).
+#   tools/fuzz.sh [SECONDS] [TARGET...]     targets: obj off ply stl gltf glb gz saliency plystream rows (default: all)
 # Builds tests/fuzz/fuzz_*.cpp with clang, AddressSanitizer and UndefinedBehaviorSanitizer
 # into build-fuzz/ (-DMESHSAL_FUZZ=ON) and runs each target for SECONDS (default 60) from
 # its seed corpus tests/fuzz/corpus/TARGET (new inputs go to build-fuzz/corpus/TARGET, not
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(obj off ply stl gltf glb gz saliency plystream)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(obj off ply stl gltf glb gz saliency plystream rows)
 
 # clang 14 with libFuzzer's runtime (Debian 12: clang, libclang-rt-14-dev); only this
 # script needs them, so they are installed here rather than by tools/setup.sh.

@@ -119,9 +119,8 @@ JoinedRows join_vertex_rows(const Mesh& mesh, const VertexRows& rows) {
   const size_t n = mesh.vertex_count();
   const BoundingBox box = mesh_points_bbox(mesh, referenced_vertices(mesh));
   const double tol = 1e-6 * box.diagonal();
-  const double cell = tol > 0 ? tol : 1e-300;
-  // Every vertex in the cell of side tol its local double position falls in, sorted by
-  // cell: a row's matches are in the 27 cells around its own.
+  // Every vertex in the cell of side `cell` (>= tol) its local double position falls in,
+  // sorted by cell: a row's matches are in the 27 cells around its own.
   std::vector<double> local(3 * n);
   for (size_t v = 0; v < n; ++v) {
     double m[3];
@@ -132,6 +131,13 @@ JoinedRows join_vertex_rows(const Mesh& mesh, const VertexRows& rows) {
   for (int k = 0; k < 3; ++k) lo[k] = HUGE_VAL, hi[k] = -HUGE_VAL;
   for (size_t v = 0; v < n; ++v)
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[3 * v + k]), hi[k] = std::max(hi[k], local[3 * v + k]);
+  // The cell is tol, but at least 2^-40 of the vertices' extent: vertices no triangle uses
+  // may lie far from the mesh points (or those all coincide, tol 0), and a cell of tol would
+  // then number a vertex's cell beyond int64_t (undefined behaviour). Rows beyond the
+  // extent by more than tol are not looked up, so every cell number is within [-1, 2^40+1].
+  double extent = 0;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+  const double cell = std::max({tol, std::ldexp(extent, -40), 1e-300});
   struct Key {
     int64_t c[3];
     bool operator<(const Key& o) const {

@@ -208,6 +208,21 @@ TEST_CASE("eval: rows join the vertex at their position within 1e-6 of the diago
             .find("rows at lines 1 and 6 give vertex 0 two values (3 and 6)") != std::string::npos);
 }
 
+TEST_CASE("eval: rows join a mesh whose unused vertices lie far from its points", "[eval][io]") {
+  // A unit triangle and vertex 3, used by no triangle, 1e15 away: the join's grid of cells
+  // of 1e-6 of the diagonal numbered its cell beyond int64_t (undefined behaviour, which the
+  // sanitizer build and the fuzz target rows report). Rows reach it and the corners alike.
+  const double xyz[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1e15, 0, 0};
+  const uint32_t tri[3] = {0, 1, 2};
+  const meshsal::Mesh m = meshsal::make_mesh(xyz, 4, tri, 3);
+  const meshsal::JoinedRows j =
+      meshsal::join_vertex_rows(m, meshsal::parse_vertex_rows("0 0 0 1\n1 0 0 2\n1e15 0 0 3\n0.5 0 0 4\n", "gt.txt"));
+  CHECK(j.matched_rows == 3);
+  CHECK(j.unmatched_lines == std::vector<size_t>{4});
+  CHECK(j.has_value == std::vector<uint8_t>{1, 1, 0, 1});
+  CHECK(j.values == std::vector<double>{1, 2, 0, 3});
+}
+
 TEST_CASE("eval: transfer_nearest takes the nearest point's value and the lowest index of ties", "[eval]") {
   const meshsal::Mesh target = meshsal::make_sphere(1.0, 2);
   std::mt19937 rng(3);

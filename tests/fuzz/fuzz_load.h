@@ -3,6 +3,8 @@
 // A meshsal::Error is the expected refusal; anything else (another exception, a crash, a
 // sanitizer report) is a finding. Limits keep each input fast.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "io/gltf_assets.h"
+#include "core/mesh_points.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -142,12 +145,128 @@ inline std::string load_in_folder(const uint8_t* data, size_t size, const std::s
   }
 }
 
+// The meshes the rows target joins its rows to: a tetrahedron with corners at the origin
+// and at 1 on each axis (the positions the seeds in corpus/rows use) and vertex 4, a twin
+// of vertex 0 that no triangle uses (one row reaches both, as at a seam); with `stray`,
+// also vertex 5 at x = 1e15, used by no triangle either (a stray point far from the model,
+// which a prediction's file may hold).
+inline const meshsal::Mesh& rows_mesh(bool stray) {
+  auto make = [](bool with_stray) {
+    const double xyz[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1e15, 0, 0};
+    const uint32_t tris[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    return meshsal::make_mesh(xyz, with_stray ? 6 : 5, tris, 12);
+  };
+  static const meshsal::Mesh meshes[2] = {make(false), make(true)};
+  return meshes[stray];
+}
+
+// join_vertex_rows(mesh, rows), checked against the rule it implements, computed here by
+// brute force: a row reaches every vertex whose model position (minus the origin, as the
+// join computes) is within 1e-6 of the diagonal of the mesh points; two rows that give one
+// vertex different values are an Error. A result or an Error that differs from the rule's
+// is a finding. Returns "" or the Error.
+inline std::string join_checked(const meshsal::Mesh& mesh, const meshsal::VertexRows& rows) {
+  auto finding = [](const std::string& what) {
+    std::fprintf(stderr, "join_vertex_rows: %s\n", what.c_str());
+    std::abort();
+  };
+  const size_t n = mesh.vertex_count(), count = rows.values.size();
+  const std::vector<double> model = meshsal::model_positions(mesh);
+  const double tol = 1e-6 * meshsal::mesh_points_bbox(mesh, meshsal::referenced_vertices(mesh)).diagonal();
+  std::vector<double> values(n, 0.0);
+  std::vector<uint8_t> has(n, 0);
+  size_t matched = 0, conflict_line = 0;
+  std::vector<size_t> unmatched_lines;
+  for (size_t r = 0; r < count && !conflict_line; ++r) {
+    bool reached = false;
+    for (size_t v = 0; v < n; ++v) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = (model[3 * v + k] - mesh.origin[k]) - (rows.xyz[3 * r + k] - mesh.origin[k]);
+        d2 += d * d;
+      }
+      if (!(d2 <= tol * tol)) continue;
+      reached = true;
+      if (has[v] && values[v] != rows.values[r]) conflict_line = rows.lines[r];
+      values[v] = rows.values[r];
+      has[v] = 1;
+    }
+    matched += reached;
+    if (!reached && unmatched_lines.size() < 20) unmatched_lines.push_back(rows.lines[r]);
+  }
+  meshsal::JoinedRows j;
+  try {
+    j = meshsal::join_vertex_rows(mesh, rows);
+  } catch (const meshsal::Error& e) {
+    const std::string what = e.what();
+    if (!conflict_line) finding("refused rows that give no vertex two values: " + what);
+    if (what.find(" and " + std::to_string(conflict_line) + " give vertex ") == std::string::npos)
+      finding("the refusal names another line than " + std::to_string(conflict_line) + ": " + what);
+    return what;
+  } catch (const std::exception& e) {
+    finding(std::string("not a meshsal::Error: ") + e.what());
+  }
+  if (conflict_line) finding("took rows that give a vertex two values (line " + std::to_string(conflict_line) + ")");
+  size_t without = 0;
+  for (uint8_t h : has) without += h == 0;
+  if (j.rows != count || j.matched_rows != matched || j.unmatched_rows != count - matched ||
+      j.unmatched_lines != unmatched_lines || j.vertices_without_value != without)
+    finding("its row counts differ from the rule's");
+  if (j.has_value != has || j.values != values) finding("its values differ from the rule's");
+  return "";
+}
+
+// Ground truth as text rows (meshsal eval's GT; gzip is the caller's): parse_vertex_rows
+// over the bytes as the file fuzz.txt with the value in `column`, and the rows it returns
+// joined to both rows_mesh()es by join_checked. "" when all succeed, else the first Error;
+// join's messages name no file, so "fuzz.txt: join: " goes in front of them. Rows that do
+// not add up (counts, lines, a non-finite number let through) are a finding, as a crash is.
+inline std::string read_rows(const uint8_t* data, size_t size, int column) {
+  const std::string name = "fuzz.txt";
+  meshsal::VertexRows rows;
+  try {
+    rows = meshsal::parse_vertex_rows(std::string(reinterpret_cast<const char*>(data), size), name, column);
+  } catch (const meshsal::Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: not a meshsal::Error: %s\n", name.c_str(), e.what());
+    std::abort();
+  }
+  auto finding = [&](const char* what) {
+    std::fprintf(stderr, "%s: parse_vertex_rows: %s\n", name.c_str(), what);
+    std::abort();
+  };
+  const size_t n = rows.values.size();
+  if (n == 0 || rows.xyz.size() != 3 * n || rows.lines.size() != n || rows.columns < 4 ||
+      (column != 0 && size_t(column) > rows.columns))
+    finding("rows that do not add up");
+  for (size_t r = 0; r < n; ++r) {
+    if (rows.lines[r] < 1 || (r > 0 && rows.lines[r] <= rows.lines[r - 1])) finding("row lines not increasing from 1");
+    if (!std::isfinite(rows.values[r])) finding("a non-finite value let through");
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(rows.xyz[3 * r + k])) finding("a non-finite coordinate let through");
+  }
+  std::string outcome;
+  for (bool stray : {false, true}) {
+    const std::string joined = join_checked(rows_mesh(stray), rows);
+    if (outcome.empty() && !joined.empty()) outcome = name + ": join: " + joined;
+  }
+  return outcome;
+}
+
 // The targets: plystream (read_stream), obj, off, ply, stl, gltf, glb (the bytes are the file), gz (the first byte picks the format
-// inside, the rest is the .gz file) and saliency (the first byte picks the format; small
-// meshes that load go through the CPU saliency pipeline). Returns load's result.
+// inside, the rest is the .gz file), saliency (the first byte picks the format; small
+// meshes that load go through the CPU saliency pipeline) and rows (read_rows: the first
+// byte picks the value's column, its value mod 8: 0 the last, 1-3 refused, else that
+// column; a digit '0'-'7' picks its own number; the rest is the text). Returns load's
+// result.
 inline std::string run_target(const std::string& target, const uint8_t* data, size_t size) {
   meshsal::Mesh mesh;
   if (target == "plystream") return read_stream(data, size);
+  if (target == "rows") {
+    if (size < 1) return "empty input";
+    return read_rows(data + 1, size - 1, data[0] % 8);
+  }
   if (target == "gltf" || target == "glb") {
     // From memory (no file may be named), then as a file among others (the references).
     load(data, size, "fuzz." + target, mesh);

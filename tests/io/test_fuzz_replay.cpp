@@ -1,7 +1,7 @@
 // [fuzz] The fuzz targets' inputs replayed in the normal suite (tools/fuzz.sh runs the
-// fuzzers themselves): every seed in tests/fuzz/corpus loads, and every file in
-// tests/fuzz/regressions (hostile inputs and what the fuzzers found) gives exactly the
-// outcome tests/fuzz/regressions/expected.txt records, without crashing.
+// fuzzers themselves): every seed in tests/fuzz/corpus loads (rows: parses and joins), and
+// every file in tests/fuzz/regressions (hostile inputs and what the fuzzers found) gives
+// exactly the outcome tests/fuzz/regressions/expected.txt records, without crashing.
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -43,7 +43,7 @@ std::map<std::string, std::string> expected_outcomes() {
 
 TEST_CASE("fuzz corpus: every seed loads", "[fuzz]") {
   size_t files = 0;
-  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream"}) {
+  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream", "rows"}) {
     for (const auto& entry : fs::directory_iterator(kFuzzDir / "corpus" / target)) {
       INFO(target << ": " << entry.path().filename().string());
       CHECK(replay(target, entry.path()) == "");
@@ -57,7 +57,7 @@ TEST_CASE("fuzz regressions: each file gives its recorded outcome", "[fuzz]") {
   const auto expected = expected_outcomes();
   REQUIRE(expected.size() >= 10);
   size_t files = 0;
-  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream"}) {
+  for (const char* target : {"obj", "off", "ply", "stl", "gltf", "glb", "gz", "saliency", "plystream", "rows"}) {
     const fs::path dir = kFuzzDir / "regressions" / target;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) {
