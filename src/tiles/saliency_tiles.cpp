@@ -103,7 +103,8 @@ namespace {
 // Each triangle once, in the mesh's order (a tile's buckets overlap where a triangle has
 // corners in two tiles).
 void distinct_faces(std::vector<TileFace>& faces) {
-  std::vector<uint64_t> key(faces.size());
+  // 32-bit keys: face numbers fit, and each radix pass moves half the bytes of 64-bit ones.
+  std::vector<uint32_t> key(faces.size());
   std::vector<uint32_t> index(faces.size());
   uint32_t largest = 0;
   for (size_t i = 0; i < faces.size(); ++i) {
@@ -128,7 +129,7 @@ struct Corners {
 
 void corners_of(const std::vector<TileFace>& faces, const TileSource& source, Corners& c) {
   const size_t n = 3 * faces.size();
-  std::vector<uint64_t> key(n);
+  std::vector<uint32_t> key(n);  // vertex numbers fit in 32 bits (see distinct_faces)
   std::vector<uint32_t> slot(n);
   uint32_t largest = 0;
   for (size_t f = 0; f < faces.size(); ++f)
@@ -141,7 +142,7 @@ void corners_of(const std::vector<TileFace>& faces, const TileSource& source, Co
   c.ids.clear();
   c.local.assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
-    if (i == 0 || key[i] != key[i - 1]) c.ids.push_back(uint32_t(key[i]));
+    if (i == 0 || key[i] != key[i - 1]) c.ids.push_back(key[i]);
     c.local[slot[i]] = uint32_t(c.ids.size() - 1);
   }
   source.positions(c.ids, c.pos);
