@@ -280,6 +280,53 @@ std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& pla
   return count_fast_cells(tile.mesh, near, tile.own, plan.box, sigmas);
 }
 
+namespace {
+
+// The own query points' 1-rings (r.ring, r.ring_offsets, in query numbers, own points in
+// vertex order) straight from the triangles: each triangle adds its two other corners to
+// each own corner's ring, so a neighbour across an inner edge comes twice. The local-maximum
+// test (strictly above every neighbour) reads a ring as a set, so that is the same answer
+// as the adjacency's ring, at a pass over the triangles.
+void triangle_rings(const Mesh& mesh, const std::vector<uint8_t>& own, const std::vector<uint32_t>& qi, TileRaw& r) {
+  const size_t n = mesh.vertex_count();
+  std::vector<uint32_t> slot(n, UINT32_MAX);  // own query point -> its ring's number
+  uint32_t owned = 0;
+  for (size_t v = 0; v < n; ++v)
+    if (qi[v] != UINT32_MAX && own[v]) slot[v] = owned++;
+  // Two passes of one loop: count, then fill. A corner repeated in a degenerate triangle is
+  // no neighbour of itself (as in the adjacency).
+  const uint32_t* t = mesh.triangles.data();
+  const size_t faces = mesh.triangles.size() / 3;
+  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
+      ring.resize(offsets.back());
+      fill.assign(offsets.begin(), offsets.end() - 1);
+    }
+    for (size_t f = 0; f < faces; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = t[3 * f + k], o = slot[v];
+        if (o == UINT32_MAX) continue;
+        for (int j = 1; j <= 2; ++j) {
+          const uint32_t w = t[3 * f + (k + j) % 3];
+          if (w == v) continue;
+          if (pass == 0) {
+            ++offsets[o + 1];
+            continue;
+          }
+          const uint32_t u = qi[w];
+          if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
+          ring[fill[o]++] = u;
+        }
+      }
+  }
+  r.ring = std::move(ring);
+  r.ring_offsets = std::move(offsets);
+}
+
+}  // namespace
+
 TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
   TileRaw r;
   r.raw.resize(plan.scales.size());
@@ -302,12 +349,17 @@ TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
   // The same stages as compute_saliency_cpu, on the sub-mesh; the 1-rings and the triangles
   // go once the curvature is known (the averages are the peak).
   std::vector<double> curvature;
-  {
+  if (plan.method == Method::Fast) {
+    // The fast method's curvature needs no 1-rings (saliency_fast_cpu.cpp), and the local
+    // maxima need only the own points': taken from their triangles, not from the whole
+    // sub-mesh's adjacency (its halo is most of it).
+    curvature = mean_curvature_morton(mesh, plan.box, plan.threads);
+    triangle_rings(mesh, tile.own, qi, r);
+  } else {
     const Adjacency adj = build_adjacency(mesh, plan.threads);
     // Each method's curvature as the whole mesh computes it (saliency_cpu.cpp,
     // saliency_fast_cpu.cpp): an own vertex has all its triangles here, so the same bits.
-    curvature = plan.method == Method::Fast ? mean_curvature_morton(mesh, plan.box, plan.threads)
-                                            : mean_curvature(mesh, adj, vertex_normals(mesh, plan.threads), plan.threads);
+    curvature = mean_curvature(mesh, adj, vertex_normals(mesh, plan.threads), plan.threads);
     // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
     r.ring_offsets.push_back(0);
     for (size_t v = 0; v < n; ++v) {
