@@ -1,10 +1,12 @@
 // meshsal: run_request, every front end's pipeline: check, read, S once, then each output
 // (the saliency mesh, the views, the simplified mesh, the levels of detail).
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "api/request_parts.h"
 #include "core/timer.h"
+#include "saliency/saliency.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -12,6 +14,17 @@ namespace {
 
 // Under MPI the ranks compute together and rank 0 alone writes (SaliencyOptions::exchange).
 bool writes_files(const Request& r) { return !r.saliency.exchange || r.saliency.exchange->rank() == 0; }
+
+// What a request implies beyond what it says, for every front end alike: tiled
+// simplification takes its weights from the paper's S computed in the same tiles (the same
+// map, a tile at a time), unless the request names the saliency's tiles itself; the other
+// models are had whole.
+Request with_implied_options(const Request& given) {
+  Request r = given;
+  if (r.simplify.tiles > 1 && r.saliency.tiles == 0 && r.saliency.model == Model::Lee2005)
+    r.saliency.tiles = std::min<unsigned>(r.simplify.tiles, kMaxTiles);
+  return r;
+}
 
 bool weighted_simplification(const Request& r) {
   return r.weighting != Weighting::None && (!r.simplified_output.empty() || !r.lod_output.empty() || r.simplify_in_memory);
@@ -54,8 +67,9 @@ void write_request_mesh(RequestRun& run, const std::string& path, const Mesh& me
 
 double RequestRun::timer_seconds() const { return timer.seconds(); }
 
-RequestResult run_request(const Request& r) {
-  check_request(r);
+RequestResult run_request(const Request& given) {
+  check_request(given);
+  const Request r = with_implied_options(given);
   RequestResult result;
   RequestRun run{r, result};
   // Runs one step of the request, timed into result.steps.

@@ -8,7 +8,6 @@
 #include "core/mesh_points.h"
 #include "core/timer.h"
 #include "meshsal/meshsal.h"
-#include "saliency/saliency.h"
 #include "simplify/simplify.h"
 #include "number_options.h"
 #include "output_check.h"
@@ -167,10 +166,7 @@ int run(const Args& a) {
   if (a.has_ratio) r.simplify.ratio = a.ratio;
   r.simplify.target_error = a.target_error / 100;
   r.simplify.lock_border = a.lock_border;
-  r.simplify.tiles = unsigned(std::max(0LL, a.tiles));
-  // Tiled simplification takes its weights from tiled saliency (the same map, computed a
-  // tile at a time); the models other than the paper's are had whole.
-  if (a.tiles > 1 && r.saliency.model == meshsal::Model::Lee2005) r.saliency.tiles = unsigned(std::min<long long>(a.tiles, meshsal::kMaxTiles));
+  r.simplify.tiles = unsigned(std::max(0LL, a.tiles));  // S in the same tiles: run_request's rule
   if (!a.lod.empty()) {
     r.lod = parse_lod_levels(a.lod);
     r.lod_output = a.output;
