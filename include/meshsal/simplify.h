@@ -44,6 +44,12 @@ struct SimplifyOptions {
   // simplify_mesh_tiled and simplify_file: cubic tiles along the longest axis (tiles.h);
   // 0 or 1: one tile, the whole mesh. simplify_mesh itself does not tile and refuses more.
   unsigned tiles = 0;
+  // simplify_mesh_tiled and simplify_file: processes that share each pass's groups (the
+  // ranks of an MPI run; TileExchange in tiles.h). Process r simplifies the groups g with
+  // g % ranks == r and every process gets every group's result, so each returns the mesh
+  // (simplify_file: rank 0 writes the file) that one process makes: the same bits. Every
+  // process passes the same mesh, weights and options. Null: this process alone.
+  TileExchange* exchange = nullptr;
   const std::atomic<bool>* cancel = nullptr;  // as SaliencyOptions::cancel
 };
 

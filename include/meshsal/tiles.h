@@ -23,7 +23,10 @@ namespace meshsal {
 // and the processes exchange the few values saliency needs from the whole mesh (each
 // scale's maximum and the local maxima behind mbar) and their results through all_gather.
 // Every process calls compute_saliency with the same mesh and options and gets the whole
-// result. The library holds no MPI: the caller implements this over its transport.
+// result. Tiled simplification shares its passes' groups the same way
+// (SimplifyOptions::exchange). Out of core (saliency_file, simplify_file) rank 0 builds
+// the tiles on disk and the others read them: the temporary folder must be one they all
+// reach. The library holds no MPI: the caller implements this over its transport.
 class TileExchange {
  public:
   virtual ~TileExchange() = default;
@@ -46,6 +49,9 @@ struct OutOfCoreOptions {
   uint64_t memory_limit = 0;
   std::string temp_dir;      // where the tiles go ("" = $TMPDIR or /tmp); removed at the end
   bool dump_scales = false;  // also write curvature and saliency_raw_i (as write_saliency_ply)
+  // simplify_file only: also write the saliency mesh here, the bytes saliency_file() writes
+  // (dump_scales too), from the tiles that weigh the simplification: S computed once.
+  std::string saliency_output;
 };
 
 struct OutOfCoreReport {
@@ -124,7 +130,11 @@ struct OutOfCoreSimplifyReport {
 // same saliency (S as `quality`) and write_ply give. Positions and S only: other vertex
 // properties, materials and seams are not read. Throws Error as simplify_mesh_tiled does,
 // and, before any work, for an output as saliency_file() refuses it (not a .ply name, or
-// the input file itself, through a link too).
+// the input file itself, through a link too). out_of_core.saliency_output: the saliency
+// mesh too, from the same tiles (even with weights nullopt or a target that keeps the mesh).
+// With options.exchange (or saliency_options.exchange; both: the same one) the processes
+// share the saliency's tiles and the passes' groups, rank 0 alone writes, and the output
+// is the bytes one process writes; rank 0's report is the whole one.
 OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::string& output,
                                       const SimplifyOptions& options,
                                       const std::optional<SaliencyWeightOptions>& weights,

@@ -12,9 +12,6 @@
 namespace meshsal {
 namespace {
 
-// Under MPI the ranks compute together and rank 0 alone writes (SaliencyOptions::exchange).
-bool writes_files(const Request& r) { return !r.saliency.exchange || r.saliency.exchange->rank() == 0; }
-
 // What a request implies beyond what it says, for every front end alike: tiled
 // simplification takes its weights from the paper's S computed in the same tiles (the same
 // map, a tile at a time), unless the request names the saliency's tiles itself; the other
@@ -31,6 +28,11 @@ bool weighted_simplification(const Request& r) {
 }
 
 }  // namespace
+
+bool writes_files(const Request& r) {
+  const TileExchange* x = r.saliency.exchange ? r.saliency.exchange : r.simplify.exchange;
+  return !x || x->rank() == 0;
+}
 
 std::string file_name_of(const std::string& path) {
   const size_t slash = path.find_last_of('/');
@@ -81,6 +83,14 @@ RequestResult run_request(const Request& given) {
   if (r.out_of_core.memory_limit > 0) {
     // The mesh is never held whole: the library streams the file through tiles on disk.
     if (r.on_read) r.on_read();
+    // Both outputs: simplify_file writes S from the tiles that weigh it (S once).
+    if (!r.saliency_output.empty() && !r.simplified_output.empty()) {
+      step("simplify", [&] { make_simplified(run); });
+      result.out_of_core = result.simplify_out_of_core.saliency;
+      if (writes_files(r)) result.outputs.insert(result.outputs.begin(), r.saliency_output);
+      result.seconds = run.timer_seconds();
+      return result;
+    }
     if (!r.saliency_output.empty())
       step("saliency output", [&] {
         OutOfCoreOptions o = r.out_of_core;

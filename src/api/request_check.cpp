@@ -36,6 +36,14 @@ void check_request(const Request& r) {
   const bool out_of_core = r.out_of_core.memory_limit > 0;
   const bool views = !r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view;
   const SimplifyOptions& s = r.simplify;
+  if (s.exchange) {
+    // Shared simplification is the tiled simplifier's passes over the processes.
+    if (!r.lod_output.empty() || !r.lod.empty()) refuse("--lod runs in one process: not under mpirun");
+    if (s.tiles <= 1 && !out_of_core) refuse("shared simplification (mpirun) runs in tiles: give --tiles N (N >= 2)");
+    if (s.target_error > 0) refuse("shared simplification (mpirun) takes --target-faces N or --ratio R, not --target-error");
+    if (r.saliency.exchange && r.saliency.exchange != s.exchange)
+      refuse("the saliency and the simplification name different TileExchanges");
+  }
   if (r.simplify.tiles > 1 && s.target_error > 0) refuse("--tiles takes --target-faces N or --ratio R, not --target-error");
   const bool lod = !r.lod_output.empty() || (r.simplify_in_memory && !r.lod.empty());
   if (simplifying || (r.simplify_in_memory && !lod)) {

@@ -70,6 +70,10 @@ std::vector<std::string> check_side_files(RequestRun& run, const std::string& pa
 // Adds `note` to result.notes once, and tells request.saliency.notice.
 void add_note(RequestRun& run, const std::string& note);
 
+// Whether this process writes the run's files: under an exchange (the saliency's or the
+// simplification's: MPI ranks) the processes compute together and rank 0 alone writes.
+bool writes_files(const Request& r);
+
 // The file name of a path ("models/bunny.ply" -> "bunny.ply").
 std::string file_name_of(const std::string& path);
 

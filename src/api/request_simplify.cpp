@@ -38,10 +38,13 @@ void make_simplified(RequestRun& run) {
     // The tiled simplifier on disk, its own saliency (simplify_file).
     std::optional<SaliencyWeightOptions> weights;
     if (r.weighting != Weighting::None) weights = r.weight_options;
-    out.simplify_out_of_core = simplify_file(r.input, r.simplified_output, opt, weights, r.saliency, r.out_of_core);
+    OutOfCoreOptions o = r.out_of_core;
+    o.saliency_output = r.saliency_output;  // S from the same tiles (run_request)
+    o.dump_scales = r.dump_scales;
+    out.simplify_out_of_core = simplify_file(r.input, r.simplified_output, opt, weights, r.saliency, o);
     out.simplify = out.simplify_out_of_core.simplify;
     out.alpha = out.simplify_out_of_core.alpha;
-    out.outputs.push_back(r.simplified_output);
+    if (writes_files(r)) out.outputs.push_back(r.simplified_output);
     if (!out.simplify.reached && !out.simplify.note.empty()) add_note(run, out.simplify.note);
     return;
   }
@@ -56,7 +59,7 @@ void make_simplified(RequestRun& run) {
     add_note(run, "the target (" + std::to_string(target) + " faces) is at or above the mesh's " +
                       std::to_string(mesh.triangle_count()) + " faces: " +
                       (r.simplified_output.empty() ? "the mesh is returned unchanged" : "wrote it unchanged"));
-    if (!r.simplified_output.empty()) write_simplified(run, r.simplified_output, out.simplified);
+    if (!r.simplified_output.empty() && writes_files(r)) write_simplified(run, r.simplified_output, out.simplified);
     return;
   }
   // A bad target is refused before any time goes into saliency.
@@ -94,7 +97,7 @@ void make_simplified(RequestRun& run) {
   out.simplified = std::move(made.mesh);
   out.simplify = std::move(made.report);
   const SimplifyReport& rep = out.simplify;
-  if (!r.simplified_output.empty()) write_simplified(run, r.simplified_output, out.simplified);
+  if (!r.simplified_output.empty() && writes_files(r)) write_simplified(run, r.simplified_output, out.simplified);
   if (!rep.reached && (opt.target_faces > 0 || opt.ratio > 0)) add_note(run, rep.note);
   // The input too coarse for its floats: said once (a computed S already said it).
   const bool told = !weights.empty() && r.saliency_from.empty() && !r.saliency_values;

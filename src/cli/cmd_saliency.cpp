@@ -30,36 +30,14 @@ struct Args {
   RequestText text;    // the options every command shares
 };
 
-// The largest peak resident memory over the ranks (this process's alone without MPI).
-uint64_t peak_over_ranks() {
-  const uint64_t mine = meshsal::peak_resident_bytes();
-  std::vector<uint8_t> bytes(sizeof mine);
-  std::memcpy(bytes.data(), &mine, sizeof mine);
-  uint64_t most = 0;
-  for (const auto& b : meshsal::cli::mpi_all_gather(bytes)) {
-    uint64_t x = 0;
-    if (b.size() == sizeof x) std::memcpy(&x, b.data(), sizeof x);
-    most = std::max(most, x);
-  }
-  return most;
-}
-
 bool is_rank0() { return meshsal::cli::mpi_world().rank == 0; }
 
-// Under mpirun, once this rank has read its input: the ranks meet (mpi_begin_work: one
-// that failed before stops all, quietly), then every rank must run the same computation:
-// rank 0's arguments are the run's.
+// Under mpirun: every rank runs rank 0's computation (begin_shared_work).
 void begin_work(const Args& a) {
-  if (!meshsal::cli::mpi_world().active) return;
-  meshsal::cli::mpi_begin_work();
   const RequestText& t = a.text;
-  const std::string mine = a.input + "\n" + a.output + "\n" + t.method + "\n" + t.scales + "\n" +
-                           std::to_string(t.eps_frac) + "\n" + std::to_string(a.tiles) + "\n" + t.memory_limit +
-                           "\n" + std::to_string(a.dump_scales);
-  const auto all = meshsal::cli::mpi_all_gather(std::vector<uint8_t>(mine.begin(), mine.end()));
-  if (std::string(all[0].begin(), all[0].end()) != mine)
-    throw meshsal::Error("the ranks were started with other arguments than rank 0's (this rank: " +
-                         printable(a.input) + " -o " + printable(a.output) + ")");
+  begin_shared_work(a.input + "\n" + a.output + "\n" + t.method + "\n" + t.scales + "\n" + std::to_string(t.eps_frac) +
+                        "\n" + std::to_string(a.tiles) + "\n" + t.memory_limit + "\n" + std::to_string(a.dump_scales),
+                    printable(a.input) + " -o " + printable(a.output));
 }
 
 void print_out_of_core(const Args& a, const meshsal::OutOfCoreReport& r, uint64_t limit, uint64_t peak) {
@@ -93,7 +71,7 @@ int run(Args a) {
   r.on_read = [&a] { begin_work(a); };
   const RequestResult result = run_request(r);
   progress.finish();
-  const uint64_t peak = peak_over_ranks();
+  const uint64_t peak = max_over_ranks(meshsal::peak_resident_bytes());
   if (!is_rank0()) return 0;
   if (r.out_of_core.memory_limit > 0) {
     if (a.text.json)

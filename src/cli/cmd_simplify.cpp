@@ -17,6 +17,9 @@
 #include "request_options.h"
 #include "saliency_output.h"
 #include "interrupt.h"
+#include "mpi_tile_exchange.h"
+#include "mpi_world.h"
+#include "core/parallel.h"
 #include "core/peak_memory.h"
 
 namespace meshsal::cli {
@@ -34,11 +37,25 @@ struct Args {
 };
 
 // --memory-limit: the library streamed the file through tiles on disk (simplify_file).
-void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::RequestResult& result) {
+// Under mpirun: every rank runs rank 0's computation (begin_shared_work).
+void begin_work(const Args& a) {
+  const RequestText& t = a.text;
+  begin_shared_work(a.input + "\n" + a.output + "\n" + std::to_string(a.target_faces) + "\n" + std::to_string(a.ratio) +
+                        "\n" + std::to_string(a.tiles) + "\n" + t.memory_limit + "\n" + t.weights + "\n" + t.method +
+                        "\n" + t.scales + "\n" + std::to_string(t.eps_frac) + "\n" + t.saliency_from,
+                    printable(a.input) + " -o " + printable(a.output));
+}
+
+// ", shared by N ranks" under mpirun (the summary's tiles line).
+std::string shared_by() {
+  const int n = mpi_world().size;
+  return n > 1 ? ", shared by " + std::to_string(n) + " ranks" : "";
+}
+
+void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::RequestResult& result, uint64_t peak) {
   using namespace meshsal;
   const OutOfCoreSimplifyReport& ooc = result.simplify_out_of_core;
   const SimplifyReport& rep = ooc.simplify;
-  const uint64_t peak = meshsal::peak_resident_bytes();
   const bool weighted = r.weighting != Weighting::None;
   const SaliencyWeightOptions& wo = r.weight_options;
   if (a.text.json) {
@@ -50,7 +67,8 @@ void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::
         .text("weights", a.text.weights).text("device", "cpu").number("error_percent", 100 * rep.error)
         .flag("lock_border", a.lock_border).count("tiles", ooc.tiles).count("saliency_tiles", ooc.saliency.tiles)
         .count("memory_limit", size_t(r.out_of_core.memory_limit)).count("tile_estimate", size_t(ooc.tile_estimate))
-        .count("peak_rss", size_t(peak));
+        .count("peak_rss", size_t(peak)).count("ranks", size_t(mpi_world().size))
+        .count("threads_per_rank", resolve_threads(r.saliency.threads));
     if (weighted) j.number("lambda", wo.lambda).number("alpha", ooc.alpha).number("alpha_percentile", wo.alpha_percentile);
     j.strings("outputs", result.outputs).number("seconds", result.seconds).print();
   } else if (!a.text.quiet) {
@@ -60,8 +78,9 @@ void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::
                   wo.alpha_percentile);
     else
       std::printf("weights    none (plain quadric error)\n");
-    std::printf("tiles      %u (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)\n", ooc.tiles,
-                ooc.tile_estimate / 1048576.0, peak / 1048576.0, r.out_of_core.memory_limit / 1048576.0);
+    std::printf("tiles      %u (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)%s\n", ooc.tiles,
+                ooc.tile_estimate / 1048576.0, peak / 1048576.0, r.out_of_core.memory_limit / 1048576.0,
+                shared_by().c_str());
     for (const StageTime& st : ooc.stages) std::printf("%-10s %8.3f s\n", st.name.c_str(), st.seconds);
     std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses\n", rep.output_vertices,
                 rep.output_faces, rep.target_faces, rep.collapses);
@@ -107,7 +126,7 @@ void print_lod(const Args& a, const meshsal::RequestResult& result) {
   }
 }
 
-void print_simplified(const Args& a, const meshsal::Request& r, const meshsal::RequestResult& result) {
+void print_simplified(const Args& a, const meshsal::Request& r, const meshsal::RequestResult& result, uint64_t peak) {
   using namespace meshsal;
   const SimplifyReport& rep = result.simplify;
   const Mesh& out = result.simplified;
@@ -127,13 +146,14 @@ void print_simplified(const Args& a, const meshsal::Request& r, const meshsal::R
         .number("target_error", a.target_error / 100 * diagonal)
         .number("target_error_percent", a.target_error)
         .flag("lock_border", a.lock_border).count("attributes", out.attributes.size())
-        .count("tiles", size_t(std::max(1LL, a.tiles)));
+        .count("tiles", size_t(std::max(1u, r.simplify.tiles))).count("ranks", size_t(mpi_world().size))
+        .count("threads_per_rank", resolve_threads(r.simplify.threads));
     if (weighted)
       j.number("lambda", wo.lambda).number("alpha", result.alpha).number("alpha_percentile", wo.alpha_percentile)
           .text("saliency_from", a.text.saliency_from).number("saliency_seconds", result.weights_seconds);
     j.strings("outputs", result.outputs).number("read_seconds", result.load_seconds)
         .number("simplify_seconds", rep.seconds).number("seconds", result.seconds)
-        .count("peak_rss", size_t(meshsal::peak_resident_bytes())).print();
+        .count("peak_rss", size_t(peak)).print();
   } else if (!a.text.quiet) {
     std::printf("input      %zu vertices, %zu faces (read in %.3f s)\n", result.mesh.vertex_count(), rep.input_faces,
                 result.load_seconds);
@@ -143,6 +163,7 @@ void print_simplified(const Args& a, const meshsal::Request& r, const meshsal::R
                   result.alpha, wo.alpha_percentile, result.weights_seconds);
     else
       std::printf("weights    none (plain quadric error)\n");
+    if (r.simplify.tiles > 1) std::printf("tiles      %u%s\n", r.simplify.tiles, shared_by().c_str());
     std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses in %.3f s\n", rep.output_vertices,
                 rep.output_faces, rep.target_faces, rep.collapses, rep.seconds);
     std::printf("error      %.4g%% of the bounding-box diagonal (largest collapse)", 100 * rep.error);
@@ -157,8 +178,10 @@ void print_simplified(const Args& a, const meshsal::Request& r, const meshsal::R
   }
 }
 
-int run(const Args& a) {
+int run(Args a) {
   using namespace meshsal;
+  const bool rank0 = mpi_world().rank == 0;
+  a.text.quiet = a.text.quiet || !rank0;  // one voice under mpirun: rank 0's
   Progress progress(!a.text.quiet && stderr_is_terminal());
   Request r = request_from(a.text, &progress);
   r.input = a.input;
@@ -173,11 +196,23 @@ int run(const Args& a) {
   } else {
     r.simplified_output = a.output;
   }
+  // Under mpirun the ranks share the saliency's tiles and the passes' groups (by default
+  // default_mpi_tiles of them); rank 0 writes and reports.
+  MpiTileExchange exchange;
+  if (mpi_world().active) {
+    r.simplify.exchange = &exchange;
+    r.saliency.exchange = &exchange;
+    if (r.simplify.tiles == 0 && a.text.memory_limit.empty()) r.simplify.tiles = default_mpi_tiles(mpi_world().size);
+  }
+  // After each rank read the input: one that cannot stops every rank alike.
+  r.on_read = [&a] { begin_work(a); };
   const RequestResult result = run_request(r);
   progress.finish();
-  if (r.out_of_core.memory_limit > 0) print_out_of_core(a, r, result);
+  const uint64_t peak = max_over_ranks(meshsal::peak_resident_bytes());
+  if (!rank0) return 0;
+  if (r.out_of_core.memory_limit > 0) print_out_of_core(a, r, result, peak);
   else if (!a.lod.empty()) print_lod(a, result);
-  else print_simplified(a, r, result);
+  else print_simplified(a, r, result, peak);
   return 0;
 }
 
@@ -237,7 +272,7 @@ RunFn setup(CLI::App& sub) {
 }
 
 const bool registered = register_command(
-    {"simplify", "Simplify a mesh, guided by saliency (or plain quadric error)", 20, setup});
+    {"simplify", "Simplify a mesh, guided by saliency (or plain quadric error)", 20, setup, true});
 
 }  // namespace
 }  // namespace meshsal::cli

@@ -5,8 +5,12 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 
 #include "core/cancel.h"
+#include "tiles/pass_exchange.h"
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
 
 namespace meshsal {
 
@@ -47,10 +51,28 @@ struct CornerStates {
 
 class Buckets {
  public:
-  Buckets(const DiskMesh& mesh, int pass, size_t buffer_bytes)
-      : mesh_(mesh), pass_(pass), flush_at_(std::max<size_t>(kChunk, buffer_bytes / sizeof(BucketFace))) {}
+  // `owner`: this process writes the buckets (and removes them); the others read them.
+  Buckets(const DiskMesh& mesh, int pass, size_t buffer_bytes, bool owner)
+      : mesh_(mesh), pass_(pass), flush_at_(std::max<size_t>(kChunk, buffer_bytes / sizeof(BucketFace))),
+        owner_(owner) {}
   ~Buckets() {
-    for (const auto& [cell, own] : cells_) std::remove(path(cell).c_str());
+    if (owner_)
+      for (const auto& [cell, own] : cells_) std::remove(path(cell).c_str());
+  }
+  // The owner's list of buckets to every process sharing the pass; once they have it, the
+  // owner's files are complete.
+  void share(TileExchange* exchange) {
+    if (!exchange) return;
+    TileBytes b;
+    if (owner_)
+      for (const auto& [cell, own] : cells_) b.put(cell), b.put(uint8_t(own));
+    const auto all = tile_gather(exchange, b.data);
+    if (owner_) return;
+    cells_.clear();
+    for (TileBytesReader in{all[0]}; !in.done();) {
+      const uint64_t cell = in.get<uint64_t>();
+      cells_[cell] = in.get<uint8_t>() != 0;
+    }
   }
   void add(uint64_t cell, const BucketFace& face) {
     pending_[cell].push_back(face);
@@ -88,6 +110,7 @@ class Buckets {
   const DiskMesh& mesh_;
   int pass_;
   size_t flush_at_, count_ = 0;
+  bool owner_;
   std::map<uint64_t, std::vector<BucketFace>> pending_;
   std::map<uint64_t, bool> cells_;  // every bucket written, and whether it holds a group
 };
@@ -244,9 +267,10 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
                                 const std::vector<uint64_t>& groups, const SimplifyOptions& options,
                                 const std::function<void(double)>& progress) {
   auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
-  uint64_t goal_sum = 0, count = 0;
-  std::vector<size_t> sizes;
+  // This process's groups (pass_exchange.h): their levels to files, their counts shared.
+  std::vector<uint64_t> faces(groups.size(), 0), first_goals(groups.size(), 0), counts(groups.size(), 0);
   for (size_t g = 0; g < groups.size(); ++g) {
+    if (!runs_group(options.exchange, g)) continue;
     throw_if_cancelled();
     if (progress) progress(0.5 * double(g) / double(groups.size()));
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
@@ -255,9 +279,17 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
     ScratchWriter lf(levels_file(g));
     lf.write_vector(levels);
     lf.close();
-    sizes.push_back(tile.mesh.triangle_count() - tile.guards);
-    if (pass.budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, pass.budget.ratio);
-    count += levels.size();
+    faces[g] = tile.mesh.triangle_count() - tile.guards;
+    if (pass.budget.rule == Targets::FirstPass) first_goals[g] = first_pass_goal(tile, pass.budget.ratio);
+    counts[g] = levels.size();
+  }
+  for (auto* v : {&faces, &first_goals, &counts}) share_group_values(options.exchange, *v);
+  uint64_t goal_sum = 0, count = 0;
+  std::vector<size_t> sizes;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    sizes.push_back(size_t(faces[g]));
+    goal_sum += first_goals[g];
+    count += counts[g];
   }
   const std::vector<size_t> goals = pass_goals(pass.budget, sizes, goal_sum, count, [&](size_t g) {
     const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
@@ -266,7 +298,9 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
     if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
     return levels;
   });
-  for (size_t g = 0; g < groups.size(); ++g) std::remove(levels_file(g).c_str());
+  tile_gather(options.exchange, {});  // every process has read every file
+  for (size_t g = 0; g < groups.size(); ++g)
+    if (runs_group(options.exchange, g)) std::remove(levels_file(g).c_str());
   return goals;
 }
 
@@ -290,53 +324,105 @@ void apply_moves(DiskMesh& mesh, const std::string& moves) {
 
 }  // namespace
 
+namespace {
+
+// A group's piece as the pass's files take it: its triangles (global ids) to `triangles`,
+// its moved vertices (id, then the state record) to `moves`. Pinned vertices are as they
+// were (simplify_tile restores them); the rest may have moved.
+void piece_records(const DiskMesh& mesh, const TilePiece& piece, std::vector<uint32_t>& triangles,
+                   std::vector<uint8_t>& moves) {
+  for (uint32_t v : piece.mesh.triangles) triangles.push_back(piece.ids[v]);
+  const size_t rec = mesh.record_bytes(), nattr = mesh.attribute_names.size();
+  std::vector<uint8_t> record(4 + rec);
+  for (size_t v = 0; v < piece.ids.size(); ++v) {
+    if (piece.pinned[v]) continue;
+    std::memcpy(&record[0], &piece.ids[v], 4);
+    std::memcpy(&record[4], &piece.mesh.positions[3 * v], 12);
+    for (size_t a = 0; a < nattr; ++a) std::memcpy(&record[16 + 4 * a], &piece.mesh.attributes[a].values[v], 4);
+    moves.insert(moves.end(), record.begin(), record.end());
+  }
+}
+
+}  // namespace
+
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
                    PassTotals& totals, size_t buffer_bytes, const std::function<void(double)>& progress) {
-  Buckets buckets(mesh, ++mesh.passes, buffer_bytes);
-  fill_buckets(mesh, pass, buckets);
+  // With an exchange (pass_exchange.h) rank 0, the lead, fills the buckets and writes the
+  // pass's result; every process simplifies its share of the groups.
+  TileExchange* exchange = options.exchange;
+  const bool lead = !exchange || exchange->rank() == 0;
+  Buckets buckets(mesh, ++mesh.passes, buffer_bytes, lead);
+  if (lead) fill_buckets(mesh, pass, buckets);
+  buckets.share(exchange);
   const std::vector<uint64_t> groups = buckets.groups();
   const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, options, progress);
 
-  // Each group in cell order (the in-memory driver's order), then the rest as it was.
+  // Each group in cell order (the in-memory driver's order), then the rest as it was. Shared,
+  // each process leaves its groups' outcomes in a file each, appended by the lead in order.
   const std::string next = mesh.triangles + "+";
   const std::string moves = mesh.dir->file("moves.bin");
-  ScratchWriter out(next), moved(moves);
+  auto group_file = [&](size_t g) { return mesh.dir->file("group_" + std::to_string(g) + ".bin"); };
+  std::optional<ScratchWriter> out, moved;
+  if (lead) out.emplace(next), moved.emplace(moves);
   uint64_t out_count = 0;
-  const size_t rec = mesh.record_bytes(), nattr = mesh.attribute_names.size();
+  auto append = [&](const std::vector<uint32_t>& triangles, const std::vector<uint8_t>& records,
+                    const std::vector<uint32_t>& freed) {
+    out->write_vector(triangles);
+    out_count += triangles.size() / 3;
+    moved->write_vector(records);
+    for (uint32_t id : freed) pending.clear(id);
+  };
+  PassTotals mine;
   for (size_t g = 0; g < groups.size(); ++g) {
+    if (!runs_group(exchange, g)) continue;
     throw_if_cancelled();
     if (progress) progress(0.5 + 0.5 * double(g) / double(groups.size()));
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
     const std::vector<double> w = piece_weights(mesh, tile);
-    const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, goals[g], totals);
-    for (uint32_t v : piece.mesh.triangles) out.write(&piece.ids[v], 4);
-    out_count += piece.mesh.triangle_count();
-    // Pinned vertices are as they were (simplify_tile restores them); the rest may have moved.
-    std::vector<uint8_t> record(4 + rec);
-    for (size_t v = 0; v < piece.ids.size(); ++v) {
-      if (piece.pinned[v]) continue;
-      std::memcpy(&record[0], &piece.ids[v], 4);
-      std::memcpy(&record[4], &piece.mesh.positions[3 * v], 12);
-      for (size_t a = 0; a < nattr; ++a) std::memcpy(&record[16 + 4 * a], &piece.mesh.attributes[a].values[v], 4);
-      moved.write(record.data(), record.size());
+    const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, goals[g], mine);
+    std::vector<uint32_t> triangles;
+    std::vector<uint8_t> records;
+    piece_records(mesh, piece, triangles, records);
+    if (!exchange) {
+      append(triangles, records, freed_ids(tile));
+      continue;
     }
-    for (uint32_t id : freed_ids(tile)) pending.clear(id);
+    TileBytes b;
+    b.put(triangles);
+    b.put(records);
+    b.put(freed_ids(tile));
+    ScratchWriter f(group_file(g));
+    f.write_vector(b.data);
+    f.close();
   }
-  if (pass.selected_near)
-    for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
-      for (size_t i = 0; i < t.size(); i += 3)
-        if (!selected(pass, &t[i])) {
-          out.write(&t[i], 12);
-          ++out_count;
-        }
-    });
-  out.close();
-  moved.close();
-  apply_moves(mesh, moves);
-  std::remove(moves.c_str());
-  if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)
-    throw Error(mesh.triangles + ": cannot replace a temporary file");
-  mesh.triangle_count = out_count;
+  add_totals(totals, share_totals(exchange, mine));  // (shared: every group's file is complete)
+  if (exchange && lead)
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
+      TileBytesReader in{bytes};
+      const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
+      const std::vector<uint8_t> records = in.get_vector<uint8_t>();
+      append(triangles, records, in.get_vector<uint32_t>());
+      std::remove(group_file(g).c_str());
+    }
+  if (lead) {
+    if (pass.selected_near)
+      for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
+        for (size_t i = 0; i < t.size(); i += 3)
+          if (!selected(pass, &t[i])) {
+            out->write(&t[i], 12);
+            ++out_count;
+          }
+      });
+    out->close();
+    moved->close();
+    apply_moves(mesh, moves);
+    std::remove(moves.c_str());
+    if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)
+      throw Error(mesh.triangles + ": cannot replace a temporary file");
+  }
+  // The lead's count; once the others have it, its files are the next pass's input.
+  mesh.triangle_count = share_rank0_value(exchange, out_count);
   if (progress) progress(1.0);
 }
 

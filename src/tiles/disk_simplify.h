@@ -60,6 +60,9 @@ struct DiskPass {
 // Runs `pass` over `mesh` (its triangles file is replaced by the pass's result, the moved
 // vertices are written into its state), clearing the vertices the pass freed in
 // `pending`. `buffer_bytes`: how much the bucket buffers may hold before they go to disk.
+// With options.exchange every process calls it alike: each simplifies its share of the
+// groups (pass_exchange.h) in the one folder they all reach; rank 0 alone writes the
+// buckets and the result and keeps `pending`; all get the result's triangle count.
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
                    detail::PassTotals& totals, size_t buffer_bytes,
                    const std::function<void(double)>& progress);

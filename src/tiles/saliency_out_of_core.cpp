@@ -21,74 +21,6 @@ namespace meshsal {
 
 namespace {
 
-// The store's description, from rank 0 to the others (they read the same files).
-TileBytes describe(const TileStore& s) {
-  TileBytes b;
-  std::vector<uint8_t> dir(s.dir.path().begin(), s.dir.path().end());
-  b.put(dir);
-  b.put(s.vertices);
-  b.put(s.triangles);
-  b.put(s.points);
-  b.put(uint8_t(s.double_positions));
-  for (double o : s.origin) b.put(o);
-  b.put(s.largest_tile_estimate);
-  b.put(uint64_t(s.block));
-  b.put(s.plan.tile_edge);
-  for (int a = 0; a < 3; ++a) b.put(s.plan.box.min[a]), b.put(s.plan.box.max[a]), b.put(s.plan.tiles[a]);
-  b.put(s.plan.query_margin);
-  b.put(s.plan.source_margin);
-  b.put(s.plan.eps);
-  return b;
-}
-
-void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOptions& options) {
-  TileBytesReader in{bytes};
-  const std::vector<uint8_t> dir = in.get_vector<uint8_t>();
-  s.dir.borrow(std::string(dir.begin(), dir.end()));
-  s.vertices = in.get<uint64_t>();
-  s.triangles = in.get<uint64_t>();
-  s.points = in.get<uint64_t>();
-  s.double_positions = in.get<uint8_t>() != 0;
-  for (double& o : s.origin) o = in.get<double>();
-  s.largest_tile_estimate = in.get<uint64_t>();
-  s.block = size_t(in.get<uint64_t>());
-  const double edge = in.get<double>();
-  BoundingBox box;
-  int tiles[3];
-  for (int a = 0; a < 3; ++a) box.min[a] = in.get<double>(), box.max[a] = in.get<double>(), tiles[a] = in.get<int>();
-  s.plan = make_tile_plan(box, s.points, options, 1);
-  s.plan.tile_edge = edge;
-  for (int a = 0; a < 3; ++a) s.plan.tiles[a] = tiles[a];
-  s.plan.query_margin = in.get<double>();
-  s.plan.source_margin = in.get<double>();
-  s.plan.eps = in.get<double>();
-}
-
-// The store: built by rank 0 (an error there reaches every rank through the exchange as
-// an empty description), described to the others.
-void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
-                      const std::function<void(const char*, double)>& progress) {
-  TileExchange* exchange = options.exchange;
-  const int rank = exchange ? exchange->rank() : 0;
-  TileBytes mine;
-  std::string failure;
-  if (rank == 0) {
-    try {
-      build_tile_store(store, input, options, memory_limit, options.tiles, progress);
-      mine = describe(store);
-    } catch (const Error& e) {
-      if (!exchange) throw;
-      failure = e.what();
-    }
-  }
-  const auto all = tile_gather(exchange, mine.data);
-  if (all[0].empty()) {
-    if (rank == 0) throw Error(failure);
-    throw Error("rank 0 could not read the input");
-  }
-  if (rank != 0) adopt(store, all[0], options);
-}
-
 // The output's PLY header: positions as read, S, with dump_scales the curvature and each
 // raw map, the colours; then the faces.
 std::string output_header(const TileStore& store, size_t scales, bool dump_scales) {
@@ -107,11 +39,11 @@ std::string output_header(const TileStore& store, size_t scales, bool dump_scale
   return header;
 }
 
-// The output (rank 0): the vertices a block at a time, each block's results gathered from
-// every tile's file; then the triangles.
-void write_output(const std::string& output, const TileStore& store, const SaliencyOptions& options,
-                  const OutOfCoreOptions& ooc, const OutOfCoreReport& report,
-                  const std::function<void(const char*, double)>& progress) {
+}  // namespace
+
+void write_saliency_output(const std::string& output, const TileStore& store, const SaliencyOptions& options,
+                           const OutOfCoreOptions& ooc, const OutOfCoreReport& report,
+                           const std::function<void(const char*, double)>& progress) {
   const bool wide = store.double_positions;
   const size_t scales = options.scales.size();
   const std::string header = output_header(store, scales, ooc.dump_scales);
@@ -174,7 +106,6 @@ void write_output(const std::string& output, const TileStore& store, const Salie
   });
 }
 
-}  // namespace
 
 OutOfCoreReport saliency_file(const std::string& input, const std::string& output,
                               const SaliencyOptions& options_in, const OutOfCoreOptions& ooc) {
@@ -200,12 +131,12 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
 
   TileStore store(ooc.temp_dir);
   if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
-  share_tile_store(store, input, options, ooc.memory_limit, progress);
+  share_tile_store(store, input, options, ooc.memory_limit, options.tiles, progress);
   clock.lap("tiling");
   tile_saliency(store, options, report);  // laps its own stages
   clock.resume();
   if (rank == 0) {
-    write_output(output, store, options, ooc, report, progress);
+    write_saliency_output(output, store, options, ooc, report, progress);
     clock.lap("writing");
   }
   // Every rank done before rank 0's store (and its folder) goes.

@@ -24,7 +24,9 @@
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
 #include "simplify/simplify.h"
+#include "tiles/pass_exchange.h"
 #include "tiles/simplify_tiled.h"
+#include "tiles/tile_reduce.h"
 
 namespace meshsal {
 
@@ -190,7 +192,10 @@ class DiskPasses final : public TilePasses {
                   [&](double f) { progress_("simplifying", f); });
   }
   bool strip_pass(const TileGrid& grid, const PassBudget& budget) override {
-    if (strip_vertices(mesh_, pending_, near1_, near2_) == 0) return false;
+    // (Shared: rank 0 keeps the pending vertices and selects the strips.)
+    TileExchange* exchange = options_.exchange;
+    const uint64_t selected = !exchange || exchange->rank() == 0 ? strip_vertices(mesh_, pending_, near1_, near2_) : 0;
+    if (share_rank0_value(exchange, selected) == 0) return false;
     DiskPass pass{grid, budget};
     pass.selected_near = &near1_;
     pass.guard_near = &near2_;
@@ -230,8 +235,10 @@ SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWe
       throw Error(std::string("model ") + model_name(so.model) +
                   " computes S in memory, in one piece: simplify_file takes the paper's model only");
     if (so.backend == Backend::Gpu) throw Error("out of core runs on the CPU: use backend cpu or auto");
-    if (so.exchange) throw Error("simplify: out of core runs in one process (no TileExchange)");
   }
+  if (so.exchange && options.exchange && so.exchange != options.exchange)
+    throw Error("simplify: the saliency and the simplification name different TileExchanges");
+  if (!so.exchange) so.exchange = options.exchange;
   return so;
 }
 
@@ -334,19 +341,33 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   const SaliencyWeightOptions* weights = weight_options ? &*weight_options : nullptr;  // null once unused
   const unsigned tiles = std::max(1u, options.tiles);
   SaliencyOptions so = checked_options(options, weights, saliency_options, tiles);
+  // Shared by processes (SimplifyOptions::exchange): the saliency's tiles and the passes'
+  // groups over them all; rank 0, the lead, builds the store, writes the files between the
+  // steps and the output, in the one folder they all reach.
+  TileExchange* exchange = so.exchange;
+  const bool lead = !exchange || exchange->rank() == 0;
+  SimplifyOptions opt = options;
+  opt.exchange = exchange;
   OutOfCoreSimplifyReport report;
+  report.saliency.ranks = exchange ? exchange->ranks() : 1;
   const Timer t0;
   StageClock clock(report.stages);
   auto progress = [&](const char* stage, double f) {
     if (so.progress) so.progress(stage, f);
   };
   // Before the work: a .ply name, never the input (as saliency_file).
-  check_ply_output("simplify_file", output, input);
+  if (lead) check_ply_output("simplify_file", output, input);
+  const bool saliency_output = !ooc.saliency_output.empty();
+  if (lead && saliency_output) check_ply_output("simplify_file", ooc.saliency_output, input);
+  if (saliency_output && ooc.saliency_output == output)
+    throw Error("simplify_file: the saliency and the simplified mesh cannot both go to " + output);
 
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
   if (so.notice && !store.dir.note().empty()) so.notice(store.dir.note());
-  build_tile_store(store, input, so, weights ? ooc.memory_limit : 0, weights ? std::max(1u, so.tiles) : 1, progress);
+  const bool computes_s = weights || saliency_output;
+  share_tile_store(store, input, so, computes_s ? ooc.memory_limit : 0, computes_s ? std::max(1u, so.tiles) : 1,
+                   progress);
   clock.lap("tiling");
   report.saliency.vertices = store.vertices;
   report.saliency.points = store.points;
@@ -356,7 +377,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   mesh.vertices = store.vertices;
   for (int k = 0; k < 3; ++k) mesh.origin[k] = store.origin[k];
   mesh.triangles = store.dir.file("simplify_tri.u32");
-  const uint64_t faces = surface_triangles(store, mesh.triangles);
+  const uint64_t faces = share_rank0_value(exchange, lead ? surface_triangles(store, mesh.triangles) : 0);
   mesh.triangle_count = faces;
   if (faces > UINT32_MAX) throw Error(input + ": more than 4294967295 triangles");
   SimplifyReport& rep = report.simplify;
@@ -374,32 +395,50 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
 
   // The vertex state (position, S) and the weights, a block of vertices at a time.
   mesh.state = store.dir.file("state.f32");
-  if (weights) {
-    mesh.attribute_names = {"quality"};
+  if (weights) mesh.attribute_names = {"quality"};
+  if (weights || saliency_output) {
     tile_saliency(store, so, report.saliency);
     clock.lap("saliency");
   }
-  write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
+  if (lead && saliency_output) {
+    write_saliency_output(ooc.saliency_output, store, so, ooc, report.saliency, progress);
+    clock.lap("writing S");
+  }
+  if (lead) write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
   if (weights && !keep) {
-    report.alpha = write_weights(store, mesh, *weights);
+    if (lead) report.alpha = write_weights(store, mesh, *weights);
+    mesh.weights = store.dir.file("w.f64");
     clock.lap("weights");
   }
-  std::remove(store.dir.file("sm.f64").c_str());
-  report.tiles = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);
+  if (lead) std::remove(store.dir.file("sm.f64").c_str());
+  // The tiles from rank 0's histogram (0 there: it failed, and says why).
+  unsigned simplify_tile_count = 0;
+  std::string failure;
+  if (lead) try {
+      simplify_tile_count = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);
+    } catch (const Error& e) {
+      if (!exchange) throw;
+      failure = e.what();
+    }
+  report.tiles = unsigned(share_rank0_value(exchange, simplify_tile_count));
+  if (report.tiles == 0) throw Error(lead ? failure : "rank 0 could not tile the mesh");
 
   // The passes of simplify_mesh_tiled.
   PassTotals totals;
   if (!keep) {
     const size_t buffer = ooc.memory_limit ? size_t(ooc.memory_limit / 8) : size_t(64) << 20;
-    DiskPasses passes(mesh, options, buffer, totals, progress);
+    DiskPasses passes(mesh, opt, buffer, totals, progress);
     run_rounds(passes, store.box, report.tiles, target);
     clock.lap("simplifying");
   }
 
-  write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep);
-  clock.lap("writing");
+  if (lead) {
+    write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep);
+    clock.lap("writing");
+  }
   finish_report(rep, keep, faces, target, totals, store.box.diagonal());
   rep.seconds = t0.seconds();
+  tile_gather(exchange, {});  // every process done before rank 0's folder goes
   return report;
 }
 

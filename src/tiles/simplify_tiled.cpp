@@ -17,6 +17,7 @@
 #include "core/model_frame.h"
 #include "core/timer.h"
 #include "simplify/simplify.h"
+#include "tiles/pass_exchange.h"
 #include "tiles/tile_grid.h"
 #include "tiles/tile_pass.h"
 #include "tiles/tile_pieces.h"
@@ -58,29 +59,44 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
     }
     return w;
   };
-  // Each group's goal from the common error level (tile_pass.h), in every pass.
-  std::vector<std::vector<double>> levels;
+  // Each group's goal from the common error level (tile_pass.h), in every pass. With an
+  // exchange this process runs its share of the groups (pass_exchange.h) and gets the rest.
+  TileExchange* exchange = options.exchange;
+  std::vector<std::vector<double>> levels(groups.size());
+  std::vector<uint64_t> first_goals(groups.size(), 0);
   std::vector<size_t> sizes;
-  uint64_t goal_sum = 0, count = 0;
   for (size_t g = 0; g < groups.size(); ++g) {
+    sizes.push_back(groups[g].size());
+    if (!runs_group(exchange, g)) continue;
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
     const std::vector<double> w = weights_of(tile);
-    levels.push_back(collapse_levels(tile, weights ? &w : nullptr, options));
-    sizes.push_back(groups[g].size());
-    if (budget.rule == Targets::FirstPass) goal_sum += first_pass_goal(tile, budget.ratio);
-    count += levels.back().size();
+    levels[g] = collapse_levels(tile, weights ? &w : nullptr, options);
+    if (budget.rule == Targets::FirstPass) first_goals[g] = first_pass_goal(tile, budget.ratio);
   }
+  share_group_levels(exchange, levels);
+  share_group_values(exchange, first_goals);
+  uint64_t goal_sum = 0, count = 0;
+  for (size_t g = 0; g < groups.size(); ++g) goal_sum += first_goals[g], count += levels[g].size();
   const std::vector<size_t> goals =
       pass_goals(budget, sizes, goal_sum, count, [&](size_t g) { return levels[g]; });
   std::vector<std::vector<double>>().swap(levels);
-  std::vector<TilePiece> out;
+  std::vector<GroupOutcome> outcomes(groups.size());
+  PassTotals pass;
   for (size_t g = 0; g < groups.size(); ++g) {
+    if (!runs_group(exchange, g)) continue;
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
     const std::vector<double> w = weights_of(tile);
-    out.push_back(simplify_group(tile, weights ? &w : nullptr, options, goals[g], totals));
-    for (uint32_t id : freed_ids(tile)) pending[id] = 0;
+    outcomes[g].piece = simplify_group(tile, weights ? &w : nullptr, options, goals[g], pass);
+    outcomes[g].freed = freed_ids(tile);
+  }
+  share_group_outcomes(exchange, outcomes, pass, work.mesh.attributes.size());
+  add_totals(totals, pass);
+  std::vector<TilePiece> out;
+  for (GroupOutcome& o : outcomes) {
+    for (uint32_t id : o.freed) pending[id] = 0;
+    out.push_back(std::move(o.piece));
   }
   // The triangles no group took, as they are.
   std::vector<uint32_t> rest;

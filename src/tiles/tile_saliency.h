@@ -3,6 +3,7 @@
 // read back in the input's order: what saliency_file() writes and simplify_file() weighs.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,12 @@ namespace meshsal {
 // and reduces the per-scale scalars); each tile's results stay in its file. Fills
 // report's counts, pairs, saliency range and stages (from "cell counts" on).
 void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report);
+
+// What saliency_file() writes, from the store's tile results (tile_saliency above, with
+// report's range): the vertices a block at a time in the input's order, then the triangles.
+void write_saliency_output(const std::string& output, const TileStore& store, const SaliencyOptions& options,
+                           const OutOfCoreOptions& ooc, const OutOfCoreReport& report,
+                           const std::function<void(const char*, double)>& progress);
 
 // Tile t's results file.
 std::string tile_result_file(const TileStore& store, size_t t);

@@ -74,6 +74,14 @@ void build_tile_store(TileStore& store, const std::string& input, const Saliency
                       uint64_t memory_limit, unsigned tiles,
                       const std::function<void(const char*, double)>& progress);
 
+// build_tile_store under an exchange (options.exchange; none: build_tile_store itself):
+// rank 0 builds the store and the others take its description (its folder, counts, origin,
+// boxes and plan; not the histogram) and read its files, so the folder must be one they
+// all reach. An error on rank 0 is thrown on every rank.
+void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned tiles,
+                      const std::function<void(const char*, double)>& progress);
+
 // "123M": bytes as --memory-limit takes them, rounded up (the errors naming a limit).
 std::string mib_text(uint64_t bytes);
 

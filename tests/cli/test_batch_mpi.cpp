@@ -20,14 +20,12 @@ namespace {
 
 // mpirun ... SPEC, where SPEC is "-np N meshsal ARGS" (or MPMD parts joined by " : "), as
 // root too, more ranks than cores allowed; ended after 120 s (rc 124) should it hang.
-BatchRun run_mpi(const std::string& spec, const fs::path& dir) {
+BatchRun run_batch_mpi(const std::string& spec, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
   const std::string cmd = mpirun_command() + spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
 }
-
-std::string np(int n, const std::string& args) { return "-np " + std::to_string(n) + " " + MESHSAL_CLI + " " + args; }
 
 // make_batch_inputs' four (one broken) and two more: six models, so that 2 and 3 ranks
 // take several rounds.
@@ -76,7 +74,7 @@ TEST_CASE("batch mpi: 2 and 3 ranks compute each model once, outputs and log as 
   };
   for (const Case c : {Case{2, "on 2 ranks (computed: 2, 3)"}, Case{3, "on 3 ranks (computed: 2, 2, 1)"}}) {
     const fs::path out = dir / ("np" + std::to_string(c.ranks));
-    const BatchRun r = run_mpi(np(c.ranks, "batch " + in.string() + " -o " + out.string() + common), dir);
+    const BatchRun r = run_batch_mpi(np(c.ranks, "batch " + in.string() + " -o " + out.string() + common), dir);
     INFO(c.ranks << " ranks\nstdout: " << r.out << "\nstderr: " << r.err);
     CHECK(r.exit_code == 1);
     // One summary, from rank 0, counting every model once.
@@ -111,7 +109,7 @@ TEST_CASE("batch mpi: a rerun under mpirun skips what is done, as one process do
   const fs::path in = six_models(dir), out = dir / "out";
   const std::string common = " -o " + out.string() + " --backend cpu --threads 1";
   // A partial run: two of the six models, on 3 ranks (one rank has none).
-  BatchRun r = run_mpi(np(3, "batch " + (in / "ball.obj").string() + " " + (in / "cube.off").string() + common), dir);
+  BatchRun r = run_batch_mpi(np(3, "batch " + (in / "ball.obj").string() + " " + (in / "cube.off").string() + common), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("batch: 2 models: 2 computed, 0 skipped, 0 failed") != std::string::npos);
@@ -119,7 +117,7 @@ TEST_CASE("batch mpi: a rerun under mpirun skips what is done, as one process do
   REQUIRE(ball_time > 0);
 
   // All six on 2 ranks: the two done are skipped, the rest computed.
-  r = run_mpi(np(2, "batch " + in.string() + common), dir);
+  r = run_batch_mpi(np(2, "batch " + in.string() + common), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);
   CHECK(r.out.find("batch: 6 models: 3 computed, 2 skipped, 1 failed") != std::string::npos);
@@ -135,7 +133,7 @@ TEST_CASE("batch mpi: a rerun under mpirun skips what is done, as one process do
   }
 
   // Again on 3 ranks: nothing left but the broken model, which fails again.
-  r = run_mpi(np(3, "batch " + in.string() + common), dir);
+  r = run_batch_mpi(np(3, "batch " + in.string() + common), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);
   CHECK(r.out.find("batch: 6 models: 0 computed, 5 skipped, 1 failed") != std::string::npos);
@@ -151,7 +149,7 @@ TEST_CASE("batch mpi: a rank that fails ends every rank with its message and sta
   // Rank 1's output folder goes through a regular file: it cannot be made there, while
   // rank 0 goes on to the first collective. (mpirun A : B gives rank 1 its own command.)
   std::ofstream(dir / "a_file") << "not a folder\n";
-  BatchRun r = run_mpi(np(1, good) + " : " +
+  BatchRun r = run_batch_mpi(np(1, good) + " : " +
                            np(1, "batch " + in.string() + " -o " + (dir / "a_file" / "out").string()), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);  // the status of rank 1's error, not timeout's 124
@@ -159,13 +157,13 @@ TEST_CASE("batch mpi: a rank that fails ends every rank with its message and sta
   CHECK_FALSE(fs::exists(out / "batch.jsonl"));  // nothing computed or logged
 
   // A usage error on rank 1 only: status 2.
-  r = run_mpi(np(1, good) + " : " + np(1, "batch " + in.string() + " -o " + out.string() + " --scales x"), dir);
+  r = run_batch_mpi(np(1, good) + " : " + np(1, "batch " + in.string() + " -o " + out.string() + " --scales x"), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("meshsal (rank 1): error: --scales") != std::string::npos);
 
   // Ranks given other inputs would share out other models: every rank stops.
-  r = run_mpi(np(1, good) + " : " + np(1, "batch " + (in / "ball.obj").string() + " -o " + out.string()), dir);
+  r = run_batch_mpi(np(1, good) + " : " + np(1, "batch " + (in / "ball.obj").string() + " -o " + out.string()), dir);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("error: batch: rank 1 has other models to compute than rank 0") != std::string::npos);
@@ -177,7 +175,7 @@ TEST_CASE("batch mpi: ranks on one machine share its cores and the summary says 
   const fs::path dir = batch_scratch("mpi_threads");
   const fs::path in = six_models(dir);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const BatchRun r = run_mpi(np(2, "batch " + (in / "ball.obj").string() + " -o " + (dir / "out").string() +
+  const BatchRun r = run_batch_mpi(np(2, "batch " + (in / "ball.obj").string() + " -o " + (dir / "out").string() +
                                        " --backend cpu --json"), dir);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);

@@ -26,20 +26,6 @@ std::string file_bytes(const fs::path& p) {
   return ss.str();
 }
 
-// mpirun SPEC (as root too, more ranks than cores), ended after 120 s should it hang.
-CliRun run_mpi(const std::string& spec, const fs::path& dir) {
-  const fs::path out = dir / "mpi_stdout.txt", err = dir / "mpi_stderr.txt";
-  const std::string cmd = mpirun_command() + spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = file_bytes(out);
-  r.err = file_bytes(err);
-  return r;
-}
-
-std::string np(int n, const std::string& args) { return "-np " + std::to_string(n) + " " + cli_path() + " " + args; }
-
 }  // namespace
 
 TEST_CASE("mpirun saliency: 2 and 3 ranks write the single-process bytes", "[mpi][tiles]") {

@@ -2,8 +2,13 @@
 #pragma once
 #include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
+
+#include "cli_run.h"
 
 namespace meshsal_test {
 
@@ -28,6 +33,28 @@ inline std::string mpirun_command() {
   const std::string mpiexec = "mpirun";
 #endif
   return "timeout -k 5 120 " + mpiexec + " --allow-run-as-root --oversubscribe ";
+}
+
+// "-np N meshsal ARGS": one part of an mpirun command line.
+inline std::string np(int n, const std::string& args) { return "-np " + std::to_string(n) + " " + cli_path() + " " + args; }
+
+// mpirun SPEC (np() parts, joined by " : " for MPMD) with stdout and stderr kept (in
+// files under `dir`).
+inline CliRun run_mpi(const std::string& spec, const std::filesystem::path& dir) {
+  const std::filesystem::path out = dir / "mpi_stdout.txt", err = dir / "mpi_stderr.txt";
+  const std::string cmd = mpirun_command() + spec + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  auto bytes = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  CliRun r;
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = bytes(out);
+  r.err = bytes(err);
+  return r;
 }
 
 }  // namespace meshsal_test

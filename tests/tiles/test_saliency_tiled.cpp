@@ -10,8 +10,10 @@
 #include "saliency/saliency.h"
 #include "tiles/saliency_tiles.h"
 #include "test_util.h"
+#include "thread_exchange.h"
 
 using namespace meshsal;
+using namespace meshsal_test;
 
 namespace {
 
@@ -96,39 +98,6 @@ TilePlan plan_for(const Mesh& mesh, const SaliencyOptions& o, unsigned tiles) {
   for (uint8_t f : is_point) points += f;
   return make_tile_plan(mesh_points_bbox(mesh, is_point), points, o, tiles);
 }
-
-// N processes in threads, exchanging through memory: what MPI ranks do, without MPI.
-class ThreadExchange : public TileExchange {
- public:
-  struct Shared {
-    std::mutex m;
-    std::condition_variable cv;
-    int ranks = 0, arrived = 0;
-    uint64_t round = 0;
-    std::vector<std::vector<uint8_t>> slots, result;
-  };
-  ThreadExchange(Shared& s, int rank) : s_(s), rank_(rank) {}
-  int rank() const override { return rank_; }
-  int ranks() const override { return s_.ranks; }
-  std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) override {
-    std::unique_lock<std::mutex> lock(s_.m);
-    const uint64_t round = s_.round;
-    s_.slots[rank_] = mine;
-    if (++s_.arrived == s_.ranks) {
-      s_.result = s_.slots;
-      s_.arrived = 0;
-      s_.round++;
-      s_.cv.notify_all();
-    } else {
-      s_.cv.wait(lock, [&] { return s_.round != round; });
-    }
-    return s_.result;
-  }
-
- private:
-  Shared& s_;
-  int rank_;
-};
 
 }  // namespace
 

@@ -1,0 +1,84 @@
+// share_tile_store (tile_store.h): rank 0 builds the store, the others adopt its
+// description and read the same files.
+#include <string>
+#include <vector>
+
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
+#include "tiles/tile_store.h"
+
+namespace meshsal {
+
+namespace {
+
+// The store's description, from rank 0 to the others (they read the same files).
+TileBytes describe(const TileStore& s) {
+  TileBytes b;
+  std::vector<uint8_t> dir(s.dir.path().begin(), s.dir.path().end());
+  b.put(dir);
+  b.put(s.vertices);
+  b.put(s.triangles);
+  b.put(s.points);
+  b.put(uint8_t(s.double_positions));
+  for (double o : s.origin) b.put(o);
+  b.put(s.largest_tile_estimate);
+  b.put(uint64_t(s.block));
+  b.put(s.plan.tile_edge);
+  for (int a = 0; a < 3; ++a) b.put(s.plan.box.min[a]), b.put(s.plan.box.max[a]), b.put(s.plan.tiles[a]);
+  b.put(s.plan.query_margin);
+  b.put(s.plan.source_margin);
+  b.put(s.plan.eps);
+  for (int a = 0; a < 3; ++a) b.put(s.box.min[a]), b.put(s.box.max[a]);
+  return b;
+}
+
+void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOptions& options) {
+  TileBytesReader in{bytes};
+  const std::vector<uint8_t> dir = in.get_vector<uint8_t>();
+  s.dir.borrow(std::string(dir.begin(), dir.end()));
+  s.vertices = in.get<uint64_t>();
+  s.triangles = in.get<uint64_t>();
+  s.points = in.get<uint64_t>();
+  s.double_positions = in.get<uint8_t>() != 0;
+  for (double& o : s.origin) o = in.get<double>();
+  s.largest_tile_estimate = in.get<uint64_t>();
+  s.block = size_t(in.get<uint64_t>());
+  const double edge = in.get<double>();
+  BoundingBox box;
+  int tiles[3];
+  for (int a = 0; a < 3; ++a) box.min[a] = in.get<double>(), box.max[a] = in.get<double>(), tiles[a] = in.get<int>();
+  s.plan = make_tile_plan(box, s.points, options, 1);
+  s.plan.tile_edge = edge;
+  for (int a = 0; a < 3; ++a) s.plan.tiles[a] = tiles[a];
+  s.plan.query_margin = in.get<double>();
+  s.plan.source_margin = in.get<double>();
+  s.plan.eps = in.get<double>();
+  for (int a = 0; a < 3; ++a) s.box.min[a] = in.get<double>(), s.box.max[a] = in.get<double>();
+}
+
+}  // namespace
+
+void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
+                      unsigned tiles, const std::function<void(const char*, double)>& progress) {
+  TileExchange* exchange = options.exchange;
+  const int rank = exchange ? exchange->rank() : 0;
+  TileBytes mine;
+  std::string failure;
+  if (rank == 0) {
+    try {
+      build_tile_store(store, input, options, memory_limit, tiles, progress);
+      mine = describe(store);
+    } catch (const Error& e) {
+      if (!exchange) throw;
+      failure = e.what();
+    }
+  }
+  const auto all = tile_gather(exchange, mine.data);
+  if (all[0].empty()) {
+    if (rank == 0) throw Error(failure);
+    throw Error("rank 0 could not read the input");
+  }
+  if (rank != 0) adopt(store, all[0], options);
+}
+
+}  // namespace meshsal
