@@ -1,5 +1,5 @@
 #!/bin/bash
-# The tiles benchmark (issue 23, README "Beyond one machine"): saliency (fast method) of
+# The tiles benchmark (issues 23 and 41, README "Beyond one machine"): saliency (fast method) of
 # igea_loop2 midpoint-subdivided once (8.6M vertices, a temporary binary PLY) in memory,
 # with --memory-limit 700M, and under mpirun -np 2 and -np 4 with the same limit per rank:
 # whole-process wall time and peak resident memory (the largest over the ranks), the
@@ -62,4 +62,12 @@ TILES=$(python3 -c "import json; print(json.load(open('$WORK/simplify-700M.json'
 simplify_run simplify-tiles "$MESHSAL" simplify "$PLY" -o "$WORK/s_tiles.ply" --ratio 0.1 --weights none \
   --tiles "$TILES"
 cmp "$WORK/s_tiles.ply" "$WORK/s_limit.ply" && echo "simplify-700M: the bytes of --tiles $TILES in memory"
+# The passes' groups shared over 2 ranks (issue 41), in memory and out of core: the bytes of
+# one process with the same tiles.
+simplify_run simplify-np2-tiles $MPIRUN -np 2 "$MESHSAL" simplify "$PLY" -o "$WORK/s_np2_tiles.ply" --ratio 0.1 \
+  --weights none --tiles "$TILES"
+cmp "$WORK/s_tiles.ply" "$WORK/s_np2_tiles.ply" && echo "simplify-np2-tiles: the bytes of one process"
+simplify_run simplify-np2-700M $MPIRUN -np 2 "$MESHSAL" simplify "$PLY" -o "$WORK/s_np2_limit.ply" --ratio 0.1 \
+  --weights none --memory-limit 700M
+cmp "$WORK/s_limit.ply" "$WORK/s_np2_limit.ply" && echo "simplify-np2-700M: the bytes of one process"
 simplify_run simplify-whole "$MESHSAL" simplify "$PLY" -o "$WORK/s_whole.ply" --ratio 0.1 --weights none

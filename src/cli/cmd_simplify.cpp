@@ -255,7 +255,7 @@ RunFn setup(CLI::App& sub) {
   sub.add_option("--tiles", a->tiles,
                  "Simplify by N cubic tiles along the longest axis (1 = the whole mesh at once): each tile alone\n"
                  "with its cut pinned, then strips along the cuts; no cracks, no new border; faces\n"
-                 "at or just above the target (more with tiles only a few output triangles wide). Takes\n"
+                 "at or just above the target (rounds with few output faces take fewer tiles). Takes\n"
                  "--target-faces or --ratio (not --target-error), not an OBJ split at UV seams")
       ->check(whole_in(1, 1024));
   add_memory_options(sub, a->text,
