@@ -62,6 +62,8 @@ struct OutOfCoreReport {
   uint64_t pairs = 0;             // the sweeps' pairs over every tile (halos included)
   uint64_t tile_estimate = 0;     // bytes: the largest tile's estimated peak
   double saliency_min = 0, saliency_max = 0, saliency_mean = 0;  // over the mesh points
+  // Their nearest-rank percentiles, as saliency_stats gives them (rank 0's report).
+  double saliency_p10 = 0, saliency_p50 = 0, saliency_p90 = 0, saliency_p99 = 0;
   std::vector<StageTime> stages;
 };
 
@@ -95,10 +97,11 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
 // simplify_mesh; each pass starts its quadrics afresh from the surface the last one left.
 // Attributes and materials are carried; vertex_origin maps to input vertices, output
 // vertices follow their input order. The face count lands at or above the target
-// (report.note when above): within 1% unless the tiles are small against the output's
-// triangles. The RMS error stays near simplify_mesh's while a tile holds many output
-// triangles and grows when tiles are only a few output triangles wide; it takes several
-// times simplify_mesh's time (measured: the README's --tiles table; docs/benchmarks.md).
+// (report.note when above), within 1% where measured. A round whose goal would leave a
+// tile fewer than about 1000 output faces takes fewer tiles, so a small target's last
+// rounds run in a few large tiles. The RMS error stays near simplify_mesh's (measured
+// 0.74-0.86x on igea_134k and bunny_36k at 10% and 1% with 2-8 tiles); it takes 1.5-6x
+// simplify_mesh's time (the README's --tiles table; docs/benchmarks.md).
 // report.error: the largest collapse error, in units of the whole mesh's diagonal; no
 // collapse sequence. tiles 0 or 1, or a target at or above
 // the face count: simplify_mesh itself. Throws Error as simplify_mesh does, and for tiles >

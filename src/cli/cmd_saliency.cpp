@@ -40,15 +40,25 @@ void begin_work(const Args& a) {
                     printable(a.input) + " -o " + printable(a.output));
 }
 
-void print_out_of_core(const Args& a, const meshsal::OutOfCoreReport& r, uint64_t limit, uint64_t peak) {
+void print_out_of_core(const Args& a, const meshsal::OutOfCoreReport& r, meshsal::Method method, uint64_t limit,
+                       uint64_t peak) {
   std::printf("vertices   %llu (%llu on triangles)\n", (unsigned long long)r.vertices, (unsigned long long)r.points);
   std::printf("faces      %llu triangles\n", (unsigned long long)r.triangles);
   std::printf("eps        %.6g\n", r.eps);
   std::printf("tiles      %zu (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)%s\n", r.tiles,
               r.tile_estimate / 1048576.0, peak / 1048576.0, limit / 1048576.0,
               r.ranks > 1 ? (", shared by " + std::to_string(r.ranks) + " ranks").c_str() : "");
-  for (const meshsal::StageTime& s : r.stages) std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);
-  std::printf("S          min %g, mean %g, max %g\n", r.saliency_min, r.saliency_mean, r.saliency_max);
+  std::printf("method     %s\n", method == meshsal::Method::Exact
+                                       ? "exact"
+                                       : "fast (cell aggregates; error against exact: docs/method.md)");
+  double total = 0;
+  for (const meshsal::StageTime& s : r.stages) {
+    std::printf("%-10s %8.3f s\n", s.name.c_str(), s.seconds);
+    total += s.seconds;
+  }
+  std::printf("total      %8.3f s, %.3g neighbour pairs (halos included)\n", total, double(r.pairs));
+  std::printf("S          min %g, mean %g, max %g; percentiles 10: %g, 50: %g, 90: %g, 99: %g\n", r.saliency_min,
+              r.saliency_mean, r.saliency_max, r.saliency_p10, r.saliency_p50, r.saliency_p90, r.saliency_p99);
   std::printf("wrote      %s\n", printable(a.output).c_str());
 }
 
@@ -79,7 +89,8 @@ int run(Args a) {
           .count("threads_per_rank", resolve_threads(r.saliency.threads))
           .print();
     else if (!a.text.quiet)
-      print_out_of_core(a, result.out_of_core, r.out_of_core.memory_limit, peak);
+      print_out_of_core(a, result.out_of_core, r.saliency.method == Method::Exact ? Method::Exact : Method::Fast,
+                        r.out_of_core.memory_limit, peak);
     return 0;
   }
   if (a.text.json) {

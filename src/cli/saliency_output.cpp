@@ -52,7 +52,9 @@ JsonObject out_of_core_json(const std::string& input, const std::string& output,
     stages.number(key, s.seconds);
   }
   JsonObject stats;
-  stats.number("min", r.saliency_min).number("mean", r.saliency_mean).number("max", r.saliency_max);
+  stats.number("min", r.saliency_min).number("mean", r.saliency_mean).number("max", r.saliency_max)
+      .number("p10", r.saliency_p10).number("p50", r.saliency_p50).number("p90", r.saliency_p90)
+      .number("p99", r.saliency_p99);
   JsonObject j;
   j.text("mesh", input).text("output", output).count("vertices", r.vertices).count("points", r.points)
       .count("faces", r.triangles).number("eps", r.eps).text("device", "cpu")

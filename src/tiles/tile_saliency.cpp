@@ -1,6 +1,8 @@
 // tile_saliency(): the phases of saliency_tiles.h over a TileStore, see tile_saliency.h.
 #include "tiles/tile_saliency.h"
 
+#include "core/streamed_percentile.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -121,16 +123,21 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
   clock.lap("suppression");
 
-  // Phase 3: each tile's results to disk; the saliency's range for the colours.
+  // Phase 3: each tile's results to disk; the saliency's range for the colours; S of the
+  // own points to a file per rank, for its percentiles.
   double lo = INFINITY, hi = -INFINITY, sum = 0;
+  auto s_file = [&](int r) { return store.dir.file("s_rank" + std::to_string(r) + ".f64"); };
+  ScratchWriter s_out(s_file(rank));
   for (size_t i = 0; i < mine.size(); ++i) {
     progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
     const std::string raw_path = raw_file(mine[i]);
     const TileResult r = tile_finish(load_raw(raw_path), plan, max, mbar);
     std::remove(raw_path.c_str());
     for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
+    s_out.write_vector(r.saliency);
     save_result(tile_result_file(store, mine[i]), r);
   }
+  s_out.close();
   {
     TileBytes b;
     b.put(lo);
@@ -147,6 +154,28 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   report.saliency_min = lo;
   report.saliency_max = hi;
   report.saliency_mean = store.points ? sum / double(store.points) : 0;
+  // The percentiles saliency_stats gives (nearest rank), streamed from every rank's file by
+  // rank 0, which reports (the gather above: the files are complete).
+  if (rank == 0 && store.points > 0) {
+    const ValueStream all = [&](const std::function<void(double)>& take) {
+      std::vector<double> buf(1 << 16);
+      for (int r = 0; r < ranks; ++r) {
+        ScratchReader in(s_file(r));
+        for (size_t got; (got = in.read(buf.data(), buf.size() * 8) / 8) > 0;)
+          for (size_t i = 0; i < got; ++i) take(buf[i]);
+      }
+    };
+    auto at = [&](double p) {
+      const uint64_t k = uint64_t(std::ceil(p / 100.0 * double(store.points)));
+      return streamed_kth(all, std::min(store.points - 1, k == 0 ? 0 : k - 1));
+    };
+    report.saliency_p10 = at(10);
+    report.saliency_p50 = at(50);
+    report.saliency_p90 = at(90);
+    report.saliency_p99 = at(99);
+  }
+  tile_gather(exchange, {});  // rank 0 has read every file
+  std::remove(s_file(rank).c_str());
   clock.lap("saliency");
 
 }

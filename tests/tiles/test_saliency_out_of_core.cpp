@@ -57,6 +57,14 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
         CHECK(rep.vertices == loaded.vertex_count());
         CHECK(rep.triangles == loaded.triangle_count());
         CHECK(rep.eps == r.eps);
+        // The summary's statistics: saliency_stats' nearest-rank percentiles, streamed.
+        const SaliencyStats st = saliency_stats(r);
+        const double tol = method == Method::Exact ? 0 : 1e-6 * st.max;
+        CHECK(std::fabs(rep.saliency_p10 - st.p10) <= tol);
+        CHECK(std::fabs(rep.saliency_p50 - st.p50) <= tol);
+        CHECK(std::fabs(rep.saliency_p90 - st.p90) <= tol);
+        CHECK(std::fabs(rep.saliency_p99 - st.p99) <= tol);
+        CHECK(rep.saliency_p10 < rep.saliency_p99);
         if (method == Method::Exact) {
           CHECK(file_bytes(dir / "tiled.ply") == file_bytes(dir / "whole.ply"));
         } else {
@@ -264,7 +272,13 @@ TEST_CASE("out of core: batch --memory-limit --simplify writes what simplify --m
                                dir);
     REQUIRE(one.rc == 0);
     CHECK(file_bytes(alone) == file_bytes(dir / "b" / (std::string(name) + "_simplified.ply")));
-    CHECK(file_bytes(dir / "b" / (std::string(name) + "_saliency.ply")).size() > 0);
+    // Its saliency file came from the simplifier's tiles (S once): saliency --memory-limit's bytes.
+    const std::string s_alone = (dir / (std::string(name) + "_s.ply")).string();
+    const CliRun s = run_cli("saliency " + quoted((dir / "in" / (std::string(name) + ".ply")).string()) + " -o " +
+                                 quoted(s_alone) + " -q" + common,
+                             dir);
+    REQUIRE(s.rc == 0);
+    CHECK(file_bytes(s_alone) == file_bytes(dir / "b" / (std::string(name) + "_saliency.ply")));
   }
   // A rerun finds both up to date; the log names the simplified files.
   const CliRun again = run_cli("batch " + in + " -o " + quoted((dir / "b").string()) + " --simplify 0.1" + common, dir);
