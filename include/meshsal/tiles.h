@@ -35,6 +35,15 @@ class TileExchange {
   // Called by every process in the same order; returns every process's bytes, in rank
   // order (its own included). Throws Error when the transport fails.
   virtual std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) = 0;
+  // Called by every process in the same order: process `root` gets every process's bytes, in
+  // rank order, the others an empty list (the local maxima behind mbar: only one process
+  // need hold them all). This default all-gathers; a transport with a rooted gather (MPI's
+  // Gatherv) spares the others the memory.
+  virtual std::vector<std::vector<uint8_t>> gather(const std::vector<uint8_t>& mine, int root) {
+    std::vector<std::vector<uint8_t>> all = all_gather(mine);
+    if (rank() != root) all.clear();
+    return all;
+  }
 };
 
 // ------------------------------------------------------------------------------------------

@@ -16,6 +16,10 @@ std::vector<std::vector<uint8_t>> MpiTileExchange::all_gather(const std::vector<
   return meshsal::cli::mpi_all_gather(mine);
 }
 
+std::vector<std::vector<uint8_t>> MpiTileExchange::gather(const std::vector<uint8_t>& mine, int root) {
+  return meshsal::cli::mpi_gather(mine, root);
+}
+
 void begin_shared_work(const std::string& arguments, const std::string& this_run) {
   if (!mpi_world().active) return;
   mpi_begin_work();

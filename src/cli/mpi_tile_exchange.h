@@ -14,6 +14,7 @@ class MpiTileExchange : public meshsal::TileExchange {
   int rank() const override;
   int ranks() const override;
   std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) override;
+  std::vector<std::vector<uint8_t>> gather(const std::vector<uint8_t>& mine, int root) override;
 };
 
 // Under mpirun, once this rank has read its input: the ranks meet (mpi_begin_work: one

@@ -165,6 +165,39 @@ std::vector<std::vector<uint8_t>> mpi_all_gather(const std::vector<uint8_t>& min
   return {mine};
 }
 
+std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine, int root) {
+#if MESHSAL_WITH_MPI
+  if (world().active) {
+    const int n = world().size;
+    // Every rank learns the sizes (so every rank throws alike past 2 GiB); only the root the
+    // bytes.
+    const unsigned long long my_size = mine.size();
+    std::vector<unsigned long long> sizes(static_cast<size_t>(n), 0);
+    MPI_Allgather(&my_size, 1, MPI_UNSIGNED_LONG_LONG, sizes.data(), 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
+    std::vector<int> counts(static_cast<size_t>(n)), offsets(static_cast<size_t>(n));
+    unsigned long long total = 0;
+    for (int r = 0; r < n; ++r) {
+      offsets[size_t(r)] = int(total);
+      counts[size_t(r)] = int(sizes[size_t(r)]);
+      total += sizes[size_t(r)];
+      if (total > (unsigned long long)INT_MAX)
+        throw std::runtime_error("mpi_gather: more than 2 GiB from all ranks together");
+    }
+    const bool is_root = world().rank == root;
+    std::vector<uint8_t> all(is_root ? size_t(total) + 1 : 1);
+    MPI_Gatherv(mine.data(), int(my_size), MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root,
+                MPI_COMM_WORLD);
+    std::vector<std::vector<uint8_t>> out;
+    if (is_root)
+      for (int r = 0; r < n; ++r)
+        out.emplace_back(all.begin() + offsets[size_t(r)], all.begin() + offsets[size_t(r)] + counts[size_t(r)]);
+    return out;
+  }
+#endif
+  (void)root;
+  return {mine};
+}
+
 void mpi_barrier() {
 #if MESHSAL_WITH_MPI
   if (world().active) MPI_Barrier(MPI_COMM_WORLD);

@@ -62,6 +62,10 @@ RanksStopped mpi_stop_before_work(int status, const std::string& line);
 // all). Not active: {mine}.
 std::vector<std::vector<uint8_t>> mpi_all_gather(const std::vector<uint8_t>& mine);
 
+// Every rank passes its bytes; rank `root` receives every rank's, in rank order, the others
+// nothing (at most 2 GiB in all). Not active: {mine}.
+std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine, int root);
+
 // Waits for every rank. Not active: nothing.
 void mpi_barrier();
 

@@ -38,19 +38,29 @@ void reduce_scale_max(TileExchange* exchange, std::vector<ScaleMax>& max, uint64
 
 std::vector<double> reduce_mbar(TileExchange* exchange, std::vector<std::vector<LocalMax>> mine,
                                 const std::vector<ScaleMax>& max) {
+  // Rank 0 alone receives every process's local maxima and sums them in vertex order (the
+  // sum one process makes); the others get the sums.
   TileBytes b;
   for (const auto& m : mine) b.put(m);
   for (auto& m : mine) std::vector<LocalMax>().swap(m);
-  for (const auto& bytes : tile_gather(exchange, b.data)) {
-    TileBytesReader in{bytes};
-    for (auto& m : mine) {
-      const std::vector<LocalMax> part = in.get_vector<LocalMax>();
-      m.insert(m.end(), part.begin(), part.end());
-    }
-  }
+  const std::vector<std::vector<uint8_t>> parts = exchange ? exchange->gather(b.data, 0) : std::vector<std::vector<uint8_t>>{b.data};
+  b = TileBytes{};
   std::vector<double> mbar(mine.size(), 0.0);
-  for (size_t k = 0; k < mine.size(); ++k) mbar[k] = mbar_of(std::move(mine[k]), max[k]);
-  return mbar;
+  if (!parts.empty()) {
+    for (const auto& bytes : parts) {
+      TileBytesReader in{bytes};
+      for (auto& m : mine) {
+        const std::vector<LocalMax> part = in.get_vector<LocalMax>();
+        m.insert(m.end(), part.begin(), part.end());
+      }
+    }
+    for (size_t k = 0; k < mine.size(); ++k) mbar[k] = mbar_of(std::move(mine[k]), max[k]);
+    b.put(mbar);
+  }
+  if (!exchange) return mbar;
+  const std::vector<double> shared = TileBytesReader{tile_gather(exchange, b.data)[0]}.get_vector<double>();
+  if (shared.size() != mbar.size()) throw Error("tiled saliency: the processes disagree on the scales");
+  return shared;
 }
 
 }  // namespace meshsal

@@ -20,7 +20,8 @@ std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vect
 // of their pairs.
 void reduce_scale_max(TileExchange* exchange, std::vector<ScaleMax>& max, uint64_t& pairs);
 
-// Phase 2: each scale's mbar from every process's local maxima (`mine[scale]`).
+// Phase 2: each scale's mbar from every process's local maxima (`mine[scale]`): gathered
+// on rank 0 alone (TileExchange::gather), which sums them and hands out the sums.
 std::vector<double> reduce_mbar(TileExchange* exchange, std::vector<std::vector<LocalMax>> mine,
                                 const std::vector<ScaleMax>& max);
 
