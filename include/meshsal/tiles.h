@@ -58,8 +58,10 @@ struct OutOfCoreOptions {
   uint64_t memory_limit = 0;
   std::string temp_dir;      // where the tiles go ("" = $TMPDIR or /tmp); removed at the end
   bool dump_scales = false;  // also write curvature and saliency_raw_i (as write_saliency_ply)
-  // simplify_file only: also write the saliency mesh here, the bytes saliency_file() writes
-  // (dump_scales too), from the tiles that weigh the simplification: S computed once.
+  // simplify_file only: also write the saliency mesh here as saliency_file() writes it
+  // (dump_scales too), from the tiles that weigh the simplification: S computed once. The
+  // same bytes with the exact method; the fast method's S is the same to its last bit where
+  // both pick the same tiles (the smoothing's wider halo may take more).
   std::string saliency_output;
 };
 
