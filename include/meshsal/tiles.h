@@ -26,7 +26,10 @@ namespace meshsal {
 // result. Tiled simplification shares its passes' groups the same way
 // (SimplifyOptions::exchange). Out of core (saliency_file, simplify_file) rank 0 builds
 // the tiles on disk and the others read them: the temporary folder must be one they all
-// reach. The library holds no MPI: the caller implements this over its transport.
+// reach. The library holds no MPI: the caller implements this over its transport. A step
+// only rank 0 runs (reading the input, writing files) tells every process when it fails, so
+// all throw its Error; an error that one process alone meets elsewhere leaves the others
+// waiting in their next collective unless the transport ends them (the CLI's MPI_Abort).
 class TileExchange {
  public:
   virtual ~TileExchange() = default;

@@ -41,7 +41,9 @@ struct Args {
 void begin_work(const Args& a) {
   const RequestText& t = a.text;
   begin_shared_work(a.input + "\n" + a.output + "\n" + std::to_string(a.target_faces) + "\n" + std::to_string(a.ratio) +
-                        "\n" + std::to_string(a.tiles) + "\n" + t.memory_limit + "\n" + t.weights + "\n" + t.method +
+                        "\n" + std::to_string(a.tiles) + "\n" + std::to_string(a.lock_border) + "\n" +
+                        t.memory_limit + "\n" + t.weights + "\n" + std::to_string(t.lambda) + "\n" +
+                        std::to_string(t.alpha_percentile) + "\n" + std::to_string(t.weight_floor) + "\n" + t.method +
                         "\n" + t.scales + "\n" + std::to_string(t.eps_frac) + "\n" + t.saliency_from,
                     printable(a.input) + " -o " + printable(a.output));
 }
@@ -202,7 +204,9 @@ int run(Args a) {
   if (mpi_world().active) {
     r.simplify.exchange = &exchange;
     r.saliency.exchange = &exchange;
-    if (r.simplify.tiles == 0 && a.text.memory_limit.empty()) r.simplify.tiles = default_mpi_tiles(mpi_world().size);
+    // (Out of core: at least that many, so every rank has groups even where the limit
+    // would take fewer.)
+    if (r.simplify.tiles == 0) r.simplify.tiles = default_mpi_tiles(mpi_world().size);
   }
   // After each rank read the input: one that cannot stops every rank alike.
   r.on_read = [&a] { begin_work(a); };

@@ -352,7 +352,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   TileExchange* exchange = options.exchange;
   const bool lead = !exchange || exchange->rank() == 0;
   Buckets buckets(mesh, ++mesh.passes, buffer_bytes, lead);
-  if (lead) fill_buckets(mesh, pass, buckets);
+  lead_step(exchange, [&] { fill_buckets(mesh, pass, buckets); });
   buckets.share(exchange);
   const std::vector<uint64_t> groups = buckets.groups();
   const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, options, progress);
@@ -396,16 +396,16 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     f.close();
   }
   add_totals(totals, share_totals(exchange, mine));  // (shared: every group's file is complete)
-  if (exchange && lead)
-    for (size_t g = 0; g < groups.size(); ++g) {
-      const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
-      TileBytesReader in{bytes};
-      const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
-      const std::vector<uint8_t> records = in.get_vector<uint8_t>();
-      append(triangles, records, in.get_vector<uint32_t>());
-      std::remove(group_file(g).c_str());
-    }
-  if (lead) {
+  lead_step(exchange, [&] {
+    if (exchange)
+      for (size_t g = 0; g < groups.size(); ++g) {
+        const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
+        TileBytesReader in{bytes};
+        const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
+        const std::vector<uint8_t> records = in.get_vector<uint8_t>();
+        append(triangles, records, in.get_vector<uint32_t>());
+        std::remove(group_file(g).c_str());
+      }
     if (pass.selected_near)
       for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
         for (size_t i = 0; i < t.size(); i += 3)
@@ -420,7 +420,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     std::remove(moves.c_str());
     if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)
       throw Error(mesh.triangles + ": cannot replace a temporary file");
-  }
+  });
   // The lead's count; once the others have it, its files are the next pass's input.
   mesh.triangle_count = share_rank0_value(exchange, out_count);
   if (progress) progress(1.0);

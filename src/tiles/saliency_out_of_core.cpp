@@ -127,7 +127,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   };
   // Before the work: a .ply name (PLY bytes in a .obj would mislead), never the input
   // (through a link either: the rename would replace it).
-  if (rank == 0) check_ply_output("saliency_file", output, input);
+  lead_step(exchange, [&] { check_ply_output("saliency_file", output, input); });
 
   TileStore store(ooc.temp_dir);
   if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
@@ -135,10 +135,8 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   clock.lap("tiling");
   tile_saliency(store, options, report);  // laps its own stages
   clock.resume();
-  if (rank == 0) {
-    write_saliency_output(output, store, options, ooc, report, progress);
-    clock.lap("writing");
-  }
+  lead_step(exchange, [&] { write_saliency_output(output, store, options, ooc, report, progress); });
+  if (rank == 0) clock.lap("writing");
   // Every rank done before rank 0's store (and its folder) goes.
   tile_gather(exchange, {});
   return report;

@@ -194,7 +194,8 @@ class DiskPasses final : public TilePasses {
   bool strip_pass(const TileGrid& grid, const PassBudget& budget) override {
     // (Shared: rank 0 keeps the pending vertices and selects the strips.)
     TileExchange* exchange = options_.exchange;
-    const uint64_t selected = !exchange || exchange->rank() == 0 ? strip_vertices(mesh_, pending_, near1_, near2_) : 0;
+    uint64_t selected = 0;
+    lead_step(exchange, [&] { selected = strip_vertices(mesh_, pending_, near1_, near2_); });
     if (share_rank0_value(exchange, selected) == 0) return false;
     DiskPass pass{grid, budget};
     pass.selected_near = &near1_;
@@ -215,7 +216,7 @@ class DiskPasses final : public TilePasses {
 // The saliency options of simplify_file: S and its smoothed map, the fast method where
 // Auto; refuses what out of core cannot do.
 SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWeightOptions* weights,
-                                const SaliencyOptions& saliency_options, unsigned tiles) {
+                                const SaliencyOptions& saliency_options, unsigned tiles, bool computes_s) {
   if (options.target_error > 0)
     throw Error("simplify: out of core takes a face target (target_faces or ratio), not target_error");
   if (options.record_collapses) throw Error("simplify: out of core does not record the collapses");
@@ -230,6 +231,8 @@ SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWe
     if (weights->curve == WeightCurve::Rank)
       throw Error("simplify: the rank curve needs every point's rank at once: out of core takes the threshold and "
                   "continuous curves");
+  }
+  if (computes_s) {
     check_saliency_options(so);
     if (so.model != Model::Lee2005)
       throw Error(std::string("model ") + model_name(so.model) +
@@ -340,7 +343,9 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   const CancelScope cancel(options.cancel ? options.cancel : saliency_options.cancel);
   const SaliencyWeightOptions* weights = weight_options ? &*weight_options : nullptr;  // null once unused
   const unsigned tiles = std::max(1u, options.tiles);
-  SaliencyOptions so = checked_options(options, weights, saliency_options, tiles);
+  const bool saliency_output = !ooc.saliency_output.empty();
+  const bool computes_s = weights || saliency_output;  // (a target that keeps the mesh: S for the file alone)
+  SaliencyOptions so = checked_options(options, weights, saliency_options, tiles, computes_s);
   // Shared by processes (SimplifyOptions::exchange): the saliency's tiles and the passes'
   // groups over them all; rank 0, the lead, builds the store, writes the files between the
   // steps and the output, in the one folder they all reach.
@@ -356,16 +361,16 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     if (so.progress) so.progress(stage, f);
   };
   // Before the work: a .ply name, never the input (as saliency_file).
-  if (lead) check_ply_output("simplify_file", output, input);
-  const bool saliency_output = !ooc.saliency_output.empty();
-  if (lead && saliency_output) check_ply_output("simplify_file", ooc.saliency_output, input);
   if (saliency_output && ooc.saliency_output == output)
     throw Error("simplify_file: the saliency and the simplified mesh cannot both go to " + output);
+  lead_step(exchange, [&] {
+    check_ply_output("simplify_file", output, input);
+    if (saliency_output) check_ply_output("simplify_file", ooc.saliency_output, input);
+  });
 
   // The input on disk; with weights its tiles fit the limit for the saliency too.
   TileStore store(ooc.temp_dir);
   if (so.notice && !store.dir.note().empty()) so.notice(store.dir.note());
-  const bool computes_s = weights || saliency_output;
   share_tile_store(store, input, so, computes_s ? ooc.memory_limit : 0, computes_s ? std::max(1u, so.tiles) : 1,
                    progress);
   clock.lap("tiling");
@@ -377,7 +382,9 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   mesh.vertices = store.vertices;
   for (int k = 0; k < 3; ++k) mesh.origin[k] = store.origin[k];
   mesh.triangles = store.dir.file("simplify_tri.u32");
-  const uint64_t faces = share_rank0_value(exchange, lead ? surface_triangles(store, mesh.triangles) : 0);
+  uint64_t faces = 0;
+  lead_step(exchange, [&] { faces = surface_triangles(store, mesh.triangles); });
+  faces = share_rank0_value(exchange, faces);
   mesh.triangle_count = faces;
   if (faces > UINT32_MAX) throw Error(input + ": more than 4294967295 triangles");
   SimplifyReport& rep = report.simplify;
@@ -400,28 +407,21 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     tile_saliency(store, so, report.saliency);
     clock.lap("saliency");
   }
-  if (lead && saliency_output) {
-    write_saliency_output(ooc.saliency_output, store, so, ooc, report.saliency, progress);
+  if (saliency_output) {
+    lead_step(exchange, [&] { write_saliency_output(ooc.saliency_output, store, so, ooc, report.saliency, progress); });
     clock.lap("writing S");
   }
-  if (lead) write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
-  if (weights && !keep) {
-    if (lead) report.alpha = write_weights(store, mesh, *weights);
-    mesh.weights = store.dir.file("w.f64");
-    clock.lap("weights");
-  }
-  if (lead) std::remove(store.dir.file("sm.f64").c_str());
-  // The tiles from rank 0's histogram (0 there: it failed, and says why).
+  // Rank 0 writes the state and the weights and picks the tiles from its histogram.
+  if (weights && !keep) mesh.weights = store.dir.file("w.f64");
   unsigned simplify_tile_count = 0;
-  std::string failure;
-  if (lead) try {
-      simplify_tile_count = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);
-    } catch (const Error& e) {
-      if (!exchange) throw;
-      failure = e.what();
-    }
+  lead_step(exchange, [&] {
+    write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
+    if (weights && !keep) report.alpha = write_weights(store, mesh, *weights);
+    std::remove(store.dir.file("sm.f64").c_str());
+    simplify_tile_count = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);
+  });
+  if (weights && !keep) clock.lap("weights");
   report.tiles = unsigned(share_rank0_value(exchange, simplify_tile_count));
-  if (report.tiles == 0) throw Error(lead ? failure : "rank 0 could not tile the mesh");
 
   // The passes of simplify_mesh_tiled.
   PassTotals totals;
@@ -432,10 +432,11 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     clock.lap("simplifying");
   }
 
-  if (lead) {
-    write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep);
-    clock.lap("writing");
-  }
+  lead_step(exchange, [&] { write_output(output, store, mesh, keep, [&](double f) { progress("writing", f); }, rep); });
+  if (lead) clock.lap("writing");
+  // (Every process's report says what rank 0 wrote.)
+  rep.output_faces = size_t(share_rank0_value(exchange, rep.output_faces));
+  rep.output_vertices = size_t(share_rank0_value(exchange, rep.output_vertices));
   finish_report(rep, keep, faces, target, totals, store.box.diagonal());
   rep.seconds = t0.seconds();
   tile_gather(exchange, {});  // every process done before rank 0's folder goes

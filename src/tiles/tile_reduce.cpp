@@ -1,5 +1,8 @@
 #include "tiles/tile_reduce.h"
 
+#include <exception>
+#include <string>
+
 #include "tiles/tile_bytes.h"
 
 namespace meshsal {
@@ -7,6 +10,26 @@ namespace meshsal {
 std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine) {
   if (!exchange) return {mine};
   return exchange->all_gather(mine);
+}
+
+void lead_step(TileExchange* exchange, const std::function<void()>& step) {
+  if (!exchange) return step();
+  std::exception_ptr failed;
+  std::string message;
+  if (exchange->rank() == 0) {
+    try {
+      step();
+    } catch (const Error& e) {
+      failed = std::current_exception();
+      message = e.what();
+      if (message.empty()) message = "rank 0 failed";
+    }
+  }
+  TileBytes b;
+  b.put(std::vector<uint8_t>(message.begin(), message.end()));
+  const std::vector<uint8_t> said = TileBytesReader{tile_gather(exchange, b.data)[0]}.get_vector<uint8_t>();
+  if (failed) std::rethrow_exception(failed);
+  if (!said.empty()) throw Error(std::string(said.begin(), said.end()));
 }
 
 std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vector<uint64_t>& mine) {

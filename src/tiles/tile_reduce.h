@@ -3,12 +3,18 @@
 // (saliency_tiled.cpp in memory, saliency_out_of_core.cpp on disk).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "meshsal/meshsal.h"
 #include "tiles/saliency_tiles.h"
 
 namespace meshsal {
+
+// Runs `step` on rank 0 alone (without an exchange: here) and tells every process how it
+// went: an Error there is thrown on every process with rank 0's message (rank 0 rethrows
+// its own), so none is left waiting in a later collective and each says the real reason.
+void lead_step(TileExchange* exchange, const std::function<void()>& step);
 
 // Every process's bytes (just `mine` without an exchange).
 std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine);

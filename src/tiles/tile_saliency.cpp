@@ -156,7 +156,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   report.saliency_mean = store.points ? sum / double(store.points) : 0;
   // The percentiles saliency_stats gives (nearest rank), streamed from every rank's file by
   // rank 0, which reports (the gather above: the files are complete).
-  if (rank == 0 && store.points > 0) {
+  if (store.points > 0) lead_step(exchange, [&] {
     const ValueStream all = [&](const std::function<void(double)>& take) {
       std::vector<double> buf(1 << 16);
       for (int r = 0; r < ranks; ++r) {
@@ -173,8 +173,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     report.saliency_p50 = at(50);
     report.saliency_p90 = at(90);
     report.saliency_p99 = at(99);
-  }
-  tile_gather(exchange, {});  // rank 0 has read every file
+  });
+  tile_gather(exchange, {});  // rank 0 has read every file (also where no point was)
   std::remove(s_file(rank).c_str());
   clock.lap("saliency");
 

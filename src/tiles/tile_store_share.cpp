@@ -61,24 +61,10 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
                       unsigned tiles, const std::function<void(const char*, double)>& progress) {
   TileExchange* exchange = options.exchange;
-  const int rank = exchange ? exchange->rank() : 0;
-  TileBytes mine;
-  std::string failure;
-  if (rank == 0) {
-    try {
-      build_tile_store(store, input, options, memory_limit, tiles, progress);
-      mine = describe(store);
-    } catch (const Error& e) {
-      if (!exchange) throw;
-      failure = e.what();
-    }
-  }
-  const auto all = tile_gather(exchange, mine.data);
-  if (all[0].empty()) {
-    if (rank == 0) throw Error(failure);
-    throw Error("rank 0 could not read the input");
-  }
-  if (rank != 0) adopt(store, all[0], options);
+  lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress); });
+  if (!exchange) return;
+  const auto all = tile_gather(exchange, exchange->rank() == 0 ? describe(store).data : std::vector<uint8_t>());
+  if (exchange->rank() != 0) adopt(store, all[0], options);
 }
 
 }  // namespace meshsal

@@ -12,6 +12,7 @@
 #include "out_of_core_util.h"
 #include "test_util.h"
 #include "thread_exchange.h"
+#include "tiles/tile_rounds.h"
 
 using namespace meshsal;
 using namespace meshsal_test;
@@ -28,7 +29,7 @@ SimplifyOptions ratio_tiles(double r, unsigned tiles) {
 
 // A plane with a bump, a carried attribute and two materials.
 Mesh attributed_plane() {
-  Mesh m = make_plane_with_bump(2.0, 40, 0.4, 0.3);
+  Mesh m = make_plane_with_bump(2.0, 120, 0.4, 0.3);
   VertexAttribute u{"u", {}};
   for (size_t v = 0; v < m.vertex_count(); ++v) u.values.push_back(m.positions[3 * v] * 0.5f + 0.25f);
   m.attributes.push_back(u);
@@ -64,10 +65,14 @@ TEST_CASE("shared tiled simplification: every rank gets the single-process mesh"
     bool weighted;
   };
   std::vector<Case> cases;
-  cases.push_back({"sphere 10% weighted", make_bumpy_sphere(4), ratio_tiles(0.1, 3), true});
-  cases.push_back({"sphere 2% plain", make_bumpy_sphere(4), ratio_tiles(0.02, 4), false});
+  // Meshes large enough that the first rounds keep several tiles (round_tiles): the groups
+  // are shared, not all on rank 0.
+  cases.push_back({"sphere 10% weighted", make_bumpy_sphere(5), ratio_tiles(0.1, 3), true});
+  cases.push_back({"sphere 2% plain", make_bumpy_sphere(5), ratio_tiles(0.02, 4), false});
   cases.push_back({"plane attributes", attributed_plane(), ratio_tiles(0.1, 4), false});
   for (const Case& c : cases) {
+    const uint64_t faces = c.mesh.triangle_count();
+    REQUIRE(detail::round_tiles(c.options.tiles, faces / 2) >= 3);
     std::vector<double> w;
     if (c.weighted) w = simplification_weights(c.mesh, weight_preset(Weighting::Balanced), cpu(Method::Exact)).weights;
     const Simplified single = simplify_mesh_tiled(c.mesh, c.options, w);
@@ -90,7 +95,9 @@ TEST_CASE("shared tiled simplification: every rank gets the single-process mesh"
 TEST_CASE("shared out-of-core simplification: rank 0 writes the single-process bytes", "[simplify][outofcore][shared]") {
   const auto dir = scratch_dir("shared_ooc_simplify");
   const std::string in = (dir / "in.ply").string();
-  write_ply(in, make_bumpy_sphere(4), {});
+  const Mesh mesh = make_bumpy_sphere(5);
+  write_ply(in, mesh, {});
+  REQUIRE(detail::round_tiles(3, mesh.triangle_count() / 2) == 3);  // the first round's groups are shared
   const SaliencyWeightOptions balanced = weight_preset(Weighting::Balanced);
   for (const bool weighted : {true, false}) {
     const std::optional<SaliencyWeightOptions> weights = weighted ? std::optional(balanced) : std::nullopt;
