@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
 
 #if MESHSAL_WITH_MPI
 // The C API only: mpi.h would otherwise bring Open MPI's C++ bindings (and their library)
@@ -135,31 +136,54 @@ void mpi_abort(int status, const std::string& message) {
   std::exit(status);
 }
 
+#if MESHSAL_WITH_MPI
+namespace {
+
+// Where each rank's bytes go in a gathered buffer: every rank's size (an Allgather, so every
+// rank sees the same sizes and throws alike past 2 GiB, the counts being ints), then the
+// counts and offsets Gatherv and Allgatherv take.
+struct ByteLayout {
+  std::vector<int> counts, offsets;
+  size_t total = 0;
+};
+
+ByteLayout byte_layout(size_t mine, const char* who) {
+  const int n = world().size;
+  const unsigned long long my_size = mine;
+  std::vector<unsigned long long> sizes(static_cast<size_t>(n), 0);
+  MPI_Allgather(&my_size, 1, MPI_UNSIGNED_LONG_LONG, sizes.data(), 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
+  ByteLayout l;
+  unsigned long long total = 0;
+  for (int r = 0; r < n; ++r) {
+    l.offsets.push_back(int(total));
+    l.counts.push_back(int(sizes[size_t(r)]));
+    total += sizes[size_t(r)];
+    if (total > (unsigned long long)INT_MAX)
+      throw std::runtime_error(std::string(who) + ": more than 2 GiB from all ranks together");
+  }
+  l.total = size_t(total);
+  return l;
+}
+
+// The buffer cut back into each rank's bytes.
+std::vector<std::vector<uint8_t>> split(const std::vector<uint8_t>& all, const ByteLayout& l) {
+  std::vector<std::vector<uint8_t>> out;
+  for (size_t r = 0; r < l.counts.size(); ++r)
+    out.emplace_back(all.begin() + l.offsets[r], all.begin() + l.offsets[r] + l.counts[r]);
+  return out;
+}
+
+}  // namespace
+#endif
+
 std::vector<std::vector<uint8_t>> mpi_all_gather(const std::vector<uint8_t>& mine) {
 #if MESHSAL_WITH_MPI
   if (world().active) {
-    const int n = world().size;
-    // Sizes first, then the bytes at their offsets (Allgatherv counts are ints).
-    const unsigned long long my_size = mine.size();
-    std::vector<unsigned long long> sizes(static_cast<size_t>(n), 0);
-    MPI_Allgather(&my_size, 1, MPI_UNSIGNED_LONG_LONG, sizes.data(), 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
-    std::vector<int> counts(static_cast<size_t>(n)), offsets(static_cast<size_t>(n));
-    unsigned long long total = 0;
-    for (int r = 0; r < n; ++r) {
-      offsets[size_t(r)] = int(total);
-      counts[size_t(r)] = int(sizes[size_t(r)]);
-      total += sizes[size_t(r)];
-      // Every rank sees the same sizes, so every rank throws here alike (no one waits).
-      if (total > (unsigned long long)INT_MAX)
-        throw std::runtime_error("mpi_all_gather: more than 2 GiB from all ranks together");
-    }
-    std::vector<uint8_t> all(size_t(total) + 1);  // +1: a valid pointer when empty
-    MPI_Allgatherv(mine.data(), int(my_size), MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+    const ByteLayout l = byte_layout(mine.size(), "mpi_all_gather");
+    std::vector<uint8_t> all(l.total + 1);  // +1: a valid pointer when empty
+    MPI_Allgatherv(mine.data(), int(mine.size()), MPI_BYTE, all.data(), l.counts.data(), l.offsets.data(), MPI_BYTE,
                    MPI_COMM_WORLD);
-    std::vector<std::vector<uint8_t>> out(static_cast<size_t>(n));
-    for (int r = 0; r < n; ++r)
-      out[size_t(r)].assign(all.begin() + offsets[size_t(r)], all.begin() + offsets[size_t(r)] + counts[size_t(r)]);
-    return out;
+    return split(all, l);
   }
 #endif
   return {mine};
@@ -168,30 +192,13 @@ std::vector<std::vector<uint8_t>> mpi_all_gather(const std::vector<uint8_t>& min
 std::vector<std::vector<uint8_t>> mpi_gather(const std::vector<uint8_t>& mine, int root) {
 #if MESHSAL_WITH_MPI
   if (world().active) {
-    const int n = world().size;
-    // Every rank learns the sizes (so every rank throws alike past 2 GiB); only the root the
-    // bytes.
-    const unsigned long long my_size = mine.size();
-    std::vector<unsigned long long> sizes(static_cast<size_t>(n), 0);
-    MPI_Allgather(&my_size, 1, MPI_UNSIGNED_LONG_LONG, sizes.data(), 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
-    std::vector<int> counts(static_cast<size_t>(n)), offsets(static_cast<size_t>(n));
-    unsigned long long total = 0;
-    for (int r = 0; r < n; ++r) {
-      offsets[size_t(r)] = int(total);
-      counts[size_t(r)] = int(sizes[size_t(r)]);
-      total += sizes[size_t(r)];
-      if (total > (unsigned long long)INT_MAX)
-        throw std::runtime_error("mpi_gather: more than 2 GiB from all ranks together");
-    }
+    const ByteLayout l = byte_layout(mine.size(), "mpi_gather");
     const bool is_root = world().rank == root;
-    std::vector<uint8_t> all(is_root ? size_t(total) + 1 : 1);
-    MPI_Gatherv(mine.data(), int(my_size), MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root,
+    std::vector<uint8_t> all(is_root ? l.total + 1 : 1);  // only the root receives the bytes
+    MPI_Gatherv(mine.data(), int(mine.size()), MPI_BYTE, all.data(), l.counts.data(), l.offsets.data(), MPI_BYTE, root,
                 MPI_COMM_WORLD);
-    std::vector<std::vector<uint8_t>> out;
-    if (is_root)
-      for (int r = 0; r < n; ++r)
-        out.emplace_back(all.begin() + offsets[size_t(r)], all.begin() + offsets[size_t(r)] + counts[size_t(r)]);
-    return out;
+    if (!is_root) return {};
+    return split(all, l);
   }
 #endif
   (void)root;

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/synthetic.h"
 #include "meshsal/meshsal.h"
 
 namespace simplify_test {
@@ -102,6 +103,19 @@ inline double signed_volume(const meshsal::Mesh& m) {
             double(a[2]) * (double(b[0]) * c[1] - double(b[1]) * c[0])) / 6;
   }
   return vol;
+}
+
+// A plane of n x n quads with a bump, an attribute "u" (0.5 x + 0.25) and two materials
+// (left and right of x = 0): what carried attributes and materials are tested on.
+inline meshsal::Mesh attributed_plane(int n) {
+  meshsal::Mesh m = meshsal::make_plane_with_bump(2.0, n, 0.4, 0.3);
+  meshsal::VertexAttribute u{"u", {}};
+  for (size_t v = 0; v < m.vertex_count(); ++v) u.values.push_back(m.positions[3 * v] * 0.5f + 0.25f);
+  m.attributes.push_back(u);
+  m.materials = {"left", "right"};
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    m.triangle_material.push_back(m.positions[3 * size_t(m.triangles[3 * t])] < 0 ? 0 : 1);
+  return m;
 }
 
 }  // namespace simplify_test

@@ -10,6 +10,7 @@
 #include "meshsal/meshsal.h"
 #include "cli_run.h"
 #include "out_of_core_util.h"
+#include "test_simplify_util.h"
 #include "test_util.h"
 #include "thread_exchange.h"
 #include "tiles/tile_rounds.h"
@@ -25,18 +26,6 @@ SimplifyOptions ratio_tiles(double r, unsigned tiles) {
   o.tiles = tiles;
   o.threads = 1;
   return o;
-}
-
-// A plane with a bump, a carried attribute and two materials.
-Mesh attributed_plane() {
-  Mesh m = make_plane_with_bump(2.0, 120, 0.4, 0.3);
-  VertexAttribute u{"u", {}};
-  for (size_t v = 0; v < m.vertex_count(); ++v) u.values.push_back(m.positions[3 * v] * 0.5f + 0.25f);
-  m.attributes.push_back(u);
-  m.materials = {"left", "right"};
-  for (size_t t = 0; t < m.triangle_count(); ++t)
-    m.triangle_material.push_back(m.positions[3 * size_t(m.triangles[3 * t])] < 0 ? 0 : 1);
-  return m;
 }
 
 void check_same(const Simplified& a, const Simplified& b) {
@@ -69,7 +58,7 @@ TEST_CASE("shared tiled simplification: every rank gets the single-process mesh"
   // are shared, not all on rank 0.
   cases.push_back({"sphere 10% weighted", make_bumpy_sphere(5), ratio_tiles(0.1, 3), true});
   cases.push_back({"sphere 2% plain", make_bumpy_sphere(5), ratio_tiles(0.02, 4), false});
-  cases.push_back({"plane attributes", attributed_plane(), ratio_tiles(0.1, 4), false});
+  cases.push_back({"plane attributes", simplify_test::attributed_plane(120), ratio_tiles(0.1, 4), false});
   for (const Case& c : cases) {
     const uint64_t faces = c.mesh.triangle_count();
     REQUIRE(detail::round_tiles(c.options.tiles, faces / 2) >= 3);

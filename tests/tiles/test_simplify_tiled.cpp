@@ -184,9 +184,12 @@ TEST_CASE("tiled simplify: open borders", "[simplify][tiled]") {
 }
 
 TEST_CASE("tiled simplify: empty tiles, a lone far triangle, tiny tiles", "[simplify][tiled]") {
-  // Two spheres 6 apart in 6 tiles of 1.33: the two tiles between them are empty.
+  // Two spheres 6 apart: the first round's goal (20480 faces) takes 4 tiles of 2
+  // (round_tiles), and the two between the spheres are empty.
   const Mesh s = make_sphere(1.0, 4);  // 5120 faces
-  check_tiled(joined(moved(s, -3), moved(s, 3)), ratio(0.1), 6);
+  const Mesh s5 = make_sphere(1.0, 5);  // 20480 faces
+  REQUIRE(detail::round_tiles(6, 2 * s5.triangle_count() / 2) == 4);
+  check_tiled(joined(moved(s5, -3), moved(s5, 3)), ratio(0.1), 6);
   // A sphere and one triangle far away, 2 tiles: the sphere is one tile, alone, so its part
   // of the result is simplify_mesh's on it. (A goal of 10241 faces keeps both tiles:
   // round_tiles.)
@@ -214,13 +217,7 @@ TEST_CASE("tiled simplify: empty tiles, a lone far triangle, tiny tiles", "[simp
 }
 
 TEST_CASE("tiled simplify: attributes and materials go with their vertices and triangles", "[simplify][tiled]") {
-  Mesh m = make_plane_with_bump(2.0, 60, 0.4, 0.3);
-  VertexAttribute u{"u", {}};
-  for (size_t v = 0; v < m.vertex_count(); ++v) u.values.push_back(m.positions[3 * v] * 0.5f + 0.25f);
-  m.attributes.push_back(u);
-  m.materials = {"left", "right"};
-  for (size_t t = 0; t < m.triangle_count(); ++t)
-    m.triangle_material.push_back(m.positions[3 * size_t(m.triangles[3 * t])] < 0 ? 0 : 1);
+  const Mesh m = simplify_test::attributed_plane(120);  // 28800 faces: 3 tiles in the first round
   const Simplified s = simplify_mesh_tiled(m, with_tiles(ratio(0.1), 4));
   const Mesh& out = s.mesh;
   const SimplifyReport& rep = s.report;
