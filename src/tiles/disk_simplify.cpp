@@ -291,17 +291,21 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
     goal_sum += first_goals[g];
     count += counts[g];
   }
-  const std::vector<size_t> goals = pass_goals(pass.budget, sizes, goal_sum, count, [&](size_t g) {
-    const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
-    std::vector<double> levels(bytes.size() / 8);
-    // (A group with no collapse has an empty file: memcpy's pointers would be null.)
-    if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
-    return levels;
+  // Rank 0 reads every group's levels (the others need only the goals) and removes them.
+  std::vector<uint64_t> goals(groups.size(), 0);
+  lead_step(options.exchange, [&] {
+    const std::vector<size_t> found = pass_goals(pass.budget, sizes, goal_sum, count, [&](size_t g) {
+      const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
+      std::vector<double> levels(bytes.size() / 8);
+      // (A group with no collapse has an empty file: memcpy's pointers would be null.)
+      if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
+      return levels;
+    });
+    goals.assign(found.begin(), found.end());
+    for (size_t g = 0; g < groups.size(); ++g) std::remove(levels_file(g).c_str());
   });
-  tile_gather(options.exchange, {});  // every process has read every file
-  for (size_t g = 0; g < groups.size(); ++g)
-    if (runs_group(options.exchange, g)) std::remove(levels_file(g).c_str());
-  return goals;
+  share_rank0_values(options.exchange, goals);
+  return std::vector<size_t>(goals.begin(), goals.end());
 }
 
 // Writes the moved vertices' records (id, then the state record) into the state file, a

@@ -126,6 +126,13 @@ PassTotals share_totals(TileExchange* exchange, const PassTotals& mine) {
   return all;
 }
 
+void share_rank0_values(TileExchange* exchange, std::vector<uint64_t>& values) {
+  if (!exchange) return;
+  TileBytes b;
+  b.put(values);
+  values = TileBytesReader{tile_gather(exchange, b.data)[0]}.get_vector<uint64_t>();
+}
+
 uint64_t share_rank0_value(TileExchange* exchange, uint64_t value) {
   TileBytes b;
   b.put(value);

@@ -41,6 +41,9 @@ PassTotals share_totals(TileExchange* exchange, const PassTotals& mine);
 // `more` added to `into` (collapses and refusals summed, the largest error).
 void add_totals(PassTotals& into, const PassTotals& more);
 
+// Rank 0's values (the processes that did not compute them get them), and a barrier.
+void share_rank0_values(TileExchange* exchange, std::vector<uint64_t>& values);
+
 // Rank 0's value of a count (the processes that did not compute it get it), and a barrier.
 uint64_t share_rank0_value(TileExchange* exchange, uint64_t value);
 
