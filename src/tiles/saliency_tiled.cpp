@@ -8,10 +8,6 @@
 
 namespace meshsal {
 
-namespace {
-
-}  // namespace
-
 SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& opt) {
   if (opt.method != Method::Exact && opt.method != Method::Fast)
     throw Error("internal: method auto not resolved");
@@ -40,11 +36,46 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
     if (opt.progress) opt.progress(stage, f);
   };
 
+  // Phase C: each tile's own points and their curvature; every process holds every tile's
+  // (the halos reach into other processes' tiles).
+  std::vector<TilePoints> tile_points(r.tiles);
+  std::vector<TileQuery> queries;
+  for (size_t i = 0; i < mine.size(); ++i) {
+    report("curvature", double(i) / mine.size());
+    TileCurvature c = tile_curvature(plan, mine[i], source);
+    tile_points[mine[i]] = std::move(c.points);
+    queries.push_back(std::move(c.query));
+  }
+  if (ranks > 1) {
+    TileBytes b;
+    for (size_t t : mine) {
+      b.put(uint64_t(t));
+      b.put(tile_points[t].global);
+      b.put(tile_points[t].positions);
+      b.put(tile_points[t].curvature);
+    }
+    for (const auto& bytes : tile_gather(exchange, b.data)) {
+      TileBytesReader in{bytes};
+      while (!in.done()) {
+        const uint64_t t = in.get<uint64_t>();
+        if (t >= r.tiles) throw Error("tiled saliency: a process sent a tile out of range");
+        TilePoints& p = tile_points[t];
+        p.global = in.get_vector<uint32_t>();
+        p.positions = in.get_vector<float>();
+        p.curvature = in.get_vector<double>();
+        if (p.positions.size() != 3 * p.global.size() || p.curvature.size() != p.global.size())
+          throw Error("tiled saliency: a process sent a tile's points out of shape");
+      }
+    }
+  }
+  const TilePointSource point_source = [&tile_points](size_t t, TilePoints&) -> const TilePoints& { return tile_points[t]; };
+  clock.lap("curvature");
+
   // Phase 0 (fast): the whole mesh's occupied cells, summed over every tile.
   if (plan.method == Method::Fast) {
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
     for (size_t t : mine) {
-      const std::vector<uint64_t> c = count_tile_cells(assemble_tile(cell_count_plan(plan), t, source), plan);
+      const std::vector<uint64_t> c = count_tile_cells(plan, t, tile_points[t], point_source);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     cells = reduce_cell_counts(exchange, cells);
@@ -57,11 +88,12 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   std::vector<ScaleMax> max(opt.scales.size());
   for (size_t i = 0; i < mine.size(); ++i) {
     report("tiles", double(i) / mine.size());
-    raws.push_back(tile_raw_maps(assemble_tile(plan, mine[i], source), plan));
+    raws.push_back(tile_raw_maps(plan, mine[i], queries[i], point_source));
     r.pairs += raws.back().pairs;
     merge_scale_max(max, tile_scale_max(raws.back()));
   }
   report("tiles", 1.0);
+  std::vector<TilePoints>().swap(tile_points);
   reduce_scale_max(exchange, max, r.pairs);
   clock.lap("tile raw maps");
 

@@ -148,70 +148,129 @@ void corners_of(const std::vector<TileFace>& faces, const TileSource& source, Co
   source.positions(c.ids, c.pos);
 }
 
+// The own points' 1-rings (whole-mesh numbers, own points in vertex order) straight from the
+// triangles: each triangle adds its two other corners to each own corner's ring, so a
+// neighbour across an inner edge comes twice. The local-maximum test (strictly above every
+// neighbour) reads a ring as a set, so that is the adjacency's answer at a pass over the
+// triangles. A corner repeated in a degenerate triangle is no neighbour of itself.
+void own_rings(const Mesh& sub, const std::vector<uint32_t>& ids, const std::vector<uint8_t>& own, TileQuery& q) {
+  const size_t n = sub.vertex_count();
+  std::vector<uint32_t> slot(n, UINT32_MAX);  // own vertex -> its ring's number
+  uint32_t owned = 0;
+  for (size_t v = 0; v < n; ++v)
+    if (own[v]) slot[v] = owned++;
+  const uint32_t* t = sub.triangles.data();
+  const size_t faces = sub.triangles.size() / 3;
+  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
+  // Two passes of one loop: count, then fill.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
+      ring.resize(offsets.back());
+      fill.assign(offsets.begin(), offsets.end() - 1);
+    }
+    for (size_t f = 0; f < faces; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = t[3 * f + k], o = slot[v];
+        if (o == UINT32_MAX) continue;
+        for (int j = 1; j <= 2; ++j) {
+          const uint32_t w = t[3 * f + (k + j) % 3];
+          if (w == v) continue;
+          if (pass == 0) ++offsets[o + 1];
+          else ring[fill[o]++] = ids[w];
+        }
+      }
+  }
+  q.ring = std::move(ring);
+  q.ring_offsets = std::move(offsets);
+}
+
 }  // namespace
 
-TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source) {
+TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& source) {
   // The tile's bucket: its own points and their 1-rings (every corner of those triangles).
-  TileMesh tile;
+  TileCurvature out;
   std::vector<TileFace> faces;
   source.bucket(t, faces);
   distinct_faces(faces);
   Corners c;
   corners_of(faces, source, c);
+  std::vector<TileFace>().swap(faces);
+  const size_t n = c.ids.size();
+  std::vector<uint8_t> own(n, 0);
   BoundingBox own_box = empty_box(), query_box = empty_box();
-  for (size_t i = 0; i < c.ids.size(); ++i) {
+  for (size_t i = 0; i < n; ++i) {
     grow(query_box, &c.pos[3 * i]);
-    if (tile_of(plan, &c.pos[3 * i]) == t) grow(own_box, &c.pos[3 * i]);
+    if (tile_of(plan, &c.pos[3 * i]) == t) own[i] = 1, grow(own_box, &c.pos[3 * i]);
   }
-  if (own_box.empty()) return tile;
-  BoundingBox source_box;
+  if (own_box.empty()) return out;
   for (int a = 0; a < 3; ++a) {
     query_box.min[a] = std::min(query_box.min[a], own_box.min[a] - plan.query_margin);
     query_box.max[a] = std::max(query_box.max[a], own_box.max[a] + plan.query_margin);
-    source_box.min[a] = query_box.min[a] - plan.source_margin;
-    source_box.max[a] = query_box.max[a] + plan.source_margin;
   }
-  // Every triangle with a corner among the source points: in the bucket of a tile whose
-  // cube meets the source box.
-  faces.clear();
+  out.query.empty = false;
+  out.query.query_box = query_box;
+  // The sub-mesh of the bucket: its triangles in the mesh's order, their corners in vertex
+  // order. Each method's curvature as the whole mesh computes it (saliency_cpu.cpp,
+  // saliency_fast_cpu.cpp): an own point has all its triangles here, so the same bits.
+  Mesh sub;
+  sub.positions = std::move(c.pos);
+  sub.triangles = std::move(c.local);
+  std::vector<double> H;
+  if (plan.method == Method::Fast) {
+    H = mean_curvature_morton(sub, plan.box, plan.threads);
+  } else {
+    const Adjacency adj = build_adjacency(sub, plan.threads);
+    H = mean_curvature(sub, adj, vertex_normals(sub, plan.threads), plan.threads);
+  }
+  own_rings(sub, c.ids, own, out.query);
+  TilePoints& p = out.points;
+  for (size_t i = 0; i < n; ++i) {
+    if (!own[i]) continue;
+    p.global.push_back(c.ids[i]);
+    p.positions.insert(p.positions.end(), &sub.positions[3 * i], &sub.positions[3 * i + 3]);
+    p.curvature.push_back(H[i]);
+  }
+  return out;
+}
+
+TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source) {
   int lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
     auto cell = [&](double x) {
       return int(std::clamp(std::floor((x - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
     };
-    lo[a] = cell(source_box.min[a]);
-    hi[a] = cell(source_box.max[a]);
+    lo[a] = cell(box.min[a]);
+    hi[a] = cell(box.max[a]);
   }
+  // Each tile's points are ascending and the tiles disjoint: one sort of the union by
+  // vertex puts them in whole-mesh order.
+  TilePoints all, scratch;
   for (int z = lo[2]; z <= hi[2]; ++z)
     for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) source.bucket((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, faces);
-  distinct_faces(faces);
-  corners_of(faces, source, c);
-  std::vector<uint8_t> inside(c.ids.size());
-  for (size_t i = 0; i < c.ids.size(); ++i) inside[i] = in_box(&c.pos[3 * i], source_box, 0.0) ? 1 : 0;
-  // The sub-mesh: the triangles kept in the mesh's order, their vertices in vertex order.
-  std::vector<uint32_t> kept, number(c.ids.size(), UINT32_MAX);
-  for (size_t f = 0; f < faces.size(); ++f) {
-    const uint32_t* l = &c.local[3 * f];
-    if (!inside[l[0]] && !inside[l[1]] && !inside[l[2]]) continue;
-    kept.push_back(uint32_t(f));
-    for (int k = 0; k < 3; ++k) number[l[k]] = 0;
+      for (int x = lo[0]; x <= hi[0]; ++x) {
+        const TilePoints& p = source((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, scratch);
+        for (size_t i = 0; i < p.global.size(); ++i) {
+          if (!in_box(&p.positions[3 * i], box, 0.0)) continue;
+          all.global.push_back(p.global[i]);
+          all.positions.insert(all.positions.end(), &p.positions[3 * i], &p.positions[3 * i + 3]);
+          all.curvature.push_back(p.curvature[i]);
+        }
+      }
+  const size_t n = all.global.size();
+  std::vector<uint32_t> key = all.global, index(n);
+  uint32_t largest = 0;
+  for (size_t i = 0; i < n; ++i) index[i] = uint32_t(i), largest = std::max(largest, key[i]);
+  radix_sort(key, index, largest, plan.threads);
+  TilePoints out;
+  out.global = std::move(key);
+  out.positions.resize(3 * n);
+  out.curvature.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    std::copy(&all.positions[3 * size_t(index[i])], &all.positions[3 * size_t(index[i])] + 3, &out.positions[3 * i]);
+    out.curvature[i] = all.curvature[index[i]];
   }
-  for (size_t i = 0; i < c.ids.size(); ++i) {
-    if (number[i] == UINT32_MAX) continue;
-    number[i] = uint32_t(tile.global.size());
-    tile.global.push_back(c.ids[i]);
-    const float* p = &c.pos[3 * i];
-    tile.mesh.positions.insert(tile.mesh.positions.end(), p, p + 3);
-    const bool own = tile_of(plan, p) == t;
-    tile.own.push_back(own ? 1 : 0);
-    tile.own_count += own ? 1 : 0;
-    tile.query.push_back(in_box(p, query_box, 0.0) ? 1 : 0);
-  }
-  tile.mesh.triangles.reserve(3 * kept.size());
-  for (uint32_t f : kept)
-    for (int k = 0; k < 3; ++k) tile.mesh.triangles.push_back(number[c.local[3 * size_t(f) + k]]);
-  return tile;
+  return out;
 }
 
 TileBuckets bucket_triangles(const Mesh& mesh, const TilePlan& plan) {
@@ -255,138 +314,74 @@ TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets) {
   return s;
 }
 
-TilePlan cell_count_plan(const TilePlan& plan) {
-  TilePlan p = plan;
-  double widest = 0;
-  for (double s : tile_cell_sigmas(plan)) widest = std::max(widest, fast_cell_edge(plan.box, s));
-  p.query_margin = 0;
-  p.source_margin = 2 * widest;
-  return p;
-}
-
-std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan) {
+std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const TilePoints& own,
+                                       const TilePointSource& source) {
   const std::vector<double> sigmas = tile_cell_sigmas(plan);
-  if (tile.own_count == 0) return std::vector<uint64_t>(sigmas.size(), 0);
+  if (own.global.empty()) return std::vector<uint64_t>(sigmas.size(), 0);
   // Only the cells of own points are counted, and each lies within a cell of its point:
   // the points beyond the own box and two of the largest cells need not be sorted.
-  BoundingBox own_box = empty_box();
-  for (size_t v = 0; v < tile.own.size(); ++v)
-    if (tile.own[v]) grow(own_box, &tile.mesh.positions[3 * v]);
+  BoundingBox near = empty_box();
+  for (size_t i = 0; i < own.global.size(); ++i) grow(near, &own.positions[3 * i]);
   double widest = 0;
   for (double s : sigmas) widest = std::max(widest, fast_cell_edge(plan.box, s));
-  std::vector<uint8_t> near = referenced_vertices(tile.mesh);
-  for (size_t v = 0; v < near.size(); ++v)
-    near[v] = near[v] && in_box(&tile.mesh.positions[3 * v], own_box, 2 * widest);
-  return count_fast_cells(tile.mesh, near, tile.own, plan.box, sigmas);
+  for (int a = 0; a < 3; ++a) near.min[a] -= 2 * widest, near.max[a] += 2 * widest;
+  TilePoints p = gather_points(plan, near, source);
+  Mesh points;
+  points.positions = std::move(p.positions);
+  const size_t n = p.global.size();
+  std::vector<uint8_t> mine(n);
+  for (size_t i = 0; i < n; ++i) mine[i] = tile_of(plan, &points.positions[3 * i]) == t ? 1 : 0;
+  return count_fast_cells(points, std::vector<uint8_t>(n, 1), mine, plan.box, sigmas);
 }
 
-namespace {
-
-// The own query points' 1-rings (r.ring, r.ring_offsets, in query numbers, own points in
-// vertex order) straight from the triangles: each triangle adds its two other corners to
-// each own corner's ring, so a neighbour across an inner edge comes twice. The local-maximum
-// test (strictly above every neighbour) reads a ring as a set, so that is the same answer
-// as the adjacency's ring, at a pass over the triangles.
-void triangle_rings(const Mesh& mesh, const std::vector<uint8_t>& own, const std::vector<uint32_t>& qi, TileRaw& r) {
-  const size_t n = mesh.vertex_count();
-  std::vector<uint32_t> slot(n, UINT32_MAX);  // own query point -> its ring's number
-  uint32_t owned = 0;
-  for (size_t v = 0; v < n; ++v)
-    if (qi[v] != UINT32_MAX && own[v]) slot[v] = owned++;
-  // Two passes of one loop: count, then fill. A corner repeated in a degenerate triangle is
-  // no neighbour of itself (as in the adjacency).
-  const uint32_t* t = mesh.triangles.data();
-  const size_t faces = mesh.triangles.size() / 3;
-  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
-  for (int pass = 0; pass < 2; ++pass) {
-    if (pass == 1) {
-      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
-      ring.resize(offsets.back());
-      fill.assign(offsets.begin(), offsets.end() - 1);
-    }
-    for (size_t f = 0; f < faces; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t v = t[3 * f + k], o = slot[v];
-        if (o == UINT32_MAX) continue;
-        for (int j = 1; j <= 2; ++j) {
-          const uint32_t w = t[3 * f + (k + j) % 3];
-          if (w == v) continue;
-          if (pass == 0) {
-            ++offsets[o + 1];
-            continue;
-          }
-          const uint32_t u = qi[w];
-          if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
-          ring[fill[o]++] = u;
-        }
-      }
-  }
-  r.ring = std::move(ring);
-  r.ring_offsets = std::move(offsets);
-}
-
-}  // namespace
-
-TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
+TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, const TilePointSource& source) {
   TileRaw r;
   r.raw.resize(plan.scales.size());
-  if (tile.own_count == 0) {
-    r.ring_offsets.push_back(0);
-    return r;
-  }
-  Mesh& mesh = tile.mesh;
-  const size_t n = mesh.vertex_count();
-  const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  if (query.empty) return r;  // ring_offsets {0}: no own point
+  // The source points: every mesh point within the filter's reach of a query point.
+  BoundingBox source_box = query.query_box;
+  for (int a = 0; a < 3; ++a) source_box.min[a] -= plan.source_margin, source_box.max[a] += plan.source_margin;
+  TilePoints src = gather_points(plan, source_box, source);
+  Mesh points;
+  points.positions = std::move(src.positions);
+  const size_t n = src.global.size();
   // The query points, in whole-mesh order.
-  std::vector<uint32_t> qi(n, UINT32_MAX);
+  std::vector<uint8_t> is_query(n);
   for (size_t v = 0; v < n; ++v) {
-    if (!tile.query[v] || !is_point[v]) continue;
-    qi[v] = uint32_t(r.global.size());
-    r.global.push_back(tile.global[v]);
-    r.positions.insert(r.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v + 3]);
-    r.own.push_back(tile.own[v]);
+    const float* p = &points.positions[3 * v];
+    if (!in_box(p, query.query_box, 0.0)) continue;
+    is_query[v] = 1;
+    r.global.push_back(src.global[v]);
+    r.positions.insert(r.positions.end(), p, p + 3);
+    r.own.push_back(tile_of(plan, p) == t ? 1 : 0);
+    r.curvature.push_back(src.curvature[v]);
   }
-  // The same stages as compute_saliency_cpu, on the sub-mesh; the 1-rings and the triangles
-  // go once the curvature is known (the averages are the peak).
-  std::vector<double> curvature;
-  if (plan.method == Method::Fast) {
-    // The fast method's curvature needs no 1-rings (saliency_fast_cpu.cpp), and the local
-    // maxima need only the own points': taken from their triangles, not from the whole
-    // sub-mesh's adjacency (its halo is most of it).
-    curvature = mean_curvature_morton(mesh, plan.box, plan.threads);
-    triangle_rings(mesh, tile.own, qi, r);
-  } else {
-    const Adjacency adj = build_adjacency(mesh, plan.threads);
-    // Each method's curvature as the whole mesh computes it (saliency_cpu.cpp,
-    // saliency_fast_cpu.cpp): an own vertex has all its triangles here, so the same bits.
-    curvature = mean_curvature(mesh, adj, vertex_normals(mesh, plan.threads), plan.threads);
-    // Own points' 1-rings: every neighbour is a query point (the query box holds the rings).
-    r.ring_offsets.push_back(0);
-    for (size_t v = 0; v < n; ++v) {
-      if (qi[v] == UINT32_MAX || !tile.own[v]) continue;
-      for (uint32_t e = adj.offsets[v]; e < adj.offsets[v + 1]; ++e) {
-        const uint32_t u = qi[adj.neighbors[e]];
-        if (u == UINT32_MAX) throw Error("internal: a tile's halo misses a 1-ring neighbour");
-        r.ring.push_back(u);
-      }
-      r.ring_offsets.push_back(uint32_t(r.ring.size()));
-    }
+  // The own points' 1-rings in query numbers: every neighbour is a query point (the query
+  // box holds the rings).
+  size_t owned = 0;
+  for (uint8_t o : r.own) owned += o;
+  if (owned + 1 != query.ring_offsets.size()) throw Error("internal: a tile's own points differ between phases");
+  r.ring_offsets = query.ring_offsets;
+  r.ring.resize(query.ring.size());
+  for (size_t e = 0; e < query.ring.size(); ++e) {
+    const auto it = std::lower_bound(r.global.begin(), r.global.end(), query.ring[e]);
+    if (it == r.global.end() || *it != query.ring[e]) throw Error("internal: a tile's halo misses a 1-ring neighbour");
+    r.ring[e] = uint32_t(it - r.global.begin());
   }
-  std::vector<uint32_t>().swap(mesh.triangles);
-  for (size_t v = 0; v < n; ++v)
-    if (qi[v] != UINT32_MAX) r.curvature.push_back(curvature[v]);
+  // The same averages as compute_saliency_cpu, on the source points.
   const std::vector<double> units = filter_sigma_units(plan.scales);
   const std::vector<double> sigmas = filter_sigmas(plan);
+  const std::vector<uint8_t> all(n, 1);
   FilterScope scope;
   scope.frame = frame_of(plan);
-  scope.query = &tile.query;
+  scope.query = &is_query;
   FilterStats stats;
   std::vector<std::vector<double>> G;
   if (plan.method == Method::Fast) {
     scope.occupied_cells.assign(plan.fast_cells.begin(), plan.fast_cells.begin() + sigmas.size());
-    G = gaussian_filter_fast(mesh, is_point, curvature, sigmas, plan.threads, &stats, {}, {}, &scope);
+    G = gaussian_filter_fast(points, all, src.curvature, sigmas, plan.threads, &stats, {}, {}, &scope);
   } else {
-    G = gaussian_filter(mesh, is_point, curvature, sigmas, plan.threads, &stats, {}, &scope);
+    G = gaussian_filter(points, all, src.curvature, sigmas, plan.threads, &stats, {}, &scope);
   }
   r.pairs = stats.pairs;
   auto index_of = [&](double unit) {
@@ -396,7 +391,7 @@ TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan) {
     const std::vector<double>& fine = G[index_of(plan.scales[k])];
     const std::vector<double>& coarse = G[index_of(2 * plan.scales[k])];
     for (size_t v = 0; v < n; ++v)
-      if (qi[v] != UINT32_MAX) r.raw[k].push_back(std::fabs(fine[v] - coarse[v]));
+      if (is_query[v]) r.raw[k].push_back(std::fabs(fine[v] - coarse[v]));
   }
   return r;
 }

@@ -8,9 +8,12 @@
 //          its triangles, so that its curvature and the sweeps' cells are the whole mesh's.
 // The phases, each a plain function of one tile so that any driver (one process, a disk
 // of tiles, MPI ranks) can run them:
+//   C tile_curvature: the own points' curvature from the tile's own bucket alone (an own
+//     point has all its triangles there), kept with their positions for every later phase,
+//     its neighbours' included: a halo is then points (positions and H), not triangles;
 //   0 (fast method only) count_tile_cells: the whole mesh's occupied cells, summed;
-//   1 tile_raw_maps: curvature, averages and raw maps at the queries; each scale's maximum
-//     (lowest index on ties) reduced over tiles;
+//   1 tile_raw_maps: averages and raw maps at the queries over the source points; each
+//     scale's maximum (lowest index on ties) reduced over tiles;
 //   2 tile_local_maxima: the local maxima of own points, merged in vertex order over tiles
 //     into mbar (the same sum in the same order as suppress());
 //   3 tile_finish: S (and Sm) at own points.
@@ -55,33 +58,19 @@ size_t tile_of(const TilePlan& plan, const float* p);
 // The sigmas of phase 0's counts: the filter's (filter_sigma_units x eps), then 3 eps.
 std::vector<double> tile_cell_sigmas(const TilePlan& plan);
 
-// One tile's sub-mesh: every triangle with a corner among its source points; its vertices
-// in whole-mesh order (so every sum runs in the whole mesh's order).
-struct TileMesh {
-  Mesh mesh;                      // positions as in the whole mesh, local triangles
-  std::vector<uint32_t> global;   // tile vertex -> whole-mesh vertex, ascending
-  std::vector<uint8_t> own;       // per tile vertex
-  std::vector<uint8_t> query;     // per tile vertex
-  size_t own_count = 0;
-};
-
 // One triangle as the tiles see it: its index in the whole mesh and its corners.
 struct TileFace {
   uint32_t face;
   uint32_t c[3];
 };
 
-// Where sub-meshes come from (a mesh in memory, or tile files on disk): each tile's bucket,
-// every triangle with a corner (a mesh point) in its cube, in any order, duplicates allowed;
-// and the positions of sorted, distinct vertices (3 floats each).
+// Where the triangles come from (a mesh in memory, or tile files on disk): each tile's
+// bucket, every triangle with a corner (a mesh point) in its cube, in any order, duplicates
+// allowed; and the positions of sorted, distinct vertices (3 floats each).
 struct TileSource {
   std::function<void(size_t tile, std::vector<TileFace>& into)> bucket;
   std::function<void(const std::vector<uint32_t>& sorted, std::vector<float>& xyz)> positions;
 };
-
-// Tile t's sub-mesh: own points and their 1-rings from its bucket, then every triangle with
-// a corner in the source box from the buckets of the tiles that box meets.
-TileMesh assemble_tile(const TilePlan& plan, size_t t, const TileSource& source);
 
 // The buckets of a mesh in memory (CSR: tile -> triangles), for its TileSource.
 struct TileBuckets {
@@ -91,10 +80,44 @@ struct TileBuckets {
 TileBuckets bucket_triangles(const Mesh& mesh, const TilePlan& plan);
 TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets);
 
-// Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is own; the
-// tile need only be assembled with cell_count_plan()'s halo (two of the largest cells).
-std::vector<uint64_t> count_tile_cells(const TileMesh& tile, const TilePlan& plan);
-TilePlan cell_count_plan(const TilePlan& plan);
+// Mesh points with their curvature, in whole-mesh order: a tile's own (phase C's output),
+// or those of a box gathered from the tiles it meets.
+struct TilePoints {
+  std::vector<uint32_t> global;   // ascending
+  std::vector<float> positions;   // 3 per point, as in the whole mesh
+  std::vector<double> curvature;  // the whole mesh's bits
+};
+
+// What phase 1 needs of the tile's own bucket besides its points: the query box (its own
+// points, their 1-rings and, with smoothing, the query margin around them) and the own
+// points' 1-rings (whole-mesh numbers; each own point in vertex order, a neighbour across
+// an inner edge twice: the local-maximum test reads a ring as a set).
+struct TileQuery {
+  bool empty = true;  // no point of its own
+  BoundingBox query_box;
+  std::vector<uint32_t> ring_offsets{0}, ring;
+};
+
+struct TileCurvature {
+  TilePoints points;
+  TileQuery query;
+};
+
+// Phase C: tile t's own points, their curvature and its query, from its bucket alone.
+TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& source);
+
+// Where the tiles' points come from (phase C's outputs, in memory or in files): tile u's
+// points, either held by the source or read into `scratch`.
+using TilePointSource = std::function<const TilePoints&(size_t tile, TilePoints& scratch)>;
+
+// The points inside `box` (margins included) from the tiles it meets, in whole-mesh order.
+TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source);
+
+// Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is one of
+// tile t's own (`own`, its phase C points); the cells of own points need only the points
+// within two of the largest cells of them.
+std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const TilePoints& own,
+                                       const TilePointSource& source);
 
 // Phase 1's result, kept until the tile finishes: per query point, in whole-mesh order.
 struct TileRaw {
@@ -108,7 +131,9 @@ struct TileRaw {
   uint64_t pairs = 0;                      // the sweep's pairs (queries' work)
 };
 
-TileRaw tile_raw_maps(TileMesh tile, const TilePlan& plan);  // consumes the tile
+// Phase 1: the raw maps of tile t's query points, over the source points (every point within
+// the source margin of its query box) gathered from the tiles that box meets.
+TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, const TilePointSource& source);
 
 // Each scale's maximum over the mesh points and the lowest vertex attaining it.
 struct ScaleMax {

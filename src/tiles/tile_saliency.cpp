@@ -8,35 +8,29 @@
 
 #include "core/stage_clock.h"
 #include "tiles/tile_bytes.h"
+#include "tiles/tile_file.h"
 #include "tiles/tile_reduce.h"
 
 namespace meshsal {
 
 namespace {
 
-void save(const std::string& path, const TileBytes& b) {
-  ScratchWriter out(path);
-  out.write_vector(b.data);
+void save_raw(const std::string& path, const TileRaw& r) {
+  TileFileWriter out(path);
+  out.put(r.global);
+  out.put(r.positions);
+  out.put(r.own);
+  out.put(r.curvature);
+  out.put(uint64_t(r.raw.size()));
+  for (const auto& k : r.raw) out.put(k);
+  out.put(r.ring_offsets);
+  out.put(r.ring);
+  out.put(r.pairs);
   out.close();
 }
 
-void save_raw(const std::string& path, const TileRaw& r) {
-  TileBytes b;
-  b.put(r.global);
-  b.put(r.positions);
-  b.put(r.own);
-  b.put(r.curvature);
-  b.put(uint64_t(r.raw.size()));
-  for (const auto& k : r.raw) b.put(k);
-  b.put(r.ring_offsets);
-  b.put(r.ring);
-  b.put(r.pairs);
-  save(path, b);
-}
-
 TileRaw load_raw(const std::string& path) {
-  const std::vector<uint8_t> bytes = read_scratch_file(path);
-  TileBytesReader in{bytes};
+  TileFileReader in(path);
   TileRaw r;
   r.global = in.get_vector<uint32_t>();
   r.positions = in.get_vector<float>();
@@ -50,15 +44,53 @@ TileRaw load_raw(const std::string& path) {
   return r;
 }
 
+// Phase C's outputs: a tile's points (read by every tile whose halo reaches it) and its
+// query (read by itself).
+void save_points(const std::string& path, const TilePoints& p) {
+  TileFileWriter out(path);
+  out.put(p.global);
+  out.put(p.positions);
+  out.put(p.curvature);
+  out.close();
+}
+
+void load_points(const std::string& path, TilePoints& p) {
+  TileFileReader in(path);
+  p.global = in.get_vector<uint32_t>();
+  p.positions = in.get_vector<float>();
+  p.curvature = in.get_vector<double>();
+  if (p.positions.size() != 3 * p.global.size() || p.curvature.size() != p.global.size())
+    throw Error("tiled saliency: a tile's points file is out of shape");
+}
+
+void save_query(const std::string& path, const TileQuery& q) {
+  TileFileWriter out(path);
+  out.put(uint8_t(q.empty ? 1 : 0));
+  out.put(q.query_box);
+  out.put(q.ring_offsets);
+  out.put(q.ring);
+  out.close();
+}
+
+TileQuery load_query(const std::string& path) {
+  TileFileReader in(path);
+  TileQuery q;
+  q.empty = in.get<uint8_t>() != 0;
+  q.query_box = in.get<BoundingBox>();
+  q.ring_offsets = in.get_vector<uint32_t>();
+  q.ring = in.get_vector<uint32_t>();
+  return q;
+}
+
 // What each tile's results file holds, per own point.
 void save_result(const std::string& path, const TileResult& r) {
-  TileBytes b;
-  b.put(r.global);
-  b.put(r.curvature);
-  b.put(r.saliency);
-  b.put(r.smoothed);
-  for (const auto& k : r.raw) b.put(k);
-  save(path, b);
+  TileFileWriter out(path);
+  out.put(r.global);
+  out.put(r.curvature);
+  out.put(r.saliency);
+  out.put(r.smoothed);
+  for (const auto& k : r.raw) out.put(k);
+  out.close();
 }
 
 }  // namespace
@@ -75,6 +107,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     if (options.progress) options.progress(stage, f);
   };
   TilePlan plan = store.plan;
+ 
   const size_t ntiles = tile_count(plan);
   report.vertices = store.vertices;
   report.points = store.points;
@@ -86,12 +119,39 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   for (size_t t = size_t(rank); t < ntiles; t += size_t(ranks)) mine.push_back(t);
   auto raw_file = [&](size_t t) { return store.dir.file("raw_" + std::to_string(t) + ".bin"); };
 
+  // Phase C: each tile's own points and their curvature, kept for the tiles whose halos
+  // reach them (any rank's: the folder is shared) and the tile's query for itself.
+  auto points_file = [&](size_t t) { return store.dir.file("points_" + std::to_string(t) + ".bin"); };
+  auto query_file = [&](size_t t) { return store.dir.file("query_" + std::to_string(t) + ".bin"); };
+  {
+    const TileSource source = store_tile_source(store);
+    for (size_t i = 0; i < mine.size(); ++i) {
+      progress("curvature", double(i) / mine.size());
+      const TileCurvature c = tile_curvature(plan, mine[i], source);
+      if (!c.points.global.empty()) save_points(points_file(mine[i]), c.points);
+      save_query(query_file(mine[i]), c.query);
+    }
+  }
+  tile_gather(exchange, {});  // every rank's points on disk before any tile reads them
+  const TilePointSource point_source = [&](size_t t, TilePoints& scratch) -> const TilePoints& {
+    const std::string path = points_file(t);
+    if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
+      std::fclose(probe);
+      load_points(path, scratch);
+    } else {
+      scratch = TilePoints{};  // a tile without points
+    }
+    return scratch;
+  };
+  clock.lap("curvature");
+
   // Phase 0 (fast): the whole mesh's occupied cells.
   if (plan.method == Method::Fast) {
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
+    TilePoints own;
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("cells", double(i) / mine.size());
-      const std::vector<uint64_t> c = count_tile_cells(load_tile(store, mine[i], cell_count_plan(plan)), plan);
+      const std::vector<uint64_t> c = count_tile_cells(plan, mine[i], point_source(mine[i], own), point_source);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     cells = reduce_cell_counts(exchange, cells);
@@ -104,7 +164,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   uint64_t pairs = 0;
   for (size_t i = 0; i < mine.size(); ++i) {
     progress("tiles", double(i) / mine.size());
-    const TileRaw raw = tile_raw_maps(load_tile(store, mine[i], plan), plan);
+    const TileRaw raw = tile_raw_maps(plan, mine[i], load_query(query_file(mine[i])), point_source);
+    std::remove(query_file(mine[i]).c_str());
     pairs += raw.pairs;
     merge_scale_max(max, tile_scale_max(raw));
     save_raw(raw_file(mine[i]), raw);
@@ -112,6 +173,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   progress("tiles", 1.0);
   reduce_scale_max(exchange, max, pairs);
   report.pairs = pairs;
+  // The reduction above has every rank past phase 1: the points can go.
+  for (size_t t : mine) std::remove(points_file(t).c_str());
   clock.lap("tile raw maps");
 
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
@@ -189,8 +252,7 @@ void read_tile_results(const TileStore& store, size_t scales, uint64_t first, si
     const std::string path = tile_result_file(store, t);
     if (std::FILE* probe = std::fopen(path.c_str(), "rb")) std::fclose(probe);
     else continue;  // a tile without points
-    const std::vector<uint8_t> bytes = read_scratch_file(path);
-    TileBytesReader in{bytes};
+    TileFileReader in(path);
     const std::vector<uint32_t> global = in.get_vector<uint32_t>();
     const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>(),
                               smoothed = in.get_vector<double>();

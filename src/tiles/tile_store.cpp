@@ -295,7 +295,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
   fill_buckets(store, input_path, memory_limit, report);
 }
 
-TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan) {
+TileSource store_tile_source(const TileStore& store) {
   TileSource source;
   source.bucket = [&store](size_t u, std::vector<TileFace>& into) {
     const std::string path = store.dir.file(bucket_name(u));
@@ -310,7 +310,7 @@ TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan) {
     xyz.resize(3 * sorted.size());
     read_records(store.dir.file("pos.f32"), 12, sorted, xyz.data());
   };
-  return assemble_tile(plan, t, source);
+  return source;
 }
 
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out) {

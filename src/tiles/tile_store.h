@@ -7,8 +7,8 @@
 //      loaders set it), local float positions to pos.f32, their bounding box and a coarse
 //      histogram of the points -> the tile count that fits the limit (TilePlan);
 //   C  every triangle to the bucket file of each tile one of its corners lies in.
-// load_tile() then builds one tile's sub-mesh (saliency_tiles.h) from its bucket and its
-// neighbours', with the vertex positions read from pos.f32.
+// store_tile_source() then hands each tile's bucket, with the vertex positions read from
+// pos.f32, to phase C (saliency_tiles.h), which keeps the tile's points for the others.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -22,13 +22,15 @@
 
 namespace meshsal {
 
-// What a tile's run costs at its peak per sub-mesh vertex (curvature, the grid, the
-// averages of every sigma): a point of its own (queried: a raw map per scale) more than a
-// halo point (a source only). Measured on igea_loop1: one tile of 537k own points peaked at
-// 222 MB exact and 226 MB fast (386 B a point over the base); igea_loop2 x4 in 100 tiles at
-// 488 MB (README "Out of core"). The tile count is chosen so the largest tile's estimate fits.
-constexpr double kOwnBytesPerVertex = 460;
-constexpr double kHaloBytesPerVertex = 330;
+// What a tile's run costs at its peak (phase 1: the averages of every sigma) per point: a
+// point of its own (queried: a raw map per scale, its 1-ring) more than a halo point (a
+// source only: position, curvature and the averages' share). Phase C (the own points'
+// curvature from the tile's bucket) peaks lower, about 165 bytes an own point. Measured on
+// igea_loop2 (2.1M points, fast): one tile peaked at 665 MiB (~310 B a point over the
+// base), 8 tiles at 183 MiB for a tile of 427k own and 599k halo points; the exact method
+// peaks lower. The tile count is chosen so the largest tile's estimate fits.
+constexpr double kOwnBytesPerVertex = 360;
+constexpr double kHaloBytesPerVertex = 110;
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;
@@ -85,9 +87,8 @@ void share_tile_store(TileStore& store, const std::string& input, const Saliency
 // "123M": bytes as --memory-limit takes them, rounded up (the errors naming a limit).
 std::string mib_text(uint64_t bytes);
 
-// Tile t's sub-mesh (TileMesh) with the halo of `plan` (the store's, or phase 0's smaller
-// one), from its bucket and those of the tiles its halo reaches.
-TileMesh load_tile(const TileStore& store, size_t t, const TilePlan& plan);
+// The store's buckets and positions, for phase C (tile_curvature).
+TileSource store_tile_source(const TileStore& store);
 
 // The doubles as read of vertices [first, first + count) (the output's positions).
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out);

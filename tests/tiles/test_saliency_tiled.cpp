@@ -65,10 +65,18 @@ SaliencyResult run_phases(const Mesh& mesh, TilePlan plan) {
   const size_t n = mesh.vertex_count();
   const TileBuckets buckets = bucket_triangles(mesh, plan);
   const TileSource source = memory_tile_source(mesh, buckets);
+  std::vector<TilePoints> points;
+  std::vector<TileQuery> queries;
+  for (size_t t = 0; t < tile_count(plan); ++t) {
+    TileCurvature c = tile_curvature(plan, t, source);
+    points.push_back(std::move(c.points));
+    queries.push_back(std::move(c.query));
+  }
+  const TilePointSource point_source = [&](size_t t, TilePoints&) -> const TilePoints& { return points[t]; };
   std::vector<TileRaw> raws;
   std::vector<ScaleMax> max(plan.scales.size());
   for (size_t t = 0; t < tile_count(plan); ++t) {
-    raws.push_back(tile_raw_maps(assemble_tile(plan, t, source), plan));
+    raws.push_back(tile_raw_maps(plan, t, queries[t], point_source));
     merge_scale_max(max, tile_scale_max(raws.back()));
   }
   std::vector<double> mbar;
@@ -205,8 +213,7 @@ TEST_CASE("the halo is as wide as the filter reaches and no narrower", "[tiles]"
   // The plan's halo: the same bits.
   const SaliencyResult full = run_phases(mesh, plan);
   CHECK(full.saliency == whole.saliency);
-  // A quarter narrower than the cutoff: points within reach go missing (beyond the corners
-  // of the triangles the halo takes, an edge or so further) and the maps change.
+  // A quarter narrower than the cutoff: points within reach go missing and the maps change.
   plan.source_margin = 0.75 * cutoff;
   const SaliencyResult narrow = run_phases(mesh, plan);
   double worst = 0;
