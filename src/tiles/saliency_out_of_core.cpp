@@ -56,6 +56,7 @@ void write_saliency_output(const std::string& output, const TileStore& store, co
   write_file_atomically(output, [&](std::FILE* f) {
     write_all(f, header.data(), header.size(), output);
     std::vector<char> buf;
+    TileResultReader results(store, scales);
     auto put = [&](const void* p, size_t n) { buf.insert(buf.end(), (const char*)p, (const char*)p + n); };
     for (uint64_t first = 0; first < store.vertices; first += block) {
       const size_t count = size_t(std::min<uint64_t>(block, store.vertices - first));
@@ -63,7 +64,7 @@ void write_saliency_output(const std::string& output, const TileStore& store, co
       const size_t width = kResultWidth + scales;
       std::vector<double> values;
       std::vector<uint8_t> point;
-      read_tile_results(store, scales, first, count, values, point);
+      results.read(first, count, values, point);
       std::vector<double> xyz(3 * count);
       read_source_positions(store, first, count, xyz.data());
       buf.clear();

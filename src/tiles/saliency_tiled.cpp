@@ -100,7 +100,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   // Phase 2: mbar from every tile's local maxima, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
   for (const TileRaw& raw : raws) {
-    std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw, max);
+    std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw.candidates, max);
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/adjacency.h"
+#include "core/parallel.h"
 #include "core/radix_sort.h"
 #include "saliency/curvature.h"
 #include "saliency/gaussian_filter.h"
@@ -83,15 +84,6 @@ size_t tile_count(const TilePlan& plan) {
   return size_t(plan.tiles[0]) * plan.tiles[1] * plan.tiles[2];
 }
 
-size_t tile_of(const TilePlan& plan, const float* p) {
-  size_t c[3];
-  for (int a = 0; a < 3; ++a) {
-    const double f = std::floor((double(p[a]) - plan.box.min[a]) / plan.tile_edge);
-    c[a] = size_t(std::clamp(f, 0.0, double(plan.tiles[a] - 1)));
-  }
-  return (c[2] * plan.tiles[1] + c[1]) * plan.tiles[0] + c[0];
-}
-
 std::vector<double> tile_cell_sigmas(const TilePlan& plan) {
   std::vector<double> sigmas = filter_sigmas(plan);
   sigmas.push_back(3 * plan.eps);
@@ -103,6 +95,10 @@ namespace {
 // Each triangle once, in the mesh's order (a tile's buckets overlap where a triangle has
 // corners in two tiles).
 void distinct_faces(std::vector<TileFace>& faces) {
+  // A bucket filled in one block of vertices is in face order already, each face once.
+  bool ascending = true;
+  for (size_t i = 1; i < faces.size() && ascending; ++i) ascending = faces[i - 1].face < faces[i].face;
+  if (ascending) return;
   // 32-bit keys: face numbers fit, and each radix pass moves half the bytes of 64-bit ones.
   std::vector<uint32_t> key(faces.size());
   std::vector<uint32_t> index(faces.size());
@@ -148,43 +144,6 @@ void corners_of(const std::vector<TileFace>& faces, const TileSource& source, Co
   source.positions(c.ids, c.pos);
 }
 
-// The own points' 1-rings (whole-mesh numbers, own points in vertex order) straight from the
-// triangles: each triangle adds its two other corners to each own corner's ring, so a
-// neighbour across an inner edge comes twice. The local-maximum test (strictly above every
-// neighbour) reads a ring as a set, so that is the adjacency's answer at a pass over the
-// triangles. A corner repeated in a degenerate triangle is no neighbour of itself.
-void own_rings(const Mesh& sub, const std::vector<uint32_t>& ids, const std::vector<uint8_t>& own, TileQuery& q) {
-  const size_t n = sub.vertex_count();
-  std::vector<uint32_t> slot(n, UINT32_MAX);  // own vertex -> its ring's number
-  uint32_t owned = 0;
-  for (size_t v = 0; v < n; ++v)
-    if (own[v]) slot[v] = owned++;
-  const uint32_t* t = sub.triangles.data();
-  const size_t faces = sub.triangles.size() / 3;
-  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
-  // Two passes of one loop: count, then fill.
-  for (int pass = 0; pass < 2; ++pass) {
-    if (pass == 1) {
-      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
-      ring.resize(offsets.back());
-      fill.assign(offsets.begin(), offsets.end() - 1);
-    }
-    for (size_t f = 0; f < faces; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t v = t[3 * f + k], o = slot[v];
-        if (o == UINT32_MAX) continue;
-        for (int j = 1; j <= 2; ++j) {
-          const uint32_t w = t[3 * f + (k + j) % 3];
-          if (w == v) continue;
-          if (pass == 0) ++offsets[o + 1];
-          else ring[fill[o]++] = ids[w];
-        }
-      }
-  }
-  q.ring = std::move(ring);
-  q.ring_offsets = std::move(offsets);
-}
-
 }  // namespace
 
 TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& source) {
@@ -223,7 +182,6 @@ TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& s
     const Adjacency adj = build_adjacency(sub, plan.threads);
     H = mean_curvature(sub, adj, vertex_normals(sub, plan.threads), plan.threads);
   }
-  own_rings(sub, c.ids, own, out.query);
   TilePoints& p = out.points;
   for (size_t i = 0; i < n; ++i) {
     if (!own[i]) continue;
@@ -231,6 +189,9 @@ TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& s
     p.positions.insert(p.positions.end(), &sub.positions[3 * i], &sub.positions[3 * i + 3]);
     p.curvature.push_back(H[i]);
   }
+  out.query.corners = std::move(c.ids);
+  out.query.own = std::move(own);
+  out.query.triangles = std::move(sub.triangles);
   return out;
 }
 
@@ -336,8 +297,10 @@ std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const Til
 
 TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, const TilePointSource& source) {
   TileRaw r;
-  r.raw.resize(plan.scales.size());
-  if (query.empty) return r;  // ring_offsets {0}: no own point
+  const size_t scales = plan.scales.size();
+  r.raw.resize(scales);
+  r.candidates.resize(scales);
+  if (query.empty) return r;
   // The source points: every mesh point within the filter's reach of a query point.
   BoundingBox source_box = query.query_box;
   for (int a = 0; a < 3; ++a) source_box.min[a] -= plan.source_margin, source_box.max[a] += plan.source_margin;
@@ -345,53 +308,131 @@ TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, co
   Mesh points;
   points.positions = std::move(src.positions);
   const size_t n = src.global.size();
-  // The query points, in whole-mesh order.
+  // The query points, in whole-mesh order: qi[v] their numbers among them.
   std::vector<uint8_t> is_query(n);
-  for (size_t v = 0; v < n; ++v) {
-    const float* p = &points.positions[3 * v];
-    if (!in_box(p, query.query_box, 0.0)) continue;
-    is_query[v] = 1;
-    r.global.push_back(src.global[v]);
-    r.positions.insert(r.positions.end(), p, p + 3);
-    r.own.push_back(tile_of(plan, p) == t ? 1 : 0);
-    r.curvature.push_back(src.curvature[v]);
-  }
-  // The own points' 1-rings in query numbers: every neighbour is a query point (the query
-  // box holds the rings).
-  size_t owned = 0;
-  for (uint8_t o : r.own) owned += o;
-  if (owned + 1 != query.ring_offsets.size()) throw Error("internal: a tile's own points differ between phases");
-  r.ring_offsets = query.ring_offsets;
-  r.ring.resize(query.ring.size());
-  for (size_t e = 0; e < query.ring.size(); ++e) {
-    const auto it = std::lower_bound(r.global.begin(), r.global.end(), query.ring[e]);
-    if (it == r.global.end() || *it != query.ring[e]) throw Error("internal: a tile's halo misses a 1-ring neighbour");
-    r.ring[e] = uint32_t(it - r.global.begin());
+  std::vector<uint32_t> qi(n, UINT32_MAX);
+  uint32_t queries = 0;
+  for (size_t v = 0; v < n; ++v)
+    if (in_box(&points.positions[3 * v], query.query_box, 0.0)) is_query[v] = 1, qi[v] = queries++;
+  // The bucket's corners among them (both ascending: one walk); every corner is a query
+  // point (the query box holds them).
+  std::vector<uint32_t> corner(query.corners.size());
+  for (size_t i = 0, v = 0; i < corner.size(); ++i) {
+    while (v < n && src.global[v] < query.corners[i]) ++v;
+    if (v == n || src.global[v] != query.corners[i] || qi[v] == UINT32_MAX)
+      throw Error("internal: a tile's halo misses a 1-ring neighbour");
+    corner[i] = qi[v];
   }
   // The same averages as compute_saliency_cpu, on the source points.
   const std::vector<double> units = filter_sigma_units(plan.scales);
   const std::vector<double> sigmas = filter_sigmas(plan);
-  const std::vector<uint8_t> all(n, 1);
   FilterScope scope;
   scope.frame = frame_of(plan);
   scope.query = &is_query;
-  FilterStats stats;
-  std::vector<std::vector<double>> G;
+  // G[k]: sigma k's averages at the query points (in query numbers).
+  std::vector<std::vector<double>> G(sigmas.size());
+  auto keep_queries = [&](const std::vector<double>& at_points, std::vector<double>& into) {
+    into.resize(queries);
+    for (size_t v = 0; v < n; ++v)
+      if (qi[v] != UINT32_MAX) into[qi[v]] = at_points[v];
+  };
+  const std::vector<uint8_t> all(n, 1);
   if (plan.method == Method::Fast) {
-    scope.occupied_cells.assign(plan.fast_cells.begin(), plan.fast_cells.begin() + sigmas.size());
-    G = gaussian_filter_fast(points, all, src.curvature, sigmas, plan.threads, &stats, {}, {}, &scope);
+    // A sigma a call (its sums do not depend on the others'): a halo point holds one
+    // sigma's average at a time, not every sigma's.
+    for (size_t k = 0; k < sigmas.size(); ++k) {
+      FilterStats stats;
+      scope.occupied_cells.assign(1, plan.fast_cells[k]);
+      keep_queries(gaussian_filter_fast(points, all, src.curvature, {sigmas[k]}, plan.threads, &stats, {}, {}, &scope)[0],
+                   G[k]);
+      r.pairs += stats.pairs;
+    }
   } else {
-    G = gaussian_filter(points, all, src.curvature, sigmas, plan.threads, &stats, {}, &scope);
+    // The exact sweep filters every sigma in one pass over the neighbours.
+    FilterStats stats;
+    std::vector<std::vector<double>> at_points =
+        gaussian_filter(points, all, src.curvature, sigmas, plan.threads, &stats, {}, &scope);
+    for (size_t k = 0; k < sigmas.size(); ++k) {
+      keep_queries(at_points[k], G[k]);
+      std::vector<double>().swap(at_points[k]);
+    }
+    r.pairs = stats.pairs;
   }
-  r.pairs = stats.pairs;
   auto index_of = [&](double unit) {
     return size_t(std::find(units.begin(), units.end(), unit) - units.begin());
   };
-  for (size_t k = 0; k < plan.scales.size(); ++k) {
+  // Each scale's raw map at the query points.
+  std::vector<std::vector<double>> raw(scales, std::vector<double>(queries));
+  for (size_t k = 0; k < scales; ++k) {
     const std::vector<double>& fine = G[index_of(plan.scales[k])];
     const std::vector<double>& coarse = G[index_of(2 * plan.scales[k])];
-    for (size_t v = 0; v < n; ++v)
-      if (is_query[v]) r.raw[k].push_back(std::fabs(fine[v] - coarse[v]));
+    for (size_t q = 0; q < queries; ++q) raw[k][q] = std::fabs(fine[q] - coarse[q]);
+  }
+  std::vector<std::vector<double>>().swap(G);
+  // The own points' candidates for local maxima against their rings (phase 2 needs no more
+  // of the tile), each ring the other corners of the point's triangles (a neighbour across
+  // an inner edge twice; a corner repeated in a degenerate triangle is no neighbour of
+  // itself; an empty ring leaves -infinity, and the point a maximum, as the adjacency's
+  // test would): the largest raw value of the ring beside the point's, where the point's
+  // is above every neighbour's.
+  std::vector<uint32_t> slot(corner.size(), UINT32_MAX);
+  uint32_t owned = 0;
+  for (size_t i = 0; i < corner.size(); ++i)
+    if (query.own[i]) slot[i] = owned++;
+  const std::vector<uint32_t>& tri = query.triangles;
+  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
+  for (int pass = 0; pass < 2; ++pass) {  // count, then fill
+    if (pass == 1) {
+      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
+      ring.resize(offsets.back());
+      fill.assign(offsets.begin(), offsets.end() - 1);
+    }
+    for (size_t f = 0; f + 2 < tri.size(); f += 3)
+      for (int j = 0; j < 3; ++j) {
+        const uint32_t v = tri[f + j], o = slot[v];
+        if (o == UINT32_MAX) continue;
+        for (int i = 1; i <= 2; ++i) {
+          const uint32_t w = tri[f + (j + i) % 3];
+          if (w == v) continue;
+          if (pass == 0) ++offsets[o + 1];
+          else ring[fill[o]++] = corner[w];
+        }
+      }
+  }
+  // A scale a call (on the threads): one map's values are what the rings read at random.
+  parallel_for(scales, plan.threads, 1, [&](size_t k0, size_t k1) {
+    for (size_t k = k0; k < k1; ++k) {
+      const std::vector<double>& x = raw[k];
+      for (size_t i = 0; i < corner.size(); ++i) {
+        const uint32_t o = slot[i];
+        if (o == UINT32_MAX) continue;
+        const double value = x[corner[i]];
+        double ring_max = -INFINITY;
+        bool above = true;
+        for (uint32_t e = offsets[o]; e < offsets[o + 1] && above; ++e) {
+          above = value > x[ring[e]];
+          ring_max = std::max(ring_max, x[ring[e]]);
+        }
+        if (above) r.candidates[k].push_back({query.corners[i], value, ring_max});
+      }
+    }
+  });
+  // What phase 3 reads: the own points, and with smoothing every query point.
+  const size_t kept = plan.smoothed ? queries : owned;
+  r.global.reserve(kept);
+  r.own.reserve(kept);
+  r.curvature.reserve(kept);
+  for (auto& k : r.raw) k.reserve(kept);
+  for (size_t v = 0; v < n; ++v) {
+    if (qi[v] == UINT32_MAX) continue;
+    const float* p = &points.positions[3 * v];
+    const bool own = tile_of(plan, p) == t;
+    if (!own && !plan.smoothed) continue;
+    r.global.push_back(src.global[v]);
+    if (plan.smoothed) r.positions.insert(r.positions.end(), p, p + 3);
+    r.own.push_back(own ? 1 : 0);
+    r.curvature.push_back(src.curvature[v]);
+    for (size_t k = 0; k < scales; ++k) r.raw[k].push_back(raw[k][qi[v]]);
   }
   return r;
 }
@@ -420,22 +461,14 @@ void merge_scale_max(std::vector<ScaleMax>& into, const std::vector<ScaleMax>& f
   }
 }
 
-std::vector<std::vector<LocalMax>> tile_local_maxima(const TileRaw& tile,
+std::vector<std::vector<LocalMax>> tile_local_maxima(const std::vector<std::vector<MaxCandidate>>& candidates,
                                                      const std::vector<ScaleMax>& max) {
-  std::vector<std::vector<LocalMax>> out(tile.raw.size());
-  const size_t nq = tile.global.size();
-  std::vector<double> norm(nq);
-  for (size_t k = 0; k < tile.raw.size(); ++k) {
+  std::vector<std::vector<LocalMax>> out(candidates.size());
+  for (size_t k = 0; k < candidates.size(); ++k) {
     if (!(max[k].max > 0)) continue;  // an all-zero map stays zero: no maxima needed
-    for (size_t q = 0; q < nq; ++q) norm[q] = tile.raw[k][q] / max[k].max;
-    size_t o = 0;  // own point number (ring_offsets index)
-    for (size_t q = 0; q < nq; ++q) {
-      if (!tile.own[q]) continue;
-      bool is_max = true;
-      for (uint32_t e = tile.ring_offsets[o]; e < tile.ring_offsets[o + 1] && is_max; ++e)
-        is_max = norm[q] > norm[tile.ring[e]];
-      ++o;
-      if (is_max) out[k].push_back({tile.global[q], norm[q]});
+    for (const MaxCandidate& c : candidates[k]) {
+      const double norm = c.value / max[k].max;
+      if (norm > c.ring_max / max[k].max) out[k].push_back({c.vertex, norm});
     }
   }
   return out;

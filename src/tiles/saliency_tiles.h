@@ -1,11 +1,11 @@
 // meshsal: saliency one tile at a time (SaliencyOptions::tiles). Saliency is local but for
 // two values per scale, so the bounding box is cut into cubic tiles and each tile computes
-// its own vertices from a sub-mesh with a halo:
+// its own vertices from the points around it (a halo):
 //   own    the mesh points in the tile's cube;
 //   query  the points whose raw maps it needs: own, their 1-rings (the local-maximum test)
 //          and, with smoothing, every point within 6 eps (+ cells) of own (Sm = G(S, 3 eps));
-//   source every mesh point within the largest cutoff (+ cells) of a query point, with all
-//          its triangles, so that its curvature and the sweeps' cells are the whole mesh's.
+//   source every mesh point within the largest cutoff (+ cells) of a query point, with its
+//          curvature (phase C), so that the sweeps' cells are the whole mesh's.
 // The phases, each a plain function of one tile so that any driver (one process, a disk
 // of tiles, MPI ranks) can run them:
 //   C tile_curvature: the own points' curvature from the tile's own bucket alone (an own
@@ -52,8 +52,17 @@ TilePlan make_tile_plan(const BoundingBox& box, uint64_t points, const SaliencyO
 
 size_t tile_count(const TilePlan& plan);
 
-// The tile of a point inside plan.box.
-size_t tile_of(const TilePlan& plan, const float* p);
+// The tile of a point inside plan.box (inline: every corner of every triangle asks it).
+inline size_t tile_of(const TilePlan& plan, const float* p) {
+  size_t c[3];
+  for (int a = 0; a < 3; ++a) {
+    // floor, clamped to [0, tiles - 1] (beyond the box's edges by rounding; NaN to 0).
+    const double f = (double(p[a]) - plan.box.min[a]) / plan.tile_edge;
+    const size_t last = size_t(plan.tiles[a] - 1);
+    c[a] = f >= double(last) ? last : f >= 1 ? size_t(f) : 0;
+  }
+  return (c[2] * size_t(plan.tiles[1]) + c[1]) * size_t(plan.tiles[0]) + c[0];
+}
 
 // The sigmas of phase 0's counts: the filter's (filter_sigma_units x eps), then 3 eps.
 std::vector<double> tile_cell_sigmas(const TilePlan& plan);
@@ -89,13 +98,14 @@ struct TilePoints {
 };
 
 // What phase 1 needs of the tile's own bucket besides its points: the query box (its own
-// points, their 1-rings and, with smoothing, the query margin around them) and the own
-// points' 1-rings (whole-mesh numbers; each own point in vertex order, a neighbour across
-// an inner edge twice: the local-maximum test reads a ring as a set).
+// points, their 1-rings and, with smoothing, the query margin around them) and the bucket's
+// triangles, whose corners are the own points' 1-rings (the local-maximum test).
 struct TileQuery {
   bool empty = true;  // no point of its own
   BoundingBox query_box;
-  std::vector<uint32_t> ring_offsets{0}, ring;
+  std::vector<uint32_t> corners;    // the bucket's corners (whole-mesh numbers), ascending
+  std::vector<uint8_t> own;         // per corner
+  std::vector<uint32_t> triangles;  // the bucket's, 3 corner numbers each
 };
 
 struct TileCurvature {
@@ -119,15 +129,26 @@ TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const Til
 std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const TilePoints& own,
                                        const TilePointSource& source);
 
-// Phase 1's result, kept until the tile finishes: per query point, in whole-mesh order.
+// A candidate for a local maximum of one scale: an own point whose raw value is above
+// every 1-ring neighbour's, with the largest of those (-infinity for an empty ring). The
+// test on the normalised values (phase 2, once each scale's maximum M is known) can only
+// drop some: x / M rounds monotonically, so value / M > ring_max / M is the same answer as
+// value / M > r / M for every neighbour r, as suppress() tests it.
+struct MaxCandidate {
+  uint32_t vertex;
+  double value, ring_max;
+};
+
+// Phase 1's result, kept until the tile finishes: per point phase 3 reads (the own points,
+// and with smoothing every query point: Sm at own points averages S over them), in
+// whole-mesh order.
 struct TileRaw {
   std::vector<uint32_t> global;
-  std::vector<float> positions;            // 3 per query point
+  std::vector<float> positions;            // 3 per point (with smoothing only)
   std::vector<uint8_t> own;
   std::vector<double> curvature;
-  std::vector<std::vector<double>> raw;    // [scale][query point]
-  std::vector<uint32_t> ring_offsets;      // own points' 1-rings, in query indices
-  std::vector<uint32_t> ring;
+  std::vector<std::vector<double>> raw;    // [scale][point]
+  std::vector<std::vector<MaxCandidate>> candidates;  // [scale], in vertex order
   uint64_t pairs = 0;                      // the sweep's pairs (queries' work)
 };
 
@@ -143,12 +164,13 @@ struct ScaleMax {
 std::vector<ScaleMax> tile_scale_max(const TileRaw& tile);
 void merge_scale_max(std::vector<ScaleMax>& into, const std::vector<ScaleMax>& from);
 
-// Phase 2: per scale, the own local maxima (vertex, normalised value) in vertex order.
+// Phase 2: per scale, the own local maxima (vertex, normalised value) in vertex order, from
+// the tile's candidates.
 struct LocalMax {
   uint32_t vertex;
   double value;
 };
-std::vector<std::vector<LocalMax>> tile_local_maxima(const TileRaw& tile,
+std::vector<std::vector<LocalMax>> tile_local_maxima(const std::vector<std::vector<MaxCandidate>>& candidates,
                                                      const std::vector<ScaleMax>& max);
 // mbar of one scale from every tile's local maxima: sorted by vertex, summed in that order
 // without the global maximum's vertex, as suppress() sums them.

@@ -254,10 +254,11 @@ void write_vertex_state(const TileStore& store, const DiskMesh& mesh, bool weigh
   std::vector<float> p(3 * kBlock), r(kBlock * rec / 4);
   std::vector<double> values, smooth(kBlock);
   std::vector<uint8_t> point;
+  TileResultReader results(store, scales);
   for (uint64_t first = 0; first < store.vertices; first += kBlock) {
     const size_t count = size_t(std::min<uint64_t>(kBlock, store.vertices - first));
     pos.read_exact(p.data(), 12 * count);
-    if (weights) read_tile_results(store, scales, first, count, values, point);
+    if (weights) results.read(first, count, values, point);
     for (size_t i = 0; i < count; ++i) {
       float* out = &r[i * rec / 4];
       for (int k = 0; k < 3; ++k) out[k] = p[3 * i + k];

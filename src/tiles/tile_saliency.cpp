@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/stage_clock.h"
 #include "tiles/tile_bytes.h"
@@ -23,8 +24,6 @@ void save_raw(const std::string& path, const TileRaw& r) {
   out.put(r.curvature);
   out.put(uint64_t(r.raw.size()));
   for (const auto& k : r.raw) out.put(k);
-  out.put(r.ring_offsets);
-  out.put(r.ring);
   out.put(r.pairs);
   out.close();
 }
@@ -38,10 +37,23 @@ TileRaw load_raw(const std::string& path) {
   r.curvature = in.get_vector<double>();
   r.raw.resize(in.get<uint64_t>());
   for (auto& k : r.raw) k = in.get_vector<double>();
-  r.ring_offsets = in.get_vector<uint32_t>();
-  r.ring = in.get_vector<uint32_t>();
   r.pairs = in.get<uint64_t>();
   return r;
+}
+
+// Phase 1's candidates for local maxima, apart: phase 2 reads them alone.
+void save_candidates(const std::string& path, const std::vector<std::vector<MaxCandidate>>& c) {
+  TileFileWriter out(path);
+  out.put(uint64_t(c.size()));
+  for (const auto& k : c) out.put(k);
+  out.close();
+}
+
+std::vector<std::vector<MaxCandidate>> load_candidates(const std::string& path) {
+  TileFileReader in(path);
+  std::vector<std::vector<MaxCandidate>> c(in.get<uint64_t>());
+  for (auto& k : c) k = in.get_vector<MaxCandidate>();
+  return c;
 }
 
 // Phase C's outputs: a tile's points (read by every tile whose halo reaches it) and its
@@ -67,8 +79,9 @@ void save_query(const std::string& path, const TileQuery& q) {
   TileFileWriter out(path);
   out.put(uint8_t(q.empty ? 1 : 0));
   out.put(q.query_box);
-  out.put(q.ring_offsets);
-  out.put(q.ring);
+  out.put(q.corners);
+  out.put(q.own);
+  out.put(q.triangles);
   out.close();
 }
 
@@ -77,19 +90,37 @@ TileQuery load_query(const std::string& path) {
   TileQuery q;
   q.empty = in.get<uint8_t>() != 0;
   q.query_box = in.get<BoundingBox>();
-  q.ring_offsets = in.get_vector<uint32_t>();
-  q.ring = in.get_vector<uint32_t>();
+  q.corners = in.get_vector<uint32_t>();
+  q.own = in.get_vector<uint8_t>();
+  q.triangles = in.get_vector<uint32_t>();
+  if (q.own.size() != q.corners.size() || q.triangles.size() % 3 != 0)
+    throw Error("tiled saliency: a tile's query file is out of shape");
+  for (uint32_t c : q.triangles)
+    if (c >= q.corners.size()) throw Error("tiled saliency: a tile's query file is out of shape");
   return q;
 }
 
-// What each tile's results file holds, per own point.
+// What each tile's results file holds: a record per own point in vertex order, its number
+// then S, Sm, curvature and the raw maps (TileResultReader's values, in their order).
 void save_result(const std::string& path, const TileResult& r) {
-  TileFileWriter out(path);
-  out.put(r.global);
-  out.put(r.curvature);
-  out.put(r.saliency);
-  out.put(r.smoothed);
-  for (const auto& k : r.raw) out.put(k);
+  ScratchWriter out(path);
+  const size_t scales = r.raw.size(), width = kResultWidth + scales, rec = 4 + 8 * width;
+  constexpr size_t kRecords = 4096;  // per write
+  std::vector<uint8_t> buf(kRecords * rec);
+  std::vector<double> v(width);
+  for (size_t first = 0; first < r.global.size(); first += kRecords) {
+    const size_t count = std::min(kRecords, r.global.size() - first);
+    for (size_t i = first; i < first + count; ++i) {
+      v[0] = r.saliency[i];
+      v[1] = r.smoothed.empty() ? 0.0 : r.smoothed[i];
+      v[2] = r.curvature[i];
+      for (size_t k = 0; k < scales; ++k) v[3 + k] = r.raw[k][i];
+      uint8_t* at = &buf[(i - first) * rec];
+      std::memcpy(at, &r.global[i], 4);
+      std::memcpy(at + 4, v.data(), 8 * width);
+    }
+    out.write(buf.data(), count * rec);
+  }
   out.close();
 }
 
@@ -118,6 +149,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   std::vector<size_t> mine;
   for (size_t t = size_t(rank); t < ntiles; t += size_t(ranks)) mine.push_back(t);
   auto raw_file = [&](size_t t) { return store.dir.file("raw_" + std::to_string(t) + ".bin"); };
+  auto candidates_file = [&](size_t t) { return store.dir.file("candidates_" + std::to_string(t) + ".bin"); };
 
   // Phase C: each tile's own points and their curvature, kept for the tiles whose halos
   // reach them (any rank's: the folder is shared) and the tile's query for itself.
@@ -169,6 +201,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     pairs += raw.pairs;
     merge_scale_max(max, tile_scale_max(raw));
     save_raw(raw_file(mine[i]), raw);
+    save_candidates(candidates_file(mine[i]), raw.candidates);
   }
   progress("tiles", 1.0);
   reduce_scale_max(exchange, max, pairs);
@@ -180,7 +213,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(options.scales.size());
   for (size_t t : mine) {
-    const auto m = tile_local_maxima(load_raw(raw_file(t)), max);
+    const auto m = tile_local_maxima(load_candidates(candidates_file(t)), max);
+    std::remove(candidates_file(t).c_str());
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);
@@ -243,29 +277,40 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
 
 }
 
-void read_tile_results(const TileStore& store, size_t scales, uint64_t first, size_t count,
-                       std::vector<double>& values, std::vector<uint8_t>& point) {
-  const size_t width = kResultWidth + scales;
+TileResultReader::TileResultReader(const TileStore& store, size_t scales)
+    : store_(store), scales_(scales), offset_(tile_count(store.plan), 0) {}
+
+void TileResultReader::read(uint64_t first, size_t count, std::vector<double>& values, std::vector<uint8_t>& point) {
+  if (first < next_) throw Error("internal: tile results read out of order");
+  next_ = first + count;
+  const size_t width = kResultWidth + scales_, rec = 4 + 8 * width;
   values.assign(count * width, 0.0);
   point.assign(count, 0);
-  for (size_t t = 0; t < tile_count(store.plan); ++t) {
-    const std::string path = tile_result_file(store, t);
-    if (std::FILE* probe = std::fopen(path.c_str(), "rb")) std::fclose(probe);
-    else continue;  // a tile without points
-    TileFileReader in(path);
-    const std::vector<uint32_t> global = in.get_vector<uint32_t>();
-    const std::vector<double> curvature = in.get_vector<double>(), saliency = in.get_vector<double>(),
-                              smoothed = in.get_vector<double>();
-    std::vector<std::vector<double>> raw(scales);
-    for (auto& k : raw) k = in.get_vector<double>();
-    for (size_t i = 0; i < global.size(); ++i) {
-      if (global[i] < first || global[i] >= first + count) continue;
-      double* out = &values[(global[i] - first) * width];
-      point[global[i] - first] = 1;
-      out[0] = saliency[i];
-      out[1] = smoothed.empty() ? 0.0 : smoothed[i];
-      out[2] = curvature[i];
-      for (size_t k = 0; k < scales; ++k) out[3 + k] = raw[k][i];
+  constexpr size_t kRecords = 4096;  // per read
+  std::vector<uint8_t> buf(kRecords * rec);
+  for (size_t t = 0; t < offset_.size(); ++t) {
+    const std::string path = tile_result_file(store_, t);
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) continue;  // a tile without points
+    std::fclose(f);
+    ScratchReader in(path);
+    in.seek(offset_[t]);
+    for (bool more = true; more;) {
+      const size_t got = in.read(buf.data(), buf.size()) / rec;
+      more = got == kRecords;
+      for (size_t i = 0; i < got; ++i) {
+        const uint8_t* r = &buf[i * rec];
+        uint32_t v;
+        std::memcpy(&v, r, 4);
+        if (v >= first + count) {
+          more = false;
+          break;
+        }
+        offset_[t] += rec;
+        if (v < first) continue;  // a vertex of a block skipped
+        point[v - first] = 1;
+        std::memcpy(&values[(v - first) * width], r + 4, 8 * width);
+      }
     }
   }
 }

@@ -26,11 +26,23 @@ void write_saliency_output(const std::string& output, const TileStore& store, co
 // Tile t's results file.
 std::string tile_result_file(const TileStore& store, size_t t);
 
-// Per vertex of [first, first + count), kResultWidth + scales values from every tile's
-// results: S, Sm (0 unless options.smoothed), curvature, then the raw map of each scale;
-// point[v] = 1 where a tile owns the vertex (a mesh point), else its values are 0.
+// The tiles' results in the input's vertex order, a block at a time: per vertex of
+// [first, first + count), kResultWidth + scales values: S, Sm (0 unless options.smoothed),
+// curvature, then the raw map of each scale; point[v] = 1 where a tile owns the vertex (a
+// mesh point), else its values are 0. Each tile's file holds its own points' records in
+// vertex order, so a cursor per tile reads every file once over ascending blocks (blocks
+// may skip vertices; a block before the last one read is an error).
 constexpr size_t kResultWidth = 3;
-void read_tile_results(const TileStore& store, size_t scales, uint64_t first, size_t count,
-                       std::vector<double>& values, std::vector<uint8_t>& point);
+class TileResultReader {
+ public:
+  TileResultReader(const TileStore& store, size_t scales);
+  void read(uint64_t first, size_t count, std::vector<double>& values, std::vector<uint8_t>& point);
+
+ private:
+  const TileStore& store_;
+  size_t scales_;
+  uint64_t next_ = 0;              // the first vertex the next block may start at
+  std::vector<uint64_t> offset_;   // per tile: the bytes of its file read so far
+};
 
 }  // namespace meshsal

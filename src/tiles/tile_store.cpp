@@ -47,8 +47,8 @@ PlanCost plan_cost(const TilePlan& plan, const PointHistogram& h, uint64_t point
         if (mine == 0) continue;  // tiles without points of their own do nothing
         const uint64_t n = std::max(h.within(b), mine);
         total += double(n);
-        cost.largest = std::max(cost.largest, uint64_t(double(mine) * kOwnBytesPerVertex +
-                                                       double(n - mine) * kHaloBytesPerVertex));
+        const double halo = plan.method == Method::Fast ? kFastHaloBytesPerVertex : kHaloBytesPerVertex;
+        cost.largest = std::max(cost.largest, uint64_t(double(mine) * kOwnBytesPerVertex + double(n - mine) * halo));
       }
   cost.work = points ? total / double(points) : 1;
   return cost;

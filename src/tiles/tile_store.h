@@ -22,15 +22,17 @@
 
 namespace meshsal {
 
-// What a tile's run costs at its peak (phase 1: the averages of every sigma) per point: a
-// point of its own (queried: a raw map per scale, its 1-ring) more than a halo point (a
-// source only: position, curvature and the averages' share). Phase C (the own points'
-// curvature from the tile's bucket) peaks lower, about 165 bytes an own point. Measured on
-// igea_loop2 (2.1M points, fast): one tile peaked at 665 MiB (~310 B a point over the
-// base), 8 tiles at 183 MiB for a tile of 427k own and 599k halo points; the exact method
-// peaks lower. The tile count is chosen so the largest tile's estimate fits.
-constexpr double kOwnBytesPerVertex = 360;
-constexpr double kHaloBytesPerVertex = 110;
+// What a tile's run costs at its peak per point: a point of its own (phase C's curvature
+// from the bucket, phase 1's raw maps and rings, phase 3's results) more than a halo point
+// (phase 1's source only: its position, curvature and a share of the averages: one sigma's
+// at a time with the fast method, every sigma's at once with the exact sweep). Measured
+// (peak resident over the base): the fast method on igea_loop2 x4 (8.6M points) in 8 tiles
+// peaked at 447 MiB for a largest tile of 1.71M own and 2.40M halo points; one tile of
+// igea_134k at about 150 bytes a point (fast) and 130 (exact). The tile count is chosen so
+// the largest tile's estimate fits.
+constexpr double kOwnBytesPerVertex = 250;
+constexpr double kHaloBytesPerVertex = 100;     // exact
+constexpr double kFastHaloBytesPerVertex = 60;  // fast
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
 // tiles than that barely shrink (the halo stays the filter's reach) and only slow down.
 constexpr double kMaxTileWork = 40;

@@ -83,7 +83,7 @@ SaliencyResult run_phases(const Mesh& mesh, TilePlan plan) {
   for (size_t k = 0; k < plan.scales.size(); ++k) {
     std::vector<LocalMax> all;
     for (const TileRaw& raw : raws) {
-      auto m = tile_local_maxima(raw, max);
+      auto m = tile_local_maxima(raw.candidates, max);
       all.insert(all.end(), m[k].begin(), m[k].end());
     }
     mbar.push_back(mbar_of(all, max[k]));
