@@ -8,6 +8,7 @@
 #include "tiles/tile_saliency.h"
 #include "tiles/tile_store.h"
 #include "core/cancel.h"
+#include "core/parallel.h"
 #include "core/stage_clock.h"
 #include "io/atomic_write.h"
 #include "io/colormap.h"
@@ -48,60 +49,69 @@ void write_saliency_output(const std::string& output, const TileStore& store, co
   const size_t scales = options.scales.size();
   const std::string header = output_header(store, scales, ooc.dump_scales);
   const ColorLimits limits = colour_limits({report.saliency_min, report.saliency_max}, {1, 1}, ColorRange{});
-  // A block of output vertices holds their results (8 bytes each) and positions as read:
-  // a quarter of the limit.
-  const size_t per_vertex = 8 * (2 + scales) + 25;
+  // Fixed-size records, so each thread formats its own range of the block in place.
+  const size_t vertex_bytes = (wide ? 24 : 12) + 4 + (ooc.dump_scales ? 4 * (1 + scales) : 0) + 3;
+  // A block of output vertices holds their results (8 bytes each), positions as read and
+  // records: a quarter of the limit.
+  const size_t per_vertex = 8 * (kResultWidth + scales) + 24 + 1 + vertex_bytes;
   const size_t block = size_t(std::min<uint64_t>(
       store.vertices, ooc.memory_limit ? std::max<uint64_t>(65536, ooc.memory_limit / 4 / per_vertex) : store.vertices));
+  const unsigned threads = options.threads;
   write_file_atomically(output, [&](std::FILE* f) {
     write_all(f, header.data(), header.size(), output);
     std::vector<char> buf;
-    TileResultReader results(store, scales);
-    auto put = [&](const void* p, size_t n) { buf.insert(buf.end(), (const char*)p, (const char*)p + n); };
+    TileResultReader results(store, scales, ooc.dump_scales);
+    const size_t width = kResultWidth + scales;
+    std::vector<double> values, xyz;
+    std::vector<uint8_t> point;
     for (uint64_t first = 0; first < store.vertices; first += block) {
       const size_t count = size_t(std::min<uint64_t>(block, store.vertices - first));
       progress("writing", double(first) / double(store.vertices));
-      const size_t width = kResultWidth + scales;
-      std::vector<double> values;
-      std::vector<uint8_t> point;
       results.read(first, count, values, point);
-      std::vector<double> xyz(3 * count);
+      xyz.resize(3 * count);
       read_source_positions(store, first, count, xyz.data());
-      buf.clear();
-      buf.reserve(count * (12 + 4 * width + 3 + 12));
-      for (size_t v = 0; v < count; ++v) {
-        for (int a = 0; a < 3; ++a) {
-          if (wide) put(&xyz[3 * v + a], 8);
-          else {
-            const float x = float(xyz[3 * v + a]);
-            put(&x, 4);
+      buf.resize(count * vertex_bytes);
+      parallel_for(count, threads, 1 << 14, [&](size_t lo, size_t hi) {
+        for (size_t v = lo; v < hi; ++v) {
+          char* out = &buf[v * vertex_bytes];
+          auto put = [&](const void* p, size_t n) { std::memcpy(out, p, n), out += n; };
+          for (int a = 0; a < 3; ++a) {
+            if (wide) put(&xyz[3 * v + a], 8);
+            else {
+              const float x = float(xyz[3 * v + a]);
+              put(&x, 4);
+            }
           }
+          const float q = float(values[v * width]);
+          put(&q, 4);
+          if (ooc.dump_scales)
+            for (size_t k = 0; k < 1 + scales; ++k) {
+              const float x = float(values[v * width + 2 + k]);
+              put(&x, 4);
+            }
+          uint8_t rgb[3];
+          colormap_rgb(point[v] ? colour_position(values[v * width], limits) : 0.0, rgb);
+          put(rgb, 3);
         }
-        const float q = float(values[v * width]);
-        put(&q, 4);
-        if (ooc.dump_scales)
-          for (size_t k = 0; k < 1 + scales; ++k) {
-            const float x = float(values[v * width + 2 + k]);
-            put(&x, 4);
-          }
-        uint8_t rgb[3];
-        colormap_rgb(point[v] ? colour_position(values[v * width], limits) : 0.0, rgb);
-        put(rgb, 3);
-      }
+      });
       write_all(f, buf.data(), buf.size(), output);
     }
-    std::vector<uint32_t> tri(3 * 65536);
-    for (uint64_t first = 0; first < store.triangles; first += 65536) {
-      const size_t count = size_t(std::min<uint64_t>(65536, store.triangles - first));
+    constexpr size_t kFaces = 1 << 18, kFaceBytes = 13;
+    std::vector<uint32_t> tri(3 * kFaces);
+    for (uint64_t first = 0; first < store.triangles; first += kFaces) {
+      const size_t count = size_t(std::min<uint64_t>(kFaces, store.triangles - first));
       read_triangles(store, first, count, tri.data());
-      buf.clear();
-      for (size_t i = 0; i < count; ++i) {
-        buf.push_back(3);
-        for (int k = 0; k < 3; ++k) {
-          const int32_t x = int32_t(tri[3 * i + k]);
-          put(&x, 4);
+      buf.resize(count * kFaceBytes);
+      parallel_for(count, threads, 1 << 14, [&](size_t lo, size_t hi) {
+        for (size_t i = lo; i < hi; ++i) {
+          char* out = &buf[i * kFaceBytes];
+          out[0] = 3;
+          for (int k = 0; k < 3; ++k) {
+            const int32_t x = int32_t(tri[3 * i + k]);
+            std::memcpy(out + 1 + 4 * k, &x, 4);
+          }
         }
-      }
+      });
       write_all(f, buf.data(), buf.size(), output);
     }
   });
@@ -134,7 +144,7 @@ OutOfCoreReport saliency_file(const std::string& input, const std::string& outpu
   if (options.notice && !store.dir.note().empty()) options.notice(store.dir.note());
   share_tile_store(store, input, options, ooc.memory_limit, options.tiles, progress);
   clock.lap("tiling");
-  tile_saliency(store, options, report);  // laps its own stages
+  tile_saliency(store, options, report, ooc.dump_scales);  // laps its own stages
   clock.resume();
   lead_step(exchange, [&] { write_saliency_output(output, store, options, ooc, report, progress); });
   if (rank == 0) clock.lap("writing");

@@ -247,14 +247,14 @@ SaliencyOptions checked_options(const SimplifyOptions& options, const SaliencyWe
 
 // The vertex state (position, then S with weights) to mesh.state, and with weights each
 // vertex's smoothed saliency to sm.f64 (NaN where it is no mesh point), a block at a time.
-void write_vertex_state(const TileStore& store, const DiskMesh& mesh, bool weights, size_t scales) {
+void write_vertex_state(const TileStore& store, const DiskMesh& mesh, bool weights, size_t scales, bool kept_scales) {
   const size_t rec = mesh.record_bytes();
   ScratchWriter state(mesh.state), sm(store.dir.file("sm.f64"));
   ScratchReader pos(store.dir.file("pos.f32"));
   std::vector<float> p(3 * kBlock), r(kBlock * rec / 4);
   std::vector<double> values, smooth(kBlock);
   std::vector<uint8_t> point;
-  TileResultReader results(store, scales);
+  TileResultReader results(store, scales, kept_scales);
   for (uint64_t first = 0; first < store.vertices; first += kBlock) {
     const size_t count = size_t(std::min<uint64_t>(kBlock, store.vertices - first));
     pos.read_exact(p.data(), 12 * count);
@@ -405,7 +405,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   mesh.state = store.dir.file("state.f32");
   if (weights) mesh.attribute_names = {"quality"};
   if (weights || saliency_output) {
-    tile_saliency(store, so, report.saliency);
+    tile_saliency(store, so, report.saliency, ooc.dump_scales);
     clock.lap("saliency");
   }
   if (saliency_output) {
@@ -416,7 +416,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
   if (weights && !keep) mesh.weights = store.dir.file("w.f64");
   unsigned simplify_tile_count = 0;
   lead_step(exchange, [&] {
-    write_vertex_state(store, mesh, weights != nullptr, so.scales.size());
+    write_vertex_state(store, mesh, weights != nullptr, so.scales.size(), ooc.dump_scales);
     if (weights && !keep) report.alpha = write_weights(store, mesh, *weights);
     std::remove(store.dir.file("sm.f64").c_str());
     simplify_tile_count = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate);

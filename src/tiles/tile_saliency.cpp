@@ -100,14 +100,18 @@ TileQuery load_query(const std::string& path) {
   return q;
 }
 
+// The values of a results record: S and Sm, with the scales also the curvature and raw
+// maps (the first of TileResultReader's values, in their order).
+size_t record_values(size_t scales, bool kept) { return kept ? kResultWidth + scales : 2; }
+
 // What each tile's results file holds: a record per own point in vertex order, its number
-// then S, Sm, curvature and the raw maps (TileResultReader's values, in their order).
-void save_result(const std::string& path, const TileResult& r) {
+// then its record_values.
+void save_result(const std::string& path, const TileResult& r, bool kept) {
   ScratchWriter out(path);
-  const size_t scales = r.raw.size(), width = kResultWidth + scales, rec = 4 + 8 * width;
+  const size_t scales = r.raw.size(), width = record_values(scales, kept), rec = 4 + 8 * width;
   constexpr size_t kRecords = 4096;  // per write
   std::vector<uint8_t> buf(kRecords * rec);
-  std::vector<double> v(width);
+  std::vector<double> v(kResultWidth + scales);
   for (size_t first = 0; first < r.global.size(); first += kRecords) {
     const size_t count = std::min(kRecords, r.global.size() - first);
     for (size_t i = first; i < first + count; ++i) {
@@ -130,7 +134,7 @@ std::string tile_result_file(const TileStore& store, size_t t) {
   return store.dir.file("result_" + std::to_string(t) + ".bin");
 }
 
-void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report) {
+void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report, bool scales) {
   TileExchange* exchange = options.exchange;
   const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
   StageClock clock(report.stages);
@@ -232,7 +236,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     std::remove(raw_path.c_str());
     for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
     s_out.write_vector(r.saliency);
-    save_result(tile_result_file(store, mine[i]), r);
+    save_result(tile_result_file(store, mine[i]), r, scales);
   }
   s_out.close();
   {
@@ -277,13 +281,13 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
 
 }
 
-TileResultReader::TileResultReader(const TileStore& store, size_t scales)
-    : store_(store), scales_(scales), offset_(tile_count(store.plan), 0) {}
+TileResultReader::TileResultReader(const TileStore& store, size_t scales, bool kept)
+    : store_(store), scales_(scales), kept_(kept), offset_(tile_count(store.plan), 0) {}
 
 void TileResultReader::read(uint64_t first, size_t count, std::vector<double>& values, std::vector<uint8_t>& point) {
   if (first < next_) throw Error("internal: tile results read out of order");
   next_ = first + count;
-  const size_t width = kResultWidth + scales_, rec = 4 + 8 * width;
+  const size_t width = kResultWidth + scales_, stored = record_values(scales_, kept_), rec = 4 + 8 * stored;
   values.assign(count * width, 0.0);
   point.assign(count, 0);
   constexpr size_t kRecords = 4096;  // per read
@@ -309,7 +313,7 @@ void TileResultReader::read(uint64_t first, size_t count, std::vector<double>& v
         offset_[t] += rec;
         if (v < first) continue;  // a vertex of a block skipped
         point[v - first] = 1;
-        std::memcpy(&values[(v - first) * width], r + 4, 8 * width);
+        std::memcpy(&values[(v - first) * width], r + 4, 8 * stored);
       }
     }
   }

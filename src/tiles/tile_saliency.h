@@ -14,8 +14,9 @@ namespace meshsal {
 
 // Phases 0-3 over this process's share of the store's tiles (options.exchange shares them
 // and reduces the per-scale scalars); each tile's results stay in its file. Fills
-// report's counts, pairs, saliency range and stages (from "cell counts" on).
-void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report);
+// report's counts, pairs, saliency range and stages (from "curvature" on). The results
+// hold S and Sm, and with `scales` (--dump-scales) the curvature and raw maps too.
+void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOfCoreReport& report, bool scales);
 
 // What saliency_file() writes, from the store's tile results (tile_saliency above, with
 // report's range): the vertices a block at a time in the input's order, then the triangles.
@@ -28,19 +29,20 @@ std::string tile_result_file(const TileStore& store, size_t t);
 
 // The tiles' results in the input's vertex order, a block at a time: per vertex of
 // [first, first + count), kResultWidth + scales values: S, Sm (0 unless options.smoothed),
-// curvature, then the raw map of each scale; point[v] = 1 where a tile owns the vertex (a
-// mesh point), else its values are 0. Each tile's file holds its own points' records in
+// curvature, then the raw map of each scale (0 unless tile_saliency kept them: `kept`);
+// point[v] = 1 where a tile owns the vertex (a mesh point), else its values are 0. Each tile's file holds its own points' records in
 // vertex order, so a cursor per tile reads every file once over ascending blocks (blocks
 // may skip vertices; a block before the last one read is an error).
 constexpr size_t kResultWidth = 3;
 class TileResultReader {
  public:
-  TileResultReader(const TileStore& store, size_t scales);
+  TileResultReader(const TileStore& store, size_t scales, bool kept);
   void read(uint64_t first, size_t count, std::vector<double>& values, std::vector<uint8_t>& point);
 
  private:
   const TileStore& store_;
   size_t scales_;
+  bool kept_;
   uint64_t next_ = 0;              // the first vertex the next block may start at
   std::vector<uint64_t> offset_;   // per tile: the bytes of its file read so far
 };
