@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <queue>
 
 #include "core/adjacency.h"
 #include "core/parallel.h"
@@ -204,9 +205,10 @@ TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const Til
     lo[a] = cell(box.min[a]);
     hi[a] = cell(box.max[a]);
   }
-  // Each tile's points are ascending and the tiles disjoint: one sort of the union by
-  // vertex puts them in whole-mesh order.
+  // Each tile's points are ascending and the tiles disjoint: a merge of the tiles' runs
+  // puts the union in whole-mesh order.
   TilePoints all, scratch;
+  std::vector<size_t> run{0};  // the runs' starts in `all`
   for (int z = lo[2]; z <= hi[2]; ++z)
     for (int y = lo[1]; y <= hi[1]; ++y)
       for (int x = lo[0]; x <= hi[0]; ++x) {
@@ -217,19 +219,26 @@ TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const Til
           all.positions.insert(all.positions.end(), &p.positions[3 * i], &p.positions[3 * i + 3]);
           all.curvature.push_back(p.curvature[i]);
         }
+        if (all.global.size() > run.back()) run.push_back(all.global.size());
       }
+  if (run.size() <= 2) return all;  // one run (or none): in order already
   const size_t n = all.global.size();
-  std::vector<uint32_t> key = all.global, index(n);
-  uint32_t largest = 0;
-  for (size_t i = 0; i < n; ++i) index[i] = uint32_t(i), largest = std::max(largest, key[i]);
-  radix_sort(key, index, largest, plan.threads);
+  // A heap of the runs by their next point's number (few runs: a tile's neighbours).
+  using Head = std::pair<uint32_t, size_t>;  // (number, run)
+  std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
+  std::vector<size_t> at(run.begin(), run.end() - 1);
+  for (size_t r = 0; r + 1 < run.size(); ++r) heads.push({all.global[at[r]], r});
   TilePoints out;
-  out.global = std::move(key);
+  out.global.resize(n);
   out.positions.resize(3 * n);
   out.curvature.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    std::copy(&all.positions[3 * size_t(index[i])], &all.positions[3 * size_t(index[i])] + 3, &out.positions[3 * i]);
-    out.curvature[i] = all.curvature[index[i]];
+    const size_t r = heads.top().second, j = at[r]++;
+    heads.pop();
+    out.global[i] = all.global[j];
+    std::copy_n(&all.positions[3 * j], 3, &out.positions[3 * i]);
+    out.curvature[i] = all.curvature[j];
+    if (at[r] < run[r + 1]) heads.push({all.global[at[r]], r});
   }
   return out;
 }
