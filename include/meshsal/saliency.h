@@ -101,14 +101,16 @@ struct SaliencyOptions {
   // OptimiserOptions and CompareOptions; the flag is only read.
   const std::atomic<bool>* cancel = nullptr;
   // Tiles (0 or 1: none): the mesh points' bounding box is cut into cubes, `tiles` of them
-  // along its longest axis, and each tile computes its own vertices from a sub-mesh holding
-  // them and a halo (every mesh point within the largest cutoff of its queries, with their
-  // triangles); each scale's maximum and mbar are reduced over all tiles before the
-  // suppression. Exact: the same bits as without tiles; Fast: the same to rounding (the
-  // order of sums over cells). CPU only (Backend::Gpu with tiles is an Error, Auto takes
-  // the CPU). Memory: the mesh, every tile's raw maps at its query points (about 60
-  // bytes per vertex) and one tile's work at a time; saliency_file() keeps the mesh and
-  // the maps on disk instead.
+  // along its longest axis; each tile first takes its own points' curvature from its own
+  // triangles, then computes its own vertices from the points around them (every mesh
+  // point within the largest cutoff of its queries, with its curvature); each scale's
+  // maximum and mbar are reduced over all tiles before the suppression. Exact: the same
+  // bits as without tiles; Fast: the same to rounding (the order of sums over cells). CPU
+  // only (Backend::Gpu with tiles is an Error, Auto takes the CPU). Memory: the mesh,
+  // every tile's points and curvature (24 bytes a vertex; under an exchange every
+  // process holds every tile's), its raw maps at its own points (about 50 bytes a vertex,
+  // more with smoothing) and one tile's work at a time; saliency_file() keeps the mesh,
+  // the points and the maps on disk instead.
   unsigned tiles = 0;
   // With tiles: processes sharing the tiles (null: this process computes them all).
   TileExchange* exchange = nullptr;

@@ -89,6 +89,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
   for (size_t i = 0; i < mine.size(); ++i) {
     report("tiles", double(i) / mine.size());
     raws.push_back(tile_raw_maps(plan, mine[i], queries[i], point_source));
+    queries[i] = TileQuery{};  // its triangles and corners are done with
     r.pairs += raws.back().pairs;
     merge_scale_max(max, tile_scale_max(raws.back()));
   }
@@ -99,8 +100,9 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
 
   // Phase 2: mbar from every tile's local maxima, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(opt.scales.size());
-  for (const TileRaw& raw : raws) {
+  for (TileRaw& raw : raws) {
     std::vector<std::vector<LocalMax>> m = tile_local_maxima(raw.candidates, max);
+    std::vector<std::vector<MaxCandidate>>().swap(raw.candidates);
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
   const std::vector<double> mbar = reduce_mbar(exchange, std::move(maxima), max);

@@ -389,6 +389,8 @@ TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, co
   for (size_t i = 0; i < corner.size(); ++i)
     if (query.own[i]) slot[i] = owned++;
   const std::vector<uint32_t>& tri = query.triangles;
+  if (tri.size() / 3 > UINT32_MAX / 6)
+    throw Error("tiled saliency: a tile of more than 715 million triangles: use more tiles");
   std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
   for (int pass = 0; pass < 2; ++pass) {  // count, then fill
     if (pass == 1) {

@@ -28,31 +28,54 @@ void save_raw(const std::string& path, const TileRaw& r) {
   out.close();
 }
 
-TileRaw load_raw(const std::string& path) {
+void shape_error() { throw Error("tiled saliency: a tile's file is out of shape"); }
+
+TileRaw load_raw(const std::string& path, size_t scales) {
   TileFileReader in(path);
   TileRaw r;
   r.global = in.get_vector<uint32_t>();
   r.positions = in.get_vector<float>();
   r.own = in.get_vector<uint8_t>();
   r.curvature = in.get_vector<double>();
-  r.raw.resize(in.get<uint64_t>());
+  if (in.get<uint64_t>() != scales) shape_error();
+  r.raw.resize(scales);
   for (auto& k : r.raw) k = in.get_vector<double>();
   r.pairs = in.get<uint64_t>();
+  const size_t n = r.global.size();
+  if (r.own.size() != n || r.curvature.size() != n || (!r.positions.empty() && r.positions.size() != 3 * n))
+    shape_error();
+  for (const auto& k : r.raw)
+    if (k.size() != n) shape_error();
   return r;
 }
 
-// Phase 1's candidates for local maxima, apart: phase 2 reads them alone.
+// Phase 1's candidates for local maxima, apart: phase 2 reads them alone (each field a
+// vector of its own: no padding bytes in the file).
 void save_candidates(const std::string& path, const std::vector<std::vector<MaxCandidate>>& c) {
   TileFileWriter out(path);
   out.put(uint64_t(c.size()));
-  for (const auto& k : c) out.put(k);
+  std::vector<uint32_t> vertex;
+  std::vector<double> value, ring_max;
+  for (const auto& k : c) {
+    vertex.clear(), value.clear(), ring_max.clear();
+    for (const MaxCandidate& m : k) vertex.push_back(m.vertex), value.push_back(m.value), ring_max.push_back(m.ring_max);
+    out.put(vertex);
+    out.put(value);
+    out.put(ring_max);
+  }
   out.close();
 }
 
-std::vector<std::vector<MaxCandidate>> load_candidates(const std::string& path) {
+std::vector<std::vector<MaxCandidate>> load_candidates(const std::string& path, size_t scales) {
   TileFileReader in(path);
-  std::vector<std::vector<MaxCandidate>> c(in.get<uint64_t>());
-  for (auto& k : c) k = in.get_vector<MaxCandidate>();
+  if (in.get<uint64_t>() != scales) shape_error();
+  std::vector<std::vector<MaxCandidate>> c(scales);
+  for (auto& k : c) {
+    const std::vector<uint32_t> vertex = in.get_vector<uint32_t>();
+    const std::vector<double> value = in.get_vector<double>(), ring_max = in.get_vector<double>();
+    if (value.size() != vertex.size() || ring_max.size() != vertex.size()) shape_error();
+    for (size_t i = 0; i < vertex.size(); ++i) k.push_back({vertex[i], value[i], ring_max[i]});
+  }
   return c;
 }
 
@@ -72,7 +95,7 @@ void load_points(const std::string& path, TilePoints& p) {
   p.positions = in.get_vector<float>();
   p.curvature = in.get_vector<double>();
   if (p.positions.size() != 3 * p.global.size() || p.curvature.size() != p.global.size())
-    throw Error("tiled saliency: a tile's points file is out of shape");
+    shape_error();
 }
 
 void save_query(const std::string& path, const TileQuery& q) {
@@ -94,9 +117,9 @@ TileQuery load_query(const std::string& path) {
   q.own = in.get_vector<uint8_t>();
   q.triangles = in.get_vector<uint32_t>();
   if (q.own.size() != q.corners.size() || q.triangles.size() % 3 != 0)
-    throw Error("tiled saliency: a tile's query file is out of shape");
+    shape_error();
   for (uint32_t c : q.triangles)
-    if (c >= q.corners.size()) throw Error("tiled saliency: a tile's query file is out of shape");
+    if (c >= q.corners.size()) shape_error();
   return q;
 }
 
@@ -142,7 +165,6 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     if (options.progress) options.progress(stage, f);
   };
   TilePlan plan = store.plan;
- 
   const size_t ntiles = tile_count(plan);
   report.vertices = store.vertices;
   report.points = store.points;
@@ -164,19 +186,13 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("curvature", double(i) / mine.size());
       const TileCurvature c = tile_curvature(plan, mine[i], source);
-      if (!c.points.global.empty()) save_points(points_file(mine[i]), c.points);
+      save_points(points_file(mine[i]), c.points);  // empty too: a missing file is an error
       save_query(query_file(mine[i]), c.query);
     }
   }
   tile_gather(exchange, {});  // every rank's points on disk before any tile reads them
   const TilePointSource point_source = [&](size_t t, TilePoints& scratch) -> const TilePoints& {
-    const std::string path = points_file(t);
-    if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
-      std::fclose(probe);
-      load_points(path, scratch);
-    } else {
-      scratch = TilePoints{};  // a tile without points
-    }
+    load_points(points_file(t), scratch);
     return scratch;
   };
   clock.lap("curvature");
@@ -217,7 +233,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   // Phase 2: mbar from the local maxima of every tile, in vertex order.
   std::vector<std::vector<LocalMax>> maxima(options.scales.size());
   for (size_t t : mine) {
-    const auto m = tile_local_maxima(load_candidates(candidates_file(t)), max);
+    const auto m = tile_local_maxima(load_candidates(candidates_file(t), options.scales.size()), max);
     std::remove(candidates_file(t).c_str());
     for (size_t k = 0; k < m.size(); ++k) maxima[k].insert(maxima[k].end(), m[k].begin(), m[k].end());
   }
@@ -232,7 +248,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   for (size_t i = 0; i < mine.size(); ++i) {
     progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
     const std::string raw_path = raw_file(mine[i]);
-    const TileResult r = tile_finish(load_raw(raw_path), plan, max, mbar);
+    const TileResult r = tile_finish(load_raw(raw_path, options.scales.size()), plan, max, mbar);
     std::remove(raw_path.c_str());
     for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
     s_out.write_vector(r.saliency);
@@ -282,7 +298,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
 }
 
 TileResultReader::TileResultReader(const TileStore& store, size_t scales, bool kept)
-    : store_(store), scales_(scales), kept_(kept), offset_(tile_count(store.plan), 0) {}
+    : store_(store), scales_(scales), kept_(kept), offset_(tile_count(store.plan), 0),
+      ahead_(tile_count(store.plan), 0) {}
 
 void TileResultReader::read(uint64_t first, size_t count, std::vector<double>& values, std::vector<uint8_t>& point) {
   if (first < next_) throw Error("internal: tile results read out of order");
@@ -293,20 +310,21 @@ void TileResultReader::read(uint64_t first, size_t count, std::vector<double>& v
   constexpr size_t kRecords = 4096;  // per read
   std::vector<uint8_t> buf(kRecords * rec);
   for (size_t t = 0; t < offset_.size(); ++t) {
-    const std::string path = tile_result_file(store_, t);
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) continue;  // a tile without points
-    std::fclose(f);
-    ScratchReader in(path);
+    if (ahead_[t] >= first + count) continue;  // its next record is beyond this block (or none is left)
+    ScratchReader in(tile_result_file(store_, t));  // every tile writes one, empty or not
     in.seek(offset_[t]);
     for (bool more = true; more;) {
-      const size_t got = in.read(buf.data(), buf.size()) / rec;
+      const size_t bytes = in.read(buf.data(), buf.size());
+      if (bytes % rec != 0) throw Error("tiled saliency: a tile's results file is out of shape");
+      const size_t got = bytes / rec;
       more = got == kRecords;
+      if (got < kRecords) ahead_[t] = UINT64_MAX;  // the file ends in this read
       for (size_t i = 0; i < got; ++i) {
         const uint8_t* r = &buf[i * rec];
         uint32_t v;
         std::memcpy(&v, r, 4);
         if (v >= first + count) {
+          ahead_[t] = v;  // left for a later block
           more = false;
           break;
         }

@@ -31,8 +31,9 @@ std::string tile_result_file(const TileStore& store, size_t t);
 // [first, first + count), kResultWidth + scales values: S, Sm (0 unless options.smoothed),
 // curvature, then the raw map of each scale (0 unless tile_saliency kept them: `kept`);
 // point[v] = 1 where a tile owns the vertex (a mesh point), else its values are 0. Each tile's file holds its own points' records in
-// vertex order, so a cursor per tile reads every file once over ascending blocks (blocks
-// may skip vertices; a block before the last one read is an error).
+// vertex order, so a cursor per tile reads every file once over ascending blocks, and a
+// block no record of a tile falls in does not open its file (blocks may skip vertices; a
+// block before the last one read is an error).
 constexpr size_t kResultWidth = 3;
 class TileResultReader {
  public:
@@ -45,6 +46,7 @@ class TileResultReader {
   bool kept_;
   uint64_t next_ = 0;              // the first vertex the next block may start at
   std::vector<uint64_t> offset_;   // per tile: the bytes of its file read so far
+  std::vector<uint64_t> ahead_;    // per tile: its next record's vertex (0: not known yet; UINT64_MAX: none)
 };
 
 }  // namespace meshsal

@@ -22,7 +22,7 @@ constexpr size_t kChunk = 1 << 16;  // vertices or faces per read
 std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
 
 // A plan's estimates: the largest tile's peak in bytes and the work of all tiles (their
-// sub-mesh points, halos included) per mesh point.
+// points, halos included) per mesh point.
 struct PlanCost {
   uint64_t largest = 0;
   double work = 0;

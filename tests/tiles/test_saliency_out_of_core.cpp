@@ -79,6 +79,38 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
     CHECK(e.path().filename().string().rfind("meshsal-tiles-", 0) == std::string::npos);
 }
 
+// The output is written a block of vertices at a time, each tile's results read with a
+// cursor (TileResultReader): several blocks, with and without the scales kept, exact bytes.
+TEST_CASE("out of core: the results of every tile over several output blocks", "[outofcore]") {
+  const auto dir = scratch_dir("ooc_blocks");
+  const std::string in = (dir / "plane.ply").string();
+  write_ply(in, make_plane_with_bump(2.0, 330, 0.3, 0.2), {});  // 109,561 vertices
+  const Mesh loaded = load_mesh(in);
+  REQUIRE(loaded.vertex_count() > 2 * 65536 - 30000);
+  const SaliencyResult r = compute_saliency(loaded, cpu(Method::Exact));
+  for (bool dump : {false, true}) {
+    INFO("dump " << dump);
+    std::vector<PlyFloatProperty> extra;
+    std::vector<std::string> names;
+    if (dump) {
+      extra.push_back({"curvature", &r.curvature});
+      for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
+      for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
+    }
+    write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, r.is_point);
+    SaliencyOptions o = cpu(Method::Exact);
+    o.tiles = 3;
+    OutOfCoreOptions ooc;
+    ooc.dump_scales = dump;
+    ooc.temp_dir = dir.string();
+    // The writer's blocks are a quarter of the limit (at least 65,536 vertices): two here.
+    ooc.memory_limit = uint64_t(40) << 20;
+    const OutOfCoreReport rep = saliency_file(in, (dir / "tiled.ply").string(), o, ooc);
+    CHECK(rep.tiles >= 9);
+    CHECK(file_bytes(dir / "tiled.ply") == file_bytes(dir / "whole.ply"));
+  }
+}
+
 TEST_CASE("out of core converts other formats once and gives the same bytes", "[outofcore]") {
   const auto dir = scratch_dir("ooc_obj");
   const std::string obj = (dir / "in.obj").string();

@@ -159,6 +159,32 @@ TEST_CASE("tiled fast saliency equals the untiled run: the raw maps bit for bit"
     }
 }
 
+// Phase 1 tests each own point against its ring from the bucket's triangles: a point whose
+// only triangle is degenerate (v, v, v) has an empty ring and is a local maximum, a corner
+// repeated in a triangle is no neighbour of itself, as in the whole mesh's adjacency.
+TEST_CASE("tiled saliency: degenerate triangles and empty rings as the untiled run", "[tiles]") {
+  Mesh mesh = make_bumpy_sphere(4);
+  const uint32_t n = uint32_t(mesh.vertex_count());
+  // A lone point beside the sphere, its only triangle (v, v, v), and a triangle of the sphere
+  // with a corner twice.
+  for (float c : {0.3f, 0.2f, 0.1f}) mesh.positions.push_back(c);
+  for (uint32_t k = 0; k < 3; ++k) mesh.triangles.push_back(n);
+  const uint32_t a = mesh.triangles[0], b = mesh.triangles[1];
+  for (uint32_t v : {a, a, b}) mesh.triangles.push_back(v);
+  for (Method method : {Method::Exact, Method::Fast}) {
+    SaliencyOptions o = cpu_options(method, false);
+    const SaliencyResult whole = compute_saliency(mesh, o);
+    REQUIRE(whole.is_point[n] == 1);
+    for (unsigned tiles : {2u, 4u}) {
+      INFO("method " << int(method) << " tiles " << tiles);
+      o.tiles = tiles;
+      const SaliencyResult tiled = compute_saliency(mesh, o);
+      if (method == Method::Exact) check_identical(whole, tiled);
+      else check_fast_tiles(whole, tiled);
+    }
+  }
+}
+
 TEST_CASE("tiled saliency on shared scans with tiny tiles", "[tiles][data]") {
   for (const char* name : {"bunny_36k.obj", "fandisk_6k.obj"}) {
     MESHSAL_MESH_OR_CONTINUE(path, name);
