@@ -31,6 +31,12 @@ struct PlanCost {
 PlanCost plan_cost(const TilePlan& plan, const PointHistogram& h, uint64_t points) {
   PlanCost cost;
   const double reach = plan.query_margin + plan.source_margin + h.bin[0] + h.bin[1] + h.bin[2];
+  // The constants hold for the default scales' 8 sigmas; each more costs a query point its
+  // average and raw map (16 bytes) and, in the exact sweep (every sigma at once), a halo
+  // point its average (8 bytes).
+  const double more = std::max(0.0, double(filter_sigma_units(plan.scales).size()) - 8);
+  const double own_bytes = kOwnBytesPerVertex + 16 * more;
+  const double halo_bytes = plan.method == Method::Fast ? kFastHaloBytesPerVertex : kHaloBytesPerVertex + 8 * more;
   double total = 0;
   for (int z = 0; z < plan.tiles[2]; ++z)
     for (int y = 0; y < plan.tiles[1]; ++y)
@@ -47,8 +53,7 @@ PlanCost plan_cost(const TilePlan& plan, const PointHistogram& h, uint64_t point
         if (mine == 0) continue;  // tiles without points of their own do nothing
         const uint64_t n = std::max(h.within(b), mine);
         total += double(n);
-        const double halo = plan.method == Method::Fast ? kFastHaloBytesPerVertex : kHaloBytesPerVertex;
-        cost.largest = std::max(cost.largest, uint64_t(double(mine) * kOwnBytesPerVertex + double(n - mine) * halo));
+        cost.largest = std::max(cost.largest, uint64_t(double(mine) * own_bytes + double(n - mine) * halo_bytes));
       }
   cost.work = points ? total / double(points) : 1;
   return cost;

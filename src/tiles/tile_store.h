@@ -29,7 +29,8 @@ namespace meshsal {
 // (peak resident over the base): the fast method on igea_loop2 x4 (8.6M points) in 8 tiles
 // peaked at 447 MiB for a largest tile of 1.71M own and 2.40M halo points; one tile of
 // igea_134k at about 150 bytes a point (fast) and 130 (exact). The tile count is chosen so
-// the largest tile's estimate fits.
+// the largest tile's estimate fits. For the default scales' 8 sigmas (plan_cost adds what
+// more sigmas cost).
 constexpr double kOwnBytesPerVertex = 250;
 constexpr double kHaloBytesPerVertex = 100;     // exact
 constexpr double kFastHaloBytesPerVertex = 60;  // fast
