@@ -25,6 +25,18 @@ void check_same_map(const std::filesystem::path& a, const std::filesystem::path&
   CHECK(rel_error(x, y) <= 1e-4);
 }
 
+// What the in-memory run writes: S, with `dump` the curvature and raw maps too.
+void write_whole(const std::filesystem::path& path, const Mesh& mesh, const SaliencyResult& r, bool dump) {
+  std::vector<PlyFloatProperty> extra;
+  std::vector<std::string> names;
+  if (dump) {
+    extra.push_back({"curvature", &r.curvature});
+    for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
+    for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
+  }
+  write_saliency_ply(path.string(), mesh, r.saliency, extra, r.is_point);
+}
+
 }  // namespace
 
 TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
@@ -39,14 +51,7 @@ TEST_CASE("out of core writes the in-memory run's bytes", "[outofcore]") {
       for (bool dump : {false, true}) {
         INFO(in << " method " << int(method) << " dump " << dump);
         const SaliencyResult r = compute_saliency(loaded, cpu(method));
-        std::vector<PlyFloatProperty> extra;
-        std::vector<std::string> names;
-        if (dump) {
-          extra.push_back({"curvature", &r.curvature});
-          for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
-          for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
-        }
-        write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, r.is_point);
+        write_whole(dir / "whole.ply", loaded, r, dump);
         SaliencyOptions o = cpu(method);
         o.tiles = 4;
         OutOfCoreOptions ooc;
@@ -90,14 +95,7 @@ TEST_CASE("out of core: the results of every tile over several output blocks", "
   const SaliencyResult r = compute_saliency(loaded, cpu(Method::Exact));
   for (bool dump : {false, true}) {
     INFO("dump " << dump);
-    std::vector<PlyFloatProperty> extra;
-    std::vector<std::string> names;
-    if (dump) {
-      extra.push_back({"curvature", &r.curvature});
-      for (size_t k = 0; k < r.raw.size(); ++k) names.push_back("saliency_raw_" + std::to_string(k));
-      for (size_t k = 0; k < r.raw.size(); ++k) extra.push_back({names[k], &r.raw[k]});
-    }
-    write_saliency_ply((dir / "whole.ply").string(), loaded, r.saliency, extra, r.is_point);
+    write_whole(dir / "whole.ply", loaded, r, dump);
     SaliencyOptions o = cpu(Method::Exact);
     o.tiles = 3;
     OutOfCoreOptions ooc;
