@@ -197,22 +197,16 @@ TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& s
 }
 
 TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source) {
-  int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    auto cell = [&](double x) {
-      return int(std::clamp(std::floor((x - plan.box.min[a]) / plan.tile_edge), 0.0, double(plan.tiles[a] - 1)));
-    };
-    lo[a] = cell(box.min[a]);
-    hi[a] = cell(box.max[a]);
-  }
+  size_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = tile_column(plan, box.min[a], a), hi[a] = tile_column(plan, box.max[a], a);
   // Each tile's points are ascending and the tiles disjoint: a merge of the tiles' runs
   // puts the union in whole-mesh order.
   TilePoints all, scratch;
   std::vector<size_t> run{0};  // the runs' starts in `all`
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) {
-        const TilePoints& p = source((size_t(z) * plan.tiles[1] + y) * plan.tiles[0] + x, scratch);
+  for (size_t z = lo[2]; z <= hi[2]; ++z)
+    for (size_t y = lo[1]; y <= hi[1]; ++y)
+      for (size_t x = lo[0]; x <= hi[0]; ++x) {
+        const TilePoints& p = source((z * size_t(plan.tiles[1]) + y) * size_t(plan.tiles[0]) + x, scratch);
         for (size_t i = 0; i < p.global.size(); ++i) {
           if (!in_box(&p.positions[3 * i], box, 0.0)) continue;
           all.global.push_back(p.global[i]);

@@ -52,16 +52,18 @@ TilePlan make_tile_plan(const BoundingBox& box, uint64_t points, const SaliencyO
 
 size_t tile_count(const TilePlan& plan);
 
+// The tile column along axis a of coordinate x: floor, clamped to [0, tiles - 1] (beyond
+// the box's edges by rounding, or a box's margins; NaN to 0).
+inline size_t tile_column(const TilePlan& plan, double x, int a) {
+  const double f = (x - plan.box.min[a]) / plan.tile_edge;
+  const size_t last = size_t(plan.tiles[a] - 1);
+  return f >= double(last) ? last : f >= 1 ? size_t(f) : 0;
+}
+
 // The tile of a point inside plan.box (inline: every corner of every triangle asks it).
 inline size_t tile_of(const TilePlan& plan, const float* p) {
-  size_t c[3];
-  for (int a = 0; a < 3; ++a) {
-    // floor, clamped to [0, tiles - 1] (beyond the box's edges by rounding; NaN to 0).
-    const double f = (double(p[a]) - plan.box.min[a]) / plan.tile_edge;
-    const size_t last = size_t(plan.tiles[a] - 1);
-    c[a] = f >= double(last) ? last : f >= 1 ? size_t(f) : 0;
-  }
-  return (c[2] * size_t(plan.tiles[1]) + c[1]) * size_t(plan.tiles[0]) + c[0];
+  return (tile_column(plan, p[2], 2) * size_t(plan.tiles[1]) + tile_column(plan, p[1], 1)) * size_t(plan.tiles[0]) +
+         tile_column(plan, p[0], 0);
 }
 
 // The sigmas of phase 0's counts: the filter's (filter_sigma_units x eps), then 3 eps.
