@@ -1,6 +1,7 @@
 #include "core/mesh_points.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <mutex>
 
@@ -10,8 +11,24 @@
 namespace meshsal {
 
 std::vector<uint8_t> referenced_vertices(const Mesh& mesh) {
-  std::vector<uint8_t> is_point(mesh.vertex_count(), 0);
-  for (uint32_t v : mesh.triangles) is_point[v] = 1;
+  return referenced_mask(mesh.triangles.data(), mesh.triangles.size(), mesh.vertex_count());
+}
+
+std::vector<uint8_t> referenced_mask(const uint32_t* indices, size_t count, size_t vertex_count, bool* any) {
+  std::vector<uint8_t> is_point(vertex_count, 0);
+  std::atomic<bool> some{false};
+  // Threads may mark one vertex at once: relaxed atomic stores of the same 1 (plain moves;
+  // the GCC/Clang builtin, as C++17 has no atomic_ref).
+  parallel_for(count, 0, 1 << 20, [&](size_t begin, size_t end) {
+    bool mine = false;
+    for (size_t i = begin; i < end; ++i)
+      if (indices[i] < vertex_count) {
+        __atomic_store_n(&is_point[indices[i]], uint8_t(1), __ATOMIC_RELAXED);
+        mine = true;
+      }
+    if (mine) some.store(true, std::memory_order_relaxed);
+  });
+  if (any) *any = some.load();
   return is_point;
 }
 

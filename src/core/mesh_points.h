@@ -10,6 +10,12 @@ namespace meshsal {
 // 1 for every vertex referenced by at least one triangle, else 0 (SPEC 1, "Mesh points").
 std::vector<uint8_t> referenced_vertices(const Mesh& mesh);
 
+// The same from `count` indices over `vertex_count` vertices, on every core; an index
+// >= vertex_count (a mesh not yet validated) marks nothing. *any (if given): whether some
+// index was in range.
+std::vector<uint8_t> referenced_mask(const uint32_t* indices, size_t count, size_t vertex_count,
+                                     bool* any = nullptr);
+
 // Axis-aligned bounding box; empty (min > max) when it holds no point.
 struct BoundingBox {
   double min[3];

@@ -249,3 +249,77 @@ TEST_CASE("gzip files with several members load as one", "[io]") {
   std::string both = meshsal_test::read_file(pa) + meshsal_test::read_file(pb);
   check_small(meshsal::load_mesh(dir.write("joined.obj.gz", both)));
 }
+
+namespace {
+
+// A 300 x 300 grid as binary PLY (float x y z and a float quality; faces with a uchar
+// count and int indices): 90,000 vertices and 178,802 triangles, enough records for the
+// vertex and triangle copies to run in many ranges on every core. Cell k's two triangles
+// are (a b c) (a c d); with `quad` set, cell `quad` is written as the quad (a b c d) instead,
+// which fans to the same two triangles. `bad` >= 0 puts an out-of-range index in that face.
+struct GridPly {
+  std::string bytes;
+  std::vector<uint32_t> triangles;
+  std::vector<float> quality;
+};
+
+GridPly grid_ply(long quad, long bad) {
+  const uint32_t w = 300;
+  GridPly g;
+  std::string body;
+  for (uint32_t i = 0; i < w; ++i)
+    for (uint32_t j = 0; j < w; ++j) {
+      put_bin<float>(body, float(j), false);
+      put_bin<float>(body, float(i), false);
+      put_bin<float>(body, float((i * 7 + j * 3) % 5) * 0.25f, false);
+      const float q = float(i * w + j) * 0.5f;
+      put_bin<float>(body, q, false);
+      g.quality.push_back(q);
+    }
+  long faces = 0;
+  for (uint32_t i = 0; i + 1 < w; ++i)
+    for (uint32_t j = 0; j + 1 < w; ++j) {
+      const uint32_t a = i * w + j, b = a + 1, c = a + w + 1, d = a + w;
+      g.triangles.insert(g.triangles.end(), {a, b, c, a, c, d});
+      const long cell = long(i) * (w - 1) + j;
+      auto face = [&](std::initializer_list<uint32_t> corners) {
+        put_bin<uint8_t>(body, uint8_t(corners.size()));
+        for (uint32_t v : corners) put_bin<int32_t>(body, faces == bad ? int32_t(w * w + 5) : int32_t(v), false);
+        ++faces;
+      };
+      if (cell == quad) {
+        face({a, b, c, d});
+      } else {
+        face({a, b, c});
+        face({a, c, d});
+      }
+    }
+  g.bytes = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(w * w) +
+            "\nproperty float x\nproperty float y\nproperty float z\nproperty float quality\nelement face " +
+            std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n" + body;
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("PLY binary of many records: the copies on every core read what one record at a time reads", "[io]") {
+  // All triangles: the parallel copy.
+  const GridPly plain = grid_ply(-1, -1);
+  meshsal::LoadOptions with;
+  with.attributes = true;
+  meshsal::LoadedMesh read = meshsal::read_mesh_bytes(plain.bytes, "grid.ply", with);
+  CHECK(read.mesh.vertex_count() == 90000);
+  CHECK(read.mesh.triangles == plain.triangles);
+  CHECK(read.properties["quality"] == plain.quality);
+  CHECK(read.mesh.positions[3 * 45123 + 0] - read.mesh.positions[0] == 123.0f);  // vertex (150, 123)
+  // A quad far into the faces (cell 80000, after more than two 65,536-face ranges): the copy
+  // gives up and the record-at-a-time loop reads the same triangles from the start.
+  const GridPly quad = grid_ply(80000, -1);
+  CHECK(quad.bytes.size() == plain.bytes.size() - 9);  // one 17-byte quad for two 13-byte triangles
+  CHECK(meshsal::load_mesh_bytes(quad.bytes, "quad.ply").triangles == plain.triangles);
+  // An index out of range there is named by the face, as the one-at-a-time loop names it.
+  CHECK_THROWS_WITH(meshsal::load_mesh_bytes(grid_ply(-1, 150001).bytes, "bad.ply"),
+                    Catch::Contains("face 150001") && Catch::Contains("out of range (90000 vertices)"));
+  CHECK_THROWS_WITH(meshsal::load_mesh_bytes(grid_ply(80000, 170000).bytes, "bad.ply"),
+                    Catch::Contains("face 170000") && Catch::Contains("out of range"));
+}
