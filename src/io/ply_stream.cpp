@@ -40,6 +40,9 @@ struct PlyStream::Layout {
   bool has_xyz[3] = {false, false, false};
   bool vertex_lists = false;                  // the vertex element holds a list property
   std::vector<uint8_t> buffer;
+  // The faces' read-ahead (read_faces' common layout): bytes [at, end) not parsed yet.
+  std::vector<uint8_t> ahead;
+  size_t at = 0, end = 0;
 };
 
 PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_unique<Layout>()) {
@@ -232,12 +235,60 @@ size_t PlyStream::read_vertices(double* out, size_t max) {
   return n;
 }
 
+// At least `n` unparsed bytes in the faces' read-ahead, read from the file 1 MB at a time;
+// false where the file ends first.
+bool PlyStream::ahead(size_t n) {
+  Layout& L = *layout_;
+  if (L.end - L.at >= n) return true;
+  std::memmove(L.ahead.data(), L.ahead.data() + L.at, L.end - L.at);
+  L.end -= L.at;
+  L.at = 0;
+  L.ahead.resize(std::max<size_t>(L.ahead.size(), std::max<size_t>(n, 1 << 20)));
+  while (L.end < n) {
+    const int got = gzread(static_cast<gzFile>(gz_), L.ahead.data() + L.end, unsigned(L.ahead.size() - L.end));
+    if (got < 0) throw Error(path_ + ": cannot read the file");
+    if (got == 0) return false;
+    L.end += size_t(got);
+  }
+  return true;
+}
+
 size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
   Layout& L = *layout_;
   if (vertices_read_ < vertices_) throw Error("internal: faces read before every vertex");
   while (L.next < L.face) skip_element(L.next++);
   const Element& f = L.elements[L.face];
   size_t done = 0;
+  const Property& only = f.props.front();
+  if (f.props.size() == 1 && (only.name == "vertex_indices" || only.name == "vertex_index") &&
+      type_size(only.count) == 1 && type_size(only.type) == 4 && only.type != PlyType::Float32) {
+    // The common layout (the corner list alone, a 1-byte count, 4-byte integer indices):
+    // parsed from the read-ahead, where the general loop below reads each face in two
+    // calls into zlib. The same checks and messages.
+    const bool signed_count = only.count == PlyType::Int8, signed_index = only.type == PlyType::Int32;
+    uint32_t poly[256];
+    for (; done < max && faces_read_ < faces_; ++done, ++faces_read_) {
+      if (!ahead(1)) throw Error(path_ + ": the file ends before its header's counts are read");
+      const int c = signed_count ? int(int8_t(L.ahead[L.at])) : int(L.ahead[L.at]);
+      const std::string problem = polygon_size_problem(c < 0 ? 0 : uint64_t(c));
+      if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
+      ++L.at;
+      if (!ahead(4 * size_t(c))) throw Error(path_ + ": the file ends before its header's counts are read");
+      for (int k = 0; k < c; ++k) {
+        uint32_t u;
+        std::memcpy(&u, &L.ahead[L.at + 4 * size_t(k)], 4);
+        if (L.swap) u = __builtin_bswap32(u);
+        const int64_t x = signed_index ? int64_t(int32_t(u)) : int64_t(u);
+        if (!(x >= 0 && uint64_t(x) < vertices_))
+          throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " + std::to_string(x) +
+                      " but the file has " + std::to_string(vertices_) + " vertices");
+        poly[k] = uint32_t(x);
+      }
+      L.at += 4 * size_t(c);
+      append_fan(triangles, poly, size_t(c));
+    }
+    return done;
+  }
   std::vector<uint32_t> poly;
   uint8_t b[8];
   for (; done < max && faces_read_ < faces_; ++done, ++faces_read_) {

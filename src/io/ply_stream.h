@@ -38,6 +38,7 @@ class PlyStream {
   void read_header();
   void read_exact(void* to, size_t n);
   void skip_element(size_t e);
+  bool ahead(size_t n);
   std::string path_;
   void* gz_ = nullptr;
   std::unique_ptr<Layout> layout_;
