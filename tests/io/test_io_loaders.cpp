@@ -3,6 +3,7 @@
 #include <cstring>
 #include <vector>
 
+#include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "test_io_util.h"
 #include "test_util.h"
@@ -322,4 +323,26 @@ TEST_CASE("PLY binary of many records: the copies on every core read what one re
                     Catch::Contains("face 150001") && Catch::Contains("out of range (90000 vertices)"));
   CHECK_THROWS_WITH(meshsal::load_mesh_bytes(grid_ply(80000, 170000).bytes, "bad.ply"),
                     Catch::Contains("face 170000") && Catch::Contains("out of range"));
+}
+
+TEST_CASE("PLY stream (out of core): faces from the read-ahead are the loader's, a bad face named", "[io][outofcore]") {
+  TempDir dir;
+  auto stream_all = [&](const std::string& name, const std::string& bytes) {
+    meshsal::PlyStream s(dir.write(name, bytes));
+    std::vector<double> xyz(3 * 4096);
+    while (s.read_vertices(xyz.data(), 4096) > 0) {
+    }
+    std::vector<uint32_t> triangles;
+    while (s.read_faces(triangles, 1000) > 0) {  // 1000 faces a call: calls end inside the read-ahead
+    }
+    return triangles;
+  };
+  const GridPly plain = grid_ply(-1, -1);
+  CHECK(stream_all("plain.ply", plain.bytes) == plain.triangles);
+  CHECK(stream_all("quad.ply", grid_ply(80000, -1).bytes) == plain.triangles);
+  CHECK_THROWS_WITH(stream_all("bad.ply", grid_ply(-1, 150001).bytes),
+                    Catch::Contains("face 150001 uses vertex 90005 but the file has 90000 vertices"));
+  // Cut inside the last face: the header's counts are not all there.
+  CHECK_THROWS_WITH(stream_all("cut.ply", plain.bytes.substr(0, plain.bytes.size() - 5)),
+                    Catch::Contains("the file ends before its header's counts are read"));
 }
