@@ -336,8 +336,10 @@ TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, co
   std::vector<std::vector<double>> G(sigmas.size());
   auto keep_queries = [&](const std::vector<double>& at_points, std::vector<double>& into) {
     into.resize(queries);
-    for (size_t v = 0; v < n; ++v)
-      if (qi[v] != UINT32_MAX) into[qi[v]] = at_points[v];
+    parallel_for(n, plan.threads, 1 << 16, [&](size_t begin, size_t end) {  // each query its own slot
+      for (size_t v = begin; v < end; ++v)
+        if (qi[v] != UINT32_MAX) into[qi[v]] = at_points[v];
+    });
   };
   const std::vector<uint8_t> all(n, 1);
   if (plan.method == Method::Fast) {

@@ -9,6 +9,7 @@
 
 #include "core/memory_size.h"
 #include "core/model_frame.h"
+#include "core/parallel.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -255,16 +256,21 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
     auto in_block = [&](uint32_t v) { return v >= first && v < first + count; };
     ScratchReader tri(store.dir.file("tri.u32"));
     std::vector<uint32_t> buf(3 * kChunk);
+    std::vector<size_t> tile(3 * kChunk);  // each corner's tile (SIZE_MAX: outside the block)
     uint32_t f = 0;
     for (size_t got; (got = tri.read(buf.data(), buf.size() * 4) / 12) > 0;) {
+      parallel_for(3 * got, store.plan.threads, 1 << 14, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+          tile[i] = in_block(buf[i]) ? tile_of(store.plan, &pos[3 * (buf[i] - first)]) : SIZE_MAX;
+      });
       for (size_t i = 0; i < got; ++i, ++f) {
         const uint32_t* c = &buf[3 * i];
         if (!any_area && in_block(c[0]) && in_block(c[1]) && in_block(c[2])) any_area = has_area(c, pos, first);
         size_t seen[3];
         int nseen = 0;
         for (int k = 0; k < 3; ++k) {
-          if (!in_block(c[k])) continue;
-          const size_t t = tile_of(store.plan, &pos[3 * (c[k] - first)]);
+          const size_t t = tile[3 * i + k];
+          if (t == SIZE_MAX) continue;
           if (std::find(seen, seen + nseen, t) != seen + nseen) continue;
           seen[nseen++] = t;
           pending[t].push_back({f, {c[0], c[1], c[2]}});
