@@ -228,7 +228,12 @@ struct FifoWriter {
 
 TEST_CASE("hostile input: a FIFO is read, up to a limit", "[io]") {
   TempDir dir;
-  ::signal(SIGPIPE, SIG_IGN);  // the writer may outlive a reader that gave up
+  // The writer may outlive a reader that gave up; the old disposition comes back at the end
+  // (a SIGPIPE left ignored is inherited by the CLIs later tests start, which keep it so).
+  struct IgnoreSigpipe {
+    void (*old)(int) = ::signal(SIGPIPE, SIG_IGN);
+    ~IgnoreSigpipe() { ::signal(SIGPIPE, old); }
+  } ignore_sigpipe;
   const std::string fifo = dir.file("pipe.obj");
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   {

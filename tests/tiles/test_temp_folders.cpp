@@ -44,6 +44,13 @@ size_t scratch_folders(const fs::path& parent) {
 pid_t start_cli(const std::vector<std::string>& args, const fs::path& err) {
   const pid_t pid = ::fork();
   if (pid != 0) return pid;
+  // A CLI started as a shell starts it: every signal the tests send at its default (one the
+  // test process ignores would stay ignored in the CLI, as nohup's SIGHUP does), none blocked.
+  for (int sig = 1; sig < NSIG; ++sig)
+    if (sig != SIGKILL && sig != SIGSTOP) ::signal(sig, SIG_DFL);
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
   const int null = ::open("/dev/null", O_WRONLY);
   ::dup2(null, 1);
   const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
