@@ -175,7 +175,7 @@ void PlyStream::read_exact(void* to, size_t n) {
   while (n > 0) {
     const unsigned part = unsigned(std::min<size_t>(n, 1u << 30));
     const int got = gzread(static_cast<gzFile>(gz_), p, part);
-    if (got <= 0) throw Error(path_ + ": the file ends before its header's counts are read");
+    if (got <= 0) ended();
     p += got;
     n -= size_t(got);
   }
@@ -235,6 +235,20 @@ size_t PlyStream::read_vertices(double* out, size_t max) {
   return n;
 }
 
+void PlyStream::ended() const { throw Error(path_ + ": the file ends before its header's counts are read"); }
+
+void PlyStream::check_corner_count(double n) const {
+  const std::string problem = polygon_size_problem(n < 0 ? 0 : uint64_t(n));
+  if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
+}
+
+uint32_t PlyStream::corner(double x) const {
+  if (!(x >= 0 && x < double(vertices_)))
+    throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " + std::to_string(int64_t(x)) +
+                " but the file has " + std::to_string(vertices_) + " vertices");
+  return uint32_t(x);
+}
+
 // At least `n` unparsed bytes in the faces' read-ahead, read from the file 1 MB at a time;
 // false where the file ends first.
 bool PlyStream::ahead(size_t n) {
@@ -268,21 +282,16 @@ size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
     const bool signed_count = only.count == PlyType::Int8, signed_index = only.type == PlyType::Int32;
     uint32_t poly[256];
     for (; done < max && faces_read_ < faces_; ++done, ++faces_read_) {
-      if (!ahead(1)) throw Error(path_ + ": the file ends before its header's counts are read");
+      if (!ahead(1)) ended();
       const int c = signed_count ? int(int8_t(L.ahead[L.at])) : int(L.ahead[L.at]);
-      const std::string problem = polygon_size_problem(c < 0 ? 0 : uint64_t(c));
-      if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
+      check_corner_count(c);
       ++L.at;
-      if (!ahead(4 * size_t(c))) throw Error(path_ + ": the file ends before its header's counts are read");
+      if (!ahead(4 * size_t(c))) ended();
       for (int k = 0; k < c; ++k) {
         uint32_t u;
         std::memcpy(&u, &L.ahead[L.at + 4 * size_t(k)], 4);
         if (L.swap) u = __builtin_bswap32(u);
-        const int64_t x = signed_index ? int64_t(int32_t(u)) : int64_t(u);
-        if (!(x >= 0 && uint64_t(x) < vertices_))
-          throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " + std::to_string(x) +
-                      " but the file has " + std::to_string(vertices_) + " vertices");
-        poly[k] = uint32_t(x);
+        poly[k] = corner(signed_index ? double(int32_t(u)) : double(u));
       }
       L.at += 4 * size_t(c);
       append_fan(triangles, poly, size_t(c));
@@ -304,17 +313,12 @@ size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
         for (double k = 0; k < n; ++k) read_exact(b, type_size(p.type));
         continue;
       }
-      const std::string problem = polygon_size_problem(n < 0 ? 0 : uint64_t(n));
-      if (!problem.empty()) throw Error(path_ + ": face " + std::to_string(faces_read_) + ": " + problem);
+      check_corner_count(n);
       poly.resize(size_t(n));
       L.buffer.resize(size_t(n) * type_size(p.type));
       read_exact(L.buffer.data(), L.buffer.size());
       for (size_t k = 0; k < poly.size(); ++k) {
-        const double x = read_value(&L.buffer[k * type_size(p.type)], p.type, L.swap);
-        if (!(x >= 0 && x < double(vertices_)))
-          throw Error(path_ + ": face " + std::to_string(faces_read_) + " uses vertex " +
-                      std::to_string(int64_t(x)) + " but the file has " + std::to_string(vertices_) + " vertices");
-        poly[k] = uint32_t(x);
+        poly[k] = corner(read_value(&L.buffer[k * type_size(p.type)], p.type, L.swap));
       }
       append_fan(triangles, poly.data(), poly.size());
     }

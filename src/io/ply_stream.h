@@ -39,6 +39,11 @@ class PlyStream {
   void read_exact(void* to, size_t n);
   void skip_element(size_t e);
   bool ahead(size_t n);
+  // The face loops' checks, with their messages: the file ended; the polygon's corner count
+  // (polygon_size_problem); a corner's index as read, returned when it names a vertex.
+  [[noreturn]] void ended() const;
+  void check_corner_count(double n) const;
+  uint32_t corner(double x) const;
   std::string path_;
   void* gz_ = nullptr;
   std::unique_ptr<Layout> layout_;
