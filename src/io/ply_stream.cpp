@@ -254,7 +254,8 @@ uint32_t PlyStream::corner(double x) const {
 bool PlyStream::ahead(size_t n) {
   Layout& L = *layout_;
   if (L.end - L.at >= n) return true;
-  std::memmove(L.ahead.data(), L.ahead.data() + L.at, L.end - L.at);
+  // (Nothing to move before the first read: memmove on the empty buffer's null data is UB.)
+  if (L.end > L.at) std::memmove(L.ahead.data(), L.ahead.data() + L.at, L.end - L.at);
   L.end -= L.at;
   L.at = 0;
   L.ahead.resize(std::max<size_t>(L.ahead.size(), std::max<size_t>(n, 1 << 20)));
