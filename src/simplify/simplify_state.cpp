@@ -103,7 +103,8 @@ Mesh State::output(SimplifyReport* report) const {
     report->reached = report->output_faces == target;
     report->unchanged = false;
     report->note.clear();
-    report->warning = precision_warning(*mesh_in);
+    // (A tile's own mesh is no whole: its caller warns for the whole mesh, once.)
+    report->warning = pinned ? std::string() : precision_warning(*mesh_in);
     if (!report->reached) {
       bool any_border = false;
       for (size_t v = 0; v < nv && !any_border; ++v) any_border = alive[v] && border[v];

@@ -84,14 +84,13 @@ std::vector<size_t> level_goals(const std::vector<LevelCount>& counts, const std
 }
 
 std::vector<uint32_t> freed_ids(const TilePiece& tile) {
+  // tile.ids increases with the local index: the freed ids come out increasing.
   const size_t own = tile.mesh.triangles.size() - 3 * tile.guards;
+  std::vector<uint8_t> used(tile.ids.size(), 0);
+  for (size_t i = 0; i < own; ++i) used[tile.mesh.triangles[i]] = 1;
   std::vector<uint32_t> ids;
-  for (size_t i = 0; i < own; ++i) {
-    const uint32_t v = tile.mesh.triangles[i];
-    if (!tile.pinned[v]) ids.push_back(tile.ids[v]);
-  }
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  for (size_t v = 0; v < used.size(); ++v)
+    if (used[v] && !tile.pinned[v]) ids.push_back(tile.ids[v]);
   return ids;
 }
 

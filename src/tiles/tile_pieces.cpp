@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/id_ranks.h"
 #include "core/mesh_context.h"
 #include "simplify/simplify.h"
 
@@ -26,8 +27,10 @@ VertexTriangles vertex_triangles(const Mesh& mesh) {
 namespace {
 
 // `out` = the triangles `list` of `mesh` over the vertices `verts` (increasing), with
-// their per-vertex data; the caller sets the ids.
-void copy_submesh(const Mesh& mesh, const std::vector<uint32_t>& verts, const std::vector<uint32_t>& list, Mesh& out) {
+// their per-vertex data; local[3 * i + k] is the position in verts of list[i]'s corner k.
+// The caller sets the ids.
+void copy_submesh(const Mesh& mesh, const std::vector<uint32_t>& verts, const std::vector<uint32_t>& list,
+                  const std::vector<uint32_t>& local, Mesh& out) {
   out.positions.resize(3 * verts.size());
   for (size_t i = 0; i < verts.size(); ++i)
     for (int k = 0; k < 3; ++k) out.positions[3 * i + k] = mesh.positions[3 * size_t(verts[i]) + k];
@@ -36,43 +39,42 @@ void copy_submesh(const Mesh& mesh, const std::vector<uint32_t>& verts, const st
     for (size_t i = 0; i < verts.size(); ++i) b.values[i] = a.values[verts[i]];
     out.attributes.push_back(std::move(b));
   }
-  out.triangles.reserve(3 * list.size());
-  for (uint32_t t : list)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.triangles[3 * size_t(t) + k];
-      out.triangles.push_back(uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()));
-    }
+  out.triangles = local;
   if (!mesh.triangle_material.empty())
     for (uint32_t t : list) out.triangle_material.push_back(mesh.triangle_material[t]);
   copy_mesh_context(mesh, out);
 }
 
+// The corners of the triangles `list` of `mesh`, triangle by triangle.
 std::vector<uint32_t> corners_of(const Mesh& mesh, const std::vector<uint32_t>& list) {
-  std::vector<uint32_t> verts;
-  verts.reserve(3 * list.size());
-  for (uint32_t t : list)
-    for (int k = 0; k < 3; ++k) verts.push_back(mesh.triangles[3 * size_t(t) + k]);
-  std::sort(verts.begin(), verts.end());
-  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  return verts;
+  std::vector<uint32_t> corners(3 * list.size());
+  for (size_t i = 0; i < list.size(); ++i)
+    for (int k = 0; k < 3; ++k) corners[3 * i + k] = mesh.triangles[3 * size_t(list[i]) + k];
+  return corners;
 }
+
+uint32_t max_vertex(const Mesh& mesh) { return uint32_t(mesh.vertex_count() > 0 ? mesh.vertex_count() - 1 : 0); }
 
 }  // namespace
 
 TilePiece cut_piece(const Mesh& mesh, const std::vector<uint32_t>& ids, const VertexTriangles* around,
                     const std::vector<uint32_t>& group, uint32_t group_id, const std::vector<uint32_t>& tile) {
-  std::vector<uint32_t> guards;
-  if (around)
-    for (uint32_t v : corners_of(mesh, tile))
+  std::vector<uint32_t> verts, local, guards;
+  if (around) {
+    const std::vector<uint32_t> corners = corners_of(mesh, tile);
+    rank_ids(corners.data(), corners.size(), max_vertex(mesh), verts, local);
+    for (uint32_t v : verts)
       for (uint32_t i = around->start[v]; i < around->start[v + 1]; ++i)
         if (group[around->tri[i]] != group_id) guards.push_back(around->tri[i]);
+  }
   std::sort(guards.begin(), guards.end());
   guards.erase(std::unique(guards.begin(), guards.end()), guards.end());
   std::vector<uint32_t> list = tile;
   list.insert(list.end(), guards.begin(), guards.end());
-  const std::vector<uint32_t> verts = corners_of(mesh, list);
+  const std::vector<uint32_t> corners = corners_of(mesh, list);
+  rank_ids(corners.data(), corners.size(), max_vertex(mesh), verts, local);
   TilePiece p;
-  copy_submesh(mesh, verts, list, p.mesh);
+  copy_submesh(mesh, verts, list, local, p.mesh);
   p.ids.resize(verts.size());
   for (size_t i = 0; i < verts.size(); ++i) p.ids[i] = ids[verts[i]];
   p.pinned.assign(verts.size(), 0);
@@ -109,9 +111,10 @@ TilePiece simplify_tile(const TilePiece& tile, const std::vector<double>* weight
       verts.push_back(uint32_t(v));
     }
   TilePiece r;
-  std::vector<uint32_t> list(own);
+  std::vector<uint32_t> list(own), local(3 * own);
   for (size_t t = 0; t < own; ++t) list[t] = uint32_t(t);
-  copy_submesh(out, verts, list, r.mesh);
+  for (size_t i = 0; i < 3 * own; ++i) local[i] = keep[out.triangles[i]];
+  copy_submesh(out, verts, list, local, r.mesh);
   r.ids.resize(verts.size());
   r.pinned.resize(verts.size());
   for (size_t i = 0; i < verts.size(); ++i) {
