@@ -130,6 +130,8 @@ struct OutOfCoreSimplifyReport {
   unsigned tiles = 0;             // simplification tiles along the longest axis
   double alpha = 0;               // the weights' threshold: weights->alpha_percentile of Sm
   uint64_t tile_estimate = 0;     // bytes: the largest simplification tile's estimated peak
+  unsigned groups_at_once = 0;    // a pass's groups simplified side by side: one per thread, as
+                                  // many as the limit holds pieces of tile_estimate (at least 1)
   std::vector<StageTime> stages;
 };
 

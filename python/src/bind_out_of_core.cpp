@@ -188,6 +188,7 @@ py::dict simplify_file(const py::object& input, const py::object& output, const 
     d["tiles"] = o.tiles;
     d["saliency_tiles"] = o.saliency.tiles;
     d["tile_estimate"] = o.tile_estimate;
+    d["groups_at_once"] = o.groups_at_once;
     d["stages"] = stages_dict(o.stages);
   } else {
     d["tiles"] = std::max(1u, r.simplify.tiles);

@@ -69,7 +69,7 @@ void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::
         .text("weights", a.text.weights).text("device", "cpu").number("error_percent", 100 * rep.error)
         .flag("lock_border", a.lock_border).count("tiles", ooc.tiles).count("saliency_tiles", ooc.saliency.tiles)
         .count("memory_limit", size_t(r.out_of_core.memory_limit)).count("tile_estimate", size_t(ooc.tile_estimate))
-        .count("peak_rss", size_t(peak)).count("ranks", size_t(mpi_world().size))
+        .count("groups_at_once", ooc.groups_at_once).count("peak_rss", size_t(peak)).count("ranks", size_t(mpi_world().size))
         .count("threads_per_rank", resolve_threads(r.saliency.threads));
     if (weighted) j.number("lambda", wo.lambda).number("alpha", ooc.alpha).number("alpha_percentile", wo.alpha_percentile);
     j.strings("outputs", result.outputs).number("seconds", result.seconds).print();
@@ -80,9 +80,9 @@ void print_out_of_core(const Args& a, const meshsal::Request& r, const meshsal::
                   wo.alpha_percentile);
     else
       std::printf("weights    none (plain quadric error)\n");
-    std::printf("tiles      %u (largest estimated at %.0f MiB; peak resident %.0f MiB of %.0f MiB)%s\n", ooc.tiles,
-                ooc.tile_estimate / 1048576.0, peak / 1048576.0, r.out_of_core.memory_limit / 1048576.0,
-                shared_by().c_str());
+    std::printf("tiles      %u (largest estimated at %.0f MiB, %u at a time; peak resident %.0f MiB of %.0f MiB)%s\n",
+                ooc.tiles, ooc.tile_estimate / 1048576.0, ooc.groups_at_once, peak / 1048576.0,
+                r.out_of_core.memory_limit / 1048576.0, shared_by().c_str());
     for (const StageTime& st : ooc.stages) std::printf("%-10s %8.3f s\n", st.name.c_str(), st.seconds);
     std::printf("output     %zu vertices, %zu faces (target %zu), %zu collapses\n", rep.output_vertices,
                 rep.output_faces, rep.target_faces, rep.collapses);

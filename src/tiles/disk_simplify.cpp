@@ -5,9 +5,12 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <mutex>
 #include <optional>
 
 #include "core/cancel.h"
+#include "core/id_ranks.h"
+#include "tiles/group_workers.h"
 #include "tiles/pass_exchange.h"
 #include "tiles/tile_bytes.h"
 #include "tiles/tile_reduce.h"
@@ -30,23 +33,20 @@ bool contains(const std::vector<uint32_t>& sorted, uint32_t x) {
   return std::binary_search(sorted.begin(), sorted.end(), x);
 }
 
-// Positions of a chunk of triangles' corners: the sorted ids and their records.
+// Positions of a chunk of triangles' corners: the distinct ids, their records, and each
+// corner's place among them.
 struct CornerStates {
-  std::vector<uint32_t> ids;
+  std::vector<uint32_t> ids, rank;
   std::vector<uint8_t> records;
   size_t record_bytes = 0;
   void read(const DiskMesh& mesh, const uint32_t* corners, size_t n) {
-    ids.assign(corners, corners + n);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    rank_ids(corners, n, uint32_t(std::max<uint64_t>(1, mesh.vertices) - 1), ids, rank, 0);
     record_bytes = mesh.record_bytes();
     records.resize(ids.size() * record_bytes);
     read_records(mesh.state, record_bytes, ids, records.data());
   }
-  const float* position(uint32_t id) const {
-    const size_t i = size_t(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
-    return reinterpret_cast<const float*>(&records[i * record_bytes]);
-  }
+  // Corner i of the chunk read.
+  const float* position(size_t i) const { return reinterpret_cast<const float*>(&records[rank[i] * record_bytes]); }
 };
 
 class Buckets {
@@ -65,18 +65,18 @@ class Buckets {
     if (!exchange) return;
     TileBytes b;
     if (owner_)
-      for (const auto& [cell, own] : cells_) b.put(cell), b.put(uint8_t(own));
+      for (const auto& [cell, own] : cells_) b.put(cell), b.put(own);
     const auto all = tile_gather(exchange, b.data);
     if (owner_) return;
     cells_.clear();
     for (TileBytesReader in{all[0]}; !in.done();) {
       const uint64_t cell = in.get<uint64_t>();
-      cells_[cell] = in.get<uint8_t>() != 0;
+      cells_[cell] = in.get<uint64_t>();
     }
   }
   void add(uint64_t cell, const BucketFace& face) {
     pending_[cell].push_back(face);
-    cells_[cell] |= face.own != 0;
+    cells_[cell] += face.own;
     if (++count_ >= flush_at_) flush();
   }
   void flush() {
@@ -88,11 +88,12 @@ class Buckets {
     pending_.clear();
     count_ = 0;
   }
-  // The cells with a group of their own, increasing.
-  std::vector<uint64_t> groups() const {
+  // The cells with a group of their own, increasing, and each one's own triangles.
+  std::vector<uint64_t> groups(std::vector<size_t>& sizes) const {
     std::vector<uint64_t> g;
+    sizes.clear();
     for (const auto& [cell, own] : cells_)
-      if (own) g.push_back(cell);
+      if (own) g.push_back(cell), sizes.push_back(size_t(own));
     return g;
   }
   std::vector<BucketFace> read(uint64_t cell) const {
@@ -112,7 +113,7 @@ class Buckets {
   size_t flush_at_, count_ = 0;
   bool owner_;
   std::map<uint64_t, std::vector<BucketFace>> pending_;
-  std::map<uint64_t, bool> cells_;  // every bucket written, and whether it holds a group
+  std::map<uint64_t, uint64_t> cells_;  // every bucket written, and its group's own triangles
 };
 
 // Every chunk of the mesh's triangles, with its index of the first.
@@ -129,20 +130,27 @@ void for_each_chunk(const DiskMesh& mesh, const std::function<void(uint64_t, con
 
 // Group `cell`'s piece: its own triangles (increasing index), then the guards (the other
 // triangles at their corners, increasing index), as simplify_tiled.cpp's cut_piece makes it.
-TilePiece cut_disk_piece(const DiskMesh& mesh, const Buckets& buckets, const TileGrid& grid, uint64_t cell) {
+// `mark`: one bit per vertex, all clear (left clear): the piece's corners while it is cut.
+TilePiece cut_disk_piece(const DiskMesh& mesh, const Buckets& buckets, const TileGrid& grid, uint64_t cell,
+                         VertexBits& mark) {
   const std::vector<BucketFace> here = buckets.read(cell);
   std::vector<BucketFace> own, guards;
   for (const BucketFace& b : here)
     if (b.own) own.push_back(b);
+  // (A bucket is written in triangle order: this sort finds it sorted.)
   auto by_index = [](const BucketFace& a, const BucketFace& b) { return a.f < b.f; };
-  std::sort(own.begin(), own.end(), by_index);
-  std::vector<uint32_t> own_index(own.size()), corners;
-  for (size_t i = 0; i < own.size(); ++i) {
-    own_index[i] = own[i].f;
-    corners.insert(corners.end(), own[i].c, own[i].c + 3);
+  if (!std::is_sorted(own.begin(), own.end(), by_index)) std::sort(own.begin(), own.end(), by_index);
+  const uint32_t max_id = uint32_t(std::max<uint64_t>(1, mesh.vertices) - 1);
+  std::vector<uint32_t> own_index(own.size()), corners, local;
+  {
+    std::vector<uint32_t> all(3 * own.size());
+    for (size_t i = 0; i < own.size(); ++i) {
+      own_index[i] = own[i].f;
+      for (int k = 0; k < 3; ++k) all[3 * i + k] = own[i].c[k];
+    }
+    rank_ids(all.data(), all.size(), max_id, corners, local);
   }
-  std::sort(corners.begin(), corners.end());
-  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  for (uint32_t v : corners) mark.set(v);
   // Every triangle at a corner v is in the bucket of v's cell: read those.
   std::vector<uint64_t> near{cell};
   {
@@ -159,20 +167,22 @@ TilePiece cut_disk_piece(const DiskMesh& mesh, const Buckets& buckets, const Til
   for (uint64_t u : near) {
     const std::vector<BucketFace> faces = u == cell ? here : buckets.read(u);
     for (const BucketFace& b : faces)
-      if (!contains(own_index, b.f) &&
-          (contains(corners, b.c[0]) || contains(corners, b.c[1]) || contains(corners, b.c[2])))
-        guards.push_back(b);
+      if (mark.any(b.c) && !(u == cell ? b.own : contains(own_index, b.f))) guards.push_back(b);
   }
+  for (uint32_t v : corners) mark.clear(v);
   std::sort(guards.begin(), guards.end(), by_index);
   guards.erase(std::unique(guards.begin(), guards.end(), [](const BucketFace& a, const BucketFace& b) { return a.f == b.f; }),
                guards.end());
 
   TilePiece p;
   std::vector<uint32_t>& ids = p.ids;
-  for (const auto* list : {&own, &guards})
-    for (const BucketFace& b : *list) ids.insert(ids.end(), b.c, b.c + 3);
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  {
+    std::vector<uint32_t> all;
+    all.reserve(3 * (own.size() + guards.size()));
+    for (const auto* list : {&own, &guards})
+      for (const BucketFace& b : *list) all.insert(all.end(), b.c, b.c + 3);
+    rank_ids(all.data(), all.size(), max_id, ids, local);
+  }
   const size_t nv = ids.size(), nattr = mesh.attribute_names.size();
   std::vector<float> rec(nv * (3 + nattr));
   read_records(mesh.state, mesh.record_bytes(), ids, rec.data());
@@ -184,14 +194,8 @@ TilePiece cut_disk_piece(const DiskMesh& mesh, const Buckets& buckets, const Til
   }
   for (int k = 0; k < 3; ++k) p.mesh.origin[k] = mesh.origin[k];
   p.pinned.assign(nv, 0);
-  auto local = [&](uint32_t id) { return uint32_t(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()); };
-  for (const BucketFace& b : own)
-    for (int k = 0; k < 3; ++k) p.mesh.triangles.push_back(local(b.c[k]));
-  for (const BucketFace& b : guards)
-    for (int k = 0; k < 3; ++k) {
-      p.mesh.triangles.push_back(local(b.c[k]));
-      p.pinned[local(b.c[k])] = 1;
-    }
+  p.mesh.triangles = std::move(local);
+  for (size_t i = 3 * own.size(); i < p.mesh.triangles.size(); ++i) p.pinned[p.mesh.triangles[i]] = 1;
   p.guards = guards.size();
   return p;
 }
@@ -234,7 +238,7 @@ void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets) 
       const bool mine = selected(pass, c);
       if (!mine && pass.guard_near && !pass.guard_near->any(c)) continue;
       const BucketFace face{uint32_t(first + i / 3), {c[0], c[1], c[2]}, 0};
-      const float* p[3] = {states.position(c[0]), states.position(c[1]), states.position(c[2])};
+      const float* p[3] = {states.position(i), states.position(i + 1), states.position(i + 2)};
       const uint64_t group = mine ? pass.grid.centroid_cell(p[0], p[1], p[2]) : UINT64_MAX;
       if (mine) buckets.add(group, BucketFace{face.f, {c[0], c[1], c[2]}, 1});
       uint64_t seen[3];
@@ -261,40 +265,67 @@ std::vector<double> piece_weights(const DiskMesh& mesh, const TilePiece& tile) {
   return w;
 }
 
+// Reports a pass's progress from the groups' workers: `done` groups of `count` so far.
+class GroupProgress {
+ public:
+  GroupProgress(const std::function<void(double)>& progress, double from, double to, size_t count)
+      : progress_(progress), from_(from), to_(to), count_(std::max<size_t>(1, count)) {}
+  void one_done() {
+    if (!progress_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    progress_(from_ + (to_ - from_) * double(++done_) / double(count_));
+  }
+
+ private:
+  const std::function<void(double)>& progress_;
+  double from_, to_;
+  size_t count_, done_ = 0;
+  std::mutex mutex_;
+};
+
+// What the groups of a pass run on: the workers (group_workers.h) and a mark (cut_disk_piece)
+// for each.
+struct PassWorkers {
+  GroupWorkers split;
+  SimplifyOptions inner;  // options with the threads a group may use
+  std::vector<VertexBits> marks;
+};
+
 // Each group's goal from the common error level (tile_pass.h), in every pass; the levels
 // of each group kept on disk meanwhile.
 std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, const Buckets& buckets,
-                                const std::vector<uint64_t>& groups, const SimplifyOptions& options,
+                                const std::vector<uint64_t>& groups, const std::vector<size_t>& sizes,
+                                const SimplifyOptions& options, PassWorkers& workers,
                                 const std::function<void(double)>& progress) {
   auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
   // This process's groups (pass_exchange.h): their levels to files, their counts shared.
   std::vector<uint64_t> faces(groups.size(), 0), first_goals(groups.size(), 0), counts(groups.size(), 0);
-  for (size_t g = 0; g < groups.size(); ++g) {
-    if (!runs_group(options.exchange, g)) continue;
+  GroupProgress done(progress, 0, 0.5, groups.size());
+  for_each_group(options.exchange, sizes, workers.split.workers, [&](size_t g, unsigned worker) {
     throw_if_cancelled();
-    if (progress) progress(0.5 * double(g) / double(groups.size()));
-    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g], workers.marks[worker]);
     const std::vector<double> w = piece_weights(mesh, tile);
-    const std::vector<double> levels = collapse_levels(tile, mesh.weights.empty() ? nullptr : &w, options);
+    const std::vector<double> levels = collapse_levels(tile, mesh.weights.empty() ? nullptr : &w, workers.inner);
     ScratchWriter lf(levels_file(g));
     lf.write_vector(levels);
     lf.close();
     faces[g] = tile.mesh.triangle_count() - tile.guards;
     if (pass.budget.rule == Targets::FirstPass) first_goals[g] = first_pass_goal(tile, pass.budget.ratio);
     counts[g] = levels.size();
-  }
+    done.one_done();
+  });
   for (auto* v : {&faces, &first_goals, &counts}) share_group_values(options.exchange, *v);
   uint64_t goal_sum = 0, count = 0;
-  std::vector<size_t> sizes;
+  std::vector<size_t> own_faces;
   for (size_t g = 0; g < groups.size(); ++g) {
-    sizes.push_back(size_t(faces[g]));
+    own_faces.push_back(size_t(faces[g]));
     goal_sum += first_goals[g];
     count += counts[g];
   }
   // Rank 0 reads every group's levels (the others need only the goals) and removes them.
   std::vector<uint64_t> goals(groups.size(), 0);
   lead_step(options.exchange, [&] {
-    const std::vector<size_t> found = pass_goals(pass.budget, sizes, goal_sum, count, [&](size_t g) {
+    const std::vector<size_t> found = pass_goals(pass.budget, own_faces, goal_sum, count, [&](size_t g) {
       const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
       std::vector<double> levels(bytes.size() / 8);
       // (A group with no collapse has an empty file: memcpy's pointers would be null.)
@@ -350,7 +381,8 @@ void piece_records(const DiskMesh& mesh, const TilePiece& piece, std::vector<uin
 }  // namespace
 
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
-                   PassTotals& totals, size_t buffer_bytes, const std::function<void(double)>& progress) {
+                   PassTotals& totals, size_t buffer_bytes, unsigned concurrent,
+                   const std::function<void(double)>& progress) {
   // With an exchange (pass_exchange.h) rank 0, the lead, fills the buckets and writes the
   // pass's result; every process simplifies its share of the groups.
   TileExchange* exchange = options.exchange;
@@ -358,39 +390,32 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   Buckets buckets(mesh, ++mesh.passes, buffer_bytes, lead);
   lead_step(exchange, [&] { fill_buckets(mesh, pass, buckets); });
   buckets.share(exchange);
-  const std::vector<uint64_t> groups = buckets.groups();
-  const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, options, progress);
+  std::vector<size_t> sizes;
+  const std::vector<uint64_t> groups = buckets.groups(sizes);
+  PassWorkers workers;
+  workers.split = group_workers(options.threads, concurrent, groups.size());
+  workers.inner = options;
+  workers.inner.threads = workers.split.inner;
+  workers.marks.assign(workers.split.workers, VertexBits(mesh.vertices));
+  const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, sizes, options, workers, progress);
 
-  // Each group in cell order (the in-memory driver's order), then the rest as it was. Shared,
-  // each process leaves its groups' outcomes in a file each, appended by the lead in order.
+  // Each group's outcome to a file of its own (the groups run side by side, and shared, on
+  // other processes too), appended by the lead in group order (the in-memory driver's),
+  // then the rest as it was.
   const std::string next = mesh.triangles + "+";
   const std::string moves = mesh.dir->file("moves.bin");
   auto group_file = [&](size_t g) { return mesh.dir->file("group_" + std::to_string(g) + ".bin"); };
-  std::optional<ScratchWriter> out, moved;
-  if (lead) out.emplace(next), moved.emplace(moves);
-  uint64_t out_count = 0;
-  auto append = [&](const std::vector<uint32_t>& triangles, const std::vector<uint8_t>& records,
-                    const std::vector<uint32_t>& freed) {
-    out->write_vector(triangles);
-    out_count += triangles.size() / 3;
-    moved->write_vector(records);
-    for (uint32_t id : freed) pending.clear(id);
-  };
-  PassTotals mine;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    if (!runs_group(exchange, g)) continue;
+  std::vector<PassTotals> group_totals(groups.size());
+  GroupProgress done(progress, 0.5, 1.0, groups.size());
+  for_each_group(exchange, sizes, workers.split.workers, [&](size_t g, unsigned worker) {
     throw_if_cancelled();
-    if (progress) progress(0.5 + 0.5 * double(g) / double(groups.size()));
-    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g]);
+    const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g], workers.marks[worker]);
     const std::vector<double> w = piece_weights(mesh, tile);
-    const TilePiece piece = simplify_group(tile, mesh.weights.empty() ? nullptr : &w, options, goals[g], mine);
+    const TilePiece piece =
+        simplify_group(tile, mesh.weights.empty() ? nullptr : &w, workers.inner, goals[g], group_totals[g]);
     std::vector<uint32_t> triangles;
     std::vector<uint8_t> records;
     piece_records(mesh, piece, triangles, records);
-    if (!exchange) {
-      append(triangles, records, freed_ids(tile));
-      continue;
-    }
     TileBytes b;
     b.put(triangles);
     b.put(records);
@@ -398,28 +423,34 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     ScratchWriter f(group_file(g));
     f.write_vector(b.data);
     f.close();
-  }
+    done.one_done();
+  });
+  PassTotals mine;
+  for (const PassTotals& t : group_totals) add_totals(mine, t);
   add_totals(totals, share_totals(exchange, mine));  // (shared: every group's file is complete)
+  uint64_t out_count = 0;
   lead_step(exchange, [&] {
-    if (exchange)
-      for (size_t g = 0; g < groups.size(); ++g) {
-        const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
-        TileBytesReader in{bytes};
-        const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
-        const std::vector<uint8_t> records = in.get_vector<uint8_t>();
-        append(triangles, records, in.get_vector<uint32_t>());
-        std::remove(group_file(g).c_str());
-      }
+    ScratchWriter out(next), moved(moves);
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
+      TileBytesReader in{bytes};
+      const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
+      out.write_vector(triangles);
+      out_count += triangles.size() / 3;
+      moved.write_vector(in.get_vector<uint8_t>());
+      for (uint32_t id : in.get_vector<uint32_t>()) pending.clear(id);
+      std::remove(group_file(g).c_str());
+    }
     if (pass.selected_near)
       for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
         for (size_t i = 0; i < t.size(); i += 3)
           if (!selected(pass, &t[i])) {
-            out->write(&t[i], 12);
+            out.write(&t[i], 12);
             ++out_count;
           }
       });
-    out->close();
-    moved->close();
+    out.close();
+    moved.close();
     apply_moves(mesh, moves);
     std::remove(moves.c_str());
     if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)

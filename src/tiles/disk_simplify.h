@@ -60,11 +60,13 @@ struct DiskPass {
 // Runs `pass` over `mesh` (its triangles file is replaced by the pass's result, the moved
 // vertices are written into its state), clearing the vertices the pass freed in
 // `pending`. `buffer_bytes`: how much the bucket buffers may hold before they go to disk.
+// The groups run side by side on options.threads (group_workers.h), at most `concurrent`
+// at once (each holds its piece; 0 = no cap).
 // With options.exchange every process calls it alike: each simplifies its share of the
 // groups (pass_exchange.h) in the one folder they all reach; rank 0 alone writes the
 // buckets and the result and keeps `pending`; all get the result's triangle count.
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
-                   detail::PassTotals& totals, size_t buffer_bytes,
+                   detail::PassTotals& totals, size_t buffer_bytes, unsigned concurrent,
                    const std::function<void(double)>& progress);
 
 // The strips of the next pass (simplify_tiled.cpp's strip_triangles with one ring): near1

@@ -17,6 +17,7 @@
 #include "core/model_frame.h"
 #include "core/timer.h"
 #include "simplify/simplify.h"
+#include "tiles/group_workers.h"
 #include "tiles/pass_exchange.h"
 #include "tiles/tile_grid.h"
 #include "tiles/tile_pass.h"
@@ -61,19 +62,22 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
   };
   // Each group's goal from the common error level (tile_pass.h), in every pass. With an
   // exchange this process runs its share of the groups (pass_exchange.h) and gets the rest.
+  // The groups run side by side (group_workers.h), each outcome in its own slot.
   TileExchange* exchange = options.exchange;
+  std::vector<size_t> sizes;
+  for (const std::vector<uint32_t>& g : groups) sizes.push_back(g.size());
+  const GroupWorkers workers = group_workers(options.threads, 0, groups.size());
+  SimplifyOptions inner = options;
+  inner.threads = workers.inner;
   std::vector<std::vector<double>> levels(groups.size());
   std::vector<uint64_t> first_goals(groups.size(), 0);
-  std::vector<size_t> sizes;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    sizes.push_back(groups[g].size());
-    if (!runs_group(exchange, g)) continue;
+  for_each_group(exchange, sizes, workers.workers, [&](size_t g, unsigned) {
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
     const std::vector<double> w = weights_of(tile);
-    levels[g] = collapse_levels(tile, weights ? &w : nullptr, options);
+    levels[g] = collapse_levels(tile, weights ? &w : nullptr, inner);
     if (budget.rule == Targets::FirstPass) first_goals[g] = first_pass_goal(tile, budget.ratio);
-  }
+  });
   share_group_levels(exchange, levels);
   share_group_values(exchange, first_goals);
   uint64_t goal_sum = 0, count = 0;
@@ -82,15 +86,16 @@ Work run_pass(const Work& work, const std::vector<uint32_t>& selected, const Til
       pass_goals(budget, sizes, goal_sum, count, [&](size_t g) { return levels[g]; });
   std::vector<std::vector<double>>().swap(levels);
   std::vector<GroupOutcome> outcomes(groups.size());
-  PassTotals pass;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    if (!runs_group(exchange, g)) continue;
+  std::vector<PassTotals> group_totals(groups.size());
+  for_each_group(exchange, sizes, workers.workers, [&](size_t g, unsigned) {
     throw_if_cancelled();
     const TilePiece tile = cut_piece(work.mesh, work.ids, &around, group, uint32_t(g), groups[g]);
     const std::vector<double> w = weights_of(tile);
-    outcomes[g].piece = simplify_group(tile, weights ? &w : nullptr, options, goals[g], pass);
+    outcomes[g].piece = simplify_group(tile, weights ? &w : nullptr, inner, goals[g], group_totals[g]);
     outcomes[g].freed = freed_ids(tile);
-  }
+  });
+  PassTotals pass;
+  for (const PassTotals& t : group_totals) add_totals(pass, t);
   share_group_outcomes(exchange, outcomes, pass, work.mesh.attributes.size());
   add_totals(totals, pass);
   std::vector<TilePiece> out;

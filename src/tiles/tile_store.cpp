@@ -290,7 +290,7 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
 
 void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned min_tiles,
-                      const std::function<void(const char*, double)>& progress) {
+                      const std::function<void(const char*, double)>& progress, StoreUse use) {
   const Progress report = [&](const char* stage, double f) {
     if (progress) progress(stage, f);
   };
@@ -301,6 +301,10 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
   {
     const PointBits points = read_input(store, input_path, converted_wide, report);
     local_positions(store, points);
+  }
+  if (use == StoreUse::FilesOnly) {
+    store.plan = make_tile_plan(store.box, store.points, options, std::max(1u, min_tiles));
+    return;
   }
   choose_tiling(store, input_path, options, memory_limit, min_tiles);
   fill_buckets(store, input_path, memory_limit, report);

@@ -71,13 +71,19 @@ struct TileStore {
   size_t block = 0;                    // vertices per block of the passes
 };
 
+// What a store is built for: the saliency's tiles (pass C's buckets, the tile count that
+// fits the limit), or only passes A and B (the files, the box and the histogram: a
+// simplification without saliency groups the triangles itself).
+enum class StoreUse { SaliencyTiles, FilesOnly };
+
 // Streams `input` into tiles under `memory_limit` bytes (0: no limit, `tiles` along the
 // longest axis, else the fewest tiles that fit; at least `tiles`). Throws Error naming the
 // smallest workable limit when even the finest tiling does not fit. `progress` (may be
 // empty) gets each pass's name and fraction.
 void build_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles,
-                      const std::function<void(const char*, double)>& progress);
+                      const std::function<void(const char*, double)>& progress,
+                      StoreUse use = StoreUse::SaliencyTiles);
 
 // build_tile_store under an exchange (options.exchange; none: build_tile_store itself):
 // rank 0 builds the store and the others take its description (its folder, counts, origin,
@@ -85,7 +91,8 @@ void build_tile_store(TileStore& store, const std::string& input, const Saliency
 // all reach. An error on rank 0 is thrown on every rank.
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles,
-                      const std::function<void(const char*, double)>& progress);
+                      const std::function<void(const char*, double)>& progress,
+                      StoreUse use = StoreUse::SaliencyTiles);
 
 // "123M": bytes as --memory-limit takes them, rounded up (the errors naming a limit).
 std::string mib_text(uint64_t bytes);

@@ -59,9 +59,9 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
 }  // namespace
 
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
-                      unsigned tiles, const std::function<void(const char*, double)>& progress) {
+                      unsigned tiles, const std::function<void(const char*, double)>& progress, StoreUse use) {
   TileExchange* exchange = options.exchange;
-  lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress); });
+  lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress, use); });
   if (!exchange) return;
   const auto all = tile_gather(exchange, exchange->rank() == 0 ? describe(store).data : std::vector<uint8_t>());
   if (exchange->rank() != 0) adopt(store, all[0], options);
