@@ -2,6 +2,7 @@
 // saliency_tiles.h) and give the whole mesh's values at the tile's query vertices.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "saliency/spatial_grid.h"
@@ -19,6 +20,11 @@ struct FilterScope {
   // The fast method only: per sigma, the whole mesh's occupied cells of sigma /
   // cells_per_sigma (count_fast_cells), which decide between per-cell and per-vertex sums.
   std::vector<uint64_t> occupied_cells;
+  // The fast method: each sigma's averages handed over as soon as they are found (the
+  // sigma's index, then the array: valid at the query vertices) instead of returned, one
+  // sigma's array held at a time (a tile's halo then holds one average, not one per sigma).
+  // Empty: returned.
+  std::function<void(size_t, const std::vector<double>&)> take;
 };
 
 }  // namespace meshsal

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <cmath>
 #include <thread>
 #include <utility>
 
 #include "core/mesh_points.h"
 #include "core/parallel.h"
+#include "core/parallel_select.h"
 #include "saliency/query_groups.h"
 #include "saliency/sparse_cells.h"
 #include "saliency/spatial_grid.h"
@@ -106,33 +108,52 @@ void check_inputs(const Mesh& mesh, const std::vector<uint8_t>& is_point,
     if (!(s > 0) || !std::isfinite(s)) throw Error("Gaussian filter sigma must be positive");
 }
 
-// The box of a tile's query vertices.
+// The box of a tile's query vertices (on the threads: a tile's points are a few million).
 BoundingBox query_points_box(const Mesh& mesh, const std::vector<uint32_t>& point_list,
-                             const std::vector<uint8_t>& query) {
+                             const std::vector<uint8_t>& query, unsigned threads) {
   BoundingBox query_box;
   for (int a = 0; a < 3; ++a) query_box.min[a] = INFINITY, query_box.max[a] = -INFINITY;
-  for (uint32_t v : point_list)
-    if (query[v])
-      for (int a = 0; a < 3; ++a) {
-        query_box.min[a] = std::min(query_box.min[a], double(mesh.positions[3 * size_t(v) + a]));
-        query_box.max[a] = std::max(query_box.max[a], double(mesh.positions[3 * size_t(v) + a]));
-      }
+  std::mutex m;
+  parallel_for(point_list.size(), threads, 1 << 16, [&](size_t begin, size_t end) {
+    BoundingBox b;
+    for (int a = 0; a < 3; ++a) b.min[a] = INFINITY, b.max[a] = -INFINITY;
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t v = point_list[i];
+      if (query[v])
+        for (int a = 0; a < 3; ++a) {
+          b.min[a] = std::min(b.min[a], double(mesh.positions[3 * size_t(v) + a]));
+          b.max[a] = std::max(b.max[a], double(mesh.positions[3 * size_t(v) + a]));
+        }
+    }
+    const std::lock_guard<std::mutex> lock(m);  // (min and max: any order gives the same box)
+    for (int a = 0; a < 3; ++a)
+      query_box.min[a] = std::min(query_box.min[a], b.min[a]), query_box.max[a] = std::max(query_box.max[a], b.max[a]);
+  });
   return query_box;
 }
 
-// Into `reached` (its storage reused from one sigma to the next): the points of
-// `point_list` within `reach` of the query box, in their order.
-void points_within_reach(const Mesh& mesh, const std::vector<uint32_t>& point_list,
-                         const BoundingBox& query_box, double reach, std::vector<uint32_t>& reached) {
-  reached.clear();
-  for (uint32_t v : point_list) {
-    bool in = true;
-    for (int a = 0; a < 3 && in; ++a) {
-      const double x = mesh.positions[3 * size_t(v) + a];
-      in = x >= query_box.min[a] - reach && x <= query_box.max[a] + reach;
+// For each point of `point_list`, one bit per sigma: whether it lies within that sigma's
+// reach of the query box (one pass over the positions for every sigma; then each sigma's
+// points are a pass over a byte or four a point).
+std::vector<uint32_t> reach_bits(const Mesh& mesh, const std::vector<uint32_t>& point_list,
+                                 const BoundingBox& query_box, const std::vector<double>& reach, unsigned threads) {
+  std::vector<uint32_t> bits(point_list.size());
+  parallel_for(point_list.size(), threads, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const float* p = &mesh.positions[3 * size_t(point_list[i])];
+      uint32_t b = 0;
+      for (size_t k = 0; k < reach.size(); ++k) {
+        bool in = true;
+        for (int a = 0; a < 3 && in; ++a) {
+          const double x = p[a];
+          in = x >= query_box.min[a] - reach[k] && x <= query_box.max[a] + reach[k];
+        }
+        b |= uint32_t(in) << k;
+      }
+      bits[i] = b;
     }
-    if (in) reached.push_back(v);
-  }
+  });
+  return bits;
 }
 
 // One sigma's progress: the vertices written so far, told from the caller's thread only.
@@ -251,7 +272,10 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   check_inputs(mesh, is_point, values, sigmas);
   if (scope && scope->occupied_cells.size() != sigmas.size())
     throw Error("internal: a tile's fast filter needs the whole mesh's cell count per sigma");
-  std::vector<std::vector<double>> out(sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
+  if (sigmas.size() > size_t(sweep::kMaxSigmas)) throw Error("Gaussian filter: at most 32 sigmas");
+  // Every sigma's array, or (handed over) one reused from sigma to sigma.
+  const bool handed = scope && scope->take;
+  std::vector<std::vector<double>> out(handed ? 1 : sigmas.size(), std::vector<double>(mesh.vertex_count(), 0.0));
   std::vector<uint32_t> point_list = mesh_point_list(is_point);
   const size_t points = point_list.size();
   if (points == 0) return out;
@@ -268,14 +292,20 @@ std::vector<std::vector<double>> gaussian_filter_fast(
   const std::thread::id caller = std::this_thread::get_id();
   // A tile: each sigma's cells need only the points within its reach of the queries (2 s
   // and the cells around them); the smaller sigmas skip most of the halo.
-  const BoundingBox query_box = query ? query_points_box(mesh, point_list, *query) : box;
-  std::vector<uint32_t> reached;
+  std::vector<uint32_t> reached, within;
+  if (query) {
+    std::vector<double> reach;
+    for (double s : sigmas) reach.push_back(2 * s + 3 * fast_cell_edge(box, s, params));
+    within = reach_bits(mesh, point_list, query_points_box(mesh, point_list, *query, threads), reach, threads);
+  }
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double s = sigmas[k];
     const double cell = fast_cell_edge(box, s, params);
     const std::vector<uint32_t>* sorted_points = &point_list;
     if (query) {
-      points_within_reach(mesh, point_list, query_box, 2 * s + 3 * cell, reached);
+      parallel_select(
+          point_list.size(), threads, [&](size_t i) { return (within[i] >> k) & 1; },
+          [&](size_t i) { return point_list[i]; }, reached);
       sorted_points = &reached;
     }
     // The last sigma of a whole mesh hands the list over to its cells (the fast CPU
@@ -297,16 +327,20 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     std::vector<uint64_t>().swap(cells.key);  // grouped: 8 bytes a cell less from here on
     const GridFrame cell_frame{box, uint64_t(all_cells)};
     const Aggregates ag = aggregate(mesh, cells, values.data(), 2 * s, cell_frame, threads, dense ? &groups : nullptr);
+    std::vector<double>& into = out[handed ? 0 : k];
     sweep::QueryArgs args{&mesh, &ag, &cells, nullptr, nullptr, values.data(), s, coef, cutoff2,
-                          1.0 / (s * s), INFINITY, 0.0, out[k].data()};
+                          1.0 / (s * s), INFINITY, 0.0, into.data()};
     if (dense) {
       // The cutoff's shell: params.shell_cells cells deep (0: none).
       query_groups(args, groups, cells, query, params.shell_cells * cell, threads, total_pairs, tick);
-      continue;
+    } else {
+      if (visit.empty())
+        visit = visiting_order(mesh, is_point, point_list, box, fast_cell_edge(box, finest, params), query, threads);
+      query_visits(args, visit, threads, total_pairs, tick);
     }
-    if (visit.empty()) visit = visiting_order(mesh, is_point, point_list, box, fast_cell_edge(box, finest, params), query, threads);
-    query_visits(args, visit, threads, total_pairs, tick);
+    if (handed) scope->take(k, into);
   }
+  if (handed) out.clear();
   if (stats) stats->pairs = total_pairs;
   return out;
 }

@@ -30,7 +30,8 @@ struct FastFilterParams {
 };
 
 // The same contract as gaussian_filter(): out[k][v] approximates G(values, v, sigmas[k]);
-// 0 for vertices that are not mesh points. stats->pairs counts (vertex, cell) pairs.
+// 0 for vertices that are not mesh points (at most kMaxSigmas sigmas). stats->pairs counts
+// (vertex, cell) pairs. With scope->take the sigmas' arrays go to it and none is returned.
 // `scope` (may be null; filter_scope.h): the mesh is a tile of a larger one; its cells are
 // the whole mesh's, complete where the tile holds every mesh point within 2 s + one cell of
 // its queries, so each cell's aggregate is the whole mesh's (only the order of the sums

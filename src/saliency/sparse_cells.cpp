@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/parallel.h"
+#include "core/parallel_select.h"
 #include "core/radix_sort.h"
 
 namespace meshsal {
@@ -75,8 +76,8 @@ SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& point
 
 std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point) {
   std::vector<uint32_t> points;
-  for (size_t v = 0; v < is_point.size(); ++v)
-    if (is_point[v]) points.push_back(uint32_t(v));
+  parallel_select(
+      is_point.size(), 0, [&](size_t v) { return is_point[v] != 0; }, [](size_t v) { return uint32_t(v); }, points);
   return points;
 }
 

@@ -68,7 +68,7 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
       }
     }
   }
-  const TilePointSource point_source = [&tile_points](size_t t, TilePoints&) -> const TilePoints& { return tile_points[t]; };
+  const TilePointSource point_source = memory_point_source(tile_points);
   clock.lap("curvature");
 
   // Phase 0 (fast): the whole mesh's occupied cells, summed over every tile.

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 
 #include "core/adjacency.h"
 #include "core/parallel.h"
@@ -196,44 +195,53 @@ TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& s
   return out;
 }
 
+TilePointSource memory_point_source(const std::vector<TilePoints>& points) {
+  return [&points](size_t t, const BoundingBox&, TilePoints&, std::vector<size_t>& ends) -> const TilePoints& {
+    ends.assign(1, points[t].global.size());
+    return points[t];
+  };
+}
+
 TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source) {
   size_t lo[3], hi[3];
   for (int a = 0; a < 3; ++a) lo[a] = tile_column(plan, box.min[a], a), hi[a] = tile_column(plan, box.max[a], a);
-  // Each tile's points are ascending and the tiles disjoint: a merge of the tiles' runs
+  // Each run of a tile's points is ascending and the tiles disjoint: a merge of the runs
   // puts the union in whole-mesh order.
   TilePoints all, scratch;
   std::vector<size_t> run{0};  // the runs' starts in `all`
+  std::vector<size_t> ends;
   for (size_t z = lo[2]; z <= hi[2]; ++z)
     for (size_t y = lo[1]; y <= hi[1]; ++y)
       for (size_t x = lo[0]; x <= hi[0]; ++x) {
-        const TilePoints& p = source((z * size_t(plan.tiles[1]) + y) * size_t(plan.tiles[0]) + x, scratch);
-        for (size_t i = 0; i < p.global.size(); ++i) {
-          if (!in_box(&p.positions[3 * i], box, 0.0)) continue;
-          all.global.push_back(p.global[i]);
-          all.positions.insert(all.positions.end(), &p.positions[3 * i], &p.positions[3 * i + 3]);
-          all.curvature.push_back(p.curvature[i]);
+        const TilePoints& p = source((z * size_t(plan.tiles[1]) + y) * size_t(plan.tiles[0]) + x, box, scratch, ends);
+        for (size_t r = 0, i = 0; r < ends.size(); ++r) {
+          for (; i < ends[r]; ++i) {
+            if (!in_box(&p.positions[3 * i], box, 0.0)) continue;
+            all.global.push_back(p.global[i]);
+            all.positions.insert(all.positions.end(), &p.positions[3 * i], &p.positions[3 * i + 3]);
+            all.curvature.push_back(p.curvature[i]);
+          }
+          if (all.global.size() > run.back()) run.push_back(all.global.size());
         }
-        if (all.global.size() > run.back()) run.push_back(all.global.size());
       }
   if (run.size() <= 2) return all;  // one run (or none): in order already
+  // The runs merged by a radix sort of the numbers (linear, on the threads; a heap of the
+  // runs took half of the gathering with a tile's bands as runs).
   const size_t n = all.global.size();
-  // A heap of the runs by their next point's number (few runs: a tile's neighbours).
-  using Head = std::pair<uint32_t, size_t>;  // (number, run)
-  std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
-  std::vector<size_t> at(run.begin(), run.end() - 1);
-  for (size_t r = 0; r + 1 < run.size(); ++r) heads.push({all.global[at[r]], r});
+  std::vector<uint32_t> key = all.global, from(n);
+  uint32_t largest = 0;
+  for (size_t i = 0; i < n; ++i) from[i] = uint32_t(i), largest = std::max(largest, key[i]);
+  radix_sort(key, from, largest, plan.threads);
   TilePoints out;
-  out.global.resize(n);
+  out.global = std::move(key);
   out.positions.resize(3 * n);
   out.curvature.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const size_t r = heads.top().second, j = at[r]++;
-    heads.pop();
-    out.global[i] = all.global[j];
-    std::copy_n(&all.positions[3 * j], 3, &out.positions[3 * i]);
-    out.curvature[i] = all.curvature[j];
-    if (at[r] < run[r + 1]) heads.push({all.global[at[r]], r});
-  }
+  parallel_for(n, plan.threads, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      std::copy_n(&all.positions[3 * size_t(from[i])], 3, &out.positions[3 * i]);
+      out.curvature[i] = all.curvature[from[i]];
+    }
+  });
   return out;
 }
 
@@ -343,15 +351,13 @@ TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, co
   };
   const std::vector<uint8_t> all(n, 1);
   if (plan.method == Method::Fast) {
-    // A sigma a call (its sums do not depend on the others'): a halo point holds one
+    // Each sigma's averages kept at the queries as they come: a halo point holds one
     // sigma's average at a time, not every sigma's.
-    for (size_t k = 0; k < sigmas.size(); ++k) {
-      FilterStats stats;
-      scope.occupied_cells.assign(1, plan.fast_cells[k]);
-      keep_queries(gaussian_filter_fast(points, all, src.curvature, {sigmas[k]}, plan.threads, &stats, {}, {}, &scope)[0],
-                   G[k]);
-      r.pairs += stats.pairs;
-    }
+    FilterStats stats;
+    scope.occupied_cells.assign(plan.fast_cells.begin(), plan.fast_cells.begin() + long(sigmas.size()));
+    scope.take = [&](size_t k, const std::vector<double>& at_points) { keep_queries(at_points, G[k]); };
+    gaussian_filter_fast(points, all, src.curvature, sigmas, plan.threads, &stats, {}, {}, &scope);
+    r.pairs = stats.pairs;
   } else {
     // The exact sweep filters every sigma in one pass over the neighbours.
     FilterStats stats;

@@ -118,9 +118,14 @@ struct TileCurvature {
 // Phase C: tile t's own points, their curvature and its query, from its bucket alone.
 TileCurvature tile_curvature(const TilePlan& plan, size_t t, const TileSource& source);
 
-// Where the tiles' points come from (phase C's outputs, in memory or in files): tile u's
-// points, either held by the source or read into `scratch`.
-using TilePointSource = std::function<const TilePoints&(size_t tile, TilePoints& scratch)>;
+// Where the tiles' points come from (phase C's outputs, in memory or in files): of tile u,
+// the points that may lie in `box` (every one of its points inside it; others allowed: a
+// file reads whole zones of a tile), as runs each in whole-mesh order, `ends` receiving
+// each run's end. The points are held by the source or read into `scratch`.
+using TilePointSource = std::function<const TilePoints&(size_t tile, const BoundingBox& box, TilePoints& scratch,
+                                                        std::vector<size_t>& ends)>;
+// The source of points held in memory, a tile's whole in one run.
+TilePointSource memory_point_source(const std::vector<TilePoints>& points);
 
 // The points inside `box` (margins included) from the tiles it meets, in whole-mesh order.
 TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source);

@@ -24,6 +24,9 @@ class TileFileWriter {
     put(uint64_t(v.size()));
     out_.write_vector(v);
   }
+  // The values alone (their count is the caller's: a header before them).
+  template <class T>
+  void put_raw(const T* v, size_t n) { out_.write(v, n * sizeof(T)); }
   void close() { out_.close(); }
 
  private:
@@ -51,15 +54,27 @@ class TileFileReader {
     take(v.data(), n * sizeof(T));
     return v;
   }
+  // n values into `to` (their count from a header, checked against left()).
+  template <class T>
+  void get_raw(T* to, size_t n) { take(to, n * sizeof(T)); }
+  // Bytes not read yet.
+  uint64_t left() const { return left_; }
+  void skip(uint64_t bytes) {
+    if (bytes > left_) throw Error("tiled saliency: a short tile file");
+    at_ += bytes;
+    left_ -= bytes;
+    in_.seek(at_);
+  }
 
  private:
   void take(void* to, size_t bytes) {
     if (bytes > left_) throw Error("tiled saliency: a short tile file");
     in_.read_exact(to, bytes);
+    at_ += bytes;
     left_ -= bytes;
   }
   ScratchReader in_;
-  uint64_t left_ = 0;
+  uint64_t left_ = 0, at_ = 0;
 };
 
 }  // namespace meshsal

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "core/stage_clock.h"
+#include "tiles/background_write.h"
 #include "tiles/tile_bytes.h"
 #include "tiles/tile_file.h"
 #include "tiles/tile_reduce.h"
@@ -81,21 +83,101 @@ std::vector<std::vector<MaxCandidate>> load_candidates(const std::string& path, 
 
 // Phase C's outputs: a tile's points (read by every tile whose halo reaches it) and its
 // query (read by itself).
-void save_points(const std::string& path, const TilePoints& p) {
+//
+// The points file holds the tile's points in zones, three bands per axis (within a halo's
+// reach of the cube's low face, of its high face, and between), each zone ascending in
+// whole-mesh order, after a header of each zone's count and box: a halo reaching a few
+// percent of the diagonal into a neighbour half the box wide reads the bands facing it
+// instead of all of the neighbour's points (igea_loop2 x4 in 8 tiles: every tile read
+// every other tile's file whole).
+constexpr uint64_t kZones = 27;
+constexpr size_t kPointBytes = 4 + 12 + 8;  // number, position, curvature
+
+struct Zone {
+  uint64_t count = 0;
+  BoundingBox box;
+};
+
+void save_points(const std::string& path, const TilePoints& p, const TilePlan& plan, size_t t) {
+  const size_t col[3] = {t % size_t(plan.tiles[0]), t / size_t(plan.tiles[0]) % size_t(plan.tiles[1]),
+                         t / (size_t(plan.tiles[0]) * size_t(plan.tiles[1]))};
+  const double band = plan.source_margin + plan.query_margin;
+  const size_t n = p.global.size();
+  std::vector<uint8_t> zone(n);
+  std::vector<Zone> zones(kZones);
+  for (Zone& z : zones)
+    for (int a = 0; a < 3; ++a) z.box.min[a] = INFINITY, z.box.max[a] = -INFINITY;
+  for (size_t i = 0; i < n; ++i) {
+    const float* x = &p.positions[3 * i];
+    size_t z = 0;
+    for (int a = 2; a >= 0; --a) {
+      const double lo = plan.box.min[a] + double(col[a]) * plan.tile_edge, hi = lo + plan.tile_edge;
+      z = 3 * z + (x[a] < lo + band ? 0 : x[a] >= hi - band ? 2 : 1);
+    }
+    zone[i] = uint8_t(z);
+    Zone& Z = zones[z];
+    Z.count++;
+    for (int a = 0; a < 3; ++a) Z.box.min[a] = std::min(Z.box.min[a], double(x[a])), Z.box.max[a] = std::max(Z.box.max[a], double(x[a]));
+  }
+  // The points zone by zone (a stable counting sort: each zone stays ascending).
+  std::vector<size_t> at(kZones + 1, 0);
+  for (size_t z = 0; z < kZones; ++z) at[z + 1] = at[z] + zones[z].count;
+  std::vector<uint32_t> global(n);
+  std::vector<float> positions(3 * n);
+  std::vector<double> curvature(n);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = at[zone[i]]++;
+    global[j] = p.global[i];
+    std::copy_n(&p.positions[3 * i], 3, &positions[3 * j]);
+    curvature[j] = p.curvature[i];
+  }
   TileFileWriter out(path);
-  out.put(p.global);
-  out.put(p.positions);
-  out.put(p.curvature);
+  out.put(kZones);
+  for (const Zone& z : zones) out.put(z.count), out.put(z.box);
+  for (size_t z = 0, first = 0; z < kZones; first += zones[z].count, ++z) {
+    const size_t m = zones[z].count;
+    out.put_raw(global.data() + first, m);
+    out.put_raw(positions.data() + 3 * first, 3 * m);
+    out.put_raw(curvature.data() + first, m);
+  }
   out.close();
 }
 
-void load_points(const std::string& path, TilePoints& p) {
+bool meets(const BoundingBox& a, const BoundingBox& b) {
+  for (int k = 0; k < 3; ++k)
+    if (!(a.min[k] <= b.max[k] && a.max[k] >= b.min[k])) return false;
+  return true;
+}
+
+// The zones of a tile's points file that meet `box` (null: every zone) into p, one run
+// each (`ends`).
+void load_points(const std::string& path, const BoundingBox* box, TilePoints& p, std::vector<size_t>& ends) {
   TileFileReader in(path);
-  p.global = in.get_vector<uint32_t>();
-  p.positions = in.get_vector<float>();
-  p.curvature = in.get_vector<double>();
-  if (p.positions.size() != 3 * p.global.size() || p.curvature.size() != p.global.size())
-    shape_error();
+  if (in.get<uint64_t>() != kZones) shape_error();
+  std::vector<Zone> zones(kZones);
+  uint64_t total = 0;
+  for (Zone& z : zones) {
+    z.count = in.get<uint64_t>();
+    z.box = in.get<BoundingBox>();
+    if (z.count > in.left() / kPointBytes) shape_error();
+    total += z.count;
+  }
+  if (total * kPointBytes != in.left()) shape_error();
+  p.global.clear(), p.positions.clear(), p.curvature.clear();
+  ends.clear();
+  for (const Zone& z : zones) {
+    if (z.count == 0) continue;
+    if (box && !meets(z.box, *box)) {
+      in.skip(z.count * kPointBytes);
+      continue;
+    }
+    const size_t at = p.global.size(), m = size_t(z.count);
+    p.global.resize(at + m), p.positions.resize(3 * (at + m)), p.curvature.resize(at + m);
+    in.get_raw(&p.global[at], m);
+    in.get_raw(&p.positions[3 * at], 3 * m);
+    in.get_raw(&p.curvature[at], m);
+    ends.push_back(at + m);
+  }
 }
 
 void save_query(const std::string& path, const TileQuery& q) {
@@ -183,16 +265,22 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   auto query_file = [&](size_t t) { return store.dir.file("query_" + std::to_string(t) + ".bin"); };
   {
     const TileSource source = store_tile_source(store);
+    BackgroundWrite writes;  // a tile's files written while the next one is computed
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("curvature", double(i) / mine.size());
-      const TileCurvature c = tile_curvature(plan, mine[i], source);
-      save_points(points_file(mine[i]), c.points);  // empty too: a missing file is an error
-      save_query(query_file(mine[i]), c.query);
+      const size_t t = mine[i];
+      auto c = std::make_shared<TileCurvature>(tile_curvature(plan, t, source));
+      writes.submit([&, c, t] {
+        save_points(points_file(t), c->points, plan, t);  // empty too: a missing file is an error
+        save_query(query_file(t), c->query);
+      });
     }
+    writes.finish();
   }
   tile_gather(exchange, {});  // every rank's points on disk before any tile reads them
-  const TilePointSource point_source = [&](size_t t, TilePoints& scratch) -> const TilePoints& {
-    load_points(points_file(t), scratch);
+  const TilePointSource point_source = [&](size_t t, const BoundingBox& box, TilePoints& scratch,
+                                           std::vector<size_t>& ends) -> const TilePoints& {
+    load_points(points_file(t), &box, scratch, ends);
     return scratch;
   };
   clock.lap("curvature");
@@ -201,9 +289,11 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   if (plan.method == Method::Fast) {
     std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
     TilePoints own;
+    std::vector<size_t> ends;
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("cells", double(i) / mine.size());
-      const std::vector<uint64_t> c = count_tile_cells(plan, mine[i], point_source(mine[i], own), point_source);
+      load_points(points_file(mine[i]), nullptr, own, ends);
+      const std::vector<uint64_t> c = count_tile_cells(plan, mine[i], own, point_source);
       for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
     }
     cells = reduce_cell_counts(exchange, cells);
@@ -214,14 +304,21 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   // Phase 1: raw maps, each tile's kept on disk; the scales' maxima over all tiles.
   std::vector<ScaleMax> max(options.scales.size());
   uint64_t pairs = 0;
-  for (size_t i = 0; i < mine.size(); ++i) {
-    progress("tiles", double(i) / mine.size());
-    const TileRaw raw = tile_raw_maps(plan, mine[i], load_query(query_file(mine[i])), point_source);
-    std::remove(query_file(mine[i]).c_str());
-    pairs += raw.pairs;
-    merge_scale_max(max, tile_scale_max(raw));
-    save_raw(raw_file(mine[i]), raw);
-    save_candidates(candidates_file(mine[i]), raw.candidates);
+  {
+    BackgroundWrite writes;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      progress("tiles", double(i) / mine.size());
+      const size_t t = mine[i];
+      auto raw = std::make_shared<TileRaw>(tile_raw_maps(plan, t, load_query(query_file(t)), point_source));
+      std::remove(query_file(t).c_str());
+      pairs += raw->pairs;
+      merge_scale_max(max, tile_scale_max(*raw));
+      writes.submit([&, raw, t] {
+        save_raw(raw_file(t), *raw);
+        save_candidates(candidates_file(t), raw->candidates);
+      });
+    }
+    writes.finish();
   }
   progress("tiles", 1.0);
   reduce_scale_max(exchange, max, pairs);
@@ -245,14 +342,21 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   double lo = INFINITY, hi = -INFINITY, sum = 0;
   auto s_file = [&](int r) { return store.dir.file("s_rank" + std::to_string(r) + ".f64"); };
   ScratchWriter s_out(s_file(rank));
-  for (size_t i = 0; i < mine.size(); ++i) {
-    progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
-    const std::string raw_path = raw_file(mine[i]);
-    const TileResult r = tile_finish(load_raw(raw_path, options.scales.size()), plan, max, mbar);
-    std::remove(raw_path.c_str());
-    for (double s : r.saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
-    s_out.write_vector(r.saliency);
-    save_result(tile_result_file(store, mine[i]), r, scales);
+  {
+    BackgroundWrite writes;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
+      const size_t t = mine[i];
+      const std::string raw_path = raw_file(t);
+      auto r = std::make_shared<TileResult>(tile_finish(load_raw(raw_path, options.scales.size()), plan, max, mbar));
+      std::remove(raw_path.c_str());
+      for (double s : r->saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
+      writes.submit([&, r, t] {
+        s_out.write_vector(r->saliency);
+        save_result(tile_result_file(store, t), *r, scales);
+      });
+    }
+    writes.finish();
   }
   s_out.close();
   {

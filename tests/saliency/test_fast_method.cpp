@@ -10,6 +10,7 @@
 #include "cli/synthetic.h"
 #include "saliency/gaussian_filter.h"
 #include "saliency/gaussian_filter_fast.h"
+#include "saliency/filter_scope.h"
 #include "saliency/method_error.h"
 #include "saliency/saliency.h"
 #include "saliency/sparse_cells.h"
@@ -250,4 +251,45 @@ TEST_CASE("fast filter: per-cell sums extrapolated to the vertices stay close to
     CHECK(eb < 0.01);
   }
   CHECK(differ > 0);
+}
+
+TEST_CASE("fast filter: a tile's sigmas handed over one at a time equal the returned arrays", "[fast]") {
+  // A tile's call (filter_scope.h): the queries a slab of the bumpy sphere, the frame its
+  // whole box; with `take` each sigma's array goes to the caller as it is found (one held
+  // at a time) and nothing is returned: the same bits at every query vertex.
+  const Mesh m = make_bumpy_sphere(4);
+  const size_t n = m.vertex_count();
+  const std::vector<uint8_t> all(n, 1);
+  std::vector<uint8_t> query(n, 0);
+  for (size_t v = 0; v < n; ++v) query[v] = m.positions[3 * v + 2] > 0.3f ? 1 : 0;
+  std::vector<double> values(n);
+  for (size_t v = 0; v < n; ++v) values[v] = std::sin(7.0 * m.positions[3 * v]) + m.positions[3 * v + 1];
+  const BoundingBox box = mesh_points_bbox(m, all);
+  const double d = box.diagonal();
+  const std::vector<double> sigmas = {0.006 * d, 0.009 * d, 0.012 * d, 0.024 * d, 0.036 * d};
+  FilterScope scope;
+  scope.frame = GridFrame{box, uint64_t(n)};
+  scope.query = &query;
+  scope.occupied_cells = count_fast_cells(m, all, all, box, sigmas);
+  FilterStats returned_stats, handed_stats;
+  const std::vector<std::vector<double>> returned =
+      gaussian_filter_fast(m, all, values, sigmas, 2, &returned_stats, {}, {}, &scope);
+  std::vector<std::vector<double>> handed(sigmas.size());
+  std::vector<size_t> order;
+  scope.take = [&](size_t k, const std::vector<double>& at) {
+    order.push_back(k);
+    for (size_t v = 0; v < n; ++v)
+      if (query[v]) handed[k].push_back(at[v]);
+  };
+  CHECK(gaussian_filter_fast(m, all, values, sigmas, 2, &handed_stats, {}, {}, &scope).empty());
+  CHECK(order == std::vector<size_t>{0, 1, 2, 3, 4});
+  CHECK(handed_stats.pairs == returned_stats.pairs);
+  for (size_t k = 0; k < sigmas.size(); ++k) {
+    std::vector<double> expect;
+    for (size_t v = 0; v < n; ++v)
+      if (query[v]) expect.push_back(returned[k][v]);
+    INFO("sigma " << k);
+    CHECK(handed[k] == expect);
+    CHECK(std::any_of(expect.begin(), expect.end(), [](double x) { return x != 0; }));
+  }
 }

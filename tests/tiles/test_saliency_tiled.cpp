@@ -72,7 +72,7 @@ SaliencyResult run_phases(const Mesh& mesh, TilePlan plan) {
     points.push_back(std::move(c.points));
     queries.push_back(std::move(c.query));
   }
-  const TilePointSource point_source = [&](size_t t, TilePoints&) -> const TilePoints& { return points[t]; };
+  const TilePointSource point_source = memory_point_source(points);
   std::vector<TileRaw> raws;
   std::vector<ScaleMax> max(plan.scales.size());
   for (size_t t = 0; t < tile_count(plan); ++t) {
