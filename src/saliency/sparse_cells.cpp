@@ -1,6 +1,7 @@
 #include "saliency/sparse_cells.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "core/parallel.h"
@@ -72,6 +73,48 @@ SparseCells sort_into_cells(const Mesh& mesh, std::vector<uint32_t>&& points, co
 SparseCells sort_into_cells(const Mesh& mesh, const std::vector<uint32_t>& points,
                             const BoundingBox& box, double cell, unsigned threads) {
   return sort_into_cells(mesh, std::vector<uint32_t>(points), box, cell, threads);
+}
+
+std::vector<uint64_t> distinct_cell_keys(const float* xyz, size_t n, const BoundingBox& box, double cell,
+                                         const BoundingBox& within, double bitmap_bytes_per_point, unsigned threads) {
+  uint64_t dims[3];
+  cell_dims(box, cell, dims);
+  if (n == 0) return {};
+  // The cells of `within` along each axis, a cell wider each way than rounding can move a
+  // point's (cell_key's division), clamped to the grid.
+  uint64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    const double l = std::floor((within.min[a] - box.min[a]) / cell) - 1, h = std::floor((within.max[a] - box.min[a]) / cell) + 1;
+    lo[a] = l > 0 ? uint64_t(l) : 0;
+    hi[a] = uint64_t(std::clamp(h, double(lo[a]), double(dims[a] - 1)));
+  }
+  const uint64_t span[3] = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
+  const double bits = double(span[0]) * double(span[1]) * double(span[2]);
+  if (!(bits / 8 <= bitmap_bytes_per_point * double(n))) {
+    Mesh points;
+    points.positions.assign(xyz, xyz + 3 * n);
+    std::vector<uint32_t> list(n);
+    for (size_t i = 0; i < n; ++i) list[i] = uint32_t(i);
+    return sort_into_cells(points, std::move(list), box, cell, threads).key;
+  }
+  // Bit (z * span[1] + y) * span[0] + x of the cells' range: its order is the keys' order.
+  std::vector<uint64_t> words((uint64_t(bits) + 63) / 64, 0);
+  for (size_t i = 0; i < n; ++i) {
+    uint64_t c[3];
+    for (int a = 0; a < 3; ++a) c[a] = uint64_t((double(xyz[3 * i + a]) - box.min[a]) / cell) - lo[a];
+    if (c[0] >= span[0] || c[1] >= span[1] || c[2] >= span[2])
+      throw Error("internal: a point outside the box its cells were counted in");
+    const uint64_t b = (c[2] * span[1] + c[1]) * span[0] + c[0];
+    words[b >> 6] |= uint64_t(1) << (b & 63);
+  }
+  std::vector<uint64_t> keys;
+  for (size_t w = 0; w < words.size(); ++w)
+    for (uint64_t m = words[w]; m; m &= m - 1) {
+      const uint64_t b = 64 * w + uint64_t(__builtin_ctzll(m));
+      const uint64_t x = b % span[0] + lo[0], y = b / span[0] % span[1] + lo[1], z = b / (span[0] * span[1]) + lo[2];
+      keys.push_back((z * dims[1] + y) * dims[0] + x);
+    }
+  return keys;
 }
 
 std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point) {

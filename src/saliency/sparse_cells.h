@@ -27,6 +27,15 @@ double usable_cell(const BoundingBox& box, double cell);
 void cell_dims(const BoundingBox& box, double cell, uint64_t dims[3]);
 uint64_t cell_key(const BoundingBox& box, double cell, const uint64_t dims[3], const float* p);
 
+// The distinct cell keys of the points `xyz` (3 floats each, n of them), ascending: what
+// sort_into_cells(...).key holds, without the order of the points. Through a bitmap over
+// the cells of `within` (a box that holds every point) where it takes at most
+// `bitmap_bytes_per_point` bytes a point (one pass and a scan instead of a sort), else by
+// sorting (0: always).
+std::vector<uint64_t> distinct_cell_keys(const float* xyz, size_t n, const BoundingBox& box, double cell,
+                                         const BoundingBox& within, double bitmap_bytes_per_point = 16,
+                                         unsigned threads = 0);
+
 // The mesh points (is_point) in vertex order.
 std::vector<uint32_t> mesh_point_list(const std::vector<uint8_t>& is_point);
 

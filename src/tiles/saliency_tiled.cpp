@@ -73,13 +73,9 @@ SaliencyResult compute_saliency_tiled(const Mesh& mesh, const SaliencyOptions& o
 
   // Phase 0 (fast): the whole mesh's occupied cells, summed over every tile.
   if (plan.method == Method::Fast) {
-    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
-    for (size_t t : mine) {
-      const std::vector<uint64_t> c = count_tile_cells(plan, t, tile_points[t], point_source);
-      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
-    }
-    cells = reduce_cell_counts(exchange, cells);
-    plan.fast_cells = cells;
+    TileCells cells = tile_cells(plan, 0, TilePoints{});  // (zero counts: a process may have no tile)
+    for (size_t t : mine) add_tile_cells(cells, tile_cells(plan, t, tile_points[t]));
+    plan.fast_cells = whole_mesh_cells(exchange, cells);
     clock.lap("cell counts");
   }
 

@@ -11,6 +11,7 @@
 #include "saliency/gaussian_filter.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
+#include "saliency/sparse_cells.h"
 
 namespace meshsal {
 
@@ -286,24 +287,51 @@ TileSource memory_tile_source(const Mesh& mesh, const TileBuckets& buckets) {
   return s;
 }
 
-std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const TilePoints& own,
-                                       const TilePointSource& source) {
+TileCells tile_cells(const TilePlan& plan, size_t t, const TilePoints& own) {
   const std::vector<double> sigmas = tile_cell_sigmas(plan);
-  if (own.global.empty()) return std::vector<uint64_t>(sigmas.size(), 0);
-  // Only the cells of own points are counted, and each lies within a cell of its point:
-  // the points beyond the own box and two of the largest cells need not be sorted.
-  BoundingBox near = empty_box();
-  for (size_t i = 0; i < own.global.size(); ++i) grow(near, &own.positions[3 * i]);
-  double widest = 0;
-  for (double s : sigmas) widest = std::max(widest, fast_cell_edge(plan.box, s));
-  for (int a = 0; a < 3; ++a) near.min[a] -= 2 * widest, near.max[a] += 2 * widest;
-  TilePoints p = gather_points(plan, near, source);
-  Mesh points;
-  points.positions = std::move(p.positions);
-  const size_t n = p.global.size();
-  std::vector<uint8_t> mine(n);
-  for (size_t i = 0; i < n; ++i) mine[i] = tile_of(plan, &points.positions[3 * i]) == t ? 1 : 0;
-  return count_fast_cells(points, std::vector<uint8_t>(n, 1), mine, plan.box, sigmas);
+  TileCells c;
+  c.inner.assign(sigmas.size(), 0);
+  c.across.resize(sigmas.size());
+  const size_t n = own.global.size();
+  if (n == 0) return c;
+  // The tile's cube (its points lie in it: tile_of clamps only at the box's faces).
+  BoundingBox cube;
+  const size_t col[3] = {t % size_t(plan.tiles[0]), t / size_t(plan.tiles[0]) % size_t(plan.tiles[1]),
+                         t / (size_t(plan.tiles[0]) * size_t(plan.tiles[1]))};
+  for (int a = 0; a < 3; ++a) {
+    cube.min[a] = std::max(plan.box.min[a], plan.box.min[a] + double(col[a]) * plan.tile_edge);
+    cube.max[a] = col[a] + 1 == size_t(plan.tiles[a]) ? plan.box.max[a]
+                                                        : plan.box.min[a] + double(col[a] + 1) * plan.tile_edge;
+  }
+  for (size_t k = 0; k < sigmas.size(); ++k) {
+    const double cell = fast_cell_edge(plan.box, sigmas[k]);
+    uint64_t dims[3];
+    cell_dims(plan.box, cell, dims);
+    // A cell within one tile column on every axis holds points of one tile alone: this
+    // one's. One that reaches across a face (its box widened by far more than a point's
+    // key can round: a cell called shared when it is not costs nothing) may hold a
+    // neighbour's too.
+    const double slack = 1e-3 * cell;
+    for (uint64_t key : distinct_cell_keys(own.positions.data(), n, plan.box, cell, cube, 16, plan.threads)) {
+      const uint64_t at[3] = {key % dims[0], key / dims[0] % dims[1], key / (dims[0] * dims[1])};
+      bool across = false;
+      for (int a = 0; a < 3 && !across; ++a) {
+        const double lo = plan.box.min[a] + double(at[a]) * cell;
+        across = tile_column(plan, lo - slack, a) != tile_column(plan, lo + cell + slack, a);
+      }
+      if (across) c.across[k].push_back(key);
+      else c.inner[k]++;
+    }
+  }
+  return c;
+}
+
+void add_tile_cells(TileCells& into, const TileCells& tile) {
+  if (into.inner.empty()) into.inner.assign(tile.inner.size(), 0), into.across.resize(tile.across.size());
+  for (size_t k = 0; k < tile.inner.size(); ++k) {
+    into.inner[k] += tile.inner[k];
+    into.across[k].insert(into.across[k].end(), tile.across[k].begin(), tile.across[k].end());
+  }
 }
 
 TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, const TilePointSource& source) {

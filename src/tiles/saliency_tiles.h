@@ -11,7 +11,8 @@
 //   C tile_curvature: the own points' curvature from the tile's own bucket alone (an own
 //     point has all its triangles there), kept with their positions for every later phase,
 //     its neighbours' included: a halo is then points (positions and H), not triangles;
-//   0 (fast method only) count_tile_cells: the whole mesh's occupied cells, summed;
+//   0 (fast method only) tile_cells: the whole mesh's occupied cells, from each tile's own
+//     points (the cells inside it counted, those across its faces merged over tiles);
 //   1 tile_raw_maps: averages and raw maps at the queries over the source points; each
 //     scale's maximum (lowest index on ties) reduced over tiles;
 //   2 tile_local_maxima: the local maxima of own points, merged in vertex order over tiles
@@ -130,11 +131,18 @@ TilePointSource memory_point_source(const std::vector<TilePoints>& points);
 // The points inside `box` (margins included) from the tiles it meets, in whole-mesh order.
 TilePoints gather_points(const TilePlan& plan, const BoundingBox& box, const TilePointSource& source);
 
-// Phase 0: per tile_cell_sigmas() sigma, the occupied cells whose lowest point is one of
-// tile t's own (`own`, its phase C points); the cells of own points need only the points
-// within two of the largest cells of them.
-std::vector<uint64_t> count_tile_cells(const TilePlan& plan, size_t t, const TilePoints& own,
-                                       const TilePointSource& source);
+// Phase 0 (fast method), from a tile's own points alone (phase C's): per tile_cell_sigmas()
+// sigma, how many occupied cells lie inside the tile's columns (only its points can be
+// there) and the keys of those that reach across a face (a neighbour's points may share
+// them), ascending. The whole mesh's occupied cells: every tile's inner summed, plus the
+// distinct keys among every tile's across (whole_mesh_cells, tile_reduce.h).
+struct TileCells {
+  std::vector<uint64_t> inner;
+  std::vector<std::vector<uint64_t>> across;  // [sigma]
+};
+TileCells tile_cells(const TilePlan& plan, size_t t, const TilePoints& own);
+// A tile's counts added to a process's (its across lists appended: repeats allowed).
+void add_tile_cells(TileCells& into, const TileCells& tile);
 
 // A candidate for a local maximum of one scale: an own point whose raw value is above
 // every 1-ring neighbour's, with the largest of those (-infinity for an empty ring). The

@@ -1,5 +1,7 @@
 #include "tiles/tile_reduce.h"
 
+#include <algorithm>
+
 #include <exception>
 #include <string>
 
@@ -32,16 +34,28 @@ void lead_step(TileExchange* exchange, const std::function<void()>& step) {
   if (!said.empty()) throw Error(std::string(said.begin(), said.end()));
 }
 
-std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vector<uint64_t>& mine) {
+std::vector<uint64_t> whole_mesh_cells(TileExchange* exchange, const TileCells& mine) {
   TileBytes b;
-  b.put(mine);
-  std::vector<uint64_t> sum(mine.size(), 0);
+  b.put(mine.inner);
+  for (const std::vector<uint64_t>& keys : mine.across) b.put(keys);
+  const size_t sigmas = mine.inner.size();
+  std::vector<uint64_t> total(sigmas, 0);
+  std::vector<std::vector<uint64_t>> across(sigmas);
   for (const auto& bytes : tile_gather(exchange, b.data)) {
-    const std::vector<uint64_t> c = TileBytesReader{bytes}.get_vector<uint64_t>();
-    if (c.size() != sum.size()) throw Error("tiled saliency: the processes disagree on the plan");
-    for (size_t k = 0; k < c.size(); ++k) sum[k] += c[k];
+    TileBytesReader in{bytes};
+    const std::vector<uint64_t> inner = in.get_vector<uint64_t>();
+    if (inner.size() != sigmas) throw Error("tiled saliency: the processes disagree on the plan");
+    for (size_t k = 0; k < sigmas; ++k) {
+      total[k] += inner[k];
+      const std::vector<uint64_t> keys = in.get_vector<uint64_t>();
+      across[k].insert(across[k].end(), keys.begin(), keys.end());
+    }
   }
-  return sum;
+  for (size_t k = 0; k < sigmas; ++k) {
+    std::sort(across[k].begin(), across[k].end());
+    total[k] += uint64_t(std::unique(across[k].begin(), across[k].end()) - across[k].begin());
+  }
+  return total;
 }
 
 void reduce_scale_max(TileExchange* exchange, std::vector<ScaleMax>& max, uint64_t& pairs) {

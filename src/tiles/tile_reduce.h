@@ -19,8 +19,10 @@ void lead_step(TileExchange* exchange, const std::function<void()>& step);
 // Every process's bytes (just `mine` without an exchange).
 std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine);
 
-// Phase 0: the sums of every process's per-sigma cell counts.
-std::vector<uint64_t> reduce_cell_counts(TileExchange* exchange, const std::vector<uint64_t>& mine);
+// Phase 0: the whole mesh's occupied cells per sigma from every process's tiles (`mine`:
+// this process's, add_tile_cells): their inner counts summed, plus the distinct keys among
+// all their across lists.
+std::vector<uint64_t> whole_mesh_cells(TileExchange* exchange, const TileCells& mine);
 
 // Phase 1: each scale's maximum over every process's (lowest vertex on ties), and the sum
 // of their pairs.

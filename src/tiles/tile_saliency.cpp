@@ -149,9 +149,8 @@ bool meets(const BoundingBox& a, const BoundingBox& b) {
   return true;
 }
 
-// The zones of a tile's points file that meet `box` (null: every zone) into p, one run
-// each (`ends`).
-void load_points(const std::string& path, const BoundingBox* box, TilePoints& p, std::vector<size_t>& ends) {
+// The zones of a tile's points file that meet `box` into p, one run each (`ends`).
+void load_points(const std::string& path, const BoundingBox& box, TilePoints& p, std::vector<size_t>& ends) {
   TileFileReader in(path);
   if (in.get<uint64_t>() != kZones) shape_error();
   std::vector<Zone> zones(kZones);
@@ -167,7 +166,7 @@ void load_points(const std::string& path, const BoundingBox* box, TilePoints& p,
   ends.clear();
   for (const Zone& z : zones) {
     if (z.count == 0) continue;
-    if (box && !meets(z.box, *box)) {
+    if (!meets(z.box, box)) {
       in.skip(z.count * kPointBytes);
       continue;
     }
@@ -263,6 +262,10 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   // reach them (any rank's: the folder is shared) and the tile's query for itself.
   auto points_file = [&](size_t t) { return store.dir.file("points_" + std::to_string(t) + ".bin"); };
   auto query_file = [&](size_t t) { return store.dir.file("query_" + std::to_string(t) + ".bin"); };
+  // The fast method's phase 0 from the same points: the occupied cells inside each tile,
+  // and those across its faces (on the writes' thread).
+  const bool fast = plan.method == Method::Fast;
+  TileCells cells = fast ? tile_cells(plan, 0, TilePoints{}) : TileCells{};
   {
     const TileSource source = store_tile_source(store);
     BackgroundWrite writes;  // a tile's files written while the next one is computed
@@ -270,7 +273,10 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
       progress("curvature", double(i) / mine.size());
       const size_t t = mine[i];
       auto c = std::make_shared<TileCurvature>(tile_curvature(plan, t, source));
+      // (Its cells counted beside the writes, one tile at a time: the counts are added in
+      // tile order.)
       writes.submit([&, c, t] {
+        if (fast) add_tile_cells(cells, tile_cells(plan, t, c->points));
         save_points(points_file(t), c->points, plan, t);  // empty too: a missing file is an error
         save_query(query_file(t), c->query);
       });
@@ -280,24 +286,15 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
   tile_gather(exchange, {});  // every rank's points on disk before any tile reads them
   const TilePointSource point_source = [&](size_t t, const BoundingBox& box, TilePoints& scratch,
                                            std::vector<size_t>& ends) -> const TilePoints& {
-    load_points(points_file(t), &box, scratch, ends);
+    load_points(points_file(t), box, scratch, ends);
     return scratch;
   };
   clock.lap("curvature");
 
-  // Phase 0 (fast): the whole mesh's occupied cells.
-  if (plan.method == Method::Fast) {
-    std::vector<uint64_t> cells(tile_cell_sigmas(plan).size(), 0);
-    TilePoints own;
-    std::vector<size_t> ends;
-    for (size_t i = 0; i < mine.size(); ++i) {
-      progress("cells", double(i) / mine.size());
-      load_points(points_file(mine[i]), nullptr, own, ends);
-      const std::vector<uint64_t> c = count_tile_cells(plan, mine[i], own, point_source);
-      for (size_t k = 0; k < c.size(); ++k) cells[k] += c[k];
-    }
-    cells = reduce_cell_counts(exchange, cells);
-    plan.fast_cells = cells;
+  // Phase 0 (fast): the whole mesh's occupied cells, over every process's tiles.
+  if (fast) {
+    plan.fast_cells = whole_mesh_cells(exchange, cells);
+    cells = TileCells{};
     clock.lap("cell counts");
   }
 
@@ -309,7 +306,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("tiles", double(i) / mine.size());
       const size_t t = mine[i];
-      auto raw = std::make_shared<TileRaw>(tile_raw_maps(plan, t, load_query(query_file(t)), point_source));
+      TileQuery qq = load_query(query_file(t));
+      auto raw = std::make_shared<TileRaw>(tile_raw_maps(plan, t, qq, point_source));
       std::remove(query_file(t).c_str());
       pairs += raw->pairs;
       merge_scale_max(max, tile_scale_max(*raw));
@@ -348,7 +346,8 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
       progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
       const size_t t = mine[i];
       const std::string raw_path = raw_file(t);
-      auto r = std::make_shared<TileResult>(tile_finish(load_raw(raw_path, options.scales.size()), plan, max, mbar));
+      TileRaw rr = load_raw(raw_path, options.scales.size());
+      auto r = std::make_shared<TileResult>(tile_finish(rr, plan, max, mbar));
       std::remove(raw_path.c_str());
       for (double s : r->saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
       writes.submit([&, r, t] {

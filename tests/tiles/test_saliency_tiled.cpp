@@ -3,12 +3,16 @@
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "cli/synthetic.h"
 #include "core/mesh_points.h"
+#include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
+#include "saliency/sparse_cells.h"
 #include "tiles/saliency_tiles.h"
+#include "tiles/tile_reduce.h"
 #include "test_util.h"
 #include "thread_exchange.h"
 
@@ -286,4 +290,58 @@ TEST_CASE("tiles: bad options are clear errors", "[tiles]") {
   o.tiles = 2;
   o.backend = Backend::Gpu;
   CHECK_THROWS_WITH(compute_saliency(mesh, o), Catch::Contains("tiles run on the CPU"));
+}
+
+TEST_CASE("phase 0: the tiles' inner cells and their shared ones count the whole mesh's cells", "[tiles][fast]") {
+  // Every occupied cell once: inside one tile (counted there) or reaching across a face
+  // (merged over the tiles that hold points in it); the whole mesh's count_fast_cells is
+  // the oracle, at coarse and tiny tiles (cells wider than a tile).
+  Mesh m = make_bumpy_sphere(4);
+  const std::vector<uint8_t> all(m.vertex_count(), 1);
+  const BoundingBox box = mesh_points_bbox(m, all);
+  for (const unsigned tiles : {1u, 2u, 3u, 7u, 40u}) {
+    INFO(tiles << " tiles");
+    SaliencyOptions o = cpu_options(Method::Fast, true);
+    const TilePlan plan = make_tile_plan(box, m.vertex_count(), o, tiles);
+    const std::vector<uint64_t> expect = count_fast_cells(m, all, all, box, tile_cell_sigmas(plan));
+    const TileBuckets buckets = bucket_triangles(m, plan);
+    const TileSource source = memory_tile_source(m, buckets);
+    TileCells cells = tile_cells(plan, 0, TilePoints{});
+    size_t across = 0;
+    for (size_t t = 0; t < tile_count(plan); ++t) {
+      const TileCells c = tile_cells(plan, t, tile_curvature(plan, t, source).points);
+      for (const auto& keys : c.across) {
+        CHECK(std::is_sorted(keys.begin(), keys.end()));
+        across += keys.size();
+      }
+      add_tile_cells(cells, c);
+    }
+    CHECK(whole_mesh_cells(nullptr, cells) == expect);
+    if (tiles == 1) CHECK(across == 0);
+    if (tiles >= 3) CHECK(across > 0);
+  }
+}
+
+TEST_CASE("distinct cell keys: the bitmap's keys are the sort's", "[tiles][fast]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  for (const size_t n : {size_t(1), size_t(50), size_t(20000)}) {
+    std::vector<float> xyz(3 * n);
+    for (float& x : xyz) x = u(rng) * u(rng);  // denser near the middle
+    BoundingBox box;
+    for (int a = 0; a < 3; ++a) box.min[a] = -1, box.max[a] = 1;
+    BoundingBox within = box;
+    for (int a = 0; a < 3; ++a) within.min[a] = -1, within.max[a] = 1;
+    for (const double cell : {0.5, 0.05, 0.013}) {
+      INFO(n << " points, cell " << cell);
+      const std::vector<uint64_t> sorted = distinct_cell_keys(xyz.data(), n, box, cell, within, 0);
+      const std::vector<uint64_t> bitmap = distinct_cell_keys(xyz.data(), n, box, cell, within, 1e9);
+      Mesh points;
+      points.positions = xyz;
+      std::vector<uint32_t> list(n);
+      for (size_t i = 0; i < n; ++i) list[i] = uint32_t(i);
+      CHECK(sorted == sort_into_cells(points, list, box, cell).key);
+      CHECK(bitmap == sorted);
+    }
+  }
 }
