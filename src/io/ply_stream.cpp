@@ -1,5 +1,6 @@
 #include "io/ply_stream.h"
 
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -43,7 +44,14 @@ struct PlyStream::Layout {
   // The faces' read-ahead (read_faces' common layout): bytes [at, end) not parsed yet.
   std::vector<uint8_t> ahead;
   size_t at = 0, end = 0;
+  // ranged(): where the vertex and face records start in the file.
+  bool ranged = false;
+  uint64_t vertex_start = 0, face_start = 0;
 };
+
+namespace {
+constexpr uint64_t kTriangleRecord = 13;  // a 1-byte count and three 4-byte indices
+}
 
 PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_unique<Layout>()) {
   gz_ = gzopen(path.c_str(), "rb");
@@ -149,6 +157,68 @@ void PlyStream::read_header() {
   vertices_ = v.count;
   faces_ = L.elements[L.face].count;
   if (vertices_ > UINT32_MAX) fail("more than 4294967295 vertices");
+  find_ranges();
+}
+
+void PlyStream::find_ranges() {
+  Layout& L = *layout_;
+  gzFile gz = static_cast<gzFile>(gz_);
+  const z_off_t header = gztell(gz);
+  if (header < 0 || gzdirect(gz) != 1) return;  // compressed: no seeking but from the start
+  auto fixed_size = [&](const Element& e, uint64_t& bytes) {
+    bytes = 0;
+    for (const Property& p : e.props) {
+      if (p.is_list) return false;
+      bytes += type_size(p.type);
+    }
+    return true;
+  };
+  uint64_t at = uint64_t(header), after = 0, bytes = 0;
+  for (size_t e = 0; e < L.elements.size(); ++e) {
+    const Element& el = L.elements[e];
+    if (e == L.face) {
+      const Property& only = el.props.front();
+      if (el.props.size() != 1 || type_size(only.count) != 1 || type_size(only.type) != 4 ||
+          only.type == PlyType::Float32)
+        return;
+      L.face_start = at;
+      at += el.count * kTriangleRecord;
+      continue;
+    }
+    if (!fixed_size(el, bytes)) return;
+    if (e == L.vertex) L.vertex_start = at;
+    if (e > L.face) after += el.count * bytes;
+    else at += el.count * bytes;
+  }
+  struct stat st;
+  L.ranged = ::stat(path_.c_str(), &st) == 0 && uint64_t(st.st_size) == at + after;
+}
+
+bool PlyStream::ranged() const { return layout_->ranged; }
+
+void PlyStream::seek(uint64_t offset) {
+  Layout& L = *layout_;
+  if (!L.ranged) throw Error("internal: " + path_ + " does not read in ranges");
+  if (gzseek(static_cast<gzFile>(gz_), z_off_t(offset), SEEK_SET) != z_off_t(offset))
+    throw Error(path_ + ": cannot seek in the file");
+  L.at = L.end = 0;  // the faces' read-ahead, if any, was of another place
+}
+
+void PlyStream::seek_vertex(uint64_t first) {
+  Layout& L = *layout_;
+  if (first > vertices_) throw Error("internal: a vertex beyond the file's");
+  seek(L.vertex_start + first * L.vertex_bytes);
+  L.next = L.vertex;
+  vertices_read_ = first;
+}
+
+void PlyStream::seek_face(uint64_t first) {
+  Layout& L = *layout_;
+  if (first > faces_) throw Error("internal: a face beyond the file's");
+  seek(L.face_start + first * kTriangleRecord);
+  L.next = L.face;
+  vertices_read_ = vertices_;
+  faces_read_ = first;
 }
 
 PlyStream::~PlyStream() {

@@ -29,6 +29,16 @@ class PlyStream {
   // polygons were read (0 at the end). Every index is checked against vertex_count().
   size_t read_faces(std::vector<uint32_t>& triangles, size_t max);
 
+  // Whether the file reads in ranges (the ranks building a store each read their share):
+  // uncompressed, every element before the faces of fixed-size records, and faces of the
+  // common layout (the corner list alone: a 1-byte count, 4-byte indices) whose bytes are
+  // exactly those of triangles (the file's size says so; read_faces still checks each).
+  bool ranged() const;
+  // Only where ranged(): the next read_vertices from vertex `first` on; the next read_faces
+  // from face `first` on (the vertices are then taken as read).
+  void seek_vertex(uint64_t first);
+  void seek_face(uint64_t first);
+
   // True for a binary PLY (its first lines say so); false for anything else, which the
   // caller converts once. A binary PLY with a bad header is the constructor's Error.
   static bool readable(const std::string& path);
@@ -36,6 +46,8 @@ class PlyStream {
  private:
   struct Layout;
   void read_header();
+  void find_ranges();
+  void seek(uint64_t offset);
   void read_exact(void* to, size_t n);
   void skip_element(size_t e);
   bool ahead(size_t n);

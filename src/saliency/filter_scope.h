@@ -19,6 +19,8 @@ struct FilterScope {
   const std::vector<uint8_t>* query = nullptr;
   // The fast method only: per sigma, the whole mesh's occupied cells of sigma /
   // cells_per_sigma (count_fast_cells), which decide between per-cell and per-vertex sums.
+  // Without a query mask it may be empty: this mesh's own (the whole mesh filtered a sigma
+  // at a time passes the scope only so that its box is found once).
   std::vector<uint64_t> occupied_cells;
   // The fast method: each sigma's averages handed over as soon as they are found (the
   // sigma's index, then the array: valid at the query vertices) instead of returned, one

@@ -270,7 +270,7 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     const std::function<void(double)>& progress, const FastFilterParams& params,
     const FilterScope* scope) {
   check_inputs(mesh, is_point, values, sigmas);
-  if (scope && scope->occupied_cells.size() != sigmas.size())
+  if (scope && scope->query && scope->occupied_cells.size() != sigmas.size())
     throw Error("internal: a tile's fast filter needs the whole mesh's cell count per sigma");
   if (sigmas.size() > size_t(sweep::kMaxSigmas)) throw Error("Gaussian filter: at most 32 sigmas");
   // Every sigma's array, or (handed over) one reused from sigma to sigma.
@@ -317,7 +317,7 @@ std::vector<std::vector<double>> gaussian_filter_fast(
     const double coef = 1.0 / (2 * s * s), cutoff2 = 4 * s * s;
     SigmaProgress tick{progress, caller, k, sigmas.size(), points};
     const size_t m = cells.key.size();
-    const double all_cells = scope ? double(scope->occupied_cells[k]) : double(m);
+    const double all_cells = scope && !scope->occupied_cells.empty() ? double(scope->occupied_cells[k]) : double(m);
     // Dense cells: the sums and their gradients once at each query group's centroid,
     // extrapolated linearly to the group's vertices (cost per group, not per vertex); a
     // tile's only at the groups holding a query vertex.

@@ -15,6 +15,7 @@
 #include "core/stage_clock.h"
 #include "core/timer.h"
 #include "saliency/curvature.h"
+#include "saliency/filter_scope.h"
 #include "saliency/gaussian_filter_fast.h"
 #include "saliency/saliency.h"
 #include "saliency/suppression.h"
@@ -53,7 +54,12 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
   r.eps = scale_unit(mesh, r.is_point, opt.eps_frac);
   const size_t n = mesh.vertex_count();
   // In Morton order, the same bits as a tile's (mean_curvature_morton).
-  r.curvature = mean_curvature_morton(mesh, mesh_points_bbox(mesh, r.is_point), opt.threads);
+  // The mesh points' box and count, found once: each sigma's filter call lays its cells
+  // over them (a scope without a query mask: every mesh point's average).
+  FilterScope whole;
+  whole.frame.box = mesh_points_bbox(mesh, r.is_point);
+  for (uint8_t f : r.is_point) whole.frame.points += f;
+  r.curvature = mean_curvature_morton(mesh, whole.frame.box, opt.threads);
   clock.lap("curvature");
 
   // Each scale k needs the averages at k and 2k. A sigma is filtered when a scale first
@@ -75,7 +81,8 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
     FilterStats stats;
     part.restart();
     auto out = gaussian_filter_fast(mesh, r.is_point, r.curvature, {unit * r.eps}, opt.threads, &stats,
-                                    [&](double f) { report("gaussian sweep", (double(filtered) + f) / double(filters)); });
+                                    [&](double f) { report("gaussian sweep", (double(filtered) + f) / double(filters)); },
+                                    {}, &whole);
     sweep_seconds += part.seconds();
     filtered++;
     r.pairs += stats.pairs;
@@ -119,7 +126,7 @@ SaliencyResult compute_saliency_fast_cpu(const Mesh& mesh, const SaliencyOptions
 
   if (opt.smoothed) {
     auto Sm = gaussian_filter_fast(mesh, r.is_point, r.saliency, {3.0 * r.eps}, opt.threads, nullptr,
-                                   [&](double f) { report("smoothing", f); });
+                                   [&](double f) { report("smoothing", f); }, {}, &whole);
     r.smoothed = std::move(Sm[0]);
     clock.lap("smoothing");
   }

@@ -1,5 +1,6 @@
 // [io] loaders: the shared meshes load with their SOURCES.md counts, and small generated
 // files exercise every supported OBJ / PLY / OFF form.
+#include <zlib.h>
 #include <cstring>
 #include <vector>
 
@@ -345,4 +346,70 @@ TEST_CASE("PLY stream (out of core): faces from the read-ahead are the loader's,
   // Cut inside the last face: the header's counts are not all there.
   CHECK_THROWS_WITH(stream_all("cut.ply", plain.bytes.substr(0, plain.bytes.size() - 5)),
                     Catch::Contains("the file ends before its header's counts are read"));
+}
+
+TEST_CASE("PLY stream (out of core): ranges read apart are the whole read's; where it cannot seek, it says so", "[io][outofcore]") {
+  // The ranks building a store each read their share of the vertices and faces (seek_vertex,
+  // seek_face): pieces in any order join into the front-to-back read.
+  TempDir dir;
+  const GridPly plain = grid_ply(-1, -1);
+  const std::string path = dir.write("plain.ply", plain.bytes);
+  std::vector<double> whole(3 * 90000);
+  {
+    meshsal::PlyStream s(path);
+    REQUIRE(s.ranged());
+    REQUIRE(s.read_vertices(whole.data(), 90000) == 90000);
+  }
+  const uint64_t faces = plain.triangles.size() / 3;
+  for (const uint64_t parts : {1, 3, 7}) {
+    INFO(parts << " parts");
+    std::vector<double> xyz(whole.size(), -1);
+    std::vector<uint32_t> triangles(plain.triangles.size(), UINT32_MAX);
+    for (uint64_t p = parts; p-- > 0;) {  // the last part first
+      meshsal::PlyStream s(path);
+      const uint64_t v0 = 90000 * p / parts, v1 = 90000 * (p + 1) / parts;
+      s.seek_vertex(v0);
+      CHECK(s.read_vertices(&xyz[3 * v0], size_t(v1 - v0)) == v1 - v0);
+      const uint64_t f0 = faces * p / parts, f1 = faces * (p + 1) / parts;
+      s.seek_face(f0);
+      std::vector<uint32_t> t;
+      while (t.size() < 3 * (f1 - f0) && s.read_faces(t, size_t(f1 - f0 - t.size() / 3)) > 0) {
+      }
+      REQUIRE(t.size() == 3 * (f1 - f0));
+      std::copy(t.begin(), t.end(), triangles.begin() + long(3 * f0));
+    }
+    CHECK(xyz == whole);
+    CHECK(triangles == plain.triangles);
+  }
+  // Not in ranges: a quad among the faces (the size is not triangles'), a gzipped file, a
+  // list in the vertex element, an element of lists before the faces; the file cut short.
+  CHECK_FALSE(meshsal::PlyStream(dir.write("quad.ply", grid_ply(80000, -1).bytes)).ranged());
+  const std::string gz = (dir.path / "plain.ply.gz").string();
+  {
+    gzFile out = gzopen(gz.c_str(), "wb");
+    REQUIRE(gzwrite(out, plain.bytes.data(), unsigned(plain.bytes.size())) == int(plain.bytes.size()));
+    gzclose(out);
+  }
+  CHECK_FALSE(meshsal::PlyStream(gz).ranged());
+  const std::string one_triangle = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string tri_body;
+  put_bin<uint8_t>(tri_body, 3);
+  for (int32_t v : {0, 1, 2}) put_bin<int32_t>(tri_body, v, false);
+  auto vertices = [](int lists) {
+    std::string b;
+    for (int i = 0; i < 3; ++i) {
+      for (int a = 0; a < 3; ++a) put_bin<float>(b, float(i == a), false);
+      if (lists) put_bin<uint8_t>(b, 0);
+    }
+    return b;
+  };
+  const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  CHECK(meshsal::PlyStream(dir.write("ok.ply", head + one_triangle + vertices(0) + tri_body)).ranged());
+  CHECK_FALSE(meshsal::PlyStream(dir.write("vlist.ply", head + "property list uchar int extra\n" + one_triangle +
+                                                        vertices(1) + tri_body))
+                  .ranged());
+  CHECK_FALSE(meshsal::PlyStream(dir.write("edges.ply", head + "element edge 0\nproperty list uchar int v\n" +
+                                                        one_triangle + vertices(0) + tri_body))
+                  .ranged());
+  CHECK_FALSE(meshsal::PlyStream(dir.write("cut.ply", head + one_triangle + vertices(0) + tri_body.substr(0, 9))).ranged());
 }
