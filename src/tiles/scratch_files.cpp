@@ -55,6 +55,13 @@ ScratchWriter::ScratchWriter(const std::string& path, bool append) : path_(path)
   std::setvbuf(f_, nullptr, _IOFBF, 1 << 16);
 }
 
+ScratchWriter::ScratchWriter(const std::string& path, uint64_t offset) : path_(path) {
+  f_ = std::fopen(path.c_str(), "r+b");
+  if (!f_) fail(path, "cannot write a temporary file");
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 16);
+  if (fseeko(f_, off_t(offset), SEEK_SET) != 0) fail(path, "cannot seek in a temporary file");
+}
+
 ScratchWriter::~ScratchWriter() {
   if (f_) std::fclose(f_);
 }

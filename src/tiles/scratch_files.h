@@ -38,6 +38,9 @@ class ScratchDir {
 class ScratchWriter {
  public:
   explicit ScratchWriter(const std::string& path, bool append = false);
+  // Writes into an existing file from byte `offset` on, the rest of it kept (ranks each
+  // write their range of one file).
+  ScratchWriter(const std::string& path, uint64_t offset);
   ~ScratchWriter();
   void write(const void* data, size_t bytes);
   template <class T>

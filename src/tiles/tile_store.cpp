@@ -13,6 +13,8 @@
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
+#include "tiles/tile_bytes.h"
+#include "tiles/tile_reduce.h"
 
 namespace meshsal {
 
@@ -20,7 +22,8 @@ namespace {
 
 constexpr size_t kChunk = 1 << 16;  // vertices or faces per read
 
-std::string bucket_name(size_t t) { return "bucket_" + std::to_string(t) + ".bin"; }
+// Tile t's bucket as rank r filled it (each rank buckets its share of the triangles).
+std::string bucket_name(size_t t, int r) { return "bucket_" + std::to_string(t) + "_r" + std::to_string(r) + ".bin"; }
 
 // A plan's estimates: the largest tile's peak in bytes and the work of all tiles (their
 // points, halos included) per mesh point.
@@ -87,9 +90,8 @@ using Progress = std::function<void(const char*, double)>;
 using PointBits = std::vector<uint64_t>;
 bool is_point(const PointBits& bits, uint64_t v) { return (bits[v >> 6] >> (v & 63)) & 1; }
 
-// The input as a binary PLY the passes can stream: itself, or another format converted
-// once (this one step holds the mesh whole), in double so the coordinates stay the values
-// as read. Sets store.input and store.double_positions's source.
+}  // namespace
+
 void store_input(TileStore& store, const std::string& input_path, int& converted_wide) {
   struct stat st;
   if (::stat(input_path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
@@ -104,7 +106,62 @@ void store_input(TileStore& store, const std::string& input_path, int& converted
   write_ply(store.input, m, {});
 }
 
-// Pass A: the doubles as read to xyz.f64, the triangles to tri.u32; returns the point bits.
+namespace {
+
+// Every rank's part of the passes (one rank: all of it): vertex range [v0, v1) and triangle
+// range [t0, t1), the reductions through the exchange.
+struct Share {
+  TileExchange* exchange = nullptr;
+  int rank = 0, ranks = 1;
+  uint64_t v0 = 0, v1 = 0, t0 = 0, t1 = 0;
+  void split(uint64_t vertices, uint64_t triangles) {
+    v0 = vertices * uint64_t(rank) / uint64_t(ranks), v1 = vertices * uint64_t(rank + 1) / uint64_t(ranks);
+    t0 = triangles * uint64_t(rank) / uint64_t(ranks), t1 = triangles * uint64_t(rank + 1) / uint64_t(ranks);
+  }
+};
+
+// `step` on every rank; a failure on any is thrown on every one, with the message of the
+// lowest rank that failed (a bad face seen by one rank stops them all with its reason).
+void every_rank(const Share& share, const std::function<void()>& step) {
+  std::string message;
+  try {
+    step();
+  } catch (const Error& e) {
+    if (!share.exchange) throw;
+    message = e.what();
+    if (message.empty()) message = "a rank failed building the tiles";
+  }
+  if (!share.exchange) return;
+  for (const auto& said : tile_gather(share.exchange, std::vector<uint8_t>(message.begin(), message.end())))
+    if (!said.empty()) throw Error(std::string(said.begin(), said.end()));
+}
+
+// Every rank's box joined (min of the minima, max of the maxima) and their counts summed.
+void join_boxes(const Share& share, BoundingBox& box, uint64_t& count) {
+  if (!share.exchange) return;
+  TileBytes b;
+  b.put(box);
+  b.put(count);
+  box = empty_box();
+  count = 0;
+  for (const auto& bytes : tile_gather(share.exchange, b.data)) {
+    TileBytesReader in{bytes};
+    const BoundingBox other = in.get<BoundingBox>();
+    for (int a = 0; a < 3; ++a) box.min[a] = std::min(box.min[a], other.min[a]), box.max[a] = std::max(box.max[a], other.max[a]);
+    count += in.get<uint64_t>();
+  }
+}
+
+// Whether any rank's flag is set.
+bool any_rank(const Share& share, bool mine) {
+  if (!share.exchange) return mine;
+  for (const auto& bytes : tile_gather(share.exchange, {uint8_t(mine)}))
+    if (!bytes.empty() && bytes[0]) return true;
+  return false;
+}
+
+// Pass A for one reader of the whole file (a gzip, polygons: read front to back): the
+// doubles as read to xyz.f64, the triangles to tri.u32; returns the point bits.
 PointBits read_input(TileStore& store, const std::string& input_path, int converted_wide, const Progress& report) {
   PlyStream ply(store.input);
   store.vertices = ply.vertex_count();
@@ -138,54 +195,149 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
   return referenced;
 }
 
-// Pass B: the origin (set_model_positions' rule), local floats to pos.f32, their box, the
-// point count and the histogram of the points.
-void local_positions(TileStore& store, const PointBits& points) {
-  BoundingBox model = empty_box();
-  {
-    ScratchReader xyz(store.dir.file("xyz.f64"));
+// Pass A of one rank of several over a file read in ranges (PlyStream::ranged: a face is a
+// triangle): its vertices into its range of xyz.f64, its faces into its range of tri.u32;
+// then the point bits of its vertices, every rank's faces' corners joined (each rank's bits
+// through a file of their own). The files exist (rank 0 made them).
+PointBits read_input_range(TileStore& store, const std::string& input_path, Share& share, const Progress& report) {
+  PlyStream ply(store.input);
+  store.vertices = ply.vertex_count();
+  store.triangles = ply.face_count();
+  if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
+  if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
+  share.split(store.vertices, store.triangles);
+  PointBits referenced((store.vertices + 63) / 64, 0);
+  every_rank(share, [&] {
+    ply.seek_vertex(share.v0);
+    ScratchWriter xyz(store.dir.file("xyz.f64"), share.v0 * 24);
     std::vector<double> buf(3 * kChunk);
-    uint64_t v = 0;
-    for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got)
+    for (uint64_t v = share.v0; v < share.v1;) {
+      const size_t got = ply.read_vertices(buf.data(), size_t(std::min<uint64_t>(kChunk, share.v1 - v)));
+      if (got == 0) throw Error("internal: a vertex range ends early");
+      for (size_t i = 0; i < 3 * got; ++i)
+        if (!std::isfinite(buf[i]))
+          throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
+      xyz.write(buf.data(), 3 * got * sizeof(double));
+      v += got;
+    }
+    xyz.close();
+    ply.seek_face(share.t0);
+    ScratchWriter tri(store.dir.file("tri.u32"), share.t0 * 12);
+    std::vector<uint32_t> t;
+    for (uint64_t f = share.t0; f < share.t1;) {
+      t.clear();
+      const size_t got = ply.read_faces(t, size_t(std::min<uint64_t>(kChunk, share.t1 - f)));
+      if (got == 0) throw Error("internal: a face range ends early");
+      if (t.size() != 3 * got)  // the file's size matched triangles' alone, but a face is not one
+        throw Error(input_path + ": a face among faces " + std::to_string(f) + ".." + std::to_string(f + got - 1) +
+                    " is not a triangle, where the file's size says every face is");
+      for (uint32_t v : t) referenced[v >> 6] |= uint64_t(1) << (v & 63);
+      tri.write_vector(t);
+      f += got;
+      report("reading", double(f - share.t0) / double(std::max<uint64_t>(1, share.t1 - share.t0)));
+    }
+    tri.close();
+    // This rank's corner bits for the others; every rank's for this one's vertices below.
+    ScratchWriter bits(store.dir.file("points_r" + std::to_string(share.rank) + ".bits"));
+    bits.write_vector(referenced);
+    bits.close();
+  });
+  every_rank(share, [&] {
+    const uint64_t w0 = share.v0 / 64, w1 = (share.v1 + 63) / 64;
+    std::fill(referenced.begin(), referenced.end(), 0);
+    std::vector<uint64_t> words(size_t(w1 - w0));
+    for (int r = 0; r < share.ranks; ++r) {
+      ScratchReader in(store.dir.file("points_r" + std::to_string(r) + ".bits"));
+      in.seek(w0 * 8);
+      in.read_exact(words.data(), words.size() * 8);
+      for (size_t i = 0; i < words.size(); ++i) referenced[size_t(w0) + i] |= words[i];
+    }
+  });
+  return referenced;
+}
+
+// Pass B over this rank's vertices: the origin (set_model_positions' rule, over every
+// rank's points), local floats to pos.f32, their box and the point count (every rank's),
+// and the histogram of the points (rank 0's, every rank's counts added).
+void local_positions(TileStore& store, const PointBits& points, const Share& share) {
+  const uint64_t v0 = share.v0, v1 = share.v1;
+  BoundingBox model = empty_box();
+  every_rank(share, [&] {
+    ScratchReader xyz(store.dir.file("xyz.f64"));
+    xyz.seek(v0 * 24);
+    std::vector<double> buf(3 * kChunk);
+    for (uint64_t v = v0; v < v1;) {
+      const size_t got = size_t(std::min<uint64_t>(kChunk, v1 - v));
+      xyz.read_exact(buf.data(), got * 24);
       for (size_t i = 0; i < got; ++i)
         if (is_point(points, v + i))
           for (int a = 0; a < 3; ++a) {
             model.min[a] = std::min(model.min[a], buf[3 * i + a]);
             model.max[a] = std::max(model.max[a], buf[3 * i + a]);
           }
-  }
+      v += got;
+    }
+  });
+  uint64_t unused = 0;
+  join_boxes(share, model, unused);
   for (int a = 0; a < 3; ++a) store.origin[a] = model.min[a] / 2 + model.max[a] / 2;
   BoundingBox box = empty_box();
-  {
+  uint64_t count = 0;
+  every_rank(share, [&] {
     ScratchReader xyz(store.dir.file("xyz.f64"));
-    ScratchWriter pos(store.dir.file("pos.f32"));
+    xyz.seek(v0 * 24);
+    ScratchWriter pos(store.dir.file("pos.f32"), v0 * 12);
     std::vector<double> buf(3 * kChunk);
     std::vector<float> local(3 * kChunk);
-    uint64_t v = 0;
-    for (size_t got; (got = xyz.read(buf.data(), buf.size() * sizeof(double)) / 24) > 0; v += got) {
+    for (uint64_t v = v0; v < v1;) {
+      const size_t got = size_t(std::min<uint64_t>(kChunk, v1 - v));
+      xyz.read_exact(buf.data(), got * 24);
       for (size_t i = 0; i < 3 * got; ++i) local[i] = local_coordinate(buf[i], store.origin[i % 3]);
       for (size_t i = 0; i < got; ++i)
         if (is_point(points, v + i)) {
-          store.points++;
+          count++;
           for (int a = 0; a < 3; ++a) {
             box.min[a] = std::min(box.min[a], double(local[3 * i + a]));
             box.max[a] = std::max(box.max[a], double(local[3 * i + a]));
           }
         }
       pos.write(local.data(), 3 * got * sizeof(float));
+      v += got;
     }
     pos.close();
-  }
+  });
+  join_boxes(share, box, count);
   store.box = box;
+  store.points = count;
   PointHistogram& hist = store.histogram;
   hist.box = box;
   for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / PointHistogram::kBins, 1e-30);
-  ScratchReader pos(store.dir.file("pos.f32"));
-  std::vector<float> buf(3 * kChunk);
-  uint64_t v = 0;
-  for (size_t got; (got = pos.read(buf.data(), buf.size() * sizeof(float)) / 12) > 0; v += got)
-    for (size_t i = 0; i < got; ++i)
-      if (is_point(points, v + i)) hist.add(&buf[3 * i]);
+  every_rank(share, [&] {
+    ScratchReader pos(store.dir.file("pos.f32"));
+    pos.seek(v0 * 12);
+    std::vector<float> buf(3 * kChunk);
+    for (uint64_t v = v0; v < v1;) {
+      const size_t got = size_t(std::min<uint64_t>(kChunk, v1 - v));
+      pos.read_exact(buf.data(), got * 12);
+      for (size_t i = 0; i < got; ++i)
+        if (is_point(points, v + i)) hist.add(&buf[3 * i]);
+      v += got;
+    }
+  });
+  if (!share.exchange) return;
+  // Rank 0 adds the others' bins (sent as the occupied ones: a surface fills few).
+  TileBytes b;
+  if (share.rank != 0)
+    for (size_t i = 0; i < hist.count.size(); ++i)
+      if (hist.count[i]) b.put(uint32_t(i)), b.put(hist.count[i]);
+  const auto all = share.exchange->gather(b.data, 0);
+  for (size_t r = 1; r < all.size(); ++r)
+    for (TileBytesReader in{all[r]}; !in.done();) {
+      const uint32_t i = in.get<uint32_t>();
+      const uint32_t c = in.get<uint32_t>();
+      if (i >= hist.count.size()) throw Error("tiled saliency: a rank sent a histogram bin out of range");
+      hist.count[i] += c;
+    }
 }
 
 // The tile count: the fewest (at least min_tiles) whose largest tile fits the limit,
@@ -227,9 +379,10 @@ bool has_area(const uint32_t* c, const std::vector<float>& pos, uint64_t first) 
   return u[1] * w[2] - u[2] * w[1] != 0 || u[2] * w[0] - u[0] * w[2] != 0 || u[0] * w[1] - u[1] * w[0] != 0;
 }
 
-// Pass C: each triangle to the bucket of every tile one of its corners lies in, a block of
-// vertex positions at a time.
-void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memory_limit, const Progress& report) {
+// Pass C over this rank's triangles: each to the bucket of every tile one of its corners
+// lies in (this rank's file of that bucket), a block of vertex positions at a time.
+void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memory_limit, const Share& share,
+                  const Progress& report) {
   const size_t ntiles = tile_count(store.plan);
   std::vector<std::vector<TileFace>> pending(ntiles);
   size_t pending_count = 0;
@@ -237,7 +390,7 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
   auto flush = [&]() {
     for (size_t t = 0; t < ntiles; ++t) {
       if (pending[t].empty()) continue;
-      ScratchWriter out(store.dir.file(bucket_name(t)), true);
+      ScratchWriter out(store.dir.file(bucket_name(t, share.rank)), true);
       out.write_vector(pending[t]);
       out.close();
       std::vector<TileFace>().swap(pending[t]);
@@ -245,81 +398,136 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
     pending_count = 0;
   };
   bool any_area = false;  // validate_mesh's test, on triangles within one block
-  for (uint64_t first = 0; first < store.vertices; first += store.block) {
-    const size_t count = size_t(std::min<uint64_t>(store.block, store.vertices - first));
-    std::vector<float> pos(3 * count);
-    {
-      ScratchReader in(store.dir.file("pos.f32"));
-      in.seek(first * 12);
-      in.read_exact(pos.data(), pos.size() * sizeof(float));
-    }
-    auto in_block = [&](uint32_t v) { return v >= first && v < first + count; };
-    ScratchReader tri(store.dir.file("tri.u32"));
-    std::vector<uint32_t> buf(3 * kChunk);
-    std::vector<size_t> tile(3 * kChunk);  // each corner's tile (SIZE_MAX: outside the block)
-    uint32_t f = 0;
-    for (size_t got; (got = tri.read(buf.data(), buf.size() * 4) / 12) > 0;) {
-      parallel_for(3 * got, store.plan.threads, 1 << 14, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i)
-          tile[i] = in_block(buf[i]) ? tile_of(store.plan, &pos[3 * (buf[i] - first)]) : SIZE_MAX;
-      });
-      for (size_t i = 0; i < got; ++i, ++f) {
-        const uint32_t* c = &buf[3 * i];
-        if (!any_area && in_block(c[0]) && in_block(c[1]) && in_block(c[2])) any_area = has_area(c, pos, first);
-        size_t seen[3];
-        int nseen = 0;
-        for (int k = 0; k < 3; ++k) {
-          const size_t t = tile[3 * i + k];
-          if (t == SIZE_MAX) continue;
-          if (std::find(seen, seen + nseen, t) != seen + nseen) continue;
-          seen[nseen++] = t;
-          pending[t].push_back({f, {c[0], c[1], c[2]}});
-          pending_count++;
-        }
+  every_rank(share, [&] {
+    const uint64_t mine = std::max<uint64_t>(1, share.t1 - share.t0);
+    for (uint64_t first = 0; first < store.vertices; first += store.block) {
+      const size_t count = size_t(std::min<uint64_t>(store.block, store.vertices - first));
+      std::vector<float> pos(3 * count);
+      {
+        ScratchReader in(store.dir.file("pos.f32"));
+        in.seek(first * 12);
+        in.read_exact(pos.data(), pos.size() * sizeof(float));
       }
-      if (pending_count >= flush_at) flush();
-      report("tiling", (double(first) + double(f) / double(store.triangles) * double(count)) / double(store.vertices));
+      auto in_block = [&](uint32_t v) { return v >= first && v < first + count; };
+      ScratchReader tri(store.dir.file("tri.u32"));
+      tri.seek(share.t0 * 12);
+      std::vector<uint32_t> buf(3 * kChunk);
+      std::vector<size_t> tile(3 * kChunk);  // each corner's tile (SIZE_MAX: outside the block)
+      for (uint64_t f = share.t0; f < share.t1;) {
+        const size_t got = size_t(std::min<uint64_t>(kChunk, share.t1 - f));
+        tri.read_exact(buf.data(), got * 12);
+        parallel_for(3 * got, store.plan.threads, 1 << 14, [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i)
+            tile[i] = in_block(buf[i]) ? tile_of(store.plan, &pos[3 * (buf[i] - first)]) : SIZE_MAX;
+        });
+        for (size_t i = 0; i < got; ++i, ++f) {
+          const uint32_t* c = &buf[3 * i];
+          if (!any_area && in_block(c[0]) && in_block(c[1]) && in_block(c[2])) any_area = has_area(c, pos, first);
+          size_t seen[3];
+          int nseen = 0;
+          for (int k = 0; k < 3; ++k) {
+            const size_t t = tile[3 * i + k];
+            if (t == SIZE_MAX) continue;
+            if (std::find(seen, seen + nseen, t) != seen + nseen) continue;
+            seen[nseen++] = t;
+            pending[t].push_back({uint32_t(f), {c[0], c[1], c[2]}});
+            pending_count++;
+          }
+        }
+        if (pending_count >= flush_at) flush();
+        report("tiling", (double(first) + double(f - share.t0) / double(mine) * double(count)) / double(store.vertices));
+      }
     }
-  }
-  flush();
-  if (!any_area && store.block >= store.vertices)
+    flush();
+  });
+  if (!any_rank(share, any_area) && store.block >= store.vertices)
     throw Error(input_path + ": every triangle has zero area (degenerate mesh)");
 }
 
-}  // namespace
-
-void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
-                      uint64_t memory_limit, unsigned min_tiles,
-                      const std::function<void(const char*, double)>& progress, StoreUse use) {
-  const Progress report = [&](const char* stage, double f) {
-    if (progress) progress(stage, f);
-  };
-  int converted_wide = -1;
-  store_input(store, input_path, converted_wide);
+// The passes after the input is in place (store.input): one rank's (the whole file read
+// front to back when `ranged` is false) or every rank's share of a file read in ranges.
+void build_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                  uint64_t memory_limit, unsigned min_tiles, const Progress& report, StoreUse use,
+                  int converted_wide, Share share, bool ranged) {
   // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit.
   store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
+  store.bucket_ranks = share.ranks;
+  if (!share.exchange) ScratchWriter(store.dir.file("pos.f32")).close();  // (the ranks' own is made first)
   {
-    const PointBits points = read_input(store, input_path, converted_wide, report);
-    local_positions(store, points);
+    PointBits points;
+    if (ranged) {
+      points = read_input_range(store, input_path, share, report);
+      store.double_positions = converted_wide >= 0 ? converted_wide == 1 : PlyStream(store.input).double_positions();
+    } else {
+      points = read_input(store, input_path, converted_wide, report);
+      share.split(store.vertices, store.triangles);
+    }
+    local_positions(store, points, share);
   }
   if (use == StoreUse::FilesOnly) {
     store.plan = make_tile_plan(store.box, store.points, options, std::max(1u, min_tiles));
     return;
   }
-  choose_tiling(store, input_path, options, memory_limit, min_tiles);
-  fill_buckets(store, input_path, memory_limit, report);
+  // Rank 0 picks the tiling from its histogram (the whole mesh's); the others take its plan.
+  const bool lead = share.rank == 0;
+  if (share.exchange) {
+    lead_step(share.exchange, [&] { choose_tiling(store, input_path, options, memory_limit, min_tiles); });
+    TileBytes b;
+    if (lead) {
+      b.put(store.largest_tile_estimate);
+      b.put(store.plan.tile_edge);
+      for (int a = 0; a < 3; ++a) b.put(store.plan.tiles[a]);
+    }
+    const auto said = tile_gather(share.exchange, b.data);
+    TileBytesReader in{said[0]};
+    if (!lead) {
+      store.largest_tile_estimate = in.get<uint64_t>();
+      store.plan = make_tile_plan(store.box, store.points, options, 1);
+      store.plan.tile_edge = in.get<double>();
+      for (int a = 0; a < 3; ++a) store.plan.tiles[a] = in.get<int>();
+    }
+  } else {
+    choose_tiling(store, input_path, options, memory_limit, min_tiles);
+  }
+  fill_buckets(store, input_path, memory_limit, share, report);
+}
+
+}  // namespace
+
+void build_store_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                        uint64_t memory_limit, unsigned min_tiles,
+                        const std::function<void(const char*, double)>& progress, StoreUse use, int converted_wide,
+                        TileExchange* exchange) {
+  const Progress report = [&](const char* stage, double f) {
+    if (progress) progress(stage, f);
+  };
+  Share share;
+  if (exchange) share.exchange = exchange, share.rank = exchange->rank(), share.ranks = exchange->ranks();
+  build_passes(store, input_path, options, memory_limit, min_tiles, report, use, converted_wide, share,
+               exchange != nullptr);
+}
+
+void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned min_tiles,
+                      const std::function<void(const char*, double)>& progress, StoreUse use) {
+  int converted_wide = -1;
+  store_input(store, input_path, converted_wide);
+  build_store_passes(store, input_path, options, memory_limit, min_tiles, progress, use, converted_wide, nullptr);
 }
 
 TileSource store_tile_source(const TileStore& store) {
   TileSource source;
   source.bucket = [&store](size_t u, std::vector<TileFace>& into) {
-    const std::string path = store.dir.file(bucket_name(u));
-    struct stat st;
-    if (::stat(path.c_str(), &st) != 0) return;  // no triangle there
-    const std::vector<uint8_t> bytes = read_scratch_file(path);
-    const size_t n = bytes.size() / sizeof(TileFace), at = into.size();
-    into.resize(at + n);
-    std::memcpy(into.data() + at, bytes.data(), n * sizeof(TileFace));
+    // Every rank's file of it in rank order: each rank's faces are later ones than the last's.
+    for (int r = 0; r < store.bucket_ranks; ++r) {
+      const std::string path = store.dir.file(bucket_name(u, r));
+      struct stat st;
+      if (::stat(path.c_str(), &st) != 0) continue;  // no triangle there
+      const std::vector<uint8_t> bytes = read_scratch_file(path);
+      const size_t n = bytes.size() / sizeof(TileFace), at = into.size();
+      into.resize(at + n);
+      if (n) std::memcpy(into.data() + at, bytes.data(), n * sizeof(TileFace));
+    }
   };
   source.positions = [&store](const std::vector<uint32_t>& sorted, std::vector<float>& xyz) {
     xyz.resize(3 * sorted.size());

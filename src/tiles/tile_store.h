@@ -69,6 +69,7 @@ struct TileStore {
   PointHistogram histogram;  // of the mesh points
   uint64_t largest_tile_estimate = 0;  // bytes, the largest tile's estimate
   size_t block = 0;                    // vertices per block of the passes
+  int bucket_ranks = 1;                // the ranks that filled buckets (a file each per tile)
 };
 
 // What a store is built for: the saliency's tiles (pass C's buckets, the tile count that
@@ -85,10 +86,23 @@ void build_tile_store(TileStore& store, const std::string& input, const Saliency
                       const std::function<void(const char*, double)>& progress,
                       StoreUse use = StoreUse::SaliencyTiles);
 
-// build_tile_store under an exchange (options.exchange; none: build_tile_store itself):
-// rank 0 builds the store and the others take its description (its folder, counts, origin,
-// boxes and plan; not the histogram) and read its files, so the folder must be one they
-// all reach. An error on rank 0 is thrown on every rank.
+// build_tile_store's steps, for share_tile_store: the input as a binary PLY the passes
+// stream (store.input: itself, or another format converted once into the folder, in double;
+// converted_wide: the converted mesh's own precision, -1 for a PLY as it is), then the
+// passes over it. With an exchange every rank runs its share of a file that reads in
+// ranges (PlyStream::ranged): its vertices, its faces and its triangles' buckets; the
+// boxes, counts and histogram joined (the histogram on rank 0, which picks the tiling).
+void store_input(TileStore& store, const std::string& input, int& converted_wide);
+void build_store_passes(TileStore& store, const std::string& input, const SaliencyOptions& options,
+                        uint64_t memory_limit, unsigned tiles,
+                        const std::function<void(const char*, double)>& progress, StoreUse use, int converted_wide,
+                        TileExchange* exchange);
+
+// build_tile_store under an exchange (options.exchange; none: build_tile_store itself), in
+// the one folder they all reach (rank 0's): a binary PLY that reads in ranges is built by
+// every rank, each its share; any other input by rank 0, whose description the others take
+// (its folder, counts, origin, boxes and plan; not the histogram). An error on any rank is
+// thrown on every rank.
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles,
                       const std::function<void(const char*, double)>& progress,

@@ -1,8 +1,9 @@
-// share_tile_store (tile_store.h): rank 0 builds the store, the others adopt its
-// description and read the same files.
+// share_tile_store (tile_store.h): every rank builds its share of the store from an input
+// that reads in ranges; otherwise rank 0 builds it and the others adopt its description.
 #include <string>
 #include <vector>
 
+#include "io/ply_stream.h"
 #include "tiles/tile_bytes.h"
 #include "tiles/tile_reduce.h"
 #include "tiles/tile_store.h"
@@ -29,6 +30,7 @@ TileBytes describe(const TileStore& s) {
   b.put(s.plan.source_margin);
   b.put(s.plan.eps);
   for (int a = 0; a < 3; ++a) b.put(s.box.min[a]), b.put(s.box.max[a]);
+  b.put(int32_t(s.bucket_ranks));
   return b;
 }
 
@@ -54,6 +56,7 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
   s.plan.source_margin = in.get<double>();
   s.plan.eps = in.get<double>();
   for (int a = 0; a < 3; ++a) s.box.min[a] = in.get<double>(), s.box.max[a] = in.get<double>();
+  s.bucket_ranks = in.get<int32_t>();
 }
 
 }  // namespace
@@ -61,8 +64,42 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
                       unsigned tiles, const std::function<void(const char*, double)>& progress, StoreUse use) {
   TileExchange* exchange = options.exchange;
-  lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress, use); });
-  if (!exchange) return;
+  if (!exchange || exchange->ranks() == 1) {
+    lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress, use); });
+    return;
+  }
+  // Rank 0 puts the input in place and sees whether it reads in ranges; the files the ranks
+  // write their ranges of exist before any opens them.
+  int converted_wide = -1;
+  bool ranged = false;
+  lead_step(exchange, [&] {
+    store_input(store, input, converted_wide);
+    ranged = PlyStream(store.input).ranged();
+    for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
+  });
+  TileBytes b;
+  if (exchange->rank() == 0) {
+    b.put(std::vector<uint8_t>(store.dir.path().begin(), store.dir.path().end()));
+    b.put(std::vector<uint8_t>(store.input.begin(), store.input.end()));
+    b.put(int32_t(converted_wide));
+    b.put(uint8_t(ranged));
+  }
+  const auto said = tile_gather(exchange, b.data);  // (rank 0's: the only one not empty)
+  if (exchange->rank() != 0) {
+    TileBytesReader in{said[0]};
+    const std::vector<uint8_t> dir = in.get_vector<uint8_t>(), path = in.get_vector<uint8_t>();
+    store.dir.borrow(std::string(dir.begin(), dir.end()));
+    store.input = std::string(path.begin(), path.end());
+    converted_wide = in.get<int32_t>();
+    ranged = in.get<uint8_t>() != 0;
+  }
+  if (ranged) {
+    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, exchange);
+    return;
+  }
+  lead_step(exchange, [&] {
+    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr);
+  });
   const auto all = tile_gather(exchange, exchange->rank() == 0 ? describe(store).data : std::vector<uint8_t>());
   if (exchange->rank() != 0) adopt(store, all[0], options);
 }

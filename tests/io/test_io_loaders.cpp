@@ -348,7 +348,7 @@ TEST_CASE("PLY stream (out of core): faces from the read-ahead are the loader's,
                     Catch::Contains("the file ends before its header's counts are read"));
 }
 
-TEST_CASE("PLY stream (out of core): ranges read apart are the whole read's; where it cannot seek, it says so", "[io][outofcore]") {
+TEST_CASE("PLY stream (out of core): ranges read apart are the whole read's, and where it cannot seek it says so", "[io][outofcore]") {
   // The ranks building a store each read their share of the vertices and faces (seek_vertex,
   // seek_face): pieces in any order join into the front-to-back read.
   TempDir dir;
