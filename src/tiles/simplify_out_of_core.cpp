@@ -318,15 +318,20 @@ double write_weights(const TileStore& store, DiskMesh& mesh, const SaliencyWeigh
   return alpha;
 }
 
-// The tiles, and how many groups run at once (`concurrent`; 0 = no cap, without a limit).
-// Each group at work holds its piece and a bit per vertex (its mark), beside the bits of
-// the passes (three per vertex) and the bucket buffers (an eighth of the limit). The
-// fewest tiles (at least `tiles`) whose largest pieces fit one per thread, so that every
-// core has a group (smaller pieces also simplify faster: 2.1M vertices to 10% in memory,
-// 2-core VM, 7.6 s with 2 tiles, 6.1 s with 3, 5.4 s with 4, 5.1 s with 6 and 8); one at
-// a time where no tile count fits that many.
+// The pieces a tile count is sized for: that many of the largest fit the limit at once,
+// whatever the machine (the tiles, so the bytes written, must not depend on the thread
+// count: one process and mpirun ranks with the same limit write the same file). Smaller
+// pieces also simplify faster: 2.1M vertices to 10% in memory on the 2-core VM, 7.6 s with
+// 2 tiles, 6.1 s with 3, 5.4 s with 4, 5.1 s with 6 and 8.
+constexpr unsigned kPiecesAtOnce = 4;
+
+// The tiles, and how many groups may run at once (`concurrent`; 0 = no cap, without a
+// limit). Each group at work holds its piece and a bit per vertex (its mark), beside the
+// bits of the passes (three per vertex) and the bucket buffers (an eighth of the limit):
+// the fewest tiles (at least `tiles`) whose largest pieces fit kPiecesAtOnce at a time, or
+// one at a time where no tile count fits that many.
 unsigned simplify_tiles(const TileStore& store, const std::string& input, uint64_t memory_limit, unsigned tiles,
-                        unsigned threads, uint64_t& estimate, unsigned& concurrent) {
+                        uint64_t& estimate, unsigned& concurrent) {
   const uint64_t fixed = kBaseBytes + 3 * (store.vertices / 8) + memory_limit / 8, mark = store.vertices / 8;
   const std::vector<OccupiedBin> bins = occupied_bins(store);
   auto piece = [&](unsigned t) {
@@ -337,12 +342,11 @@ unsigned simplify_tiles(const TileStore& store, const std::string& input, uint64
     estimate = piece(std::max(1u, tiles));
     return std::max(1u, tiles);
   }
-  const unsigned all = resolve_threads(threads);
-  for (const unsigned workers : {all, 1u}) {
+  for (const unsigned pieces : {kPiecesAtOnce, 1u}) {
     for (unsigned t = std::max(1u, tiles);; t = std::min(kMaxSimplifyTiles, t + std::max(1u, t / 4))) {
       estimate = piece(t);
-      if (fixed + workers * (estimate + mark) <= memory_limit) {
-        concurrent = workers;
+      if (fixed + pieces * (estimate + mark) <= memory_limit) {
+        concurrent = unsigned(std::min<uint64_t>(kMaxThreads, (memory_limit - fixed) / (estimate + mark)));
         return t;
       }
       if (t == kMaxSimplifyTiles) break;
@@ -453,8 +457,7 @@ OutOfCoreSimplifyReport simplify_file(const std::string& input, const std::strin
     write_vertex_state(store, mesh, weights != nullptr, so.scales.size(), ooc.dump_scales);
     if (weights && !keep) report.alpha = write_weights(store, mesh, *weights);
     std::remove(store.dir.file("sm.f64").c_str());
-    simplify_tile_count =
-        simplify_tiles(store, input, ooc.memory_limit, tiles, options.threads, report.tile_estimate, concurrent);
+    simplify_tile_count = simplify_tiles(store, input, ooc.memory_limit, tiles, report.tile_estimate, concurrent);
   });
   if (weights && !keep) clock.lap("weights");
   report.tiles = unsigned(share_rank0_value(exchange, simplify_tile_count));

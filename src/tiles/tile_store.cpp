@@ -205,6 +205,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
   store.triangles = ply.face_count();
   if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
   if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
+  if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
   share.split(store.vertices, store.triangles);
   PointBits referenced((store.vertices + 63) / 64, 0);
   every_rank(share, [&] {

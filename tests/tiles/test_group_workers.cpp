@@ -163,15 +163,12 @@ TEST_CASE("out-of-core simplify: the groups side by side under a limit, the one-
     const OutOfCoreSimplifyReport r4 = simplify_file(in, many, tiled(0.05, 1, 4), weights, cpu(Method::Fast), ooc);
     CHECK(r1.groups_at_once == 1);
     CHECK(r4.groups_at_once == 4);  // the limit holds a piece per thread
-    // Four pieces at once need smaller tiles than one: the tile count is the one-thread
-    // run's or more, and with the same tiles the bytes are the same.
-    CHECK(r4.tiles >= r1.tiles);
-    const std::string same_tiles = (dir / "same.ply").string();
-    const OutOfCoreSimplifyReport r1t =
-        simplify_file(in, same_tiles, tiled(0.05, r4.tiles, 1), weights, cpu(Method::Fast), ooc);
-    REQUIRE(r1t.tiles == r4.tiles);
-    CHECK(file_bytes(same_tiles) == file_bytes(many));
-    CHECK(r1t.simplify.collapses == r4.simplify.collapses);
+    // The tiles do not depend on the threads (the limit sizes them for four pieces at once),
+    // so neither do the bytes.
+    CHECK(r1.tiles == r4.tiles);
+    CHECK(r1.tiles > 1);
+    CHECK(file_bytes(one) == file_bytes(many));
+    CHECK(r1.simplify.collapses == r4.simplify.collapses);
     CHECK(r4.simplify.collapses > 0);
   }
 }
