@@ -32,11 +32,15 @@ PY
 echo "mesh: $PLY ($(stat -c %s "$PLY") bytes)"
 run in-memory "$MESHSAL" saliency "$PLY" -o "$WORK/a.ply" --method fast --backend cpu
 run limit-700M "$MESHSAL" saliency "$PLY" -o "$WORK/b.ply" --method fast --backend cpu --memory-limit 700M
-cmp "$WORK/a.ply" "$WORK/b.ply" && echo "limit-700M: the in-memory run's bytes"
+# (The fast method's tiles sum some cells in another order: S may differ from the in-memory
+# file in its last bit at a few vertices, README "Beyond one machine"; every tiled run
+# writes the same bytes as every other with the same tiles.)
+cmp -s "$WORK/a.ply" "$WORK/b.ply" && echo "limit-700M: the in-memory run's bytes" ||
+  echo "limit-700M: not the in-memory run's bytes (the fast method's last bits)"
 for n in 2 4; do
   run mpi-np$n-700M $MPIRUN -np $n "$MESHSAL" saliency "$PLY" -o "$WORK/c$n.ply" --method fast --backend cpu \
     --memory-limit 700M --threads $(( $(nproc) / n > 0 ? $(nproc) / n : 1 ))
-  cmp "$WORK/a.ply" "$WORK/c$n.ply" && echo "mpi-np$n-700M: the in-memory run's bytes"
+  cmp "$WORK/b.ply" "$WORK/c$n.ply" && echo "mpi-np$n-700M: the bytes of limit-700M"
 done
 
 # Simplification beyond memory (issue 23 item 4): plain quadrics (--weights none, so the

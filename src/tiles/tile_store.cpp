@@ -113,6 +113,7 @@ namespace {
 struct Share {
   TileExchange* exchange = nullptr;
   int rank = 0, ranks = 1;
+  unsigned parts = 1;  // the ranks that share this process's memory limit (ranks in threads)
   uint64_t v0 = 0, v1 = 0, t0 = 0, t1 = 0;
   void split(uint64_t vertices, uint64_t triangles) {
     v0 = vertices * uint64_t(rank) / uint64_t(ranks), v1 = vertices * uint64_t(rank + 1) / uint64_t(ranks);
@@ -387,7 +388,8 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
   const size_t ntiles = tile_count(store.plan);
   std::vector<std::vector<TileFace>> pending(ntiles);
   size_t pending_count = 0;
-  const size_t flush_at = std::max<size_t>(kChunk, memory_limit ? size_t(memory_limit / 8 / sizeof(TileFace)) : (1u << 22));
+  const uint64_t part = memory_limit / share.parts;  // (the buffers of ranks in threads share the limit)
+  const size_t flush_at = std::max<size_t>(kChunk, memory_limit ? size_t(part / 8 / sizeof(TileFace)) : (1u << 22) / share.parts);
   auto flush = [&]() {
     for (size_t t = 0; t < ntiles; ++t) {
       if (pending[t].empty()) continue;
@@ -450,8 +452,15 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
 void build_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                   uint64_t memory_limit, unsigned min_tiles, const Progress& report, StoreUse use,
                   int converted_wide, Share share, bool ranged) {
-  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit.
+  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit;
+  // ranks in threads each hold a share of what one would (where one block holds every
+  // vertex, each holds a share of them: never more than one rank's memory in all).
   store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
+  if (share.parts > 1) {
+    PlyStream ply(store.input);
+    const uint64_t one = std::min<uint64_t>(store.block, ply.vertex_count());
+    store.block = std::max<size_t>(kChunk, size_t((one + share.parts - 1) / share.parts));
+  }
   store.bucket_ranks = share.ranks;
   if (!share.exchange) ScratchWriter(store.dir.file("pos.f32")).close();  // (the ranks' own is made first)
   {
@@ -498,12 +507,13 @@ void build_passes(TileStore& store, const std::string& input_path, const Salienc
 void build_store_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                         uint64_t memory_limit, unsigned min_tiles,
                         const std::function<void(const char*, double)>& progress, StoreUse use, int converted_wide,
-                        TileExchange* exchange) {
+                        TileExchange* exchange, unsigned memory_parts) {
   const Progress report = [&](const char* stage, double f) {
     if (progress) progress(stage, f);
   };
   Share share;
   if (exchange) share.exchange = exchange, share.rank = exchange->rank(), share.ranks = exchange->ranks();
+  share.parts = std::max(1u, memory_parts);
   build_passes(store, input_path, options, memory_limit, min_tiles, report, use, converted_wide, share,
                exchange != nullptr);
 }
@@ -513,7 +523,7 @@ void build_tile_store(TileStore& store, const std::string& input_path, const Sal
                       const std::function<void(const char*, double)>& progress, StoreUse use) {
   int converted_wide = -1;
   store_input(store, input_path, converted_wide);
-  build_store_passes(store, input_path, options, memory_limit, min_tiles, progress, use, converted_wide, nullptr);
+  build_store_passes(store, input_path, options, memory_limit, min_tiles, progress, use, converted_wide, nullptr, 1);
 }
 
 TileSource store_tile_source(const TileStore& store) {

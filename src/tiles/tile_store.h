@@ -92,17 +92,20 @@ void build_tile_store(TileStore& store, const std::string& input, const Saliency
 // passes over it. With an exchange every rank runs its share of a file that reads in
 // ranges (PlyStream::ranged): its vertices, its faces and its triangles' buckets; the
 // boxes, counts and histogram joined (the histogram on rank 0, which picks the tiling).
+// memory_parts: how many ranks share this process's limit (ranks in threads: each sizes
+// its buffers for its part).
 void store_input(TileStore& store, const std::string& input, int& converted_wide);
 void build_store_passes(TileStore& store, const std::string& input, const SaliencyOptions& options,
                         uint64_t memory_limit, unsigned tiles,
                         const std::function<void(const char*, double)>& progress, StoreUse use, int converted_wide,
-                        TileExchange* exchange);
+                        TileExchange* exchange, unsigned memory_parts);
 
-// build_tile_store under an exchange (options.exchange; none: build_tile_store itself), in
-// the one folder they all reach (rank 0's): a binary PLY that reads in ranges is built by
-// every rank, each its share; any other input by rank 0, whose description the others take
-// (its folder, counts, origin, boxes and plan; not the histogram). An error on any rank is
-// thrown on every rank.
+// build_tile_store under an exchange (options.exchange), in the one folder they all reach
+// (rank 0's): a binary PLY that reads in ranges is built by every rank, each its share; any
+// other input by rank 0, whose description the others take (its folder, counts, origin,
+// boxes and plan; not the histogram). An error on any rank is thrown on every rank. Without
+// an exchange, a PLY that reads in ranges is built by ranks in threads of this process, one
+// per thread (options.threads), sharing its limit; anything else by build_tile_store.
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles,
                       const std::function<void(const char*, double)>& progress,

@@ -1,11 +1,17 @@
 // share_tile_store (tile_store.h): every rank builds its share of the store from an input
 // that reads in ranges; otherwise rank 0 builds it and the others adopt its description.
+#include <memory>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "io/ply_stream.h"
 #include "tiles/tile_bytes.h"
 #include "tiles/tile_reduce.h"
+#include "tiles/thread_ranks.h"
 #include "tiles/tile_store.h"
 
 namespace meshsal {
@@ -59,12 +65,58 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
   s.bucket_ranks = in.get<int32_t>();
 }
 
+// What a rank in a thread holds beyond the first's while the store is built (its reading
+// buffers, measured about 5 MiB), besides its point bits.
+constexpr uint64_t kThreadRankBytes = uint64_t(8) << 20;
+
+// One process: a file that reads in ranges built by ranks in threads, one per thread (the
+// passes' reading, positions and buckets on every core), the others in folders they drop
+// for rank 0's; anything else read front to back.
+void build_on_threads(TileStore& store, const std::string& input, const SaliencyOptions& options,
+                      uint64_t memory_limit, unsigned tiles, const std::function<void(const char*, double)>& progress,
+                      StoreUse use) {
+  int converted_wide = -1;
+  store_input(store, input, converted_wide);
+  const unsigned threads = resolve_threads(options.threads);
+  const PlyStream ply(store.input);
+  // Each rank beyond the first holds its own reading buffers and point bits: where the limit
+  // leaves no room for them (a limit near the smallest workable one), one rank reads.
+  const uint64_t per_rank = kThreadRankBytes + ply.vertex_count() / 8;
+  const bool room = !memory_limit || memory_limit >= kBaseBytes + (threads - 1) * per_rank;
+  if (threads <= 1 || !ply.ranged() || !room) {
+    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr, 1);
+    return;
+  }
+  for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
+  const std::string parent = store.dir.path().substr(0, store.dir.path().find_last_of('/'));
+  std::vector<std::unique_ptr<TileStore>> others;
+  for (unsigned r = 1; r < threads; ++r) {
+    others.push_back(std::make_unique<TileStore>(parent));
+    others.back()->dir.borrow(store.dir.path());
+    others.back()->input = store.input;
+  }
+  SaliencyOptions one_thread = options;  // each rank is one thread
+  one_thread.threads = 1;
+  run_thread_ranks(int(threads), [&](TileExchange& ex) {
+    TileStore& mine = ex.rank() == 0 ? store : *others[size_t(ex.rank() - 1)];
+    build_store_passes(mine, input, one_thread, memory_limit, tiles, ex.rank() == 0 ? progress : nullptr, use,
+                       converted_wide, &ex, threads);
+  });
+  store.plan.threads = options.threads;  // the phases after the store run on every thread
+#if defined(__GLIBC__)
+  // The other ranks' buffers were freed into their threads' heaps, which keep freed memory
+  // (keep_freed_memory_for_reuse) where no later allocation of the phases can take it.
+  malloc_trim(0);
+#endif
+}
+
 }  // namespace
 
 void share_tile_store(TileStore& store, const std::string& input, const SaliencyOptions& options, uint64_t memory_limit,
                       unsigned tiles, const std::function<void(const char*, double)>& progress, StoreUse use) {
   TileExchange* exchange = options.exchange;
-  if (!exchange || exchange->ranks() == 1) {
+  if (!exchange) return build_on_threads(store, input, options, memory_limit, tiles, progress, use);
+  if (exchange->ranks() == 1) {
     lead_step(exchange, [&] { build_tile_store(store, input, options, memory_limit, tiles, progress, use); });
     return;
   }
@@ -94,11 +146,11 @@ void share_tile_store(TileStore& store, const std::string& input, const Saliency
     ranged = in.get<uint8_t>() != 0;
   }
   if (ranged) {
-    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, exchange);
+    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, exchange, 1);
     return;
   }
   lead_step(exchange, [&] {
-    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr);
+    build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr, 1);
   });
   const auto all = tile_gather(exchange, exchange->rank() == 0 ? describe(store).data : std::vector<uint8_t>());
   if (exchange->rank() != 0) adopt(store, all[0], options);

@@ -221,13 +221,12 @@ TEST_CASE("tiles holding no vertex and a mesh in one tile", "[tiles]") {
   check_identical(whole, compute_saliency(mesh, o));
 
   // One tile (the tiled path forced by an exchange of one process): the whole mesh.
-  ThreadExchange::Shared shared;
-  shared.ranks = 1;
-  shared.slots.resize(1);
-  ThreadExchange one(shared, 0);
-  SaliencyOptions single = cpu_options(Method::Exact, true);
-  single.exchange = &one;
-  const SaliencyResult r = compute_saliency(mesh, single);
+  SaliencyResult r;
+  run_ranks(1, [&](ThreadExchange& one) {
+    SaliencyOptions single = cpu_options(Method::Exact, true);
+    single.exchange = &one;
+    r = compute_saliency(mesh, single);
+  });
   CHECK(r.tiles == 1);
   check_identical(whole, r);
 }
@@ -259,19 +258,12 @@ TEST_CASE("tiles shared by processes through an exchange give the single-process
     o.threads = 1;
     const SaliencyResult single = compute_saliency(mesh, o);
     for (int ranks : {2, 3}) {
-      ThreadExchange::Shared shared;
-      shared.ranks = ranks;
-      shared.slots.resize(ranks);
       std::vector<SaliencyResult> results(ranks);
-      std::vector<std::thread> threads;
-      for (int rank = 0; rank < ranks; ++rank)
-        threads.emplace_back([&, rank] {
-          ThreadExchange ex(shared, rank);
-          SaliencyOptions mine = o;
-          mine.exchange = &ex;
-          results[rank] = compute_saliency(mesh, mine);
-        });
-      for (auto& t : threads) t.join();
+      run_ranks(ranks, [&](ThreadExchange& ex) {
+        SaliencyOptions mine = o;
+        mine.exchange = &ex;
+        results[size_t(ex.rank())] = compute_saliency(mesh, mine);
+      });
       for (int rank = 0; rank < ranks; ++rank) {
         INFO("ranks " << ranks << " rank " << rank);
         CHECK(results[rank].ranks == ranks);

@@ -46,9 +46,10 @@ bool same_faces(const std::vector<TileFace>& a, const std::vector<TileFace>& b) 
   return true;
 }
 
-SaliencyOptions store_options(TileExchange* ex) {
+SaliencyOptions store_options(TileExchange* ex, unsigned threads = 1) {
   SaliencyOptions o = cpu(Method::Fast);
   o.exchange = ex;
+  o.threads = threads;
   return o;
 }
 
@@ -65,8 +66,17 @@ TEST_CASE("tile store built by every rank is the one-process store", "[tiles][ou
   write_ply(in, mesh, {});
   const uint64_t limit = uint64_t(1) << 30;
   TileStore one(dir.string());
-  share_tile_store(one, in, store_options(nullptr), limit, 3, {});
+  share_tile_store(one, in, store_options(nullptr), limit, 3, {});  // one thread: read front to back
   REQUIRE(tile_count(one.plan) > 1);
+  REQUIRE(one.bucket_ranks == 1);
+  // One process on three threads: ranks in threads of its own, rank 0's store the result.
+  TileStore threaded(dir.string());
+  share_tile_store(threaded, in, store_options(nullptr, 3), limit, 3, {});
+  CHECK(threaded.bucket_ranks == 3);
+  CHECK(threaded.plan.threads == 3);
+  CHECK(threaded.histogram.count == one.histogram.count);
+  for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) CHECK(file_of(threaded, name) == file_of(one, name));
+  for (size_t t = 0; t < tile_count(one.plan); ++t) CHECK(same_faces(bucket_of(threaded, t), bucket_of(one, t)));
   for (int ranks : {2, 3}) {
     INFO(ranks << " ranks");
     std::vector<std::unique_ptr<TileStore>> stores;
