@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include "core/parallel.h"
 #include "tiles/scratch_lock.h"
 #include "meshsal/meshsal.h"
 
@@ -110,30 +112,49 @@ std::vector<uint8_t> read_scratch_file(const std::string& path) {
   return data;
 }
 
-void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
-                  void* out) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) fail(path, "cannot read a temporary file");
+namespace {
+
+// read_records for sorted[begin, end) from the open file fd.
+void read_record_range(int fd, const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
+                       size_t begin, size_t end, uint8_t* dst) {
   constexpr size_t kWindow = 4096;  // records per read at most
   std::vector<uint8_t> window;
-  auto* dst = static_cast<uint8_t*>(out);
-  size_t i = 0;
-  while (i < sorted.size()) {
+  size_t i = begin;
+  while (i < end) {
     // One read from sorted[i] to the farthest index within the window.
     const uint64_t first = sorted[i];
     size_t j = i;
-    while (j + 1 < sorted.size() && sorted[j + 1] < first + kWindow) ++j;
+    while (j + 1 < end && sorted[j + 1] < first + kWindow) ++j;
     const size_t count = size_t(sorted[j] - first + 1);
     window.resize(count * record_bytes);
     const ssize_t got = ::pread(fd, window.data(), window.size(), off_t(first * record_bytes));
     if (got != ssize_t(window.size())) {
-      ::close(fd);
       if (got < 0) fail(path, "cannot read a temporary file");
       throw Error(path + ": a temporary file is shorter than written");
     }
     for (size_t k = i; k <= j; ++k)
       std::memcpy(dst + k * record_bytes, &window[(sorted[k] - first) * record_bytes], record_bytes);
     i = j + 1;
+  }
+}
+
+}  // namespace
+
+void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted, void* out,
+                  unsigned threads) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) fail(path, "cannot read a temporary file");
+  // Parts of at least 64K records, one a thread (pread shares the descriptor).
+  const size_t parts = std::max<size_t>(1, std::min<size_t>(resolve_threads(threads), sorted.size() >> 16));
+  try {
+    parallel_for(parts, unsigned(parts), 1, [&](size_t p0, size_t p1) {
+      for (size_t p = p0; p < p1; ++p)
+        read_record_range(fd, path, record_bytes, sorted, sorted.size() * p / parts, sorted.size() * (p + 1) / parts,
+                          static_cast<uint8_t*>(out));
+    });
+  } catch (...) {
+    ::close(fd);
+    throw;
   }
   ::close(fd);
 }

@@ -71,9 +71,10 @@ class ScratchReader {
 std::vector<uint8_t> read_scratch_file(const std::string& path);
 
 // Values at sorted, distinct indices of a file of fixed-size records (the positions file):
-// read in windows of nearby records, so a tile's vertices cost few reads.
+// read in windows of nearby records, so a tile's vertices cost few reads; a long list in
+// parts on `threads` threads (0 = all cores).
 void read_records(const std::string& path, size_t record_bytes, const std::vector<uint32_t>& sorted,
-                  void* out);
+                  void* out, unsigned threads = 1);
 
 // Record i of `data` written over record ids[i] of an existing file (in place: the file
 // keeps its size where ids stay inside it).

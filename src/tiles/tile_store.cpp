@@ -542,7 +542,7 @@ TileSource store_tile_source(const TileStore& store) {
   };
   source.positions = [&store](const std::vector<uint32_t>& sorted, std::vector<float>& xyz) {
     xyz.resize(3 * sorted.size());
-    read_records(store.dir.file("pos.f32"), 12, sorted, xyz.data());
+    read_records(store.dir.file("pos.f32"), 12, sorted, xyz.data(), store.plan.threads);
   };
   return source;
 }

@@ -1,13 +1,11 @@
 // share_tile_store (tile_store.h): every rank builds its share of the store from an input
 // that reads in ranges; otherwise rank 0 builds it and the others adopt its description.
 #include <memory>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #include <string>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/release_memory.h"
 #include "io/ply_stream.h"
 #include "tiles/tile_bytes.h"
 #include "tiles/tile_reduce.h"
@@ -103,11 +101,7 @@ void build_on_threads(TileStore& store, const std::string& input, const Saliency
                        converted_wide, &ex, threads);
   });
   store.plan.threads = options.threads;  // the phases after the store run on every thread
-#if defined(__GLIBC__)
-  // The other ranks' buffers were freed into their threads' heaps, which keep freed memory
-  // (keep_freed_memory_for_reuse) where no later allocation of the phases can take it.
-  malloc_trim(0);
-#endif
+  release_free_memory();  // the other ranks' buffers, freed into their threads' heaps
 }
 
 }  // namespace
