@@ -196,6 +196,12 @@ void PlyStream::find_ranges() {
 
 bool PlyStream::ranged() const { return layout_->ranged; }
 
+bool PlyStream::positions_fit_float() const {
+  for (const PlyType t : layout_->xyz_type)
+    if (t == PlyType::Float64 || t == PlyType::Int32 || t == PlyType::UInt32) return false;
+  return true;
+}
+
 void PlyStream::seek(uint64_t offset) {
   Layout& L = *layout_;
   if (!L.ranged) throw Error("internal: " + path_ + " does not read in ranges");

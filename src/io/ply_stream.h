@@ -21,6 +21,9 @@ class PlyStream {
   uint64_t vertex_count() const { return vertices_; }
   uint64_t face_count() const { return faces_; }   // polygons as the file has them
   bool double_positions() const { return double_xyz_; }
+  // Whether every x, y, z value the file can hold is a float too (float32, or an integer
+  // type of at most 16 bits): kept as floats, they are the values as read.
+  bool positions_fit_float() const;
 
   // The next vertices' x, y, z (3 doubles each) into out, at most `max`; how many were
   // read (0 once every vertex has been).

@@ -563,7 +563,7 @@ TileResult tile_finish(const TileRaw& tile, const TilePlan& plan, const std::vec
   for (size_t q = 0; q < nq; ++q) {
     if (!tile.own[q]) continue;
     r.global.push_back(tile.global[q]);
-    r.curvature.push_back(tile.curvature[q]);
+    if (!tile.curvature.empty()) r.curvature.push_back(tile.curvature[q]);
     r.saliency.push_back(S[q]);
     if (plan.smoothed) r.smoothed.push_back(Sm[q]);
     for (size_t k = 0; k < tile.raw.size(); ++k) r.raw[k].push_back(tile.raw[k][q]);

@@ -161,7 +161,7 @@ struct TileRaw {
   std::vector<uint32_t> global;
   std::vector<float> positions;            // 3 per point (with smoothing only)
   std::vector<uint8_t> own;
-  std::vector<double> curvature;
+  std::vector<double> curvature;           // (a driver may drop it: tile_finish then leaves it out)
   std::vector<std::vector<double>> raw;    // [scale][point]
   std::vector<std::vector<MaxCandidate>> candidates;  // [scale], in vertex order
   uint64_t pairs = 0;                      // the sweep's pairs (queries' work)

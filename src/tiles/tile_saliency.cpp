@@ -44,7 +44,8 @@ TileRaw load_raw(const std::string& path, size_t scales) {
   for (auto& k : r.raw) k = in.get_vector<double>();
   r.pairs = in.get<uint64_t>();
   const size_t n = r.global.size();
-  if (r.own.size() != n || r.curvature.size() != n || (!r.positions.empty() && r.positions.size() != 3 * n))
+  if (r.own.size() != n || (!r.curvature.empty() && r.curvature.size() != n) ||
+      (!r.positions.empty() && r.positions.size() != 3 * n))
     shape_error();
   for (const auto& k : r.raw)
     if (k.size() != n) shape_error();
@@ -221,7 +222,7 @@ void save_result(const std::string& path, const TileResult& r, bool kept) {
     for (size_t i = first; i < first + count; ++i) {
       v[0] = r.saliency[i];
       v[1] = r.smoothed.empty() ? 0.0 : r.smoothed[i];
-      v[2] = r.curvature[i];
+      v[2] = r.curvature.empty() ? 0.0 : r.curvature[i];  // (kept only with the scales)
       for (size_t k = 0; k < scales; ++k) v[3 + k] = r.raw[k][i];
       uint8_t* at = &buf[(i - first) * rec];
       std::memcpy(at, &r.global[i], 4);
@@ -311,6 +312,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
       std::remove(query_file(t).c_str());
       pairs += raw->pairs;
       merge_scale_max(max, tile_scale_max(*raw));
+      if (!scales) std::vector<double>().swap(raw->curvature);  // the results keep it only with the scales
       writes.submit([&, raw, t] {
         save_raw(raw_file(t), *raw);
         save_candidates(candidates_file(t), raw->candidates);
@@ -385,14 +387,15 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
           for (size_t i = 0; i < got; ++i) take(buf[i]);
       }
     };
-    auto at = [&](double p) {
+    auto rank_of = [&](double p) {
       const uint64_t k = uint64_t(std::ceil(p / 100.0 * double(store.points)));
-      return streamed_kth(all, std::min(store.points - 1, k == 0 ? 0 : k - 1));
+      return std::min(store.points - 1, k == 0 ? 0 : k - 1);
     };
-    report.saliency_p10 = at(10);
-    report.saliency_p50 = at(50);
-    report.saliency_p90 = at(90);
-    report.saliency_p99 = at(99);
+    const std::vector<double> at = streamed_kths(all, {rank_of(10), rank_of(50), rank_of(90), rank_of(99)});
+    report.saliency_p10 = at[0];
+    report.saliency_p50 = at[1];
+    report.saliency_p90 = at[2];
+    report.saliency_p99 = at[3];
   });
   tile_gather(exchange, {});  // rank 0 has read every file (also where no point was)
   std::remove(s_file(rank).c_str());

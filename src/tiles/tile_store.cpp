@@ -161,22 +161,40 @@ bool any_rank(const Share& share, bool mine) {
   return false;
 }
 
+// The coordinates as read into the xyz file: as floats where they fit (store.xyz_float).
+void put_xyz(ScratchWriter& out, const TileStore& store, const double* xyz, size_t count, std::vector<float>& scratch) {
+  if (!store.xyz_float) return out.write(xyz, 24 * count);
+  scratch.resize(3 * count);
+  for (size_t i = 0; i < 3 * count; ++i) scratch[i] = float(xyz[i]);
+  out.write(scratch.data(), 12 * count);
+}
+
+// `count` vertices' coordinates from the xyz file (at its position), as doubles.
+void get_xyz(ScratchReader& in, const TileStore& store, double* xyz, size_t count, std::vector<float>& scratch) {
+  if (!store.xyz_float) return in.read_exact(xyz, 24 * count);
+  scratch.resize(3 * count);
+  in.read_exact(scratch.data(), 12 * count);
+  for (size_t i = 0; i < 3 * count; ++i) xyz[i] = scratch[i];
+}
+
 // Pass A for one reader of the whole file (a gzip, polygons: read front to back): the
-// doubles as read to xyz.f64, the triangles to tri.u32; returns the point bits.
+// coordinates as read to xyz, the triangles to tri.u32; returns the point bits.
 PointBits read_input(TileStore& store, const std::string& input_path, int converted_wide, const Progress& report) {
   PlyStream ply(store.input);
   store.vertices = ply.vertex_count();
   store.double_positions = converted_wide >= 0 ? converted_wide == 1 : ply.double_positions();
   if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
   PointBits referenced((store.vertices + 63) / 64, 0);
-  ScratchWriter xyz(store.dir.file("xyz.f64"));
+  store.xyz_float = ply.positions_fit_float();
+  ScratchWriter xyz(store.dir.file("xyz"));
   std::vector<double> buf(3 * kChunk);
+  std::vector<float> narrow;
   uint64_t v = 0;
   for (size_t got; (got = ply.read_vertices(buf.data(), kChunk)) > 0; v += got) {
     for (size_t i = 0; i < 3 * got; ++i)
       if (!std::isfinite(buf[i]))
         throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
-    xyz.write(buf.data(), 3 * got * sizeof(double));
+    put_xyz(xyz, store, buf.data(), got, narrow);
   }
   xyz.close();
   ScratchWriter tri(store.dir.file("tri.u32"));
@@ -197,7 +215,7 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
 }
 
 // Pass A of one rank of several over a file read in ranges (PlyStream::ranged: a face is a
-// triangle): its vertices into its range of xyz.f64, its faces into its range of tri.u32;
+// triangle): its vertices into its range of xyz, its faces into its range of tri.u32;
 // then the point bits of its vertices, every rank's faces' corners joined (each rank's bits
 // through a file of their own). The files exist (rank 0 made them).
 PointBits read_input_range(TileStore& store, const std::string& input_path, Share& share, const Progress& report) {
@@ -208,18 +226,20 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
   if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
   if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
   share.split(store.vertices, store.triangles);
+  store.xyz_float = ply.positions_fit_float();
   PointBits referenced((store.vertices + 63) / 64, 0);
   every_rank(share, [&] {
     ply.seek_vertex(share.v0);
-    ScratchWriter xyz(store.dir.file("xyz.f64"), share.v0 * 24);
+    ScratchWriter xyz(store.dir.file("xyz"), share.v0 * store.xyz_bytes());
     std::vector<double> buf(3 * kChunk);
+    std::vector<float> narrow;
     for (uint64_t v = share.v0; v < share.v1;) {
       const size_t got = ply.read_vertices(buf.data(), size_t(std::min<uint64_t>(kChunk, share.v1 - v)));
       if (got == 0) throw Error("internal: a vertex range ends early");
       for (size_t i = 0; i < 3 * got; ++i)
         if (!std::isfinite(buf[i]))
           throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
-      xyz.write(buf.data(), 3 * got * sizeof(double));
+      put_xyz(xyz, store, buf.data(), got, narrow);
       v += got;
     }
     xyz.close();
@@ -265,12 +285,13 @@ void local_positions(TileStore& store, const PointBits& points, const Share& sha
   const uint64_t v0 = share.v0, v1 = share.v1;
   BoundingBox model = empty_box();
   every_rank(share, [&] {
-    ScratchReader xyz(store.dir.file("xyz.f64"));
-    xyz.seek(v0 * 24);
+    ScratchReader xyz(store.dir.file("xyz"));
+    xyz.seek(v0 * store.xyz_bytes());
     std::vector<double> buf(3 * kChunk);
+    std::vector<float> narrow;
     for (uint64_t v = v0; v < v1;) {
       const size_t got = size_t(std::min<uint64_t>(kChunk, v1 - v));
-      xyz.read_exact(buf.data(), got * 24);
+      get_xyz(xyz, store, buf.data(), got, narrow);
       for (size_t i = 0; i < got; ++i)
         if (is_point(points, v + i))
           for (int a = 0; a < 3; ++a) {
@@ -286,14 +307,14 @@ void local_positions(TileStore& store, const PointBits& points, const Share& sha
   BoundingBox box = empty_box();
   uint64_t count = 0;
   every_rank(share, [&] {
-    ScratchReader xyz(store.dir.file("xyz.f64"));
-    xyz.seek(v0 * 24);
+    ScratchReader xyz(store.dir.file("xyz"));
+    xyz.seek(v0 * store.xyz_bytes());
     ScratchWriter pos(store.dir.file("pos.f32"), v0 * 12);
     std::vector<double> buf(3 * kChunk);
-    std::vector<float> local(3 * kChunk);
+    std::vector<float> local(3 * kChunk), narrow;
     for (uint64_t v = v0; v < v1;) {
       const size_t got = size_t(std::min<uint64_t>(kChunk, v1 - v));
-      xyz.read_exact(buf.data(), got * 24);
+      get_xyz(xyz, store, buf.data(), got, narrow);
       for (size_t i = 0; i < 3 * got; ++i) local[i] = local_coordinate(buf[i], store.origin[i % 3]);
       for (size_t i = 0; i < got; ++i)
         if (is_point(points, v + i)) {
@@ -548,9 +569,10 @@ TileSource store_tile_source(const TileStore& store) {
 }
 
 void read_source_positions(const TileStore& store, uint64_t first, size_t count, double* out) {
-  ScratchReader in(store.dir.file("xyz.f64"));
-  in.seek(first * 24);
-  in.read_exact(out, count * 24);
+  ScratchReader in(store.dir.file("xyz"));
+  in.seek(first * store.xyz_bytes());
+  std::vector<float> narrow;
+  get_xyz(in, store, out, count, narrow);
 }
 
 void read_triangles(const TileStore& store, uint64_t first, size_t count, uint32_t* out) {

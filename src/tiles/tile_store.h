@@ -1,7 +1,7 @@
 // meshsal: a mesh cut into tiles on disk, for saliency under a memory limit (out of core).
 // Built by streaming the input (binary PLY; other formats are converted once) through a
 // few passes, each holding at most a block of vertices in memory:
-//   A  vertices as read (double) to xyz.f64, faces fan-triangulated to tri.u32, and one bit
+//   A  vertices as read to xyz (float or double: xyz_float), faces fan-triangulated to tri.u32, and one bit
 //      per vertex for "referenced by a face";
 //   B  the mesh points' bounding box in the model's coordinates -> the origin (as the
 //      loaders set it), local float positions to pos.f32, their bounding box and a coarse
@@ -70,6 +70,10 @@ struct TileStore {
   uint64_t largest_tile_estimate = 0;  // bytes, the largest tile's estimate
   size_t block = 0;                    // vertices per block of the passes
   int bucket_ranks = 1;                // the ranks that filled buckets (a file each per tile)
+  // xyz, the coordinates as read: as floats where the streamed file's fit in floats (half
+  // the bytes to write and read again, the same values), else as doubles.
+  bool xyz_float = false;
+  size_t xyz_bytes() const { return xyz_float ? 12 : 24; }
 };
 
 // What a store is built for: the saliency's tiles (pass C's buckets, the tile count that

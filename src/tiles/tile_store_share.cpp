@@ -35,6 +35,7 @@ TileBytes describe(const TileStore& s) {
   b.put(s.plan.eps);
   for (int a = 0; a < 3; ++a) b.put(s.box.min[a]), b.put(s.box.max[a]);
   b.put(int32_t(s.bucket_ranks));
+  b.put(uint8_t(s.xyz_float));
   return b;
 }
 
@@ -61,6 +62,7 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
   s.plan.eps = in.get<double>();
   for (int a = 0; a < 3; ++a) s.box.min[a] = in.get<double>(), s.box.max[a] = in.get<double>();
   s.bucket_ranks = in.get<int32_t>();
+  s.xyz_float = in.get<uint8_t>() != 0;
 }
 
 // What a rank in a thread holds beyond the first's while the store is built (its reading
@@ -85,7 +87,7 @@ void build_on_threads(TileStore& store, const std::string& input, const Saliency
     build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr, 1);
     return;
   }
-  for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
+  for (const char* name : {"xyz", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
   const std::string parent = store.dir.path().substr(0, store.dir.path().find_last_of('/'));
   std::vector<std::unique_ptr<TileStore>> others;
   for (unsigned r = 1; r < threads; ++r) {
@@ -121,7 +123,7 @@ void share_tile_store(TileStore& store, const std::string& input, const Saliency
   lead_step(exchange, [&] {
     store_input(store, input, converted_wide);
     ranged = PlyStream(store.input).ranged();
-    for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
+    for (const char* name : {"xyz", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
   });
   TileBytes b;
   if (exchange->rank() == 0) {

@@ -405,6 +405,17 @@ TEST_CASE("PLY stream (out of core): ranges read apart are the whole read's, and
   };
   const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
   CHECK(meshsal::PlyStream(dir.write("ok.ply", head + one_triangle + vertices(0) + tri_body)).ranged());
+  // The coordinates kept as floats (the out-of-core store's xyz) only where every value fits.
+  CHECK(meshsal::PlyStream(path).positions_fit_float());
+  for (const char* type : {"double", "int", "uint"}) {
+    std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty " +
+                    std::string(type) + " y\nproperty float z\n";
+    CHECK_FALSE(meshsal::PlyStream(dir.write(std::string(type) + ".ply", h + one_triangle)).positions_fit_float());
+  }
+  CHECK(meshsal::PlyStream(dir.write("short.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                                                  "property short x\nproperty ushort y\nproperty uchar z\n" +
+                                                  one_triangle))
+            .positions_fit_float());
   CHECK_FALSE(meshsal::PlyStream(dir.write("vlist.ply", head + "property list uchar int extra\n" + one_triangle +
                                                         vertices(1) + tri_body))
                   .ranged());

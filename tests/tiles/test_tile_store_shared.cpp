@@ -75,7 +75,7 @@ TEST_CASE("tile store built by every rank is the one-process store", "[tiles][ou
   CHECK(threaded.bucket_ranks == 3);
   CHECK(threaded.plan.threads == 3);
   CHECK(threaded.histogram.count == one.histogram.count);
-  for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) CHECK(file_of(threaded, name) == file_of(one, name));
+  for (const char* name : {"xyz", "tri.u32", "pos.f32"}) CHECK(file_of(threaded, name) == file_of(one, name));
   for (size_t t = 0; t < tile_count(one.plan); ++t) CHECK(same_faces(bucket_of(threaded, t), bucket_of(one, t)));
   for (int ranks : {2, 3}) {
     INFO(ranks << " ranks");
@@ -102,10 +102,11 @@ TEST_CASE("tile store built by every rank is the one-process store", "[tiles][ou
       CHECK(s.plan.tile_edge == one.plan.tile_edge);
       CHECK(s.largest_tile_estimate == one.largest_tile_estimate);
       CHECK(s.double_positions == one.double_positions);
+      CHECK(s.xyz_float == one.xyz_float);
     }
     const TileStore& s = *stores[0];
     CHECK(s.histogram.count == one.histogram.count);  // rank 0's: every rank's bins added
-    for (const char* name : {"xyz.f64", "tri.u32", "pos.f32"}) {
+    for (const char* name : {"xyz", "tri.u32", "pos.f32"}) {
       INFO(name);
       CHECK(file_of(s, name) == file_of(one, name));
     }
