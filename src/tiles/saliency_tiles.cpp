@@ -96,10 +96,32 @@ namespace {
 // Each triangle once, in the mesh's order (a tile's buckets overlap where a triangle has
 // corners in two tiles).
 void distinct_faces(std::vector<TileFace>& faces) {
-  // A bucket filled in one block of vertices is in face order already, each face once.
-  bool ascending = true;
-  for (size_t i = 1; i < faces.size() && ascending; ++i) ascending = faces[i - 1].face < faces[i].face;
-  if (ascending) return;
+  // A bucket filled in one block of vertices is in face order already, each face once; a
+  // few blocks or ranks give a few runs in face order (a face with corners in two blocks in
+  // two of them), merged pairwise; many, a radix sort.
+  std::vector<size_t> run{0};
+  for (size_t i = 1; i < faces.size(); ++i)
+    if (faces[i - 1].face >= faces[i].face) run.push_back(i);
+  if (run.size() == 1) return;
+  auto by_face = [](const TileFace& a, const TileFace& b) { return a.face < b.face; };
+  if (run.size() <= 64) {
+    run.push_back(faces.size());
+    std::vector<TileFace> merged(faces.size());
+    while (run.size() > 2) {
+      std::vector<size_t> next{0};
+      for (size_t r = 0; r + 1 < run.size(); r += 2) {
+        const size_t b = run[r], m = run[r + 1], e = r + 2 < run.size() ? run[r + 2] : m;
+        std::merge(faces.begin() + long(b), faces.begin() + long(m), faces.begin() + long(m), faces.begin() + long(e),
+                   merged.begin() + long(b), by_face);
+        next.push_back(e);
+      }
+      faces.swap(merged);
+      run.swap(next);
+    }
+    faces.erase(std::unique(faces.begin(), faces.end(), [](const TileFace& a, const TileFace& b) { return a.face == b.face; }),
+                faces.end());
+    return;
+  }
   // 32-bit keys: face numbers fit, and each radix pass moves half the bytes of 64-bit ones.
   std::vector<uint32_t> key(faces.size());
   std::vector<uint32_t> index(faces.size());

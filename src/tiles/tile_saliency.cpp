@@ -307,8 +307,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
     for (size_t i = 0; i < mine.size(); ++i) {
       progress("tiles", double(i) / mine.size());
       const size_t t = mine[i];
-      TileQuery qq = load_query(query_file(t));
-      auto raw = std::make_shared<TileRaw>(tile_raw_maps(plan, t, qq, point_source));
+      auto raw = std::make_shared<TileRaw>(tile_raw_maps(plan, t, load_query(query_file(t)), point_source));
       std::remove(query_file(t).c_str());
       pairs += raw->pairs;
       merge_scale_max(max, tile_scale_max(*raw));
@@ -348,8 +347,7 @@ void tile_saliency(const TileStore& store, const SaliencyOptions& options, OutOf
       progress(plan.smoothed ? "smoothing" : "saliency", double(i) / mine.size());
       const size_t t = mine[i];
       const std::string raw_path = raw_file(t);
-      TileRaw rr = load_raw(raw_path, options.scales.size());
-      auto r = std::make_shared<TileResult>(tile_finish(rr, plan, max, mbar));
+      auto r = std::make_shared<TileResult>(tile_finish(load_raw(raw_path, options.scales.size()), plan, max, mbar));
       std::remove(raw_path.c_str());
       for (double s : r->saliency) lo = std::min(lo, s), hi = std::max(hi, s), sum += s;
       writes.submit([&, r, t] {

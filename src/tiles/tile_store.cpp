@@ -10,6 +10,7 @@
 #include "core/memory_size.h"
 #include "core/model_frame.h"
 #include "core/parallel.h"
+#include "core/release_memory.h"
 #include "io/ply_stream.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
@@ -473,16 +474,10 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
 void build_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                   uint64_t memory_limit, unsigned min_tiles, const Progress& report, StoreUse use,
                   int converted_wide, Share share, bool ranged) {
-  // The passes hold a block of vertices (12 bytes each as floats) in a quarter of the limit;
-  // ranks in threads each hold a share of what one would (where one block holds every
-  // vertex, each holds a share of them: never more than one rank's memory in all).
+  // Pass C holds a block of vertices (12 bytes each as floats) in a quarter of the limit.
   store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
-  if (share.parts > 1) {
-    PlyStream ply(store.input);
-    const uint64_t one = std::min<uint64_t>(store.block, ply.vertex_count());
-    store.block = std::max<size_t>(kChunk, size_t((one + share.parts - 1) / share.parts));
-  }
-  store.bucket_ranks = share.ranks;
+  // Ranks in threads leave pass C to rank 0 (below): one block, buckets in face order.
+  store.bucket_ranks = share.parts > 1 ? 1 : share.ranks;
   if (!share.exchange) ScratchWriter(store.dir.file("pos.f32")).close();  // (the ranks' own is made first)
   {
     PointBits points;
@@ -520,7 +515,14 @@ void build_passes(TileStore& store, const std::string& input_path, const Salienc
   } else {
     choose_tiling(store, input_path, options, memory_limit, min_tiles);
   }
-  fill_buckets(store, input_path, memory_limit, share, report);
+  if (share.parts == 1) return fill_buckets(store, input_path, memory_limit, share, report);
+  // Ranks in threads: rank 0 alone buckets every triangle, on every thread (one block where
+  // one holds every vertex, so each bucket is in face order, each face once: ranks' shares
+  // would leave a tile's bucket in runs to merge, and a vertex block each).
+  Share alone;
+  alone.t1 = store.triangles;
+  release_free_memory();  // the passes' buffers, freed into each rank's thread's heap
+  lead_step(share.exchange, [&] { fill_buckets(store, input_path, memory_limit, alone, report); });
 }
 
 }  // namespace

@@ -65,13 +65,13 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
   s.xyz_float = in.get<uint8_t>() != 0;
 }
 
-// What a rank in a thread holds beyond the first's while the store is built (its reading
-// buffers, measured about 5 MiB), besides its point bits.
-constexpr uint64_t kThreadRankBytes = uint64_t(8) << 20;
+// What a rank in a thread holds beyond the first's while the store is built: its reading
+// buffers (measured about 5 MiB) and its histogram (8 MiB), besides its point bits.
+constexpr uint64_t kThreadRankBytes = uint64_t(16) << 20;
 
 // One process: a file that reads in ranges built by ranks in threads, one per thread (the
-// passes' reading, positions and buckets on every core), the others in folders they drop
-// for rank 0's; anything else read front to back.
+// input's reading and the positions on every core; the buckets by rank 0 on every thread),
+// the others in folders they drop for rank 0's; anything else read front to back.
 void build_on_threads(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles, const std::function<void(const char*, double)>& progress,
                       StoreUse use) {
@@ -79,10 +79,11 @@ void build_on_threads(TileStore& store, const std::string& input, const Saliency
   store_input(store, input, converted_wide);
   const unsigned threads = resolve_threads(options.threads);
   const PlyStream ply(store.input);
-  // Each rank beyond the first holds its own reading buffers and point bits: where the limit
-  // leaves no room for them (a limit near the smallest workable one), one rank reads.
+  // Each rank beyond the first holds its own reading buffers, histogram and point bits:
+  // where the passes' share of the limit (all of it but pass C's block, a quarter, and
+  // bucket buffers, an eighth) leaves no room for them beside the program, one rank reads.
   const uint64_t per_rank = kThreadRankBytes + ply.vertex_count() / 8;
-  const bool room = !memory_limit || memory_limit >= kBaseBytes + (threads - 1) * per_rank;
+  const bool room = !memory_limit || (threads - 1) * per_rank + kBaseBytes <= memory_limit / 8 * 5;
   if (threads <= 1 || !ply.ranged() || !room) {
     build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr, 1);
     return;
@@ -95,14 +96,11 @@ void build_on_threads(TileStore& store, const std::string& input, const Saliency
     others.back()->dir.borrow(store.dir.path());
     others.back()->input = store.input;
   }
-  SaliencyOptions one_thread = options;  // each rank is one thread
-  one_thread.threads = 1;
   run_thread_ranks(int(threads), [&](TileExchange& ex) {
     TileStore& mine = ex.rank() == 0 ? store : *others[size_t(ex.rank() - 1)];
-    build_store_passes(mine, input, one_thread, memory_limit, tiles, ex.rank() == 0 ? progress : nullptr, use,
+    build_store_passes(mine, input, options, memory_limit, tiles, ex.rank() == 0 ? progress : nullptr, use,
                        converted_wide, &ex, threads);
   });
-  store.plan.threads = options.threads;  // the phases after the store run on every thread
   release_free_memory();  // the other ranks' buffers, freed into their threads' heaps
 }
 
