@@ -443,43 +443,31 @@ TileRaw tile_raw_maps(const TilePlan& plan, size_t t, const TileQuery& query, co
   const std::vector<uint32_t>& tri = query.triangles;
   if (tri.size() / 3 > UINT32_MAX / 6)
     throw Error("tiled saliency: a tile of more than 715 million triangles: use more tiles");
-  std::vector<uint32_t> offsets(size_t(owned) + 1, 0), ring, fill;
-  for (int pass = 0; pass < 2; ++pass) {  // count, then fill
-    if (pass == 1) {
-      for (size_t o = 0; o < owned; ++o) offsets[o + 1] += offsets[o];
-      ring.resize(offsets.back());
-      fill.assign(offsets.begin(), offsets.end() - 1);
-    }
+  // Each own point's largest ring value per scale, scattered from the triangles in one
+  // pass for every scale (on the threads, each owning a range of the points); a point is a
+  // candidate where its value is above that largest (above every neighbour's).
+  std::vector<double> ring_max(size_t(owned) * scales, -INFINITY);
+  parallel_for_owned(owned, plan.threads, [&](size_t lo, size_t hi) {
     for (size_t f = 0; f + 2 < tri.size(); f += 3)
       for (int j = 0; j < 3; ++j) {
         const uint32_t v = tri[f + j], o = slot[v];
-        if (o == UINT32_MAX) continue;
+        if (o == UINT32_MAX || o < lo || o >= hi) continue;
+        double* m = &ring_max[size_t(o) * scales];
         for (int i = 1; i <= 2; ++i) {
           const uint32_t w = tri[f + (j + i) % 3];
           if (w == v) continue;
-          if (pass == 0) ++offsets[o + 1];
-          else ring[fill[o]++] = corner[w];
+          for (size_t k = 0; k < scales; ++k) m[k] = std::max(m[k], raw[k][corner[w]]);
         }
       }
-  }
-  // A scale a call (on the threads): one map's values are what the rings read at random.
-  parallel_for(scales, plan.threads, 1, [&](size_t k0, size_t k1) {
-    for (size_t k = k0; k < k1; ++k) {
-      const std::vector<double>& x = raw[k];
-      for (size_t i = 0; i < corner.size(); ++i) {
-        const uint32_t o = slot[i];
-        if (o == UINT32_MAX) continue;
-        const double value = x[corner[i]];
-        double ring_max = -INFINITY;
-        bool above = true;
-        for (uint32_t e = offsets[o]; e < offsets[o + 1] && above; ++e) {
-          above = value > x[ring[e]];
-          ring_max = std::max(ring_max, x[ring[e]]);
-        }
-        if (above) r.candidates[k].push_back({query.corners[i], value, ring_max});
-      }
-    }
   });
+  for (size_t k = 0; k < scales; ++k)
+    for (size_t i = 0; i < corner.size(); ++i) {
+      const uint32_t o = slot[i];
+      if (o == UINT32_MAX) continue;
+      const double value = raw[k][corner[i]], most = ring_max[size_t(o) * scales + k];
+      if (value > most) r.candidates[k].push_back({query.corners[i], value, most});
+    }
+  std::vector<double>().swap(ring_max);
   // What phase 3 reads: the own points, and with smoothing every query point.
   const size_t kept = plan.smoothed ? queries : owned;
   r.global.reserve(kept);
