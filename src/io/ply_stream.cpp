@@ -51,6 +51,15 @@ struct PlyStream::Layout {
 
 namespace {
 constexpr uint64_t kTriangleRecord = 13;  // a 1-byte count and three 4-byte indices
+
+// The faces' common layout: the corner list alone, a 1-byte count, 4-byte integer indices
+// (read_faces parses it from its read-ahead; a file of such triangles reads in ranges).
+bool common_face_layout(const Element& f) {
+  if (f.props.size() != 1) return false;
+  const Property& only = f.props.front();
+  return only.is_list && (only.name == "vertex_indices" || only.name == "vertex_index") && type_size(only.count) == 1 &&
+         type_size(only.type) == 4 && only.type != PlyType::Float32;
+}
 }
 
 PlyStream::PlyStream(const std::string& path) : path_(path), layout_(std::make_unique<Layout>()) {
@@ -173,25 +182,25 @@ void PlyStream::find_ranges() {
     }
     return true;
   };
-  uint64_t at = uint64_t(header), after = 0, bytes = 0;
+  // Every product and sum checked: a header's counts are the file's word, not its size.
+  uint64_t at = uint64_t(header), after = 0, bytes = 0, part = 0;
   for (size_t e = 0; e < L.elements.size(); ++e) {
     const Element& el = L.elements[e];
     if (e == L.face) {
-      const Property& only = el.props.front();
-      if (el.props.size() != 1 || type_size(only.count) != 1 || type_size(only.type) != 4 ||
-          only.type == PlyType::Float32)
-        return;
+      if (!common_face_layout(el)) return;
       L.face_start = at;
-      at += el.count * kTriangleRecord;
+      if (__builtin_mul_overflow(el.count, kTriangleRecord, &part) || __builtin_add_overflow(at, part, &at)) return;
       continue;
     }
     if (!fixed_size(el, bytes)) return;
     if (e == L.vertex) L.vertex_start = at;
-    if (e > L.face) after += el.count * bytes;
-    else at += el.count * bytes;
+    if (__builtin_mul_overflow(el.count, bytes, &part)) return;
+    if (__builtin_add_overflow(e > L.face ? after : at, part, e > L.face ? &after : &at)) return;
   }
+  uint64_t total = 0;
   struct stat st;
-  L.ranged = ::stat(path_.c_str(), &st) == 0 && uint64_t(st.st_size) == at + after;
+  L.ranged = !__builtin_add_overflow(at, after, &total) && ::stat(path_.c_str(), &st) == 0 &&
+             uint64_t(st.st_size) == total;
 }
 
 bool PlyStream::ranged() const { return layout_->ranged; }
@@ -351,8 +360,7 @@ size_t PlyStream::read_faces(std::vector<uint32_t>& triangles, size_t max) {
   const Element& f = L.elements[L.face];
   size_t done = 0;
   const Property& only = f.props.front();
-  if (f.props.size() == 1 && (only.name == "vertex_indices" || only.name == "vertex_index") &&
-      type_size(only.count) == 1 && type_size(only.type) == 4 && only.type != PlyType::Float32) {
+  if (common_face_layout(f)) {
     // The common layout (the corner list alone, a 1-byte count, 4-byte integer indices):
     // parsed from the read-ahead, where the general loop below reads each face in two
     // calls into zlib. The same checks and messages.

@@ -5,7 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
-#include <mutex>
+#include <atomic>
+#include <thread>
 #include <optional>
 
 #include "core/cancel.h"
@@ -40,7 +41,7 @@ struct CornerStates {
   std::vector<uint8_t> records;
   size_t record_bytes = 0;
   void read(const DiskMesh& mesh, const uint32_t* corners, size_t n) {
-    rank_ids(corners, n, uint32_t(std::max<uint64_t>(1, mesh.vertices) - 1), ids, rank, 0);
+    rank_ids(corners, n, mesh.last_id(), ids, rank, 0);
     record_bytes = mesh.record_bytes();
     records.resize(ids.size() * record_bytes);
     read_records(mesh.state, record_bytes, ids, records.data());
@@ -140,7 +141,7 @@ TilePiece cut_disk_piece(const DiskMesh& mesh, const Buckets& buckets, const Til
   // (A bucket is written in triangle order: this sort finds it sorted.)
   auto by_index = [](const BucketFace& a, const BucketFace& b) { return a.f < b.f; };
   if (!std::is_sorted(own.begin(), own.end(), by_index)) std::sort(own.begin(), own.end(), by_index);
-  const uint32_t max_id = uint32_t(std::max<uint64_t>(1, mesh.vertices) - 1);
+  const uint32_t max_id = mesh.last_id();
   std::vector<uint32_t> own_index(own.size()), corners, local;
   {
     std::vector<uint32_t> all(3 * own.size());
@@ -266,22 +267,32 @@ std::vector<double> piece_weights(const DiskMesh& mesh, const TilePiece& tile) {
 }
 
 // Reports a pass's progress from the groups' workers: `done` groups of `count` so far.
+// Reports a pass's progress as its groups finish: this process's `count` groups, told from
+// the calling thread only (the progress callback's promise), whichever worker finished.
 class GroupProgress {
  public:
   GroupProgress(const std::function<void(double)>& progress, double from, double to, size_t count)
-      : progress_(progress), from_(from), to_(to), count_(std::max<size_t>(1, count)) {}
+      : progress_(progress), from_(from), to_(to), count_(std::max<size_t>(1, count)),
+        caller_(std::this_thread::get_id()) {}
   void one_done() {
-    if (!progress_) return;
-    const std::lock_guard<std::mutex> lock(mutex_);
-    progress_(from_ + (to_ - from_) * double(++done_) / double(count_));
+    const size_t done = ++done_;
+    if (progress_ && std::this_thread::get_id() == caller_) progress_(from_ + (to_ - from_) * double(done) / double(count_));
   }
 
  private:
   const std::function<void(double)>& progress_;
   double from_, to_;
-  size_t count_, done_ = 0;
-  std::mutex mutex_;
+  size_t count_;
+  std::atomic<size_t> done_{0};
+  std::thread::id caller_;
 };
+
+// How many of the pass's groups this process runs (pass_exchange.h).
+size_t own_groups(const TileExchange* exchange, size_t groups) {
+  size_t n = 0;
+  for (size_t g = 0; g < groups; ++g) n += runs_group(exchange, g) ? 1 : 0;
+  return n;
+}
 
 // What the groups of a pass run on: the workers (group_workers.h) and a mark (cut_disk_piece)
 // for each.
@@ -300,7 +311,7 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
   auto levels_file = [&](size_t g) { return mesh.dir->file("levels_" + std::to_string(g) + ".f64"); };
   // This process's groups (pass_exchange.h): their levels to files, their counts shared.
   std::vector<uint64_t> faces(groups.size(), 0), first_goals(groups.size(), 0), counts(groups.size(), 0);
-  GroupProgress done(progress, 0, 0.5, groups.size());
+  GroupProgress done(progress, 0, 0.5, own_groups(options.exchange, groups.size()));
   for_each_group(options.exchange, sizes, workers.split.workers, [&](size_t g, unsigned worker) {
     throw_if_cancelled();
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g], workers.marks[worker]);
@@ -406,7 +417,7 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   const std::string moves = mesh.dir->file("moves.bin");
   auto group_file = [&](size_t g) { return mesh.dir->file("group_" + std::to_string(g) + ".bin"); };
   std::vector<PassTotals> group_totals(groups.size());
-  GroupProgress done(progress, 0.5, 1.0, groups.size());
+  GroupProgress done(progress, 0.5, 1.0, own_groups(exchange, groups.size()));
   for_each_group(exchange, sizes, workers.split.workers, [&](size_t g, unsigned worker) {
     throw_if_cancelled();
     const TilePiece tile = cut_disk_piece(mesh, buckets, pass.grid, groups[g], workers.marks[worker]);

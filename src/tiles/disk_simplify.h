@@ -44,6 +44,7 @@ struct DiskMesh {
   std::string weights;        // file: one double per id; "" = none
   int passes = 0;             // passes run (their bucket files' names)
   size_t record_bytes() const { return 4 * (3 + attribute_names.size()); }
+  uint32_t last_id() const { return uint32_t(vertices > 0 ? vertices - 1 : 0); }  // (rank_ids' bound)
 };
 
 // One pass: which triangles it simplifies and how.

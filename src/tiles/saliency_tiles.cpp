@@ -85,6 +85,17 @@ size_t tile_count(const TilePlan& plan) {
   return size_t(plan.tiles[0]) * plan.tiles[1] * plan.tiles[2];
 }
 
+BoundingBox tile_cube(const TilePlan& plan, size_t t) {
+  const size_t col[3] = {t % size_t(plan.tiles[0]), t / size_t(plan.tiles[0]) % size_t(plan.tiles[1]),
+                         t / (size_t(plan.tiles[0]) * size_t(plan.tiles[1]))};
+  BoundingBox cube;
+  for (int a = 0; a < 3; ++a) {
+    cube.min[a] = plan.box.min[a] + double(col[a]) * plan.tile_edge;
+    cube.max[a] = col[a] + 1 == size_t(plan.tiles[a]) ? plan.box.max[a] : cube.min[a] + plan.tile_edge;
+  }
+  return cube;
+}
+
 std::vector<double> tile_cell_sigmas(const TilePlan& plan) {
   std::vector<double> sigmas = filter_sigmas(plan);
   sigmas.push_back(3 * plan.eps);
@@ -316,15 +327,7 @@ TileCells tile_cells(const TilePlan& plan, size_t t, const TilePoints& own) {
   c.across.resize(sigmas.size());
   const size_t n = own.global.size();
   if (n == 0) return c;
-  // The tile's cube (its points lie in it: tile_of clamps only at the box's faces).
-  BoundingBox cube;
-  const size_t col[3] = {t % size_t(plan.tiles[0]), t / size_t(plan.tiles[0]) % size_t(plan.tiles[1]),
-                         t / (size_t(plan.tiles[0]) * size_t(plan.tiles[1]))};
-  for (int a = 0; a < 3; ++a) {
-    cube.min[a] = std::max(plan.box.min[a], plan.box.min[a] + double(col[a]) * plan.tile_edge);
-    cube.max[a] = col[a] + 1 == size_t(plan.tiles[a]) ? plan.box.max[a]
-                                                        : plan.box.min[a] + double(col[a] + 1) * plan.tile_edge;
-  }
+  const BoundingBox cube = tile_cube(plan, t);  // (its points lie in it, up to rounding)
   for (size_t k = 0; k < sigmas.size(); ++k) {
     const double cell = fast_cell_edge(plan.box, sigmas[k]);
     uint64_t dims[3];

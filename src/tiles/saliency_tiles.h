@@ -67,6 +67,10 @@ inline size_t tile_of(const TilePlan& plan, const float* p) {
          tile_column(plan, p[0], 0);
 }
 
+// Tile t's cube (its column along each axis times the tile edge; the last column's reaches
+// the box's face: tile_of clamps there).
+BoundingBox tile_cube(const TilePlan& plan, size_t t);
+
 // The sigmas of phase 0's counts: the filter's (filter_sigma_units x eps), then 3 eps.
 std::vector<double> tile_cell_sigmas(const TilePlan& plan);
 

@@ -15,6 +15,10 @@ class ScratchDir {
   // A new folder meshsal-tiles-XXXXXX in `parent` ("" = $TMPDIR or /tmp), locked; first
   // the stale ones there are removed (note() says what was found).
   explicit ScratchDir(const std::string& parent);
+  // Another's folder from the start, never removed by us (ranks in threads of one process:
+  // no folder of their own is made).
+  struct Borrowed {};
+  ScratchDir(const std::string& path, Borrowed) : path_(path), owner_(false) {}
   // Use another process's folder instead (MPI ranks on a shared disk): this one is
   // removed now, that one never by us.
   void borrow(const std::string& path);

@@ -29,13 +29,23 @@ class ThreadRank final : public TileExchange {
   ThreadRank(Shared& s, int rank) : s_(s), rank_(rank) {}
   int rank() const override { return rank_; }
   int ranks() const override { return s_.ranks; }
-  std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) override {
+  std::vector<std::vector<uint8_t>> all_gather(const std::vector<uint8_t>& mine) override { return exchange(mine, -1); }
+  // Only the root copies every rank's bytes out (the others' copies would multiply a
+  // histogram by the thread count).
+  std::vector<std::vector<uint8_t>> gather(const std::vector<uint8_t>& mine, int root) override {
+    return exchange(mine, root);
+  }
+
+ private:
+  // Every rank's bytes to every rank (root -1) or to `root` alone.
+  std::vector<std::vector<uint8_t>> exchange(const std::vector<uint8_t>& mine, int root) {
     std::unique_lock<std::mutex> lock(s_.m);
     if (s_.broken) throw Error("another rank of this process failed");
     const uint64_t round = s_.round;
     s_.slots[size_t(rank_)] = mine;
     if (++s_.arrived == s_.ranks) {
-      s_.result = s_.slots;
+      s_.result = std::move(s_.slots);  // (each waiting rank copies it before a next round can start)
+      s_.slots.assign(size_t(s_.ranks), {});
       s_.arrived = 0;
       s_.round++;
       s_.cv.notify_all();
@@ -43,10 +53,10 @@ class ThreadRank final : public TileExchange {
       s_.cv.wait(lock, [&] { return s_.round != round || s_.broken; });
       if (s_.round == round) throw Error("another rank of this process failed");
     }
+    if (root >= 0 && root != rank_) return {};
     return s_.result;
   }
 
- private:
   Shared& s_;
   int rank_;
 };

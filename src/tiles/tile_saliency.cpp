@@ -100,8 +100,7 @@ struct Zone {
 };
 
 void save_points(const std::string& path, const TilePoints& p, const TilePlan& plan, size_t t) {
-  const size_t col[3] = {t % size_t(plan.tiles[0]), t / size_t(plan.tiles[0]) % size_t(plan.tiles[1]),
-                         t / (size_t(plan.tiles[0]) * size_t(plan.tiles[1]))};
+  const BoundingBox cube = tile_cube(plan, t);
   const double band = plan.source_margin + plan.query_margin;
   const size_t n = p.global.size();
   std::vector<uint8_t> zone(n);
@@ -111,10 +110,7 @@ void save_points(const std::string& path, const TilePoints& p, const TilePlan& p
   for (size_t i = 0; i < n; ++i) {
     const float* x = &p.positions[3 * i];
     size_t z = 0;
-    for (int a = 2; a >= 0; --a) {
-      const double lo = plan.box.min[a] + double(col[a]) * plan.tile_edge, hi = lo + plan.tile_edge;
-      z = 3 * z + (x[a] < lo + band ? 0 : x[a] >= hi - band ? 2 : 1);
-    }
+    for (int a = 2; a >= 0; --a) z = 3 * z + (x[a] < cube.min[a] + band ? 0 : x[a] >= cube.max[a] - band ? 2 : 1);
     zone[i] = uint8_t(z);
     Zone& Z = zones[z];
     Z.count++;

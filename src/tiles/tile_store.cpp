@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <map>
+#include <memory>
 
 #include "core/memory_size.h"
 #include "core/model_frame.h"
@@ -123,19 +125,36 @@ struct Share {
 };
 
 // `step` on every rank; a failure on any is thrown on every one, with the message of the
-// lowest rank that failed (a bad face seen by one rank stops them all with its reason).
+// lowest rank that failed (a bad face seen by one rank stops them all with its reason); a
+// rank cancelled throws its Cancelled. Every failure is caught first, so no rank is left
+// waiting in the gather.
 void every_rank(const Share& share, const std::function<void()>& step) {
+  if (!share.exchange) return step();
+  std::exception_ptr cancelled;
   std::string message;
   try {
     step();
-  } catch (const Error& e) {
-    if (!share.exchange) throw;
+  } catch (const Cancelled& e) {
+    cancelled = std::current_exception();
+    message = e.what();
+  } catch (const std::exception& e) {
     message = e.what();
     if (message.empty()) message = "a rank failed building the tiles";
+  } catch (...) {
+    message = "a rank failed building the tiles";
   }
-  if (!share.exchange) return;
-  for (const auto& said : tile_gather(share.exchange, std::vector<uint8_t>(message.begin(), message.end())))
-    if (!said.empty()) throw Error(std::string(said.begin(), said.end()));
+  const auto said = tile_gather(share.exchange, std::vector<uint8_t>(message.begin(), message.end()));
+  if (cancelled) std::rethrow_exception(cancelled);
+  for (const auto& m : said)
+    if (!m.empty()) throw Error(std::string(m.begin(), m.end()));
+}
+
+// The vertices [first, first + count) of `buf` have finite coordinates (else the Error
+// naming the first that has not).
+void check_finite(const std::vector<double>& buf, size_t count, uint64_t first, const std::string& input_path) {
+  for (size_t i = 0; i < 3 * count; ++i)
+    if (!std::isfinite(buf[i]))
+      throw Error(input_path + ": vertex " + std::to_string(first + i / 3) + " has a non-finite coordinate");
 }
 
 // Every rank's box joined (min of the minima, max of the maxima) and their counts summed.
@@ -192,9 +211,7 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
   std::vector<float> narrow;
   uint64_t v = 0;
   for (size_t got; (got = ply.read_vertices(buf.data(), kChunk)) > 0; v += got) {
-    for (size_t i = 0; i < 3 * got; ++i)
-      if (!std::isfinite(buf[i]))
-        throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
+    check_finite(buf, got, v, input_path);
     put_xyz(xyz, store, buf.data(), got, narrow);
   }
   xyz.close();
@@ -220,12 +237,16 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
 // then the point bits of its vertices, every rank's faces' corners joined (each rank's bits
 // through a file of their own). The files exist (rank 0 made them).
 PointBits read_input_range(TileStore& store, const std::string& input_path, Share& share, const Progress& report) {
-  PlyStream ply(store.input);
-  store.vertices = ply.vertex_count();
-  store.triangles = ply.face_count();
-  if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
-  if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
-  if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
+  std::unique_ptr<PlyStream> opened;  // (opened on every rank: one that cannot must not strand the others)
+  every_rank(share, [&] {
+    opened = std::make_unique<PlyStream>(store.input);
+    store.vertices = opened->vertex_count();
+    store.triangles = opened->face_count();
+    if (store.vertices == 0) throw Error(input_path + ": mesh has no vertices");
+    if (store.triangles == 0) throw Error(input_path + ": mesh has no faces");
+    if (store.triangles > UINT32_MAX) throw Error(input_path + ": more than 4294967295 triangles");
+  });
+  PlyStream& ply = *opened;
   share.split(store.vertices, store.triangles);
   store.xyz_float = ply.positions_fit_float();
   PointBits referenced((store.vertices + 63) / 64, 0);
@@ -237,9 +258,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
     for (uint64_t v = share.v0; v < share.v1;) {
       const size_t got = ply.read_vertices(buf.data(), size_t(std::min<uint64_t>(kChunk, share.v1 - v)));
       if (got == 0) throw Error("internal: a vertex range ends early");
-      for (size_t i = 0; i < 3 * got; ++i)
-        if (!std::isfinite(buf[i]))
-          throw Error(input_path + ": vertex " + std::to_string(v + i / 3) + " has a non-finite coordinate");
+      check_finite(buf, got, v, input_path);
       put_xyz(xyz, store, buf.data(), got, narrow);
       v += got;
     }
@@ -478,6 +497,7 @@ void build_passes(TileStore& store, const std::string& input_path, const Salienc
   store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
   // Ranks in threads leave pass C to rank 0 (below): one block, buckets in face order.
   store.bucket_ranks = share.parts > 1 ? 1 : share.ranks;
+  store.readers = ranged ? share.ranks : 1;
   if (!share.exchange) ScratchWriter(store.dir.file("pos.f32")).close();  // (the ranks' own is made first)
   {
     PointBits points;

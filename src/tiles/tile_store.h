@@ -28,10 +28,12 @@ namespace meshsal {
 // at a time with the fast method, every sigma's at once with the exact sweep). Measured
 // (peak resident over the base): the fast method on igea_loop2 x4 (8.6M points) in 8 tiles
 // peaked at 447 MiB for a largest tile of 1.71M own and 2.40M halo points; one tile of
-// igea_134k at about 150 bytes a point (fast) and 130 (exact). The tile count is chosen so
-// the largest tile's estimate fits. For the default scales' 8 sigmas (plan_cost adds what
-// more sigmas cost).
-constexpr double kOwnBytesPerVertex = 250;
+// igea_134k at about 150 bytes a point (fast) and 130 (exact). Since a tile's files are
+// written while the next one is computed (and each thread's heap keeps what it freed), the
+// same run peaks at 489-596 MiB: 280 bytes an own point keeps the estimate above it. The
+// tile count is chosen so the largest tile's estimate fits. For the default scales' 8
+// sigmas (plan_cost adds what more sigmas cost).
+constexpr double kOwnBytesPerVertex = 280;
 constexpr double kHaloBytesPerVertex = 100;     // exact
 constexpr double kFastHaloBytesPerVertex = 60;  // fast
 // The most work a tiling may cost, in tile points (halos included) per mesh point: finer
@@ -59,6 +61,8 @@ struct PointHistogram {
 
 struct TileStore {
   explicit TileStore(const std::string& temp_parent) : dir(temp_parent) {}
+  // A store of another's folder (a rank in a thread: rank 0's), none made for it.
+  TileStore(const std::string& folder, ScratchDir::Borrowed b) : dir(folder, b) {}
   ScratchDir dir;
   std::string input;
   uint64_t vertices = 0, triangles = 0, points = 0;
@@ -70,6 +74,7 @@ struct TileStore {
   uint64_t largest_tile_estimate = 0;  // bytes, the largest tile's estimate
   size_t block = 0;                    // vertices per block of the passes
   int bucket_ranks = 1;                // the ranks that filled buckets (a file each per tile)
+  int readers = 1;                     // the ranks (or ranks in threads) that read the input, each its share
   // xyz, the coordinates as read: as floats where the streamed file's fit in floats (half
   // the bytes to write and read again, the same values), else as doubles.
   bool xyz_float = false;

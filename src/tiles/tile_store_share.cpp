@@ -1,5 +1,6 @@
 // share_tile_store (tile_store.h): every rank builds its share of the store from an input
 // that reads in ranges; otherwise rank 0 builds it and the others adopt its description.
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,32 +69,41 @@ void adopt(TileStore& s, const std::vector<uint8_t>& bytes, const SaliencyOption
 // What a rank in a thread holds beyond the first's while the store is built: its reading
 // buffers (measured about 5 MiB) and its histogram (8 MiB), besides its point bits.
 constexpr uint64_t kThreadRankBytes = uint64_t(16) << 20;
+// The most ranks in threads: reading the input, a pass over a file, gains little from more
+// (the disk), while each holds its buffers.
+constexpr unsigned kMaxThreadRanks = 4;
+
+// The input in place (store_input) and whether it reads in ranges (PlyStream::ranged); for
+// ranks that write their ranges of the store's files, those files made first.
+bool prepare_input(TileStore& store, const std::string& input, int& converted_wide, bool shared) {
+  store_input(store, input, converted_wide);
+  const bool ranged = PlyStream(store.input).ranged();
+  if (ranged && shared)
+    for (const char* name : {"xyz", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
+  return ranged;
+}
 
 // One process: a file that reads in ranges built by ranks in threads, one per thread (the
 // input's reading and the positions on every core; the buckets by rank 0 on every thread),
-// the others in folders they drop for rank 0's; anything else read front to back.
+// all in rank 0's folder; anything else read front to back.
 void build_on_threads(TileStore& store, const std::string& input, const SaliencyOptions& options,
                       uint64_t memory_limit, unsigned tiles, const std::function<void(const char*, double)>& progress,
                       StoreUse use) {
   int converted_wide = -1;
-  store_input(store, input, converted_wide);
-  const unsigned threads = resolve_threads(options.threads);
-  const PlyStream ply(store.input);
+  const unsigned threads = std::min(kMaxThreadRanks, resolve_threads(options.threads));
+  const bool ranged = prepare_input(store, input, converted_wide, threads > 1);
   // Each rank beyond the first holds its own reading buffers, histogram and point bits:
   // where the passes' share of the limit (all of it but pass C's block, a quarter, and
   // bucket buffers, an eighth) leaves no room for them beside the program, one rank reads.
-  const uint64_t per_rank = kThreadRankBytes + ply.vertex_count() / 8;
+  const uint64_t per_rank = kThreadRankBytes + PlyStream(store.input).vertex_count() / 8;
   const bool room = !memory_limit || (threads - 1) * per_rank + kBaseBytes <= memory_limit / 8 * 5;
-  if (threads <= 1 || !ply.ranged() || !room) {
+  if (threads <= 1 || !ranged || !room) {
     build_store_passes(store, input, options, memory_limit, tiles, progress, use, converted_wide, nullptr, 1);
     return;
   }
-  for (const char* name : {"xyz", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
-  const std::string parent = store.dir.path().substr(0, store.dir.path().find_last_of('/'));
   std::vector<std::unique_ptr<TileStore>> others;
   for (unsigned r = 1; r < threads; ++r) {
-    others.push_back(std::make_unique<TileStore>(parent));
-    others.back()->dir.borrow(store.dir.path());
+    others.push_back(std::make_unique<TileStore>(store.dir.path(), ScratchDir::Borrowed{}));
     others.back()->input = store.input;
   }
   run_thread_ranks(int(threads), [&](TileExchange& ex) {
@@ -118,11 +128,7 @@ void share_tile_store(TileStore& store, const std::string& input, const Saliency
   // write their ranges of exist before any opens them.
   int converted_wide = -1;
   bool ranged = false;
-  lead_step(exchange, [&] {
-    store_input(store, input, converted_wide);
-    ranged = PlyStream(store.input).ranged();
-    for (const char* name : {"xyz", "tri.u32", "pos.f32"}) ScratchWriter(store.dir.file(name)).close();
-  });
+  lead_step(exchange, [&] { ranged = prepare_input(store, input, converted_wide, true); });
   TileBytes b;
   if (exchange->rank() == 0) {
     b.put(std::vector<uint8_t>(store.dir.path().begin(), store.dir.path().end()));

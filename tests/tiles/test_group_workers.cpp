@@ -2,7 +2,10 @@
 // group once, the largest first, an error stops the rest; and the meshes and files come
 // out the same on 1 thread or several, alone, shared by ranks, and out of core under a
 // limit that holds several pieces at once.
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -81,20 +84,24 @@ TEST_CASE("for_each_group: every group of this process once, the largest first, 
     });
     CHECK(order == std::vector<size_t>{6, 1, 3, 4, 5, 0, 2});
   }
-  SECTION("three workers: each group once, each worker one group at a time") {
+  SECTION("three workers: each group once, never more than three at a time") {
     std::mutex m;
     std::multiset<size_t> seen;
-    std::atomic<int> busy[3] = {0, 0, 0};
+    std::atomic<int> busy{0};
+    int most = 0;
     for_each_group(nullptr, sizes, 3, [&](size_t g, unsigned worker) {
       REQUIRE(worker < 3);
-      CHECK(busy[worker].fetch_add(1) == 0);
+      const int now = ++busy;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
       {
         const std::lock_guard<std::mutex> lock(m);
         seen.insert(g);
+        most = std::max(most, now);
       }
-      busy[worker].fetch_sub(1);
+      --busy;
     });
     CHECK(seen == std::multiset<size_t>{0, 1, 2, 3, 4, 5, 6});
+    CHECK(most <= 3);
   }
   SECTION("shared: rank 1 of 3 runs groups 1 and 4 alone") {
     ShareOnly ex(1, 3);

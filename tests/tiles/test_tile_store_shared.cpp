@@ -19,6 +19,7 @@
 #include "out_of_core_util.h"
 #include "test_util.h"
 #include "thread_exchange.h"
+#include "io/ply_stream.h"
 #include "tiles/tile_store.h"
 
 using namespace meshsal;
@@ -72,8 +73,10 @@ TEST_CASE("tile store built by every rank is the one-process store", "[tiles][ou
   // One process on three threads: ranks in threads of its own, rank 0's store the result.
   TileStore threaded(dir.string());
   share_tile_store(threaded, in, store_options(nullptr, 3), limit, 3, {});
+  CHECK(threaded.readers == 3);       // the ranks in threads read the input, each its share
   CHECK(threaded.bucket_ranks == 1);  // (rank 0 buckets every triangle)
   CHECK(threaded.plan.threads == 3);
+  CHECK(one.readers == 1);
   CHECK(threaded.histogram.count == one.histogram.count);
   for (const char* name : {"xyz", "tri.u32", "pos.f32"}) CHECK(file_of(threaded, name) == file_of(one, name));
   for (size_t t = 0; t < tile_count(one.plan); ++t) CHECK(same_faces(bucket_of(threaded, t), bucket_of(one, t)));
@@ -89,6 +92,7 @@ TEST_CASE("tile store built by every rank is the one-process store", "[tiles][ou
       INFO("rank " << r);
       CHECK(s.dir.path() == stores[0]->dir.path());  // the one folder they all reach
       CHECK(s.bucket_ranks == ranks);                // every rank bucketed its share
+      CHECK(s.readers == ranks);                     // and read its share
       CHECK(s.vertices == one.vertices);
       CHECK(s.triangles == one.triangles);
       CHECK(s.points == one.points);
@@ -141,6 +145,7 @@ TEST_CASE("tile store under ranks: other inputs built by rank 0, a bad face stop
   run_ranks(2, [&](ThreadExchange& ex) { share_tile_store(*stores[size_t(ex.rank())], gz, store_options(&ex), 0, 2, {}); });
   for (const auto& s : stores) {
     CHECK(s->bucket_ranks == 1);
+    CHECK(s->readers == 1);
     CHECK(s->points == one.points);
     CHECK(file_of(*s, "pos.f32") == file_of(one, "pos.f32"));
   }
@@ -164,5 +169,43 @@ TEST_CASE("tile store under ranks: other inputs built by rank 0, a bad face stop
     INFO(m);
     CHECK(m.find("uses vertex 1073741824") != std::string::npos);
     CHECK(m == said[2]);
+  }
+}
+
+TEST_CASE("tile store: faces whose bytes add up to triangles' but are not triangles are refused", "[tiles][outofcore][shared]") {
+  // Every face is 1 + 4n bytes: faces that add up to 13 bytes each while one is no triangle
+  // need one of fewer than 3 corners, which no reader takes. Here a quad and a 2-gon: the
+  // file reads in ranges by its size, and both the one reader and the ranks refuse it.
+  const auto dir = scratch_dir("store_fake_triangles");
+  std::string body;
+  auto put_f = [&](float x) { body.append(reinterpret_cast<const char*>(&x), 4); };
+  auto put_i = [&](int32_t x) { body.append(reinterpret_cast<const char*>(&x), 4); };
+  for (int v = 0; v < 4; ++v) put_f(float(v & 1)), put_f(float(v >> 1)), put_f(0);
+  body.push_back(4);
+  for (int32_t v : {0, 1, 3, 2}) put_i(v);
+  body.push_back(2);
+  for (int32_t v : {0, 1}) put_i(v);
+  const std::string path = (dir / "fake.ply").string();
+  std::ofstream(path, std::ios::binary) << "ply\nformat binary_little_endian 1.0\nelement vertex 4\n"
+                                           "property float x\nproperty float y\nproperty float z\nelement face 2\n"
+                                           "property list uchar int vertex_indices\nend_header\n"
+                                        << body;
+  REQUIRE(PlyStream(path).ranged());
+  TileStore one(dir.string());
+  CHECK_THROWS_WITH(share_tile_store(one, path, store_options(nullptr), 0, 1, {}),
+                    Catch::Contains("face with 2 vertices"));
+  std::vector<std::string> said(2);
+  run_ranks(2, [&](ThreadExchange& ex) {
+    TileStore s(dir.string());
+    try {
+      share_tile_store(s, path, store_options(&ex), 0, 1, {});
+    } catch (const Error& e) {
+      said[size_t(ex.rank())] = e.what();
+    }
+  });
+  for (const std::string& m : said) {
+    INFO(m);
+    CHECK(m.find("fake.ply") != std::string::npos);
+    CHECK(m == said[0]);
   }
 }
