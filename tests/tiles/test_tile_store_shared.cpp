@@ -54,6 +54,20 @@ SaliencyOptions store_options(TileExchange* ex, unsigned threads = 1) {
   return o;
 }
 
+// What each of `ranks` ranks (in threads) throws building a store of `path` ("" for none).
+std::vector<std::string> rank_errors(int ranks, const std::string& path, const std::filesystem::path& dir) {
+  std::vector<std::string> said(static_cast<size_t>(ranks));
+  run_ranks(ranks, [&](ThreadExchange& ex) {
+    TileStore s(dir.string());
+    try {
+      share_tile_store(s, path, store_options(&ex), 0, 2, {});
+    } catch (const Error& e) {
+      said[size_t(ex.rank())] = e.what();
+    }
+  });
+  return said;
+}
+
 }  // namespace
 
 TEST_CASE("tile store built by every rank is the one-process store", "[tiles][outofcore][shared]") {
@@ -156,15 +170,7 @@ TEST_CASE("tile store under ranks: other inputs built by rank 0, a bad face stop
   std::memcpy(&bad[last_face + 1], &out_of_range, 4);
   const std::string bad_path = (dir / "bad.ply").string();
   std::ofstream(bad_path, std::ios::binary) << bad;
-  std::vector<std::string> said(3);
-  run_ranks(3, [&](ThreadExchange& ex) {
-    TileStore s(dir.string());
-    try {
-      share_tile_store(s, bad_path, store_options(&ex), 0, 2, {});
-    } catch (const Error& e) {
-      said[size_t(ex.rank())] = e.what();
-    }
-  });
+  const std::vector<std::string> said = rank_errors(3, bad_path, dir);
   for (const std::string& m : said) {
     INFO(m);
     CHECK(m.find("uses vertex 1073741824") != std::string::npos);
@@ -194,15 +200,7 @@ TEST_CASE("tile store: faces whose bytes add up to triangles' but are not triang
   TileStore one(dir.string());
   CHECK_THROWS_WITH(share_tile_store(one, path, store_options(nullptr), 0, 1, {}),
                     Catch::Contains("face with 2 vertices"));
-  std::vector<std::string> said(2);
-  run_ranks(2, [&](ThreadExchange& ex) {
-    TileStore s(dir.string());
-    try {
-      share_tile_store(s, path, store_options(&ex), 0, 1, {});
-    } catch (const Error& e) {
-      said[size_t(ex.rank())] = e.what();
-    }
-  });
+  const std::vector<std::string> said = rank_errors(2, path, dir);
   for (const std::string& m : said) {
     INFO(m);
     CHECK(m.find("fake.ply") != std::string::npos);
