@@ -8,6 +8,7 @@
 #include <atomic>
 #include <thread>
 #include <optional>
+#include <set>
 
 #include "core/cancel.h"
 #include "core/id_ranks.h"
@@ -50,41 +51,42 @@ struct CornerStates {
   const float* position(size_t i) const { return reinterpret_cast<const float*>(&records[rank[i] * record_bytes]); }
 };
 
+// A pass's buckets: per cell, the triangles of its group (own) and those at its vertices.
+// Each process fills its share of the triangles into files of its own (a cell's bucket is
+// every process's file in rank order: each in triangle order, the ranks' shares in order).
 class Buckets {
  public:
-  // `owner`: this process writes the buckets (and removes them); the others read them.
-  Buckets(const DiskMesh& mesh, int pass, size_t buffer_bytes, bool owner)
+  Buckets(const DiskMesh& mesh, int pass, size_t buffer_bytes, int rank)
       : mesh_(mesh), pass_(pass), flush_at_(std::max<size_t>(kChunk, buffer_bytes / sizeof(BucketFace))),
-        owner_(owner) {}
-  ~Buckets() {
-    if (owner_)
-      for (const auto& [cell, own] : cells_) std::remove(path(cell).c_str());
+        rank_(rank) {}
+  ~Buckets() {  // this process's files (every process is past reading them: share_totals)
+    for (const uint64_t cell : written_) std::remove(path(cell, rank_).c_str());
   }
-  // The owner's list of buckets to every process sharing the pass; once they have it, the
-  // owner's files are complete.
+  // Every process's cells to every process, once each has filled its share.
   void share(TileExchange* exchange) {
-    if (!exchange) return;
     TileBytes b;
-    if (owner_)
-      for (const auto& [cell, own] : cells_) b.put(cell), b.put(own);
+    for (const auto& [cell, own] : mine_) b.put(cell), b.put(own);
     const auto all = tile_gather(exchange, b.data);
-    if (owner_) return;
     cells_.clear();
-    for (TileBytesReader in{all[0]}; !in.done();) {
-      const uint64_t cell = in.get<uint64_t>();
-      cells_[cell] = in.get<uint64_t>();
-    }
+    for (size_t r = 0; r < all.size(); ++r)
+      for (TileBytesReader in{all[r]}; !in.done();) {
+        const uint64_t cell = in.get<uint64_t>();
+        Cell& c = cells_[cell];
+        c.own += in.get<uint64_t>();
+        c.writers.push_back(int(r));
+      }
   }
   void add(uint64_t cell, const BucketFace& face) {
     pending_[cell].push_back(face);
-    cells_[cell] += face.own;
+    mine_[cell] += face.own;
     if (++count_ >= flush_at_) flush();
   }
   void flush() {
     for (auto& [cell, faces] : pending_) {
-      ScratchWriter out(path(cell), true);
+      ScratchWriter out(path(cell, rank_), true);
       out.write_vector(faces);
       out.close();
+      written_.insert(cell);
     }
     pending_.clear();
     count_ = 0;
@@ -93,39 +95,56 @@ class Buckets {
   std::vector<uint64_t> groups(std::vector<size_t>& sizes) const {
     std::vector<uint64_t> g;
     sizes.clear();
-    for (const auto& [cell, own] : cells_)
-      if (own) g.push_back(cell), sizes.push_back(size_t(own));
+    for (const auto& [cell, c] : cells_)
+      if (c.own) g.push_back(cell), sizes.push_back(size_t(c.own));
     return g;
   }
   std::vector<BucketFace> read(uint64_t cell) const {
-    if (!cells_.count(cell)) return {};
-    const std::vector<uint8_t> bytes = read_scratch_file(path(cell));
-    std::vector<BucketFace> faces(bytes.size() / sizeof(BucketFace));
-    if (!faces.empty()) std::memcpy(faces.data(), bytes.data(), faces.size() * sizeof(BucketFace));
+    const auto it = cells_.find(cell);
+    if (it == cells_.end()) return {};
+    std::vector<BucketFace> faces;
+    for (const int r : it->second.writers) {
+      const std::vector<uint8_t> bytes = read_scratch_file(path(cell, r));
+      const size_t at = faces.size(), n = bytes.size() / sizeof(BucketFace);
+      faces.resize(at + n);
+      if (n) std::memcpy(faces.data() + at, bytes.data(), n * sizeof(BucketFace));
+    }
     return faces;
   }
 
  private:
-  std::string path(uint64_t cell) const {
-    return mesh_.dir->file("pass" + std::to_string(pass_) + "_cell" + std::to_string(cell) + ".bin");
+  struct Cell {
+    uint64_t own = 0;          // its group's triangles, over every process
+    std::vector<int> writers;  // the processes with a file of it, in rank order
+  };
+  std::string path(uint64_t cell, int rank) const {
+    return mesh_.dir->file("pass" + std::to_string(pass_) + "_cell" + std::to_string(cell) + "_r" +
+                           std::to_string(rank) + ".bin");
   }
   const DiskMesh& mesh_;
   int pass_;
   size_t flush_at_, count_ = 0;
-  bool owner_;
+  int rank_;
   std::map<uint64_t, std::vector<BucketFace>> pending_;
-  std::map<uint64_t, uint64_t> cells_;  // every bucket written, and its group's own triangles
+  std::map<uint64_t, uint64_t> mine_;  // this process's cells and their own triangles
+  std::set<uint64_t> written_;         // this process's files
+  std::map<uint64_t, Cell> cells_;     // every process's, once shared
 };
 
-// Every chunk of the mesh's triangles, with its index of the first.
-void for_each_chunk(const DiskMesh& mesh, const std::function<void(uint64_t, const std::vector<uint32_t>&)>& body) {
+// Every chunk of the mesh's triangles [begin, end) (all of them by default), with its index
+// of the first.
+void for_each_chunk(const DiskMesh& mesh, const std::function<void(uint64_t, const std::vector<uint32_t>&)>& body,
+                    uint64_t begin = 0, uint64_t end = UINT64_MAX) {
+  end = std::min(end, mesh.triangle_count);
   ScratchReader in(mesh.triangles);
+  in.seek(begin * 12);
   std::vector<uint32_t> buf(3 * kChunk);
-  uint64_t first = 0;
-  for (size_t got; (got = in.read(buf.data(), buf.size() * 4) / 12) > 0; first += got) {
-    buf.resize(3 * got);
+  for (uint64_t first = begin; first < end;) {
+    const size_t want = size_t(std::min<uint64_t>(kChunk, end - first));
+    buf.resize(3 * want);
+    in.read_exact(buf.data(), 12 * want);
     body(first, buf);
-    buf.resize(3 * kChunk);
+    first += want;
   }
 }
 
@@ -222,14 +241,32 @@ uint64_t strip_vertices(const DiskMesh& mesh, const VertexBits& pending, VertexB
   return selected;
 }
 
+void share_vertex_bits(const DiskMesh& mesh, TileExchange* exchange, VertexBits& bits, const std::string& name) {
+  if (!exchange) return;
+  const std::string path = mesh.dir->file(name);
+  lead_step(exchange, [&] {
+    ScratchWriter out(path);
+    out.write_vector(bits.words());
+    out.close();
+  });
+  all_step(exchange, [&] {
+    if (exchange->rank() == 0) return;
+    std::vector<uint64_t> words((mesh.vertices + 63) / 64);
+    ScratchReader in(path);
+    in.read_exact(words.data(), words.size() * 8);
+    bits = VertexBits(std::move(words));
+  });
+  lead_step(exchange, [&] { std::remove(path.c_str()); });
+}
+
 namespace {
 
 // Whether the pass selects triangle c (every triangle in a first pass).
 bool selected(const DiskPass& pass, const uint32_t* c) { return !pass.selected_near || pass.selected_near->any(c); }
 
-// Each selected triangle to its group's bucket; each triangle that may be a guard to the
-// bucket of every cell its corners lie in.
-void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets) {
+// Each selected triangle of [begin, end) to its group's bucket; each that may be a guard to
+// the bucket of every cell its corners lie in.
+void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets, uint64_t begin, uint64_t end) {
   CornerStates states;
   for_each_chunk(mesh, [&](uint64_t first, const std::vector<uint32_t>& t) {
     throw_if_cancelled();
@@ -252,7 +289,7 @@ void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets) 
         buckets.add(u, face);
       }
     }
-  });
+  }, begin, end);
   buckets.flush();
 }
 
@@ -350,22 +387,18 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
   return std::vector<size_t>(goals.begin(), goals.end());
 }
 
-// Writes the moved vertices' records (id, then the state record) into the state file, a
-// block at a time: only once every group has read the pass's input.
-void apply_moves(DiskMesh& mesh, const std::string& moves) {
-  const size_t rec = mesh.record_bytes();
-  ScratchReader in(moves);
-  std::vector<uint8_t> buf((4 + rec) * kChunk), data;
-  std::vector<uint32_t> ids;
-  for (size_t got; (got = in.read(buf.data(), buf.size()) / (4 + rec)) > 0;) {
-    ids.resize(got);
-    data.resize(got * rec);
-    for (size_t i = 0; i < got; ++i) {
-      std::memcpy(&ids[i], &buf[i * (4 + rec)], 4);
-      std::memcpy(&data[i * rec], &buf[i * (4 + rec) + 4], rec);
-    }
-    write_records(mesh.state, rec, ids, data.data());
+// Writes a group's moved vertices' records (id, then the state record) into the state
+// file: only once every group has read the pass's input. (A vertex moves in one group
+// alone: the one that freed it.)
+void apply_moves(const DiskMesh& mesh, const std::vector<uint8_t>& moves) {
+  const size_t rec = mesh.record_bytes(), n = moves.size() / (4 + rec);
+  std::vector<uint32_t> ids(n);
+  std::vector<uint8_t> data(n * rec);
+  for (size_t i = 0; i < n; ++i) {
+    std::memcpy(&ids[i], &moves[i * (4 + rec)], 4);
+    std::memcpy(&data[i * rec], &moves[i * (4 + rec) + 4], rec);
   }
+  write_records(mesh.state, rec, ids, data.data());
 }
 
 }  // namespace
@@ -394,12 +427,15 @@ void piece_records(const DiskMesh& mesh, const TilePiece& piece, std::vector<uin
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
                    PassTotals& totals, size_t buffer_bytes, unsigned concurrent,
                    const std::function<void(double)>& progress) {
-  // With an exchange (pass_exchange.h) rank 0, the lead, fills the buckets and writes the
-  // pass's result; every process simplifies its share of the groups.
+  // With an exchange (pass_exchange.h) every process buckets its share of the triangles and
+  // simplifies its share of the groups; rank 0, the lead, writes the pass's result.
   TileExchange* exchange = options.exchange;
-  const bool lead = !exchange || exchange->rank() == 0;
-  Buckets buckets(mesh, ++mesh.passes, buffer_bytes, lead);
-  lead_step(exchange, [&] { fill_buckets(mesh, pass, buckets); });
+  const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
+  Buckets buckets(mesh, ++mesh.passes, buffer_bytes, rank);
+  const uint64_t n = mesh.triangle_count;
+  all_step(exchange, [&] {
+    fill_buckets(mesh, pass, buckets, n * uint64_t(rank) / uint64_t(ranks), n * uint64_t(rank + 1) / uint64_t(ranks));
+  });
   buckets.share(exchange);
   std::vector<size_t> sizes;
   const std::vector<uint64_t> groups = buckets.groups(sizes);
@@ -410,13 +446,13 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   workers.marks.assign(workers.split.workers, VertexBits(mesh.vertices));
   const std::vector<size_t> goals = group_goals(mesh, pass, buckets, groups, sizes, options, workers, progress);
 
-  // Each group's outcome to a file of its own (the groups run side by side, and shared, on
-  // other processes too), appended by the lead in group order (the in-memory driver's),
-  // then the rest as it was.
+  // Each group's outcome to files of its own (the groups run side by side, and shared, on
+  // other processes too): its triangles and moved vertices, and the ids it freed.
   const std::string next = mesh.triangles + "+";
-  const std::string moves = mesh.dir->file("moves.bin");
   auto group_file = [&](size_t g) { return mesh.dir->file("group_" + std::to_string(g) + ".bin"); };
+  auto freed_file = [&](size_t g) { return mesh.dir->file("freed_" + std::to_string(g) + ".u32"); };
   std::vector<PassTotals> group_totals(groups.size());
+  std::vector<uint64_t> out_faces(groups.size(), 0);
   GroupProgress done(progress, 0.5, 1.0, own_groups(exchange, groups.size()));
   for_each_group(exchange, sizes, workers.split.workers, [&](size_t g, unsigned worker) {
     throw_if_cancelled();
@@ -427,43 +463,77 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
     std::vector<uint32_t> triangles;
     std::vector<uint8_t> records;
     piece_records(mesh, piece, triangles, records);
+    out_faces[g] = triangles.size() / 3;
     TileBytes b;
     b.put(triangles);
     b.put(records);
-    b.put(freed_ids(tile));
     ScratchWriter f(group_file(g));
     f.write_vector(b.data);
     f.close();
+    ScratchWriter freed(freed_file(g));
+    freed.write_vector(freed_ids(tile));
+    freed.close();
     done.one_done();
   });
   PassTotals mine;
   for (const PassTotals& t : group_totals) add_totals(mine, t);
-  add_totals(totals, share_totals(exchange, mine));  // (shared: every group's file is complete)
-  uint64_t out_count = 0;
-  lead_step(exchange, [&] {
-    ScratchWriter out(next), moved(moves);
+  add_totals(totals, share_totals(exchange, mine));  // (shared: every group's files are complete)
+
+  // The pass's triangles: each group's in group order (the in-memory driver's), then the
+  // rest as they were (a strip pass); each process writes its groups' and its share of the
+  // rest where they go, and moves its groups' vertices (every group has read the input).
+  share_group_values(exchange, out_faces);
+  std::vector<uint64_t> at(groups.size() + 1, 0);
+  for (size_t g = 0; g < groups.size(); ++g) at[g + 1] = at[g] + out_faces[g];
+  const uint64_t n0 = n * uint64_t(rank) / uint64_t(ranks), n1 = n * uint64_t(rank + 1) / uint64_t(ranks);
+  uint64_t my_rest = 0;  // this process's share of the triangles the pass did not select
+  all_step(exchange, [&] {
+    if (pass.selected_near)
+      for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
+        for (size_t i = 0; i < t.size(); i += 3) my_rest += selected(pass, &t[i]) ? 0 : 1;
+      }, n0, n1);
+  });
+  std::vector<uint64_t> rest;  // every process's, in rank order
+  {
+    TileBytes b;
+    b.put(my_rest);
+    for (const auto& bytes : tile_gather(exchange, b.data)) rest.push_back(TileBytesReader{bytes}.get<uint64_t>());
+  }
+  lead_step(exchange, [&] { ScratchWriter(next).close(); });
+  all_step(exchange, [&] {
     for (size_t g = 0; g < groups.size(); ++g) {
+      if (!runs_group(exchange, g)) continue;
       const std::vector<uint8_t> bytes = read_scratch_file(group_file(g));
       TileBytesReader in{bytes};
       const std::vector<uint32_t> triangles = in.get_vector<uint32_t>();
+      ScratchWriter out(next, at[g] * 12);
       out.write_vector(triangles);
-      out_count += triangles.size() / 3;
-      moved.write_vector(in.get_vector<uint8_t>());
-      for (uint32_t id : in.get_vector<uint32_t>()) pending.clear(id);
+      out.close();
+      apply_moves(mesh, in.get_vector<uint8_t>());
       std::remove(group_file(g).c_str());
     }
-    if (pass.selected_near)
-      for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
-        for (size_t i = 0; i < t.size(); i += 3)
-          if (!selected(pass, &t[i])) {
-            out.write(&t[i], 12);
-            ++out_count;
-          }
-      });
+    if (!pass.selected_near) return;
+    uint64_t first = at.back();
+    for (int r = 0; r < rank; ++r) first += rest[size_t(r)];
+    ScratchWriter out(next, first * 12);
+    for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
+      for (size_t i = 0; i < t.size(); i += 3)
+        if (!selected(pass, &t[i])) out.write(&t[i], 12);
+    }, n0, n1);
     out.close();
-    moved.close();
-    apply_moves(mesh, moves);
-    std::remove(moves.c_str());
+  });
+  uint64_t out_count = at.back();
+  for (const uint64_t r : rest) out_count += r;
+  // Rank 0 keeps the pending vertices (the strips are its to select) and puts the pass's
+  // triangles in place.
+  lead_step(exchange, [&] {
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::vector<uint8_t> bytes = read_scratch_file(freed_file(g));
+      std::vector<uint32_t> ids(bytes.size() / 4);
+      if (!ids.empty()) std::memcpy(ids.data(), bytes.data(), ids.size() * 4);
+      for (uint32_t id : ids) pending.clear(id);
+      std::remove(freed_file(g).c_str());
+    }
     if (std::rename(next.c_str(), mesh.triangles.c_str()) != 0)
       throw Error(mesh.triangles + ": cannot replace a temporary file");
   });

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tiles/scratch_files.h"
@@ -23,6 +24,7 @@ namespace meshsal {
 class VertexBits {
  public:
   explicit VertexBits(uint64_t n = 0) : words_((n + 63) / 64, 0) {}
+  explicit VertexBits(std::vector<uint64_t> words) : words_(std::move(words)) {}
   bool operator[](uint32_t v) const { return (words_[v >> 6] >> (v & 63)) & 1; }
   void set(uint32_t v) { words_[v >> 6] |= uint64_t(1) << (v & 63); }
   void clear(uint32_t v) { words_[v >> 6] &= ~(uint64_t(1) << (v & 63)); }
@@ -63,9 +65,10 @@ struct DiskPass {
 // `pending`. `buffer_bytes`: how much the bucket buffers may hold before they go to disk.
 // The groups run side by side on options.threads (group_workers.h), at most `concurrent`
 // at once (each holds its piece; 0 = no cap).
-// With options.exchange every process calls it alike: each simplifies its share of the
-// groups (pass_exchange.h) in the one folder they all reach; rank 0 alone writes the
-// buckets and the result and keeps `pending`; all get the result's triangle count.
+// With options.exchange every process calls it alike: each buckets its share of the
+// triangles and simplifies its share of the groups (pass_exchange.h) in the one folder they
+// all reach (a strip pass's selected_near and guard_near on every process); rank 0 alone
+// writes the result and keeps `pending`; all get the result's triangle count.
 void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& options, VertexBits& pending,
                    detail::PassTotals& totals, size_t buffer_bytes, unsigned concurrent,
                    const std::function<void(double)>& progress);
@@ -74,5 +77,9 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
 // = the pending vertices and the corners of every triangle at one, near2 = the corners of
 // the triangles touching near1 (the selected ones). Returns how many are selected.
 uint64_t strip_vertices(const DiskMesh& mesh, const VertexBits& pending, VertexBits& near1, VertexBits& near2);
+
+// Rank 0's bits to every process (through a file of the folder they share; no exchange:
+// nothing to do). Every process calls it alike.
+void share_vertex_bits(const DiskMesh& mesh, TileExchange* exchange, VertexBits& bits, const std::string& name);
 
 }  // namespace meshsal

@@ -206,11 +206,14 @@ class DiskPasses final : public TilePasses {
                   [&](double f) { progress_("simplifying", f); });
   }
   bool strip_pass(const TileGrid& grid, const PassBudget& budget) override {
-    // (Shared: rank 0 keeps the pending vertices and selects the strips.)
+    // (Shared: rank 0 keeps the pending vertices and selects the strips; every process
+    // takes them to bucket its share of the pass.)
     TileExchange* exchange = options_.exchange;
     uint64_t selected = 0;
     lead_step(exchange, [&] { selected = strip_vertices(mesh_, pending_, near1_, near2_); });
     if (share_rank0_value(exchange, selected) == 0) return false;
+    share_vertex_bits(mesh_, exchange, near1_, "near1.bits");  // (every process buckets its share)
+    share_vertex_bits(mesh_, exchange, near2_, "near2.bits");
     DiskPass pass{grid, budget};
     pass.selected_near = &near1_;
     pass.guard_near = &near2_;

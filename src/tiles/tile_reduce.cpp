@@ -14,6 +14,27 @@ std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std:
   return exchange->all_gather(mine);
 }
 
+void all_step(TileExchange* exchange, const std::function<void()>& step) {
+  if (!exchange) return step();
+  std::exception_ptr cancelled;
+  std::string message;
+  try {
+    step();
+  } catch (const Cancelled& e) {
+    cancelled = std::current_exception();
+    message = e.what();
+  } catch (const std::exception& e) {
+    message = e.what();
+    if (message.empty()) message = "a rank failed";
+  } catch (...) {
+    message = "a rank failed";
+  }
+  const auto said = tile_gather(exchange, std::vector<uint8_t>(message.begin(), message.end()));
+  if (cancelled) std::rethrow_exception(cancelled);
+  for (const auto& m : said)
+    if (!m.empty()) throw Error(std::string(m.begin(), m.end()));
+}
+
 void lead_step(TileExchange* exchange, const std::function<void()>& step) {
   if (!exchange) return step();
   std::exception_ptr failed;

@@ -16,6 +16,12 @@ namespace meshsal {
 // its own), so none is left waiting in a later collective and each says the real reason.
 void lead_step(TileExchange* exchange, const std::function<void()>& step);
 
+// Runs `step` on every process and tells each how all went: a failure on any is thrown on
+// every one, with the message of the lowest rank that failed (a bad face seen by one rank
+// stops them all with its reason; a rank cancelled throws its Cancelled). Every exception
+// is caught first, so no process is left waiting in a later collective.
+void all_step(TileExchange* exchange, const std::function<void()>& step);
+
 // Every process's bytes (just `mine` without an exchange).
 std::vector<std::vector<uint8_t>> tile_gather(TileExchange* exchange, const std::vector<uint8_t>& mine);
 

@@ -124,31 +124,6 @@ struct Share {
   }
 };
 
-// `step` on every rank; a failure on any is thrown on every one, with the message of the
-// lowest rank that failed (a bad face seen by one rank stops them all with its reason); a
-// rank cancelled throws its Cancelled. Every failure is caught first, so no rank is left
-// waiting in the gather.
-void every_rank(const Share& share, const std::function<void()>& step) {
-  if (!share.exchange) return step();
-  std::exception_ptr cancelled;
-  std::string message;
-  try {
-    step();
-  } catch (const Cancelled& e) {
-    cancelled = std::current_exception();
-    message = e.what();
-  } catch (const std::exception& e) {
-    message = e.what();
-    if (message.empty()) message = "a rank failed building the tiles";
-  } catch (...) {
-    message = "a rank failed building the tiles";
-  }
-  const auto said = tile_gather(share.exchange, std::vector<uint8_t>(message.begin(), message.end()));
-  if (cancelled) std::rethrow_exception(cancelled);
-  for (const auto& m : said)
-    if (!m.empty()) throw Error(std::string(m.begin(), m.end()));
-}
-
 // The vertices [first, first + count) of `buf` have finite coordinates (else the Error
 // naming the first that has not).
 void check_finite(const std::vector<double>& buf, size_t count, uint64_t first, const std::string& input_path) {
@@ -238,7 +213,7 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
 // through a file of their own). The files exist (rank 0 made them).
 PointBits read_input_range(TileStore& store, const std::string& input_path, Share& share, const Progress& report) {
   std::unique_ptr<PlyStream> opened;  // (opened on every rank: one that cannot must not strand the others)
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     opened = std::make_unique<PlyStream>(store.input);
     store.vertices = opened->vertex_count();
     store.triangles = opened->face_count();
@@ -250,7 +225,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
   share.split(store.vertices, store.triangles);
   store.xyz_float = ply.positions_fit_float();
   PointBits referenced((store.vertices + 63) / 64, 0);
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     ply.seek_vertex(share.v0);
     ScratchWriter xyz(store.dir.file("xyz"), share.v0 * store.xyz_bytes());
     std::vector<double> buf(3 * kChunk);
@@ -284,7 +259,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
     bits.write_vector(referenced);
     bits.close();
   });
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     const uint64_t w0 = share.v0 / 64, w1 = (share.v1 + 63) / 64;
     std::fill(referenced.begin(), referenced.end(), 0);
     std::vector<uint64_t> words(size_t(w1 - w0));
@@ -304,7 +279,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
 void local_positions(TileStore& store, const PointBits& points, const Share& share) {
   const uint64_t v0 = share.v0, v1 = share.v1;
   BoundingBox model = empty_box();
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     ScratchReader xyz(store.dir.file("xyz"));
     xyz.seek(v0 * store.xyz_bytes());
     std::vector<double> buf(3 * kChunk);
@@ -326,7 +301,7 @@ void local_positions(TileStore& store, const PointBits& points, const Share& sha
   for (int a = 0; a < 3; ++a) store.origin[a] = model.min[a] / 2 + model.max[a] / 2;
   BoundingBox box = empty_box();
   uint64_t count = 0;
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     ScratchReader xyz(store.dir.file("xyz"));
     xyz.seek(v0 * store.xyz_bytes());
     ScratchWriter pos(store.dir.file("pos.f32"), v0 * 12);
@@ -355,7 +330,7 @@ void local_positions(TileStore& store, const PointBits& points, const Share& sha
   PointHistogram& hist = store.histogram;
   hist.box = box;
   for (int a = 0; a < 3; ++a) hist.bin[a] = std::max((box.max[a] - box.min[a]) / PointHistogram::kBins, 1e-30);
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     ScratchReader pos(store.dir.file("pos.f32"));
     pos.seek(v0 * 12);
     std::vector<float> buf(3 * kChunk);
@@ -442,7 +417,7 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
     pending_count = 0;
   };
   bool any_area = false;  // validate_mesh's test, on triangles within one block
-  every_rank(share, [&] {
+  all_step(share.exchange, [&] {
     const uint64_t mine = std::max<uint64_t>(1, share.t1 - share.t0);
     for (uint64_t first = 0; first < store.vertices; first += store.block) {
       const size_t count = size_t(std::min<uint64_t>(store.block, store.vertices - first));
