@@ -64,11 +64,48 @@ inline std::string read_stream(const uint8_t* data, size_t size) {
       outcome = "not a binary PLY";
     } else {
       meshsal::PlyStream s(path);
-      std::vector<double> xyz(3 * 1024);
-      while (s.read_vertices(xyz.data(), 1024) > 0) {
+      std::vector<double> xyz(3 * 1024), all_xyz;
+      for (size_t got; (got = s.read_vertices(xyz.data(), 1024)) > 0;) all_xyz.insert(all_xyz.end(), xyz.begin(), xyz.begin() + long(3 * got));
+      std::vector<uint32_t> triangles, all_triangles;
+      while (s.read_faces(triangles, 1024) > 0) all_triangles.insert(all_triangles.end(), triangles.begin(), triangles.end()), triangles.clear();
+      // A file read in ranges (the ranks building a store): two halves, read apart, are the
+      // whole read's.
+      if (s.ranged()) try {
+        const uint64_t nv = s.vertex_count(), nf = s.face_count();
+        std::vector<double> part_xyz;
+        std::vector<uint32_t> part_triangles;
+        for (int half = 1; half >= 0; --half) {
+          meshsal::PlyStream p(path);
+          const uint64_t v0 = nv * uint64_t(half) / 2, v1 = nv * uint64_t(half + 1) / 2;
+          p.seek_vertex(v0);
+          std::vector<double> got_xyz(3 * (v1 - v0));
+          for (uint64_t v = v0; v < v1;) {
+            const size_t got = p.read_vertices(&got_xyz[3 * (v - v0)], size_t(v1 - v));
+            if (got == 0) std::abort();
+            v += got;
+          }
+          const uint64_t f0 = nf * uint64_t(half) / 2, f1 = nf * uint64_t(half + 1) / 2;
+          p.seek_face(f0);
+          std::vector<uint32_t> got_triangles;
+          for (uint64_t f = f0; f < f1;) {
+            const size_t got = p.read_faces(got_triangles, size_t(f1 - f));
+            if (got == 0) std::abort();
+            f += got;
+          }
+          part_xyz.insert(part_xyz.begin(), got_xyz.begin(), got_xyz.end());
+          part_triangles.insert(part_triangles.begin(), got_triangles.begin(), got_triangles.end());
+        }
+        // (Bits compared: a file's NaN is a value as read like any other here.)
+        const bool same_xyz = part_xyz.size() == all_xyz.size() &&
+                              (all_xyz.empty() || std::memcmp(part_xyz.data(), all_xyz.data(), 8 * all_xyz.size()) == 0);
+        if (!same_xyz || part_triangles != all_triangles) {
+          std::fprintf(stderr, "plystream: ranges read apart differ from the whole read\n");
+          std::abort();
+        }
+      } catch (const meshsal::Error& e) {  // the whole file read: its halves must too
+        std::fprintf(stderr, "plystream: a range of a file read whole failed: %s\n", e.what());
+        std::abort();
       }
-      std::vector<uint32_t> triangles;
-      while (s.read_faces(triangles, 1024) > 0) triangles.clear();
     }
   } catch (const meshsal::Error& e) {
     outcome = e.what();
