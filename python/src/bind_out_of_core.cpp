@@ -251,8 +251,9 @@ attributes and materials (an OBJ gets its .mtl beside it) and S where the format
 weights: 'saliency', 'balanced' or 'none'; saliency_from: read S from that PLY or glTF
 instead of computing it. tiles > 1: the tiled simplifier. With memory_limit the tiled
 simplifier runs on disk, a tile at a time (`--memory-limit`; at least `tiles` tiles, a binary
-PLY with positions and S). Returns the report (faces, collapses, error_percent, alpha,
-tiles; with lod "levels"), "outputs" and "notices". The output is checked before any work as
+PLY with positions and S; its groups side by side, "groups_at_once" of them). Returns the
+report (faces, collapses, error_percent, alpha, tiles; with lod "levels"), "outputs" and
+"notices". The output is checked before any work as
 saliency_file() checks it.)");
 }
 
