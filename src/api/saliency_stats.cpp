@@ -4,18 +4,20 @@
 #include <vector>
 
 #include "core/kth_smallest.h"
+#include "core/parallel_select.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 
 SaliencyStats saliency_stats(const SaliencyResult& r) {
   std::vector<double> s;
-  for (size_t v = 0; v < r.saliency.size(); ++v)
-    if (v < r.is_point.size() && r.is_point[v]) s.push_back(r.saliency[v]);
+  parallel_select(
+      r.saliency.size(), 0, [&](size_t v) { return v < r.is_point.size() && r.is_point[v]; },
+      [&](size_t v) { return r.saliency[v]; }, s);
   SaliencyStats st;
   st.points = s.size();
   if (s.empty()) return st;
-  double sum = 0;
+  double sum = 0;  // in vertex order, as the out-of-core statistics add them
   for (double x : s) sum += x;
   auto rank = [&](double p) {
     const size_t k = static_cast<size_t>(std::ceil(p / 100.0 * double(s.size())));

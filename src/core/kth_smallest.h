@@ -7,8 +7,8 @@
 namespace meshsal {
 
 // For each k in ks (each < values.size()), the value a full ascending sort of `values`
-// would put at index k: the same numbers as sorting, in expected linear time. `values` is
-// reordered. ks in any order; repeated ks allowed.
+// would put at index k: the same numbers as sorting, in expected linear time, on every core
+// for large inputs. `values` may be reordered. ks in any order; repeated ks allowed.
 std::vector<double> kth_smallest(std::vector<double>& values, const std::vector<size_t>& ks);
 
 }  // namespace meshsal

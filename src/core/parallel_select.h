@@ -13,8 +13,8 @@
 namespace meshsal {
 
 // out = value(i) for every i in [0, n) with keep(i), in increasing i.
-template <class Keep, class Value>
-void parallel_select(size_t n, unsigned threads, Keep&& keep, Value&& value, std::vector<uint32_t>& out) {
+template <class Keep, class Value, class Out>
+void parallel_select(size_t n, unsigned threads, Keep&& keep, Value&& value, std::vector<Out>& out) {
   // Shares of at least 64K entries: a share's count pass and write pass both read it.
   const size_t shares = std::max<size_t>(1, std::min<size_t>(resolve_threads(threads), n >> 16));
   std::vector<size_t> start(shares + 1, 0);

@@ -2,6 +2,7 @@
 
 #include "core/kth_smallest.h"
 #include "core/parallel.h"
+#include "core/parallel_select.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -27,8 +28,9 @@ void colormap_rgb(double t, uint8_t rgb[3]) {
 ColorLimits colour_limits(const std::vector<double>& values, const std::vector<uint8_t>& mask,
                           const ColorRange& range) {
   std::vector<double> vals;
-  for (size_t v = 0; v < values.size(); ++v)
-    if ((mask.empty() || mask[v]) && std::isfinite(values[v])) vals.push_back(values[v]);
+  parallel_select(
+      values.size(), 0, [&](size_t v) { return (mask.empty() || mask[v]) && std::isfinite(values[v]); },
+      [&](size_t v) { return values[v]; }, vals);
   auto resolve = [&](double x, bool percentile) {
     if (!percentile) return x;
     if (vals.empty()) return 0.0;

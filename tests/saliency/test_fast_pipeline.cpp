@@ -306,6 +306,30 @@ TEST_CASE("fast pipeline: order statistics equal a sort's", "[fast]") {
   CHECK_THROWS_AS(kth_smallest(work, {10001}), Error);
 }
 
+TEST_CASE("fast pipeline: order statistics of many values (the bucketed path) equal a sort's", "[fast]") {
+  // Over 2^18 values, so the buckets of leading bits are used: negatives, both zeros, a
+  // bucket holding a third of the values, values spread over many exponents.
+  std::mt19937 rng(11);
+  std::vector<double> values(700001);
+  for (size_t i = 0; i < values.size(); ++i) {
+    const uint32_t r = rng();
+    if (i % 3 == 0) values[i] = 1.0 + double(r % 1000) * 1e-9;  // one crowded bucket
+    else if (i % 7 == 0) values[i] = (r & 1) ? 0.0 : -0.0;
+    else values[i] = (r & 2 ? -1.0 : 1.0) * std::ldexp(double(r % 100000) + 1.0, int(r % 40) - 20);
+  }
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  const size_t n = values.size();
+  const std::vector<size_t> ks = {n - 1, 0, n / 2, n / 3, n / 3 + 1, n / 10, n / 10, 99 * n / 100, n / 7, 1};
+  std::vector<double> work = values;
+  const std::vector<double> got = kth_smallest(work, ks);
+  for (size_t i = 0; i < ks.size(); ++i) CHECK(got[i] == sorted[ks[i]]);
+  // Every value equal: one bucket holds them all.
+  std::vector<double> same(300000, 2.5);
+  CHECK(kth_smallest(same, {0, 150000, 299999}) == std::vector<double>{2.5, 2.5, 2.5});
+  CHECK_THROWS_AS(kth_smallest(work, {n}), Error);
+}
+
 TEST_CASE("fast pipeline: the scale order follows the chains k, 2k", "[fast]") {
   CHECK(fast_scale_order({2, 3, 4, 5, 6}) == std::vector<size_t>{0, 2, 1, 4, 3});
   CHECK(fast_scale_order({6, 5, 4, 3, 2}) == std::vector<size_t>{4, 2, 3, 0, 1});
