@@ -2,10 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <vector>
 
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
+#include "core/parallel.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -37,13 +39,21 @@ std::string precision_warning(const Mesh& mesh) {
   const double median_edge = edges[edges.size() / 2];
   // The largest coordinate magnitude over the mesh points, and the vertex that has it.
   const std::vector<uint8_t> is_point = referenced_vertices(mesh);
+  // On every core; of equal magnitudes the first vertex, as a serial scan finds it.
   double largest = 0;
   size_t where = 0;
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (!is_point[v]) continue;
-    for (int k = 0; k < 3; ++k)
-      if (std::fabs(double(mesh.positions[3 * v + k])) > largest) largest = std::fabs(double(mesh.positions[3 * v + k])), where = v;
-  }
+  std::mutex lock;
+  parallel_for(mesh.vertex_count(), 0, size_t(1) << 18, [&](size_t begin, size_t end) {
+    double big = 0;
+    size_t at = 0;
+    for (size_t v = begin; v < end; ++v) {
+      if (!is_point[v]) continue;
+      for (int k = 0; k < 3; ++k)
+        if (std::fabs(double(mesh.positions[3 * v + k])) > big) big = std::fabs(double(mesh.positions[3 * v + k])), at = v;
+    }
+    std::lock_guard<std::mutex> hold(lock);
+    if (big > largest || (big == largest && big > 0 && at < where)) largest = big, where = at;
+  });
   const double float_step = largest * std::ldexp(1.0, -24);
   if (median_edge >= kMinEdgeSteps * float_step) return "";
   const BoundingBox box = mesh_points_bbox(mesh, is_point);

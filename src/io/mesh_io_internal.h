@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/first_index_where.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -110,10 +111,12 @@ std::string gltf_file_bytes(const std::string& path, const std::vector<GltfLevel
 inline void check_mesh(const std::string& path, const Mesh& mesh) {
   if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0)
     throw Error(path + ": cannot write: mesh arrays are not multiples of 3");
-  for (uint32_t i : mesh.triangles)
-    if (i >= mesh.vertex_count())
-      throw Error(path + ": cannot write: a triangle uses vertex " + std::to_string(i) +
-                  " but the mesh has " + std::to_string(mesh.vertex_count()) + " vertices");
+  const uint32_t* corners = mesh.triangles.data();
+  const size_t nv = mesh.vertex_count();
+  if (const size_t i = first_index_where(mesh.triangles.size(), [&](size_t j) { return corners[j] >= nv; });
+      i < mesh.triangles.size())
+    throw Error(path + ": cannot write: a triangle uses vertex " + std::to_string(corners[i]) +
+                " but the mesh has " + std::to_string(nv) + " vertices");
 }
 
 // The 1-based line of each vertex in a text writer (OBJ's v, OFF's vertices, the latter

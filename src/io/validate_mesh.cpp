@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/first_index_where.h"
 #include "meshsal/meshsal.h"
 #include "core/vec3.h"
 #include "core/welded_view.h"
@@ -15,15 +16,17 @@ void validate_mesh(const Mesh& mesh) {
   const size_t nv = mesh.vertex_count();
   if (nv == 0) throw Error("mesh has no vertices");
   if (mesh.triangle_count() == 0) throw Error("mesh has no faces");
-  for (size_t i = 0; i < mesh.positions.size(); ++i)
-    if (!std::isfinite(mesh.positions[i]))
-      throw Error("vertex " + std::to_string(i / 3) + " has a non-finite coordinate (" +
-                  std::to_string(mesh.positions[i]) + ")");
-  for (size_t i = 0; i < mesh.triangles.size(); ++i)
-    if (mesh.triangles[i] >= nv)
-      throw Error("triangle " + std::to_string(i / 3) + " uses vertex index " +
-                  std::to_string(mesh.triangles[i]) + " but the mesh has only " +
-                  std::to_string(nv) + " vertices");
+  const float* xyz = mesh.positions.data();
+  if (const size_t i = first_index_where(mesh.positions.size(), [&](size_t j) { return !std::isfinite(xyz[j]); });
+      i < mesh.positions.size())
+    throw Error("vertex " + std::to_string(i / 3) + " has a non-finite coordinate (" +
+                std::to_string(mesh.positions[i]) + ")");
+  const uint32_t* corners = mesh.triangles.data();
+  if (const size_t i = first_index_where(mesh.triangles.size(), [&](size_t j) { return corners[j] >= nv; });
+      i < mesh.triangles.size())
+    throw Error("triangle " + std::to_string(i / 3) + " uses vertex index " +
+                std::to_string(mesh.triangles[i]) + " but the mesh has only " +
+                std::to_string(nv) + " vertices");
   for (const VertexAttribute& a : mesh.attributes)
     if (a.values.size() != nv)
       throw Error("attribute '" + a.name + "' has " + std::to_string(a.values.size()) +

@@ -273,4 +273,18 @@ TEST_CASE("validate_mesh on meshes built in memory", "[io]") {
   m = ok;
   m.triangles.push_back(1);
   CHECK_THROWS_WITH(meshsal::validate_mesh(m), Catch::Contains("multiple of 3"));
+
+  // Large arrays are checked on every core: still the first offender is named.
+  Mesh big = ok;
+  big.positions.resize(3 * 400000, 0.5f);
+  for (size_t t = 0; t < 300000; ++t) big.triangles.insert(big.triangles.end(), {0, 1, 2});
+  CHECK_NOTHROW(meshsal::validate_mesh(big));
+  m = big;
+  m.positions[3 * 350000 + 1] = std::numeric_limits<float>::quiet_NaN();
+  m.positions[3 * 100001 + 2] = std::numeric_limits<float>::infinity();
+  CHECK_THROWS_WITH(meshsal::validate_mesh(m), Catch::Contains("vertex 100001 has a non-finite"));
+  m = big;
+  m.triangles[3 * 290000] = 400000;
+  m.triangles[3 * 123456 + 2] = 400007;
+  CHECK_THROWS_WITH(meshsal::validate_mesh(m), Catch::Contains("triangle 123456 uses vertex index 400007"));
 }

@@ -130,6 +130,21 @@ TEST_CASE("precision: a mesh beyond float precision is named as such, not blamed
   const uint32_t far_vertex = uint32_t(m.vertex_count() - 1);
   m.triangles.insert(m.triangles.end(), {m.triangles[1], m.triangles[0], far_vertex});
   CHECK(precision_warning(m).find("(vertex " + std::to_string(far_vertex) + " at 1e+15, 0, 0;") != std::string::npos);
+  {
+    // Two vertices as far, in different threads' shares of a large mesh: the first is named,
+    // as a serial scan names it.
+    Mesh big = m;
+    big.positions.resize(3 * 700000, 0.0f);
+    const uint32_t early = 300000, late = 650000;
+    big.positions[3 * late + 1] = -1e15f;
+    big.positions[3 * early + 2] = 1e15f;
+    big.triangles.insert(big.triangles.end(), {big.triangles[0], late, early});
+    const std::string named = precision_warning(big);
+    INFO(named);
+    CHECK(named.find("(vertex " + std::to_string(far_vertex) + " at 1e+15") != std::string::npos);
+    big.positions[3 * far_vertex] = 1e14f;
+    CHECK(precision_warning(big).find("(vertex " + std::to_string(early) + " at 0, 0, 1e+15") != std::string::npos);
+  }
   SimplifyOptions opt;
   opt.target_faces = 10;
   const SimplifyReport rep = simplify_mesh(m, opt).report;
