@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 
 #include "core/mesh_points.h"
 #include "core/model_frame.h"
@@ -46,25 +47,30 @@ std::vector<double> model_positions(const Mesh& mesh) {
 
 bool positions_need_double(const Mesh& mesh) {
   if (mesh.double_positions) return true;
+  // Cheap exits: at the origin with no source, model coordinates are the floats themselves.
+  if (mesh.source_positions.empty() && mesh.origin[0] == 0 && mesh.origin[1] == 0 && mesh.origin[2] == 0)
+    return false;
+  // The largest move float makes of a model coordinate; none (a float file's sources) needs
+  // no tolerance, so the mesh points' box is only taken when something moved.
+  double largest = 0;
+  std::mutex lock;
+  parallel_for(mesh.vertex_count(), 0, 1 << 16, [&](size_t begin, size_t end) {
+    double mine = 0;
+    for (size_t v = begin; v < end; ++v) {
+      double p[3];
+      model_position(mesh, v, p);
+      for (int k = 0; k < 3; ++k) mine = std::max(mine, std::fabs(double(float(p[k])) - p[k]));  // NaN skipped
+    }
+    std::lock_guard<std::mutex> hold(lock);
+    largest = std::max(largest, mine);
+  });
+  if (!(largest > 0)) return false;
   const std::vector<uint8_t> used = referenced_mask(mesh.triangles.data(), mesh.triangles.size(), mesh.vertex_count());
   const BoundingBox box = bounding_box(mesh.positions.data(), mesh.vertex_count(), used.data());
   double d2 = 0;
   for (int k = 0; k < 3; ++k)
     if (box.min[k] <= box.max[k]) d2 += (box.max[k] - box.min[k]) * (box.max[k] - box.min[k]);
-  const double tolerance = 1e-7 * std::sqrt(d2);
-  // Cheap exits: at the origin with no source, model coordinates are the floats themselves.
-  if (mesh.source_positions.empty() && mesh.origin[0] == 0 && mesh.origin[1] == 0 && mesh.origin[2] == 0)
-    return false;
-  std::atomic<bool> moved{false};
-  parallel_for(mesh.vertex_count(), 0, 1 << 16, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end && !moved.load(std::memory_order_relaxed); ++v) {
-      double p[3];
-      model_position(mesh, v, p);
-      for (int k = 0; k < 3; ++k)
-        if (std::fabs(double(float(p[k])) - p[k]) > tolerance) moved.store(true, std::memory_order_relaxed);
-    }
-  });
-  return moved.load();
+  return largest > 1e-7 * std::sqrt(d2);
 }
 
 }  // namespace meshsal

@@ -8,10 +8,12 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <string>
 
+#include "core/parallel.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -26,6 +28,38 @@ void grow(const std::string& path, Bytes& b, size_t& capacity, size_t want) {
   if (want <= capacity) return;
   if (!b.reserve(want)) fail(path, "out of memory (" + std::to_string(want >> 20) + " MB)");
   capacity = b.capacity();
+}
+
+// A large regular file's first `size` bytes read on every core, each thread a range of its
+// own by pread (the copy out of the page cache and the faults on the fresh buffer were a
+// single core's 0.2 s for a 330 MB mesh). Returns the bytes read: `size`, or 0 when a range
+// came back short (the file shrank), and the caller's sequential loop then reads it whole.
+// Either way the descriptor's offset is left where the caller's loop goes on.
+size_t read_parallel(const std::string& path, int fd, char* data, size_t size) {
+  constexpr size_t kRange = size_t(32) << 20;
+  if (size < 2 * kRange || resolve_threads(0) == 1) return 0;
+  std::atomic<bool> short_read{false};
+  std::atomic<int> error{0};
+  parallel_for((size + kRange - 1) / kRange, 0, 1, [&](size_t r0, size_t r1) {
+    for (size_t r = r0; r < r1 && !short_read && !error; ++r) {
+      size_t at = r * kRange;
+      const size_t end = std::min(size, at + kRange);
+      while (at < end) {
+        const ssize_t n = ::pread(fd, data + at, end - at, off_t(at));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) error = errno;
+        if (n <= 0) {
+          short_read = n == 0;
+          break;
+        }
+        at += size_t(n);
+      }
+    }
+  });
+  if (error) fail(path, std::string("cannot read: ") + std::strerror(error));
+  if (short_read) return 0;
+  if (::lseek(fd, off_t(size), SEEK_SET) < 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
+  return size;
 }
 
 const char* file_kind(mode_t mode) {
@@ -102,6 +136,7 @@ Bytes read_file(const std::string& path, uint64_t max_pipe_bytes, bool regular_o
   size_t capacity = 0;
   try {
     grow(path, b, capacity, regular ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16);
+    if (regular) b.size = read_parallel(path, fd, b.data(), static_cast<size_t>(st.st_size));
     for (;;) {
       if (b.size == capacity) grow(path, b, capacity, std::min<uint64_t>(capacity * 2, cap + 1));
       ssize_t n = ::read(fd, b.data() + b.size, capacity - b.size);
