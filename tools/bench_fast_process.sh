@@ -26,9 +26,11 @@ r = subprocess.run([binary, "saliency", mesh, "-o", out, "--method", "fast", "--
                    check=True, capture_output=True, text=True)
 wall = time.time() - t
 j = json.loads(r.stdout)
+# Builds older than the peak's report (4c9c1b2, issue 41's yardstick) print none.
+peak = (f"peak {j['peak_rss'] / 2**20:6.0f} MiB = {j['peak_rss'] / j['vertices']:4.0f} B/vertex"
+        if 'peak_rss' in j else "peak not reported")
 print(f"{label:<4} {mesh.split('/')[-1]:<24} {j['vertices']:>9} vertices  wall {wall:6.2f} s  "
-      f"read {j['read_seconds']:5.2f} s  saliency {j['seconds']:6.2f} s  "
-      f"peak {j['peak_rss'] / 2**20:6.0f} MiB = {j['peak_rss'] / j['vertices']:4.0f} B/vertex", flush=True)
+      f"read {j['read_seconds']:5.2f} s  saliency {j['seconds']:6.2f} s  {peak}", flush=True)
 PY
 }
 
