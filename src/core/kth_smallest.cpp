@@ -18,7 +18,7 @@ constexpr int kBucketBits = 16;
 
 // The bits of x as an unsigned number in x's order (negatives' bits flipped, positives'
 // sign bit set): a < b exactly when key(a) < key(b), for every pair but -0 and +0 (equal
-// as numbers, so either is the value a sort puts there).
+// as numbers: a zero is returned as +0 on every path, see below).
 uint64_t order_key(double x) {
   uint64_t u;
   std::memcpy(&u, &x, sizeof u);
@@ -37,7 +37,7 @@ void select_in_place(std::vector<double>& values, const std::vector<size_t>& ks,
       std::nth_element(values.begin() + std::ptrdiff_t(from), values.begin() + std::ptrdiff_t(k), values.end());
       from = k + 1;
     }
-    out[i] = values[k];
+    out[i] = values[k] == 0 ? 0.0 : values[k];  // -0 or +0, whichever a sort leaves: +0
   }
 }
 

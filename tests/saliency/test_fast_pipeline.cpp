@@ -328,6 +328,13 @@ TEST_CASE("fast pipeline: order statistics of many values (the bucketed path) eq
   std::vector<double> same(300000, 2.5);
   CHECK(kth_smallest(same, {0, 150000, 299999}) == std::vector<double>{2.5, 2.5, 2.5});
   CHECK_THROWS_AS(kth_smallest(work, {n}), Error);
+  // Zeros of both signs: +0 on the serial path and the bucketed one alike.
+  for (const size_t count : {size_t(1000), size_t(300000)}) {
+    std::vector<double> zeros(count);
+    for (size_t i = 0; i < count; ++i) zeros[i] = i % 3 == 0 ? 1.0 : (i % 2 ? -0.0 : 0.0);
+    const std::vector<double> z = kth_smallest(zeros, {0, count / 4, count / 2});
+    for (double x : z) CHECK((x == 0 && !std::signbit(x)));
+  }
 }
 
 TEST_CASE("fast pipeline: the scale order follows the chains k, 2k", "[fast]") {
