@@ -163,6 +163,14 @@ void write_all(std::FILE* f, const void* data, size_t n, const std::string& path
   if (n && std::fwrite(data, 1, n, f) != n) fail(path, "write failed", errno ? errno : EIO);
 }
 
+void start_writeback(std::FILE* f) {
+#if defined(__linux__)
+  if (std::fflush(f) == 0) (void)::sync_file_range(::fileno(f), 0, 0, SYNC_FILE_RANGE_WRITE);
+#else
+  (void)f;
+#endif
+}
+
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& body) {
   const OutputTarget t = output_target(path);
   if (t.kind == OutputKind::Direct) return write_in_place(t, path, body);
