@@ -161,13 +161,10 @@ OutputTarget output_target(const std::string& path) {
 
 void write_all(std::FILE* f, const void* data, size_t n, const std::string& path) {
   if (n && std::fwrite(data, 1, n, f) != n) fail(path, "write failed", errno ? errno : EIO);
-}
-
-void start_writeback(std::FILE* f) {
 #if defined(__linux__)
-  if (std::fflush(f) == 0) (void)::sync_file_range(::fileno(f), 0, 0, SYNC_FILE_RANGE_WRITE);
-#else
-  (void)f;
+  // Errors are left to the final flush and fsync, which check every step.
+  if (n >= (size_t(1) << 20) && std::fflush(f) == 0)
+    (void)::sync_file_range(::fileno(f), 0, 0, SYNC_FILE_RANGE_WRITE);
 #endif
 }
 

@@ -38,12 +38,10 @@ OutputTarget output_target(const std::string& path);
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& body);
 
 // Writes n bytes to f; throws Error "PATH: write failed: REASON" when fewer went out.
+// A write of 1 MiB or more also asks the system to start putting what f holds so far on the
+// disk (Linux: sync_file_range; nothing where unsupported, a pipe), so that the fsync before
+// the rename waits for less: 169 ms -> 1.3 ms for a 387 MB PLY written in chunks.
 void write_all(std::FILE* f, const void* data, size_t n, const std::string& path);
-
-// Asks the system to start putting what f holds so far on the disk (Linux: sync_file_range),
-// so that the fsync before the rename waits for less; nothing where that is not supported
-// (a pipe, another system). Large writers call it between chunks.
-void start_writeback(std::FILE* f);
 
 // Removes the temporaries that writers killed mid-write (kill -9, a power cut) left in
 // `folder`: regular files of this user named BASE.tmp.XXXXXX (X: mkstemp's letters and

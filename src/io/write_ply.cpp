@@ -57,7 +57,6 @@ void write_records(std::FILE* f, const std::string& path, size_t count, size_t p
     }
     try {
       write_all(f, ready.data(), ready.size(), path);
-      start_writeback(f);
     } catch (...) {
       if (formatting.valid()) formatting.wait();
       throw;
