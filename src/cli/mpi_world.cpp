@@ -2,6 +2,8 @@
 // build without it compiles this file into the one-process answers.
 #include "mpi_world.h"
 
+#include "core/parallel.h"
+
 #include <algorithm>
 #include <thread>
 #include <climits>
@@ -102,6 +104,8 @@ void mpi_start(int* argc, char*** argv) {
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, w.rank, MPI_INFO_NULL, &node);
   MPI_Comm_size(node, &w.local_size);
   MPI_Comm_free(&node);
+  // What "all cores" means for this rank's helpers too, not only its requests' threads.
+  set_process_threads(mpi_default_threads());
 #else
   (void)argc;
   (void)argv;

@@ -12,8 +12,15 @@
 
 namespace meshsal {
 
+namespace {
+std::atomic<unsigned> process_threads{0};
+}  // namespace
+
+void set_process_threads(unsigned threads) { process_threads.store(threads); }
+
 unsigned resolve_threads(unsigned requested) {
   if (requested > 0) return std::min(requested, kMaxThreads);
+  if (const unsigned share = process_threads.load(); share > 0) return std::min(share, kMaxThreads);
   unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? std::min(hw, kMaxThreads) : 1;
 }

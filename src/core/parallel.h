@@ -9,8 +9,15 @@ namespace meshsal {
 // The most threads a request gets: more only costs memory and can exhaust a process limit.
 constexpr unsigned kMaxThreads = 1024;
 
-// Number of worker threads for a request: 0 means all hardware threads; capped at kMaxThreads.
+// Number of worker threads for a request: 0 means all hardware threads (or this process's
+// share of them, below); capped at kMaxThreads.
 unsigned resolve_threads(unsigned requested);
+
+// The threads 0 stands for in this process from now on: a share of the cores where several
+// processes share them (the command line under mpirun: the cores / the ranks on the
+// machine), so that helpers called with 0 (the loader, masks, boxes) do not oversubscribe.
+// 0 = all hardware threads again.
+void set_process_threads(unsigned threads);
 
 // Calls body(begin, end) on disjoint chunks covering [0, n), from `threads` threads
 // (0 = all cores). Chunks are handed out dynamically so uneven work balances.

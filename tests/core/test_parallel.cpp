@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <set>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "core/parallel.h"
@@ -41,6 +43,29 @@ TEST_CASE("parallel_for runs on fewer threads when starting one fails", "[parall
     for (auto& h : hits) once += h.load() == 1;
     CHECK(once == hits.size());
   }
+}
+
+TEST_CASE("parallel_for: a process's share of the cores is what 0 threads means", "[parallel]") {
+  // Process-wide: restored whatever the checks say.
+  struct Restore {
+    ~Restore() { set_process_threads(0); }
+  } restore;
+  const unsigned all = resolve_threads(0);
+  set_process_threads(3);
+  CHECK(resolve_threads(0) == 3);
+  CHECK(resolve_threads(5) == 5);  // an explicit count is kept
+  std::mutex lock;
+  std::set<std::thread::id> seen;
+  parallel_for(1 << 12, 0, 1, [&](size_t, size_t) {
+    std::this_thread::sleep_for(std::chrono::microseconds(20));
+    std::lock_guard<std::mutex> hold(lock);
+    seen.insert(std::this_thread::get_id());
+  });
+  CHECK(seen.size() <= 3);
+  set_process_threads(1);
+  CHECK(resolve_threads(0) == 1);
+  set_process_threads(0);
+  CHECK(resolve_threads(0) == all);
 }
 
 TEST_CASE("parallel_for caps the thread count and rethrows the body's exception", "[parallel]") {
