@@ -50,7 +50,6 @@ struct PlyStream::Layout {
 };
 
 namespace {
-constexpr uint64_t kTriangleRecord = 13;  // a 1-byte count and three 4-byte indices
 
 // The faces' common layout: the corner list alone, a 1-byte count, 4-byte integer indices
 // (read_faces parses it from its read-ahead; a file of such triangles reads in ranges).
@@ -189,7 +188,7 @@ void PlyStream::find_ranges() {
     if (e == L.face) {
       if (!common_face_layout(el)) return;
       L.face_start = at;
-      if (__builtin_mul_overflow(el.count, kTriangleRecord, &part) || __builtin_add_overflow(at, part, &at)) return;
+      if (__builtin_mul_overflow(el.count, kPlyTriangleBytes, &part) || __builtin_add_overflow(at, part, &at)) return;
       continue;
     }
     if (!fixed_size(el, bytes)) return;
@@ -230,7 +229,7 @@ void PlyStream::seek_vertex(uint64_t first) {
 void PlyStream::seek_face(uint64_t first) {
   Layout& L = *layout_;
   if (first > faces_) throw Error("internal: a face beyond the file's");
-  seek(L.face_start + first * kTriangleRecord);
+  seek(L.face_start + first * kPlyTriangleBytes);
   L.next = L.face;
   vertices_read_ = vertices_;
   faces_read_ = first;

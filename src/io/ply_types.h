@@ -1,6 +1,8 @@
 // meshsal: PLY's scalar types, shared by the loader (load_ply.cpp) and the out-of-core
-// stream (ply_stream.cpp): their sizes, their names in a header, a binary value as double.
+// stream (ply_stream.cpp): their sizes, their names in a header, a binary value as double;
+// and the binary records the writers put (write_ply.cpp, the out-of-core outputs).
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -63,6 +65,25 @@ inline double read_value(const char* p, PlyType t) {
 inline double read_value(const void* p, PlyType t, bool swap) {
   const char* c = static_cast<const char*>(p);
   return swap ? read_value<true>(c, t) : read_value<false>(c, t);
+}
+
+// The little-endian bytes of a 4- or 8-byte value written at `out`, which steps past them.
+template <typename T>
+inline void put_le(char*& out, T value) {
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values only");
+  std::memcpy(out, &value, sizeof(T));
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+  std::reverse(out, out + sizeof(T));
+#endif
+  out += sizeof(T);
+}
+
+// A triangle's record in a binary PLY of "property list uchar int vertex_indices": the
+// corner count (1 byte) and the three indices as int32.
+constexpr size_t kPlyTriangleBytes = 13;
+inline void put_ply_triangle(char*& out, const uint32_t corner[3]) {
+  *out++ = 3;
+  for (int k = 0; k < 3; ++k) put_le(out, static_cast<int32_t>(corner[k]));
 }
 
 }  // namespace meshsal

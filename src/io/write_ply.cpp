@@ -16,21 +16,11 @@
 #include "core/model_frame.h"
 #include "io/atomic_write.h"
 #include "io/mesh_io_internal.h"
+#include "io/ply_types.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
 namespace {
-
-// Writes the little-endian bytes of a 4- or 8-byte value at `out` and steps past them.
-template <typename T>
-void put_le(char*& out, T value) {
-  static_assert(sizeof(T) == 4 || sizeof(T) == 8, "4- or 8-byte values only");
-  std::memcpy(out, &value, sizeof(T));
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-  std::reverse(out, out + sizeof(T));
-#endif
-  out += sizeof(T);
-}
 
 // PLY keeps colours as bytes: these channels are written as uchar (rounded, clamped).
 bool is_colour_channel(const std::string& name) {
@@ -144,12 +134,9 @@ void write_ply(const std::string& path, const Mesh& mesh,
       }
     });
     write_records(f, path, mesh.triangle_count(), kRecordsPerChunk, [&](size_t begin, size_t end, std::vector<char>& buf) {
-      buf.resize((end - begin) * 13);
+      buf.resize((end - begin) * kPlyTriangleBytes);
       char* out = buf.data();
-      for (size_t t = 3 * begin; t < 3 * end; t += 3) {
-        *out++ = 3;
-        for (int k = 0; k < 3; ++k) put_le(out, static_cast<int32_t>(mesh.triangles[t + k]));
-      }
+      for (size_t t = begin; t < end; ++t) put_ply_triangle(out, &mesh.triangles[3 * t]);
     });
   });
 }

@@ -13,6 +13,7 @@
 #include "io/atomic_write.h"
 #include "io/colormap.h"
 #include "io/output_check.h"
+#include "io/ply_types.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "tiles/tile_bytes.h"
@@ -74,43 +75,29 @@ void write_saliency_output(const std::string& output, const TileStore& store, co
       parallel_for(count, threads, 1 << 14, [&](size_t lo, size_t hi) {
         for (size_t v = lo; v < hi; ++v) {
           char* out = &buf[v * vertex_bytes];
-          auto put = [&](const void* p, size_t n) { std::memcpy(out, p, n), out += n; };
           for (int a = 0; a < 3; ++a) {
-            if (wide) put(&xyz[3 * v + a], 8);
-            else {
-              const float x = float(xyz[3 * v + a]);
-              put(&x, 4);
-            }
+            if (wide) put_le(out, xyz[3 * v + a]);
+            else put_le(out, float(xyz[3 * v + a]));
           }
-          const float q = float(values[v * width]);
-          put(&q, 4);
+          put_le(out, float(values[v * width]));
           if (ooc.dump_scales)
-            for (size_t k = 0; k < 1 + scales; ++k) {
-              const float x = float(values[v * width + 2 + k]);
-              put(&x, 4);
-            }
+            for (size_t k = 0; k < 1 + scales; ++k) put_le(out, float(values[v * width + 2 + k]));
           uint8_t rgb[3];
           colormap_rgb(point[v] ? colour_position(values[v * width], limits) : 0.0, rgb);
-          put(rgb, 3);
+          std::memcpy(out, rgb, 3);
         }
       });
       write_all(f, buf.data(), buf.size(), output);
     }
-    constexpr size_t kFaces = 1 << 18, kFaceBytes = 13;
+    constexpr size_t kFaces = 1 << 18;
     std::vector<uint32_t> tri(3 * kFaces);
     for (uint64_t first = 0; first < store.triangles; first += kFaces) {
       const size_t count = size_t(std::min<uint64_t>(kFaces, store.triangles - first));
       read_triangles(store, first, count, tri.data());
-      buf.resize(count * kFaceBytes);
+      buf.resize(count * kPlyTriangleBytes);
       parallel_for(count, threads, 1 << 14, [&](size_t lo, size_t hi) {
-        for (size_t i = lo; i < hi; ++i) {
-          char* out = &buf[i * kFaceBytes];
-          out[0] = 3;
-          for (int k = 0; k < 3; ++k) {
-            const int32_t x = int32_t(tri[3 * i + k]);
-            std::memcpy(out + 1 + 4 * k, &x, 4);
-          }
-        }
+        char* out = &buf[lo * kPlyTriangleBytes];
+        for (size_t i = lo; i < hi; ++i) put_ply_triangle(out, &tri[3 * i]);
       });
       write_all(f, buf.data(), buf.size(), output);
     }
