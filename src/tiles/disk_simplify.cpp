@@ -8,7 +8,6 @@
 #include <atomic>
 #include <thread>
 #include <optional>
-#include <set>
 
 #include "core/cancel.h"
 #include "core/id_ranks.h"
@@ -60,7 +59,7 @@ class Buckets {
       : mesh_(mesh), pass_(pass), flush_at_(std::max<size_t>(kChunk, buffer_bytes / sizeof(BucketFace))),
         rank_(rank) {}
   ~Buckets() {  // this process's files (every process is past reading them: share_totals)
-    for (const uint64_t cell : written_) std::remove(path(cell, rank_).c_str());
+    for (const auto& cell : mine_) std::remove(path(cell.first, rank_).c_str());  // (a cell not yet flushed: no file)
   }
   // Every process's cells to every process, once each has filled its share.
   void share(TileExchange* exchange) {
@@ -86,7 +85,6 @@ class Buckets {
       ScratchWriter out(path(cell, rank_), true);
       out.write_vector(faces);
       out.close();
-      written_.insert(cell);
     }
     pending_.clear();
     count_ = 0;
@@ -127,7 +125,6 @@ class Buckets {
   int rank_;
   std::map<uint64_t, std::vector<BucketFace>> pending_;
   std::map<uint64_t, uint64_t> mine_;  // this process's cells and their own triangles
-  std::set<uint64_t> written_;         // this process's files
   std::map<uint64_t, Cell> cells_;     // every process's, once shared
 };
 
@@ -265,15 +262,17 @@ namespace {
 bool selected(const DiskPass& pass, const uint32_t* c) { return !pass.selected_near || pass.selected_near->any(c); }
 
 // Each selected triangle of [begin, end) to its group's bucket; each that may be a guard to
-// the bucket of every cell its corners lie in.
-void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets, uint64_t begin, uint64_t end) {
+// the bucket of every cell its corners lie in. Returns how many the pass did not select.
+uint64_t fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets, uint64_t begin, uint64_t end) {
   CornerStates states;
+  uint64_t rest = 0;
   for_each_chunk(mesh, [&](uint64_t first, const std::vector<uint32_t>& t) {
     throw_if_cancelled();
     states.read(mesh, t.data(), t.size());
     for (size_t i = 0; i < t.size(); i += 3) {
       const uint32_t* c = &t[i];
       const bool mine = selected(pass, c);
+      rest += mine ? 0 : 1;
       if (!mine && pass.guard_near && !pass.guard_near->any(c)) continue;
       const BucketFace face{uint32_t(first + i / 3), {c[0], c[1], c[2]}, 0};
       const float* p[3] = {states.position(i), states.position(i + 1), states.position(i + 2)};
@@ -291,6 +290,7 @@ void fill_buckets(const DiskMesh& mesh, const DiskPass& pass, Buckets& buckets, 
     }
   }, begin, end);
   buckets.flush();
+  return rest;
 }
 
 // The weights of a piece's vertices (empty without weights).
@@ -303,7 +303,6 @@ std::vector<double> piece_weights(const DiskMesh& mesh, const TilePiece& tile) {
   return w;
 }
 
-// Reports a pass's progress from the groups' workers: `done` groups of `count` so far.
 // Reports a pass's progress as its groups finish: this process's `count` groups, told from
 // the calling thread only (the progress callback's promise), whichever worker finished.
 class GroupProgress {
@@ -433,9 +432,9 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   const int rank = exchange ? exchange->rank() : 0, ranks = exchange ? exchange->ranks() : 1;
   Buckets buckets(mesh, ++mesh.passes, buffer_bytes, rank);
   const uint64_t n = mesh.triangle_count;
-  all_step(exchange, [&] {
-    fill_buckets(mesh, pass, buckets, n * uint64_t(rank) / uint64_t(ranks), n * uint64_t(rank + 1) / uint64_t(ranks));
-  });
+  const uint64_t n0 = n * uint64_t(rank) / uint64_t(ranks), n1 = n * uint64_t(rank + 1) / uint64_t(ranks);
+  uint64_t my_rest = 0;  // this process's share of the triangles the pass did not select
+  all_step(exchange, [&] { my_rest = fill_buckets(mesh, pass, buckets, n0, n1); });
   buckets.share(exchange);
   std::vector<size_t> sizes;
   const std::vector<uint64_t> groups = buckets.groups(sizes);
@@ -485,14 +484,6 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   share_group_values(exchange, out_faces);
   std::vector<uint64_t> at(groups.size() + 1, 0);
   for (size_t g = 0; g < groups.size(); ++g) at[g + 1] = at[g] + out_faces[g];
-  const uint64_t n0 = n * uint64_t(rank) / uint64_t(ranks), n1 = n * uint64_t(rank + 1) / uint64_t(ranks);
-  uint64_t my_rest = 0;  // this process's share of the triangles the pass did not select
-  all_step(exchange, [&] {
-    if (pass.selected_near)
-      for_each_chunk(mesh, [&](uint64_t, const std::vector<uint32_t>& t) {
-        for (size_t i = 0; i < t.size(); i += 3) my_rest += selected(pass, &t[i]) ? 0 : 1;
-      }, n0, n1);
-  });
   std::vector<uint64_t> rest;  // every process's, in rank order
   {
     TileBytes b;

@@ -211,7 +211,8 @@ PointBits read_input(TileStore& store, const std::string& input_path, int conver
 // triangle): its vertices into its range of xyz, its faces into its range of tri.u32;
 // then the point bits of its vertices, every rank's faces' corners joined (each rank's bits
 // through a file of their own). The files exist (rank 0 made them).
-PointBits read_input_range(TileStore& store, const std::string& input_path, Share& share, const Progress& report) {
+PointBits read_input_range(TileStore& store, const std::string& input_path, int converted_wide, Share& share,
+                           const Progress& report) {
   std::unique_ptr<PlyStream> opened;  // (opened on every rank: one that cannot must not strand the others)
   all_step(share.exchange, [&] {
     opened = std::make_unique<PlyStream>(store.input);
@@ -224,6 +225,7 @@ PointBits read_input_range(TileStore& store, const std::string& input_path, Shar
   PlyStream& ply = *opened;
   share.split(store.vertices, store.triangles);
   store.xyz_float = ply.positions_fit_float();
+  store.double_positions = converted_wide >= 0 ? converted_wide == 1 : ply.double_positions();
   PointBits referenced((store.vertices + 63) / 64, 0);
   all_step(share.exchange, [&] {
     ply.seek_vertex(share.v0);
@@ -464,10 +466,11 @@ void fill_buckets(TileStore& store, const std::string& input_path, uint64_t memo
 }
 
 // The passes after the input is in place (store.input): one rank's (the whole file read
-// front to back when `ranged` is false) or every rank's share of a file read in ranges.
+// front to back, without an exchange) or every rank's share of a file read in ranges.
 void build_passes(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
                   uint64_t memory_limit, unsigned min_tiles, const Progress& report, StoreUse use,
-                  int converted_wide, Share share, bool ranged) {
+                  int converted_wide, Share share) {
+  const bool ranged = share.exchange != nullptr;
   // Pass C holds a block of vertices (12 bytes each as floats) in a quarter of the limit.
   store.block = memory_limit ? std::max<size_t>(kChunk, size_t((memory_limit / 4) / 16)) : SIZE_MAX;
   // Ranks in threads leave pass C to rank 0 (below): one block, buckets in face order.
@@ -477,8 +480,7 @@ void build_passes(TileStore& store, const std::string& input_path, const Salienc
   {
     PointBits points;
     if (ranged) {
-      points = read_input_range(store, input_path, share, report);
-      store.double_positions = converted_wide >= 0 ? converted_wide == 1 : PlyStream(store.input).double_positions();
+      points = read_input_range(store, input_path, converted_wide, share, report);
     } else {
       points = read_input(store, input_path, converted_wide, report);
       share.split(store.vertices, store.triangles);
@@ -532,8 +534,7 @@ void build_store_passes(TileStore& store, const std::string& input_path, const S
   Share share;
   if (exchange) share.exchange = exchange, share.rank = exchange->rank(), share.ranks = exchange->ranks();
   share.parts = std::max(1u, memory_parts);
-  build_passes(store, input_path, options, memory_limit, min_tiles, report, use, converted_wide, share,
-               exchange != nullptr);
+  build_passes(store, input_path, options, memory_limit, min_tiles, report, use, converted_wide, share);
 }
 
 void build_tile_store(TileStore& store, const std::string& input_path, const SaliencyOptions& options,
