@@ -101,12 +101,7 @@ class Buckets {
     const auto it = cells_.find(cell);
     if (it == cells_.end()) return {};
     std::vector<BucketFace> faces;
-    for (const int r : it->second.writers) {
-      const std::vector<uint8_t> bytes = read_scratch_file(path(cell, r));
-      const size_t at = faces.size(), n = bytes.size() / sizeof(BucketFace);
-      faces.resize(at + n);
-      if (n) std::memcpy(faces.data() + at, bytes.data(), n * sizeof(BucketFace));
-    }
+    for (const int r : it->second.writers) append_scratch_records(path(cell, r), faces);
     return faces;
   }
 
@@ -373,10 +368,8 @@ std::vector<size_t> group_goals(const DiskMesh& mesh, const DiskPass& pass, cons
   std::vector<uint64_t> goals(groups.size(), 0);
   lead_step(options.exchange, [&] {
     const std::vector<size_t> found = pass_goals(pass.budget, own_faces, goal_sum, count, [&](size_t g) {
-      const std::vector<uint8_t> bytes = read_scratch_file(levels_file(g));
-      std::vector<double> levels(bytes.size() / 8);
-      // (A group with no collapse has an empty file: memcpy's pointers would be null.)
-      if (!levels.empty()) std::memcpy(levels.data(), bytes.data(), bytes.size());
+      std::vector<double> levels;  // (a group with no collapse: an empty file)
+      append_scratch_records(levels_file(g), levels);
       return levels;
     });
     goals.assign(found.begin(), found.end());
@@ -519,9 +512,8 @@ void run_disk_pass(DiskMesh& mesh, const DiskPass& pass, const SimplifyOptions& 
   // triangles in place.
   lead_step(exchange, [&] {
     for (size_t g = 0; g < groups.size(); ++g) {
-      const std::vector<uint8_t> bytes = read_scratch_file(freed_file(g));
-      std::vector<uint32_t> ids(bytes.size() / 4);
-      if (!ids.empty()) std::memcpy(ids.data(), bytes.data(), ids.size() * 4);
+      std::vector<uint32_t> ids;
+      append_scratch_records(freed_file(g), ids);
       for (uint32_t id : ids) pending.clear(id);
       std::remove(freed_file(g).c_str());
     }

@@ -4,6 +4,7 @@
 // plain binary readers and writers with every failure named.
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -73,6 +74,15 @@ class ScratchReader {
 
 // The whole file (a tile's spilled state).
 std::vector<uint8_t> read_scratch_file(const std::string& path);
+
+// The whole file's records of type T appended to `into` (a bucket's faces, a group's ids).
+template <class T>
+void append_scratch_records(const std::string& path, std::vector<T>& into) {
+  const std::vector<uint8_t> bytes = read_scratch_file(path);
+  const size_t n = bytes.size() / sizeof(T), at = into.size();
+  into.resize(at + n);
+  if (n) std::memcpy(into.data() + at, bytes.data(), n * sizeof(T));  // (empty: no pointers to copy)
+}
 
 // Values at sorted, distinct indices of a file of fixed-size records (the positions file):
 // read in windows of nearby records, so a tile's vertices cost few reads; a long list in

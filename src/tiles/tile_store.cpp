@@ -553,10 +553,7 @@ TileSource store_tile_source(const TileStore& store) {
       const std::string path = store.dir.file(bucket_name(u, r));
       struct stat st;
       if (::stat(path.c_str(), &st) != 0) continue;  // no triangle there
-      const std::vector<uint8_t> bytes = read_scratch_file(path);
-      const size_t n = bytes.size() / sizeof(TileFace), at = into.size();
-      into.resize(at + n);
-      if (n) std::memcpy(into.data() + at, bytes.data(), n * sizeof(TileFace));
+      append_scratch_records(path, into);
     }
   };
   source.positions = [&store](const std::vector<uint32_t>& sorted, std::vector<float>& xyz) {
