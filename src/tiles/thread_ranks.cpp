@@ -15,6 +15,9 @@ namespace meshsal {
 
 namespace {
 
+// What the ranks left waiting are told; run_thread_ranks passes on the failure behind it.
+constexpr const char* kOtherRankFailed = "another rank of this process failed";
+
 struct Shared {
   std::mutex m;
   std::condition_variable cv;
@@ -22,6 +25,12 @@ struct Shared {
   uint64_t round = 0;
   bool broken = false;  // a rank ended by an exception: no collective can complete
   std::vector<std::vector<uint8_t>> slots, result;
+  // No collective can complete any more: every rank waiting in one is woken to fail.
+  void break_all() {
+    const std::lock_guard<std::mutex> lock(m);
+    broken = true;
+    cv.notify_all();
+  }
 };
 
 class ThreadRank final : public TileExchange {
@@ -40,7 +49,7 @@ class ThreadRank final : public TileExchange {
   // Every rank's bytes to every rank (root -1) or to `root` alone.
   std::vector<std::vector<uint8_t>> exchange(const std::vector<uint8_t>& mine, int root) {
     std::unique_lock<std::mutex> lock(s_.m);
-    if (s_.broken) throw Error("another rank of this process failed");
+    if (s_.broken) throw Error(kOtherRankFailed);
     const uint64_t round = s_.round;
     s_.slots[size_t(rank_)] = mine;
     if (++s_.arrived == s_.ranks) {
@@ -51,7 +60,7 @@ class ThreadRank final : public TileExchange {
       s_.cv.notify_all();
     } else {
       s_.cv.wait(lock, [&] { return s_.round != round || s_.broken; });
-      if (s_.round == round) throw Error("another rank of this process failed");
+      if (s_.round == round) throw Error(kOtherRankFailed);
     }
     if (root >= 0 && root != rank_) return {};
     return s_.result;
@@ -75,9 +84,7 @@ void run_thread_ranks(int ranks, const std::function<void(TileExchange&)>& body)
       body(ex);
     } catch (...) {
       failed[size_t(rank)] = std::current_exception();
-      const std::lock_guard<std::mutex> lock(shared.m);
-      shared.broken = true;
-      shared.cv.notify_all();
+      shared.break_all();
     }
   };
   const std::atomic<bool>* cancel = current_cancel_flag();  // polled on every rank's thread too
@@ -88,11 +95,7 @@ void run_thread_ranks(int ranks, const std::function<void(TileExchange&)>& body)
         run(rank);
       });
   } catch (const std::system_error&) {  // no thread to be had: the ranks started cannot finish
-    {
-      const std::lock_guard<std::mutex> lock(shared.m);
-      shared.broken = true;
-      shared.cv.notify_all();
-    }
+    shared.break_all();
     for (auto& t : threads) t.join();
     throw Error("cannot start a thread for each of " + std::to_string(ranks) + " ranks");
   }
@@ -105,7 +108,7 @@ void run_thread_ranks(int ranks, const std::function<void(TileExchange&)>& body)
     try {
       std::rethrow_exception(e);
     } catch (const Error& err) {
-      if (std::string(err.what()) == "another rank of this process failed") {
+      if (std::string(err.what()) == kOtherRankFailed) {
         if (!first) first = e;
         continue;
       }
