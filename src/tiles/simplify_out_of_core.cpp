@@ -22,6 +22,7 @@
 #include "core/timer.h"
 #include "io/atomic_write.h"
 #include "io/output_check.h"
+#include "io/ply_types.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 #include "simplify/saliency_weights.h"
@@ -171,22 +172,20 @@ void write_output(const std::string& output, const TileStore& store, const DiskM
       put(p + 3, 4 * nattr);
       if (buf.size() >= (1 << 20)) write_all(f, buf.data(), buf.size(), output), buf.clear();
     });
+    write_all(f, buf.data(), buf.size(), output);  // the last vertices
     ScratchReader in(mesh.triangles);
     std::vector<uint32_t> t(3 * kBlock);
     uint64_t done = 0;
     for (size_t got; (got = in.read(t.data(), t.size() * 4) / 12) > 0; done += got) {
       if (progress) progress(0.5 + 0.5 * double(done) / double(std::max<uint64_t>(1, mesh.triangle_count)));
+      buf.resize(got * kPlyTriangleBytes);
+      char* out = buf.data();
       for (size_t i = 0; i < got; ++i) {
-        buf.push_back(3);
-        for (int k = 0; k < 3; ++k) {
-          const int32_t x = int32_t(index_of(t[3 * i + k]));
-          put(&x, 4);
-        }
+        const uint32_t corner[3] = {index_of(t[3 * i]), index_of(t[3 * i + 1]), index_of(t[3 * i + 2])};
+        put_ply_triangle(out, corner);
       }
       write_all(f, buf.data(), buf.size(), output);
-      buf.clear();
     }
-    write_all(f, buf.data(), buf.size(), output);
   });
   report.output_vertices = size_t(nv);
   report.output_faces = size_t(mesh.triangle_count);
