@@ -5,7 +5,7 @@
 // its lanes, 0 = the library's default).
 // Per mesh: the exact method in each layout (shared rows: a lane per point; subgroup: a
 // subgroup per point) and precision (mixed, double), then the fast method with the host
-// seconds of each of its phases. Times are the fastest of the repeats, after one run that
+// seconds and host waits (submissions the host waited for) of each of its phases. Times are the fastest of the repeats, after one run that
 // compiles the pipelines. Default mesh: ../shared/data/meshes/igea_134k.ply.gz.
 #include <cstdio>
 #include <cstdlib>
@@ -36,13 +36,13 @@ double total(const SaliencyResult& r) {
 
 // The fastest of `repeat` runs (the context keeps its compiled pipelines between them).
 SaliencyResult best_of(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions& o, int repeat,
-                       std::vector<std::pair<std::string, double>>* phases) {
+                       std::vector<vk::Context::FastPhase>* phases) {
   SaliencyResult best;
   for (int i = 0; i < repeat; ++i) {
     SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
     if (i == 0 || total(r) < total(best)) {
       best = std::move(r);
-      if (phases) *phases = ctx.fast_phase_seconds;
+      if (phases) *phases = ctx.fast_phases;
     }
   }
   return best;
@@ -110,14 +110,18 @@ int main(int argc, char** argv) {
       if (!fast) continue;
       o.method = Method::Fast;
       compute_saliency_gpu(ctx, mesh, o);
-      std::vector<std::pair<std::string, double>> phases;
+      std::vector<vk::Context::FastPhase> phases;
       const SaliencyResult r = best_of(ctx, mesh, o, repeat, &phases);
       std::printf("%-26s fast: curvature %.3fs upload %.3fs sweep %.3fs suppression %.3fs download %.3fs total %.3fs\n",
                   name.c_str(), stage(r, "curvature"), stage(r, "upload"), stage(r, "gaussian sweep"),
                   stage(r, "suppression"), stage(r, "download"), total(r));
       std::printf("%-26s fast sweep's phases:", name.c_str());
-      for (const auto& [phase, s] : phases) std::printf(" %s %.3fs;", phase.c_str(), s);
-      std::printf("\n");
+      uint64_t waits = 0;
+      for (const auto& p : phases) {
+        std::printf(" %s %.3fs (%llu waits);", p.name.c_str(), p.seconds, (unsigned long long)p.waits);
+        waits += p.waits;
+      }
+      std::printf(" %llu host waits in all\n", (unsigned long long)waits);
       std::fflush(stdout);
     }
   } catch (const Error& e) {

@@ -82,13 +82,19 @@ vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
   return b;
 }
 
-// Adds a phase's seconds to ctx.fast_phase_seconds and restarts the clock.
-void phase(vk::Context& ctx, const char* name, Timer& t) {
-  auto& list = ctx.fast_phase_seconds;
-  auto it = std::find_if(list.begin(), list.end(), [&](const auto& p) { return p.first == name; });
-  if (it == list.end()) it = list.insert(list.end(), {name, 0.0});
-  it->second += t.seconds();
-  t.restart();
+// Adds a phase's seconds and host waits to ctx.fast_phases and restarts the clock.
+struct PhaseClock {
+  Timer t;
+  uint64_t waits;
+};
+void phase(vk::Context& ctx, const char* name, PhaseClock& c) {
+  auto& list = ctx.fast_phases;
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& p) { return p.name == name; });
+  if (it == list.end()) it = list.insert(list.end(), {name, 0.0, 0});
+  it->seconds += c.t.seconds();
+  it->waits += ctx.host_waits - c.waits;
+  c.t.restart();
+  c.waits = ctx.host_waits;
 }
 
 // Everything one sigma needs besides the aggregates.
@@ -104,7 +110,7 @@ uint64_t filter_one_sigma(vk::Context& ctx, const vk::Buffer& pos, const FastInp
                           const SaliencyOptions& options, const char* stage) {
   const double s = job.sigma;
   const FastFilterParams params;
-  Timer clock;
+  PhaseClock clock{Timer(), ctx.host_waits};
   const FastGrid grid = plan_fast_grid(job.extent, usable_cell(box, s / params.cells_per_sigma));
   FastCells fc = aggregate_cells(ctx, in, job.nv, job.np, grid, box.min);
   phase(ctx, "cells", clock);
@@ -238,8 +244,8 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   if (bad)
     throw Error("internal: a GPU fast filter plan of " + std::to_string(nsig) + " sigmas and " +
                 std::to_string(nout) + " outputs");
-  ctx.fast_phase_seconds.clear();
-  Timer clock;
+  ctx.fast_phases.clear();
+  PhaseClock clock{Timer(), ctx.host_waits};
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = box.max[a] - box.min[a];
   vk::Buffer pos32 = upload_float_positions(ctx, mesh);
@@ -256,7 +262,7 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   for (uint32_t k = 0; k < nsig; ++k)
     pairs += filter_one_sigma(ctx, pos, in, box, {plan.sigmas[k], k, nsig, nv, np, extent}, g[k],
                               options, stage);
-  clock.restart();
+  clock = {Timer(), ctx.host_waits};
 
   auto& k_cs = vk::cached_kernel<shader::FastCenterSurround>(ctx, spv_fast_center_surround_comp, sizeof spv_fast_center_surround_comp, "fast_center_surround");
   vk::DescriptorPool pool(ctx, nout, 4 * nout);

@@ -153,6 +153,7 @@ void submit(Context& ctx, const char* what, const std::function<void(VkCommandBu
     si.pCommandBuffers = &cmd;
     check(vkQueueSubmit(ctx.queue, 1, &si, fence), (std::string("submitting ") + what).c_str());
     uint64_t timeout_ns = static_cast<uint64_t>(ctx.fence_timeout_s * 1e9);
+    ++ctx.host_waits;
     VkResult r = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, timeout_ns);
     if (r == VK_TIMEOUT) {
       // The work may still be running: keep what it uses until the context goes.

@@ -117,9 +117,17 @@ class Context {
   double submission_target_s = 0.15;
   uint64_t sweep_slices = 0;     // submissions of the last sweep
   double sweep_longest_s = 0;    // and the longest of them (host time, waits included)
-  // Host seconds of each phase of the last fast filter (gpu_fast.h), summed over its
-  // sigmas, in the order first seen: where its time goes (tools/bench_gpu_sweep.cpp).
-  std::vector<std::pair<std::string, double>> fast_phase_seconds;
+  // Submissions the host waited for (vk::submit, staged copies included): each is a
+  // round trip the device idles through. The fast filter's phases count theirs.
+  uint64_t host_waits = 0;
+  // Each phase of the last fast filter (gpu_fast.h), summed over its sigmas, in the order
+  // first seen: its host seconds and host waits (tools/bench_gpu_sweep.cpp prints them).
+  struct FastPhase {
+    std::string name;
+    double seconds = 0;
+    uint64_t waits = 0;
+  };
+  std::vector<FastPhase> fast_phases;
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only once the destructor has seen their fences signal.
