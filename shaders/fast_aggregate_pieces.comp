@@ -10,10 +10,12 @@ layout(std430, binding = 1) readonly buffer Pos32 { vec4 pos32[]; };  // input c
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };  // sorted slot -> vertex
 layout(std430, binding = 3) readonly buffer PieceStart { uint piece_start[]; };
 layout(std430, binding = 4) writeonly buffer PieceSum { dvec4 piece_sum[]; };
-layout(push_constant) uniform Push { uint base; uint n; } pc;  // n = pieces
+layout(std430, binding = 5) readonly buffer Counts { uint counts[]; };
+// n: the pieces' bound the dispatch covers; their count is counts[count_slot] (fast_pieces.comp).
+layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;
 void main() {
   uint p = pc.base + gl_GlobalInvocationID.x;
-  if (p >= pc.n) return;
+  if (p >= pc.n || p >= counts[pc.count_slot]) return;
   dvec4 s = dvec4(0.0LF);
   const uint b = piece_start[p], e = piece_start[p + 1u];
   for (uint i = b; i < e; ++i) {

@@ -10,10 +10,12 @@ layout(std430, binding = 1) readonly buffer CellCount { double cell_count[]; };
 layout(std430, binding = 2) readonly buffer GroupStart { uint group_start[]; };
 layout(std430, binding = 3) readonly buffer GroupCell { uint group_cell[]; };
 layout(std430, binding = 4) writeonly buffer GroupPos { dvec4 group_pos[]; };  // centroid - min
-layout(push_constant) uniform Push { uint base; uint n; } pc;  // n = groups
+layout(std430, binding = 5) readonly buffer Counts { uint counts[]; };
+// n: the groups' bound the dispatch covers; their count is counts[count_slot] (run_starts.comp).
+layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;
 void main() {
   const uint g = pc.base + gl_GlobalInvocationID.x;
-  if (g >= pc.n) return;
+  if (g >= pc.n || g >= counts[pc.count_slot]) return;
   precise dvec3 q = dvec3(0.0LF);
   precise double n = 0.0LF;
   for (uint i = group_start[g]; i < group_start[g + 1u]; ++i) {

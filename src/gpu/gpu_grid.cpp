@@ -36,32 +36,40 @@ uint64_t gpu_grid_scratch_bytes(uint64_t nv, uint64_t cells) {
   return gpu::RadixSort::bytes(nv) + cells * 4;
 }
 
+GridBuilder::GridBuilder(vk::Context& ctx, vk::DescriptorPool& pool, const GridArrays& a, uint32_t n,
+                         uint64_t max_cells)
+    : n_(n), cell_count_(ctx, size_t(max_cells) * 4, "the grid cell counts"),
+      sort_(ctx, pool, n, max_cells, "the grid's") {  // keys run up to the cells (not a point)
+  *a.starts = vk::Buffer(ctx, size_t(max_cells + 1) * 4, "the grid cell starts");
+  k_key_ = &vk::cached_kernel<gpu::shader::GridKey>(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, "grid_key");
+  k_gather_ = &vk::cached_kernel<gpu::shader::GridGather>(ctx, spv_grid_gather_comp, sizeof spv_grid_gather_comp, "grid_gather");
+  k_scan_ = &gpu::scan_kernel(ctx);
+  s_key_ = pool.bind(*k_key_, {a.pos, a.flags, &cell_count_, &sort_.keys_in()});
+  s_scan_ = pool.bind(*k_scan_, {&cell_count_, a.starts});
+  s_gather_ = pool.bind(*k_gather_, {a.pos, &sort_.order(), a.sorted_pos, a.sorted_vertex});
+}
+
+void GridBuilder::record(vk::Context& ctx, VkCommandBuffer cmd, const GridPlan& g, uint32_t gather) {
+  const uint32_t cells = static_cast<uint32_t>(g.cells());
+  vkCmdFillBuffer(cmd, cell_count_.handle(), 0, VkDeviceSize(cells) * 4, 0);
+  vk::barrier(cmd);
+  GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
+  vk::dispatch(ctx, cmd, *k_key_, s_key_, &kp, 0, n_, kLocal);
+  vk::barrier(cmd);
+  gpu::record_scan(cmd, *k_scan_, s_scan_, cells);
+  sort_.record(ctx, cmd);
+  RangePush gp{0, 0};
+  vk::dispatch(ctx, cmd, *k_gather_, s_gather_, &gp, 0, gather, kLocal);
+  vk::barrier(cmd);
+}
+
 GridPlan build_gpu_grid(vk::Context& ctx, const GridArrays& a, uint32_t nv, uint32_t np,
                         const double extent[3], double cell, std::vector<uint32_t>* starts_out) {
   GridPlan g = plan_grid(extent, cell, np, ctx.properties.limits.maxStorageBufferRange / 4 - 1);
   const uint32_t cells = static_cast<uint32_t>(g.cells());
-  vk::Buffer cell_count(ctx, size_t(cells) * 4, "the grid cell counts");
-  *a.starts = vk::Buffer(ctx, size_t(cells + 1) * 4, "the grid cell starts");
-  auto& k_key = vk::cached_kernel<gpu::shader::GridKey>(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, "grid_key");
-  auto& k_gather = vk::cached_kernel<gpu::shader::GridGather>(ctx, spv_grid_gather_comp, sizeof spv_grid_gather_comp, "grid_gather");
-  const vk::Kernel& k_scan = gpu::scan_kernel(ctx);
-  vk::DescriptorPool pool(ctx, 8, 32);
-  gpu::RadixSort sort(ctx, pool, nv, cells, "the grid's");  // keys run up to `cells` (not a point)
-  VkDescriptorSet s_key = pool.bind(k_key, {a.pos, a.flags, &cell_count, &sort.keys_in()});
-  VkDescriptorSet s_scan = pool.bind(k_scan, {&cell_count, a.starts});
-  VkDescriptorSet s_gather = pool.bind(k_gather, {a.pos, &sort.order(), a.sorted_pos, a.sorted_vertex});
-
-  vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) {
-    vkCmdFillBuffer(cmd, cell_count.handle(), 0, VK_WHOLE_SIZE, 0);
-    vk::barrier(cmd);
-    GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
-    vk::dispatch(ctx, cmd, k_key, s_key, &kp, 0, nv, kLocal);
-    vk::barrier(cmd);
-    gpu::record_scan(cmd, k_scan, s_scan, cells);
-    sort.record(ctx, cmd);
-    RangePush gp{0, 0};
-    vk::dispatch(ctx, cmd, k_gather, s_gather, &gp, 0, np, kLocal);
-  });
+  vk::DescriptorPool pool(ctx, GridBuilder::kSets, GridBuilder::kBuffers);
+  GridBuilder build(ctx, pool, a, nv, cells);
+  vk::submit(ctx, "grid", [&](VkCommandBuffer cmd) { build.record(ctx, cmd, g, np); });
   starts_out->resize(size_t(cells) + 1);
   a.starts->download(starts_out->data(), starts_out->size() * 4);
   if ((*starts_out)[cells] != np)

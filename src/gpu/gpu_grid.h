@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "meshsal/meshsal.h"
+#include "gpu/gpu_radix_sort.h"
 #include "gpu/vk_buffer.h"
+#include "gpu/vk_compute.h"
 #include "gpu/vk_context.h"
 
 namespace meshsal {
@@ -31,6 +33,27 @@ struct GridArrays {
   vk::Buffer* starts = nullptr;
   vk::Buffer* sorted_pos = nullptr;
   vk::Buffer* sorted_vertex = nullptr;
+};
+
+// The build's scratch and pipelines, made once for builds over n items (those flagged are the
+// points) on grids of at most max_cells cells; it makes a.starts (max_cells + 1). The fast
+// filter builds a grid per sigma with one.
+class GridBuilder {
+ public:
+  GridBuilder(vk::Context& ctx, vk::DescriptorPool& pool, const GridArrays& a, uint32_t n, uint64_t max_cells);
+  // Records the build of plan g (g.cells() <= max_cells) into cmd: a.starts over its cells,
+  // the first `gather` sorted items (the points, or a bound of them) into a.sorted_pos and
+  // a.sorted_vertex. Ends with a barrier.
+  void record(vk::Context& ctx, VkCommandBuffer cmd, const GridPlan& g, uint32_t gather);
+  static constexpr uint32_t kSets = gpu::RadixSort::kSets + 3;
+  static constexpr uint32_t kBuffers = gpu::RadixSort::kBuffers + 10;
+
+ private:
+  uint32_t n_;
+  vk::Buffer cell_count_;
+  gpu::RadixSort sort_;
+  const vk::Kernel *k_key_, *k_gather_, *k_scan_;
+  VkDescriptorSet s_key_, s_scan_, s_gather_;
 };
 
 // Builds the grid of cells >= `cell` over nv vertices of which np are mesh points, and

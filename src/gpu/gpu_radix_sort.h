@@ -18,7 +18,8 @@ vk::Kernel& scan_kernel(vk::Context& ctx);
 
 class RadixSort {
  public:
-  // Room for `n` keys up to `largest_key`; buffer names start with `what` ("the grid's").
+  // Room for `n` keys up to `largest_key` (which sets the passes: a sort made once for
+  // several key ranges takes the largest); buffer names start with `what` ("the grid's").
   // The caller fills keys_in() on the device, then records record() after a barrier.
   RadixSort(vk::Context& ctx, vk::DescriptorPool& pool, uint32_t n, uint64_t largest_key,
             const std::string& what);
@@ -27,6 +28,7 @@ class RadixSort {
   void record(vk::Context& ctx, VkCommandBuffer cmd) const;
   vk::Buffer& sorted_keys() { return key_[passes_ % 2]; }
   vk::Buffer& order() { return value_[passes_ % 2]; }  // vertex ids in key order
+  static constexpr uint32_t kSets = 5, kBuffers = 18;  // what the constructor takes from the pool
   // Device bytes the sort of n keys holds (keys, values, digit counts and offsets).
   static uint64_t bytes(uint64_t n);
 

@@ -17,7 +17,13 @@ struct NearTiePush { uint32_t base, n, nmaps; };
 struct RadixPush { uint32_t base, n, items, shift, first; };
 struct GridKeyPush { uint32_t base, n, nx, ny, nz, pad; double h; };
 struct CellKeyPush { uint32_t base, n, nx, ny, nz, pad; double cell; };
-struct CellsPush { uint32_t base, n, pad0, pad1; double minx, miny, minz; };  // fast_aggregate_cells.comp
+struct CellsPush { uint32_t base, n, count_slot, pad1; double minx, miny, minz; };  // fast_aggregate_cells.comp
+// A dispatch over a bound n whose items' count the device wrote to counts[count_slot].
+struct CountedPush { uint32_t base, n, count_slot; };
+struct RunPush { uint32_t base, n, count_slot, total_slot, flags; };  // run_heads/run_starts.comp
+struct PiecesPush { uint32_t base, n, mode, piece, pieces_slot; };     // fast_pieces.comp
+struct GroupKeyPush { uint32_t base, n, cells_slot, factor, dx, dy, gx, gy, gz; };
+struct BoundPush { uint32_t base, n, nx, ny, nz, r, mode, most_slot; };  // fast_candidate_bound.comp
 struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };       // sorted_float.comp
 struct QueryPush {
   uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
@@ -64,12 +70,15 @@ struct Interface {
 
 // One line per shaders/NAME.comp (the test lists the same names).
 using ExposureTest = Interface<ExposurePush, 8>;
-using FastAggregateCells = Interface<CellsPush, 5>;
-using FastAggregatePieces = Interface<RangePush, 5>;
+using FastAggregateCells = Interface<CellsPush, 7>;
+using FastAggregatePieces = Interface<CountedPush, 6>;
+using FastCandidateBound = Interface<BoundPush, 4>;
 using FastCellKey = Interface<CellKeyPush, 3>;
 using FastCenterSurround = Interface<CenterSurroundPush, 4>;
 using FastFinish = Interface<FinishPush, 8>;
-using FastGroupCentroids = Interface<RangePush, 5>;
+using FastGroupCentroids = Interface<CountedPush, 6>;
+using FastGroupKey = Interface<GroupKeyPush, 3>;
+using FastPieces = Interface<PiecesPush, 8>;
 using FastQuery = Interface<QueryPush, 8>;
 using FinalSum = Interface<ScalesPush, 5>;
 using Fp64Rate = Interface<Fp64RatePush, 1>;
@@ -84,6 +93,8 @@ using MapMax = Interface<GroupsPush, 3>;
 using MapMaxFinal = Interface<GroupsPush, 2>;
 using Mbar = Interface<GroupsPush, 3>;
 using NearTie = Interface<NearTiePush, 6>;
+using RunHeads = Interface<RunPush, 3>;
+using RunStarts = Interface<RunPush, 7>;
 using Selftest = Interface<SelftestPush, 2>;
 using SortedFloat = Interface<OriginPush, 2>;
 using Sweep8 = Interface<SweepPush, 6>;

@@ -93,6 +93,24 @@ Buffer::Buffer(Context& ctx, size_t bytes, const std::string& what) : ctx_(&ctx)
   }
 }
 
+Buffer Buffer::host_visible(Context& ctx, size_t bytes, const std::string& what) {
+  Buffer b;
+  b.ctx_ = &ctx;
+  b.size_ = (std::max<size_t>(bytes, 16) + 15) & ~size_t(15);
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  // Cached where the device has it: the host reads these.
+  Allocation a = allocate_buffer(ctx, b.size_, usage, {host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, host},
+                                 true, what);
+  b.buffer_ = a.buffer;
+  b.memory_ = a.memory;
+  b.mapped_ = a.mapped;
+  return b;
+}
+
 Buffer::~Buffer() { release(); }
 
 void Buffer::release() {

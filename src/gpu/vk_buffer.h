@@ -18,6 +18,10 @@ class Buffer {
   // A device-local storage buffer of `bytes` (rounded up to 16; zero is allowed).
   // Throws Error naming `what` when it exceeds maxStorageBufferRange or memory runs out.
   Buffer(Context& ctx, size_t bytes, const std::string& what);
+  // A small storage buffer in host memory, mapped on every device: the shaders write it
+  // (across the bus on a discrete GPU) and the host reads it after the submission without
+  // a copy, e.g. the counts the fast filter reads once per sigma.
+  static Buffer host_visible(Context& ctx, size_t bytes, const std::string& what);
   ~Buffer();
   Buffer(Buffer&& o) noexcept;
   Buffer& operator=(Buffer&& o) noexcept;

@@ -128,6 +128,10 @@ class Context {
     uint64_t waits = 0;
   };
   std::vector<FastPhase> fast_phases;
+  // The fast filter submits its phases separately, so that each one's seconds are its own
+  // (the bench sets it); otherwise a sigma's finish and the next one's preparation ride on
+  // its last submission of queries.
+  bool fast_phase_timing = false;
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only once the destructor has seen their fences signal.

@@ -25,10 +25,13 @@
 #include "exposure_test_comp.h"
 #include "fast_aggregate_cells_comp.h"
 #include "fast_aggregate_pieces_comp.h"
+#include "fast_candidate_bound_comp.h"
 #include "fast_cell_key_comp.h"
 #include "fast_center_surround_comp.h"
 #include "fast_finish_comp.h"
 #include "fast_group_centroids_comp.h"
+#include "fast_group_key_comp.h"
+#include "fast_pieces_comp.h"
 #include "fast_query_comp.h"
 #include "final_sum_comp.h"
 #include "fp64_rate_comp.h"
@@ -43,6 +46,8 @@
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
 #include "near_tie_comp.h"
+#include "run_heads_comp.h"
+#include "run_starts_comp.h"
 #include "selftest_comp.h"
 #include "sorted_float_comp.h"
 #include "sweep8_comp.h"
@@ -216,8 +221,28 @@ template <> std::vector<Member> members_of<CellKeyPush>() {
           MEMBER(CellKeyPush, nz), MEMBER(CellKeyPush, pad), MEMBER(CellKeyPush, cell)};
 }
 template <> std::vector<Member> members_of<CellsPush>() {
-  return {MEMBER(CellsPush, base), MEMBER(CellsPush, n), MEMBER(CellsPush, pad0), MEMBER(CellsPush, pad1),
+  return {MEMBER(CellsPush, base), MEMBER(CellsPush, n), MEMBER(CellsPush, count_slot), MEMBER(CellsPush, pad1),
           MEMBER(CellsPush, minx), MEMBER(CellsPush, miny), MEMBER(CellsPush, minz)};
+}
+template <> std::vector<Member> members_of<CountedPush>() {
+  return {MEMBER(CountedPush, base), MEMBER(CountedPush, n), MEMBER(CountedPush, count_slot)};
+}
+template <> std::vector<Member> members_of<RunPush>() {
+  return {MEMBER(RunPush, base), MEMBER(RunPush, n), MEMBER(RunPush, count_slot), MEMBER(RunPush, total_slot),
+          MEMBER(RunPush, flags)};
+}
+template <> std::vector<Member> members_of<PiecesPush>() {
+  return {MEMBER(PiecesPush, base), MEMBER(PiecesPush, n), MEMBER(PiecesPush, mode), MEMBER(PiecesPush, piece),
+          MEMBER(PiecesPush, pieces_slot)};
+}
+template <> std::vector<Member> members_of<GroupKeyPush>() {
+  return {MEMBER(GroupKeyPush, base), MEMBER(GroupKeyPush, n), MEMBER(GroupKeyPush, cells_slot),
+          MEMBER(GroupKeyPush, factor), MEMBER(GroupKeyPush, dx), MEMBER(GroupKeyPush, dy),
+          MEMBER(GroupKeyPush, gx), MEMBER(GroupKeyPush, gy), MEMBER(GroupKeyPush, gz)};
+}
+template <> std::vector<Member> members_of<BoundPush>() {
+  return {MEMBER(BoundPush, base), MEMBER(BoundPush, n), MEMBER(BoundPush, nx), MEMBER(BoundPush, ny),
+          MEMBER(BoundPush, nz), MEMBER(BoundPush, r), MEMBER(BoundPush, mode), MEMBER(BoundPush, most_slot)};
 }
 template <> std::vector<Member> members_of<OriginPush>() {
   return {MEMBER(OriginPush, base), MEMBER(OriginPush, n), MEMBER(OriginPush, pad0), MEMBER(OriginPush, pad1),
@@ -285,8 +310,10 @@ std::vector<Case> all_cases() {
   return {
       SHADER(ExposureTest, exposure_test),
       SHADER(FastAggregateCells, fast_aggregate_cells), SHADER(FastAggregatePieces, fast_aggregate_pieces),
+      SHADER(FastCandidateBound, fast_candidate_bound),
       SHADER(FastCellKey, fast_cell_key),               SHADER(FastCenterSurround, fast_center_surround),
       SHADER(FastFinish, fast_finish),                  SHADER(FastGroupCentroids, fast_group_centroids),
+      SHADER(FastGroupKey, fast_group_key),             SHADER(FastPieces, fast_pieces),
       SHADER(FastQuery, fast_query),                    SHADER(FinalSum, final_sum),
       SHADER(Fp64Rate, fp64_rate),                      SHADER(GlobalIndex, global_index),
       SHADER(GridGather, grid_gather),                  SHADER(GridKey, grid_key),
@@ -294,6 +321,7 @@ std::vector<Case> all_cases() {
       SHADER(GridScan, grid_scan),                      SHADER(LocalMax, local_max),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
+      SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
       SHADER(Selftest, selftest),                       SHADER(SortedFloat, sorted_float),
       SHADER(Sweep8, sweep8),                           SHADER(Sweep8List, sweep8_list),
       SHADER(Sweep8Mixed, sweep8_mixed),                SHADER(Sweep8Rows, sweep8_rows),
