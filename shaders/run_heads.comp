@@ -4,7 +4,7 @@
 // head[i] = 1 where a run starts (i == 0 or key[i] != key[i-1]), 0 elsewhere and past the
 // keys' count, which is read from counts[count_slot] (written by an earlier step of the same
 // submission, so the host never reads it back), or is n when count_slot is ~0. A scan of
-// the heads (grid_scan.comp) numbers the runs; run_starts.comp writes where each begins.
+// the heads (scan_blocks.comp, gpu_scan.h) numbers the runs; run_starts.comp writes where each begins.
 #version 450
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Key { uint key[]; };

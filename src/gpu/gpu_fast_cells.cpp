@@ -69,7 +69,7 @@ uint64_t fast_cells_bytes(uint64_t nv, uint64_t np) {
   const uint64_t pieces = np + np / kFastPiece + 2;  // at most
   // pieces: start, cell, sum; cells: key, first, piece, centroid, count, flag; slots:
   // heads and scans of the cells and the pieces
-  return sort + pieces * (4 + 4 + 32) + np * (4 + 4 + 4 + 32 + 8 + 4) + np * 16;
+  return sort + pieces * (4 + 4 + 32) + np * (4 + 4 + 4 + 32 + 8 + 4) + np * 16 + 2 * Scan::bytes(np);
 }
 
 namespace {
@@ -99,16 +99,15 @@ FastCells::FastCells(vk::Context& ctx, vk::DescriptorPool& pool, const FastInput
       piece_head_(ctx, size_t(np) * 4, "the fast method's piece heads"),
       piece_scan_(ctx, size_t(np + 1) * 4, "the fast method's piece scan"),
       piece_sum_(ctx, max_pieces(np, piece) * 32, "the fast method's piece sums"),
-      runs_(ctx, pool, {&sort_.sorted_keys(), &counts, &head_, &scan_, &cell_first, &cell_key}) {
+      runs_(ctx, pool, {&sort_.sorted_keys(), &counts, &head_, &scan_, &cell_first, &cell_key}, np),
+      piece_scan_step_(ctx, pool, piece_head_, piece_scan_, np) {
   k_key_ = &vk::cached_kernel<shader::FastCellKey>(ctx, spv_fast_cell_key_comp, sizeof spv_fast_cell_key_comp, "fast_cell_key");
   k_pieces_ = &vk::cached_kernel<shader::FastPieces>(ctx, spv_fast_pieces_comp, sizeof spv_fast_pieces_comp, "fast_pieces");
-  k_scan_ = &scan_kernel(ctx);
   k_sum_pieces_ = &vk::cached_kernel<shader::FastAggregatePieces>(ctx, spv_fast_aggregate_pieces_comp, sizeof spv_fast_aggregate_pieces_comp, "fast_aggregate_pieces");
   k_sum_cells_ = &vk::cached_kernel<shader::FastAggregateCells>(ctx, spv_fast_aggregate_cells_comp, sizeof spv_fast_aggregate_cells_comp, "fast_aggregate_cells");
   s_key_ = pool.bind(*k_key_, {in.pos, in.flags, &sort_.keys_in()});
   s_pieces_ = pool.bind(*k_pieces_, {&scan_, &cell_first, &piece_head_, &piece_scan_, &piece_start,
                                      &piece_cell, &cell_piece, &counts});
-  s_piece_scan_ = pool.bind(*k_scan_, {&piece_head_, &piece_scan_});
   s_sum_pieces_ = pool.bind(*k_sum_pieces_, {in.pos, in.pos32, &sort_.order(), &piece_start, &piece_sum_, &counts});
   s_sum_cells_ = pool.bind(*k_sum_cells_, {&piece_sum_, &piece_start, &cell_piece, &cell_pos, &cell_count,
                                            &counts, &is_cell});
@@ -125,8 +124,7 @@ void FastCells::record(vk::Context& ctx, VkCommandBuffer cmd, const FastGrid& g,
   PiecesPush pp{0, 0, 0, piece_, kCountPieces};
   vk::dispatch(ctx, cmd, *k_pieces_, s_pieces_, &pp, 0, np_, kLocal);
   vk::barrier(cmd);
-  record_scan(cmd, *k_scan_, s_piece_scan_, np_);
-  vk::barrier(cmd);
+  piece_scan_step_.record(ctx, cmd, np_);
   pp.mode = 1;
   vk::dispatch(ctx, cmd, *k_pieces_, s_pieces_, &pp, 0, np_, kLocal);
   vk::barrier(cmd);

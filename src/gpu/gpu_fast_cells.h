@@ -73,8 +73,8 @@ class FastCells {
   // the arrays below hold this sigma's cells and counts[kCountCells], [kCountPieces] theirs.
   void record(vk::Context& ctx, VkCommandBuffer cmd, const FastGrid& grid, const double box_min[3]);
   // The descriptor sets and buffers the constructor takes from its pool.
-  static constexpr uint32_t kSets = RadixSort::kSets + RunFinder::kSets + 5;
-  static constexpr uint32_t kBuffers = RadixSort::kBuffers + RunFinder::kBuffers + 30;
+  static constexpr uint32_t kSets = RadixSort::kSets + RunFinder::kSets + Scan::kSets + 4;
+  static constexpr uint32_t kBuffers = RadixSort::kBuffers + RunFinder::kBuffers + Scan::kBuffers + 24;
 
   uint32_t np() const { return np_; }
   vk::Buffer& order() { return sort_.order(); }  // sorted slot -> vertex (mesh points first)
@@ -94,8 +94,9 @@ class FastCells {
   RadixSort sort_;
   vk::Buffer head_, scan_, piece_head_, piece_scan_, piece_sum_;
   RunFinder runs_;
-  const vk::Kernel *k_key_, *k_pieces_, *k_scan_, *k_sum_pieces_, *k_sum_cells_;
-  VkDescriptorSet s_key_, s_pieces_, s_piece_scan_, s_sum_pieces_, s_sum_cells_;
+  Scan piece_scan_step_;
+  const vk::Kernel *k_key_, *k_pieces_, *k_sum_pieces_, *k_sum_cells_;
+  VkDescriptorSet s_key_, s_pieces_, s_sum_pieces_, s_sum_cells_;
 };
 
 // Device bytes FastCells holds for nv vertices, np of them mesh points.

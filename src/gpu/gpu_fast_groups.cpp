@@ -18,7 +18,7 @@ using shader::GroupKeyPush;
 
 uint64_t fast_groups_bytes(uint64_t np) {
   // the sort, heads and scan, group starts, each cell's group, the centroids
-  return RadixSort::bytes(np) + np * 8 + np * 4 + np * 4 + np * 32 + 16;
+  return RadixSort::bytes(np) + np * 8 + np * 4 + np * 4 + np * 32 + 16 + Scan::bytes(np);
 }
 
 FastGroups::FastGroups(vk::Context& ctx, vk::DescriptorPool& pool, FastCells& cells, vk::Buffer& counts,
@@ -32,7 +32,7 @@ FastGroups::FastGroups(vk::Context& ctx, vk::DescriptorPool& pool, FastCells& ce
       head_(ctx, size_t(cells.np()) * 4, "the query groups' run heads"),
       scan_(ctx, size_t(cells.np() + 1) * 4, "the query groups' run scan"),
       runs_(ctx, pool, {&sort_.sorted_keys(), &counts, &head_, &scan_, &group_start, nullptr, &sort_.order(),
-                        &cell_group}) {
+                        &cell_group}, cells.np()) {
   if (factor < 1) throw Error("internal: query groups need a factor of at least 1");
   k_key_ = &vk::cached_kernel<shader::FastGroupKey>(ctx, spv_fast_group_key_comp, sizeof spv_fast_group_key_comp, "fast_group_key");
   k_centroids_ = &vk::cached_kernel<shader::FastGroupCentroids>(ctx, spv_fast_group_centroids_comp, sizeof spv_fast_group_centroids_comp, "fast_group_centroids");

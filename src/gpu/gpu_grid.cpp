@@ -33,19 +33,23 @@ GridPlan plan_grid(const double extent[3], double min_cell, uint64_t points, uin
 }
 
 uint64_t gpu_grid_scratch_bytes(uint64_t nv, uint64_t cells) {
-  return gpu::RadixSort::bytes(nv) + cells * 4;
+  return gpu::RadixSort::bytes(nv) + cells * 4 + gpu::Scan::bytes(cells);
+}
+
+// The cell starts (max_cells + 1), made where the caller keeps them.
+vk::Buffer& made(vk::Context& ctx, vk::Buffer* starts, uint64_t max_cells) {
+  *starts = vk::Buffer(ctx, size_t(max_cells + 1) * 4, "the grid cell starts");
+  return *starts;
 }
 
 GridBuilder::GridBuilder(vk::Context& ctx, vk::DescriptorPool& pool, const GridArrays& a, uint32_t n,
                          uint64_t max_cells)
     : n_(n), cell_count_(ctx, size_t(max_cells) * 4, "the grid cell counts"),
-      sort_(ctx, pool, n, max_cells, "the grid's") {  // keys run up to the cells (not a point)
-  *a.starts = vk::Buffer(ctx, size_t(max_cells + 1) * 4, "the grid cell starts");
+      sort_(ctx, pool, n, max_cells, "the grid's"),  // keys run up to the cells (not a point)
+      scan_(ctx, pool, cell_count_, made(ctx, a.starts, max_cells), uint32_t(max_cells)) {
   k_key_ = &vk::cached_kernel<gpu::shader::GridKey>(ctx, spv_grid_key_comp, sizeof spv_grid_key_comp, "grid_key");
   k_gather_ = &vk::cached_kernel<gpu::shader::GridGather>(ctx, spv_grid_gather_comp, sizeof spv_grid_gather_comp, "grid_gather");
-  k_scan_ = &gpu::scan_kernel(ctx);
   s_key_ = pool.bind(*k_key_, {a.pos, a.flags, &cell_count_, &sort_.keys_in()});
-  s_scan_ = pool.bind(*k_scan_, {&cell_count_, a.starts});
   s_gather_ = pool.bind(*k_gather_, {a.pos, &sort_.order(), a.sorted_pos, a.sorted_vertex});
 }
 
@@ -56,7 +60,7 @@ void GridBuilder::record(vk::Context& ctx, VkCommandBuffer cmd, const GridPlan& 
   GridKeyPush kp{0, 0, g.nx, g.ny, g.nz, 0, g.h};
   vk::dispatch(ctx, cmd, *k_key_, s_key_, &kp, 0, n_, kLocal);
   vk::barrier(cmd);
-  gpu::record_scan(cmd, *k_scan_, s_scan_, cells);
+  scan_.record(ctx, cmd, cells);
   sort_.record(ctx, cmd);
   RangePush gp{0, 0};
   vk::dispatch(ctx, cmd, *k_gather_, s_gather_, &gp, 0, gather, kLocal);

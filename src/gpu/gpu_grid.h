@@ -9,6 +9,7 @@
 
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_radix_sort.h"
+#include "gpu/gpu_scan.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
 #include "gpu/vk_context.h"
@@ -45,15 +46,16 @@ class GridBuilder {
   // the first `gather` sorted items (the points, or a bound of them) into a.sorted_pos and
   // a.sorted_vertex. Ends with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd, const GridPlan& g, uint32_t gather);
-  static constexpr uint32_t kSets = gpu::RadixSort::kSets + 3;
-  static constexpr uint32_t kBuffers = gpu::RadixSort::kBuffers + 10;
+  static constexpr uint32_t kSets = gpu::RadixSort::kSets + gpu::Scan::kSets + 2;
+  static constexpr uint32_t kBuffers = gpu::RadixSort::kBuffers + gpu::Scan::kBuffers + 8;
 
  private:
   uint32_t n_;
   vk::Buffer cell_count_;
   gpu::RadixSort sort_;
-  const vk::Kernel *k_key_, *k_gather_, *k_scan_;
-  VkDescriptorSet s_key_, s_scan_, s_gather_;
+  gpu::Scan scan_;
+  const vk::Kernel *k_key_, *k_gather_;
+  VkDescriptorSet s_key_, s_gather_;
 };
 
 // Builds the grid of cells >= `cell` over nv vertices of which np are mesh points, and

@@ -6,7 +6,6 @@
 
 #include "grid_radix_count_comp.h"
 #include "grid_radix_scatter_comp.h"
-#include "grid_scan_comp.h"
 #include "gpu/shader_interfaces.h"
 
 namespace meshsal::gpu {
@@ -24,37 +23,23 @@ uint32_t radix_passes(uint64_t largest_key) {
 }
 }  // namespace
 
-vk::Kernel& scan_kernel(vk::Context& ctx) {
-  return vk::cached_kernel<shader::GridScan>(ctx, spv_grid_scan_comp, sizeof spv_grid_scan_comp, "grid_scan");
-}
-
-void record_scan(VkCommandBuffer cmd, const vk::Kernel& k, VkDescriptorSet set, uint32_t n) {
-  RangePush p{0, n};
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout, 0, 1, &set, 0, nullptr);
-  vkCmdPushConstants(cmd, k.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof p, &p);
-  vkCmdDispatch(cmd, 1, 1, 1);
-}
-
 uint64_t RadixSort::bytes(uint64_t n) {
   const uint64_t tiles = (n + kRadixTile - 1) / kRadixTile;
-  return n * 16 + (2 * 256 * tiles + 1) * 4;  // keys and values twice, digit counts and offsets
+  // keys and values twice, digit counts and offsets, the scan's blocks
+  return n * 16 + (2 * 256 * tiles + 1) * 4 + Scan::bytes(256 * tiles);
 }
 
 RadixSort::RadixSort(vk::Context& ctx, vk::DescriptorPool& pool, uint32_t n, uint64_t largest_key,
                      const std::string& what)
-    : n_(n), tiles_((n + kRadixTile - 1) / kRadixTile), digits_(256 * tiles_), passes_(radix_passes(largest_key)) {
-  key_[0] = vk::Buffer(ctx, size_t(n) * 4, what + " cell keys");
-  key_[1] = vk::Buffer(ctx, size_t(n) * 4, what + " sorted cell keys");
-  value_[0] = vk::Buffer(ctx, size_t(n) * 4, what + " sorted vertices");
-  value_[1] = vk::Buffer(ctx, size_t(n) * 4, what + " sorted vertices");
-  counts_ = vk::Buffer(ctx, size_t(digits_) * 4, "the radix digit counts");
-  offsets_ = vk::Buffer(ctx, size_t(digits_ + 1) * 4, "the radix digit offsets");
+    : n_(n), tiles_((n + kRadixTile - 1) / kRadixTile), digits_(256 * tiles_), passes_(radix_passes(largest_key)),
+      key_{vk::Buffer(ctx, size_t(n) * 4, what + " cell keys"), vk::Buffer(ctx, size_t(n) * 4, what + " sorted cell keys")},
+      value_{vk::Buffer(ctx, size_t(n) * 4, what + " sorted vertices"), vk::Buffer(ctx, size_t(n) * 4, what + " sorted vertices")},
+      counts_(ctx, size_t(digits_) * 4, "the radix digit counts"),
+      offsets_(ctx, size_t(digits_ + 1) * 4, "the radix digit offsets"),
+      scan_(ctx, pool, counts_, offsets_, digits_) {
   const std::vector<int32_t> tile{int32_t(kRadixTile)};
   count_ = &vk::cached_kernel<shader::GridRadixCount>(ctx, spv_grid_radix_count_comp, sizeof spv_grid_radix_count_comp, "grid_radix_count", tile);
   scatter_ = &vk::cached_kernel<shader::GridRadixScatter>(ctx, spv_grid_radix_scatter_comp, sizeof spv_grid_radix_scatter_comp, "grid_radix_scatter", tile);
-  scan_ = &scan_kernel(ctx);
-  s_digits_ = pool.bind(*scan_, {&counts_, &offsets_});
   for (int i = 0; i < 2; ++i) {  // pass p reads array p % 2 and writes the other
     s_count_[i] = pool.bind(*count_, {&key_[i], &counts_});
     s_scatter_[i] = pool.bind(*scatter_, {&key_[i], &value_[i], &offsets_, &key_[1 - i], &value_[1 - i]});
@@ -66,8 +51,7 @@ void RadixSort::record(vk::Context& ctx, VkCommandBuffer cmd) const {
     RadixPush rp{0, 0, n_, 8 * p, p == 0};
     vk::dispatch(ctx, cmd, *count_, s_count_[p % 2], &rp, 0, tiles_, kLocal);
     vk::barrier(cmd);
-    record_scan(cmd, *scan_, s_digits_, digits_);
-    vk::barrier(cmd);
+    scan_.record(ctx, cmd, digits_);
     vk::dispatch(ctx, cmd, *scatter_, s_scatter_[p % 2], &rp, 0, tiles_, kLocal);
     vk::barrier(cmd);
   }

@@ -1,20 +1,16 @@
 // meshsal: the GPU radix sort of vertices by 32-bit keys that the grid build (gpu_grid.cpp)
 // and the fast method's cell sort (gpu_fast_cells.cpp) share: 8 bits a pass, each pass a
 // count per tile, one scan of the digit counts and a stable scatter (grid_radix_count.comp,
-// grid_scan.comp, grid_radix_scatter.comp); the first pass writes the vertex ids as values.
+// gpu_scan.h, grid_radix_scatter.comp); the first pass writes the vertex ids as values.
 // The CPU twin is the counting sort of the cells in saliency/spatial_grid.cpp.
 #pragma once
 #include <cstdint>
 #include <string>
 
+#include "gpu/gpu_scan.h"
 #include "gpu/vk_compute.h"
 
 namespace meshsal::gpu {
-
-// One work group scans set's first buffer count[0, n) into its second, start[0, n]
-// (exclusive, start[n] = total): grid_scan.comp, bound as `scan_kernel(ctx)` gives it.
-void record_scan(VkCommandBuffer cmd, const vk::Kernel& scan, VkDescriptorSet set, uint32_t n);
-vk::Kernel& scan_kernel(vk::Context& ctx);
 
 class RadixSort {
  public:
@@ -28,17 +24,17 @@ class RadixSort {
   void record(vk::Context& ctx, VkCommandBuffer cmd) const;
   vk::Buffer& sorted_keys() { return key_[passes_ % 2]; }
   vk::Buffer& order() { return value_[passes_ % 2]; }  // vertex ids in key order
-  static constexpr uint32_t kSets = 5, kBuffers = 18;  // what the constructor takes from the pool
+  static constexpr uint32_t kSets = 4 + Scan::kSets, kBuffers = 14 + Scan::kBuffers;  // what the constructor takes from the pool
   // Device bytes the sort of n keys holds (keys, values, digit counts and offsets).
   static uint64_t bytes(uint64_t n);
 
  private:
   uint32_t n_ = 0, tiles_ = 0, digits_ = 0, passes_ = 0;
   vk::Buffer key_[2], value_[2], counts_, offsets_;
+  Scan scan_;
   const vk::Kernel* count_ = nullptr;
-  const vk::Kernel* scan_ = nullptr;
   const vk::Kernel* scatter_ = nullptr;
-  VkDescriptorSet s_digits_ = VK_NULL_HANDLE, s_count_[2] = {}, s_scatter_[2] = {};
+  VkDescriptorSet s_count_[2] = {}, s_scatter_[2] = {};
 };
 
 }  // namespace meshsal::gpu

@@ -1,7 +1,6 @@
 // meshsal: the runs of a sorted key array on the device (gpu_runs.h).
 #include "gpu/gpu_runs.h"
 
-#include "gpu/gpu_radix_sort.h"
 #include "gpu/shader_interfaces.h"
 
 #include "run_heads_comp.h"
@@ -14,12 +13,11 @@ constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
 using shader::RunPush;
 }  // namespace
 
-RunFinder::RunFinder(vk::Context& ctx, vk::DescriptorPool& pool, const RunArrays& a)
-    : heads_(&vk::cached_kernel<shader::RunHeads>(ctx, spv_run_heads_comp, sizeof spv_run_heads_comp, "run_heads")),
-      scan_(&scan_kernel(ctx)),
+RunFinder::RunFinder(vk::Context& ctx, vk::DescriptorPool& pool, const RunArrays& a, uint32_t max_n)
+    : scan_(ctx, pool, *a.head, *a.scan, max_n),
+      heads_(&vk::cached_kernel<shader::RunHeads>(ctx, spv_run_heads_comp, sizeof spv_run_heads_comp, "run_heads")),
       starts_(&vk::cached_kernel<shader::RunStarts>(ctx, spv_run_starts_comp, sizeof spv_run_starts_comp, "run_starts")) {
   s_heads_ = pool.bind(*heads_, {a.keys, a.counts, a.head});
-  s_scan_ = pool.bind(*scan_, {a.head, a.scan});
   // Buffers a use does not write are bound to ones it has (never touched: the flags say so).
   s_starts_ = pool.bind(*starts_, {a.keys, a.scan, a.counts, a.run_first, a.run_key ? a.run_key : a.head,
                                    a.value ? a.value : a.keys, a.item_run ? a.item_run : a.head});
@@ -30,8 +28,7 @@ void RunFinder::record(vk::Context& ctx, VkCommandBuffer cmd, uint32_t n, uint32
   RunPush p{0, 0, count_slot, total_slot, flags};
   vk::dispatch(ctx, cmd, *heads_, s_heads_, &p, 0, n, kLocal);
   vk::barrier(cmd);
-  record_scan(cmd, *scan_, s_scan_, n);
-  vk::barrier(cmd);
+  scan_.record(ctx, cmd, n);
   vk::dispatch(ctx, cmd, *starts_, s_starts_, &p, 0, n, kLocal);
   vk::barrier(cmd);
 }

@@ -1,12 +1,13 @@
 // meshsal: the runs of equal keys in a sorted array, found on the device (the shared step of
 // the fast method's cells and query groups): a head flag per item (run_heads.comp), their
-// exclusive scan (grid_scan.comp), and where each run starts (run_starts.comp). The keys'
+// exclusive scan (gpu_scan.h), and where each run starts (run_starts.comp). The keys'
 // count may be one an earlier step of the same submission wrote to the counts buffer, so
 // the host never reads it back. Host twins: fast_cell_runs() (gpu_fast_cells.h) and
 // close_groups() in saliency/query_groups.cpp.
 #pragma once
 #include <cstdint>
 
+#include "gpu/gpu_scan.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
 
@@ -29,16 +30,18 @@ constexpr uint32_t kCountIsN = 0xffffffffu;      // count_slot: all n keys count
 
 class RunFinder {
  public:
-  RunFinder(vk::Context& ctx, vk::DescriptorPool& pool, const RunArrays& a);
+  // For arrays of up to max_n keys.
+  RunFinder(vk::Context& ctx, vk::DescriptorPool& pool, const RunArrays& a, uint32_t max_n);
   // The runs among the first counts[count_slot] of the n keys (kCountIsN: n); their number
   // to counts[total_slot]. Ends with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd, uint32_t n, uint32_t count_slot,
               uint32_t total_slot, uint32_t flags) const;
-  static constexpr uint32_t kSets = 3, kBuffers = 12;  // what it takes from the pool
+  static constexpr uint32_t kSets = 2 + Scan::kSets, kBuffers = 10 + Scan::kBuffers;  // from the pool
 
  private:
-  const vk::Kernel *heads_, *scan_, *starts_;
-  VkDescriptorSet s_heads_, s_scan_, s_starts_;
+  Scan scan_;
+  const vk::Kernel *heads_, *starts_;
+  VkDescriptorSet s_heads_, s_starts_;
 };
 
 }  // namespace meshsal::gpu

@@ -23,6 +23,7 @@ struct CountedPush { uint32_t base, n, count_slot; };
 struct RunPush { uint32_t base, n, count_slot, total_slot, flags; };  // run_heads/run_starts.comp
 struct PiecesPush { uint32_t base, n, mode, piece, pieces_slot; };     // fast_pieces.comp
 struct GroupKeyPush { uint32_t base, n, cells_slot, factor, dx, dy, gx, gy, gz; };
+struct ScanPush { uint32_t base, nblocks, n, mode; };  // scan_blocks.comp
 struct BoundPush { uint32_t base, n, nx, ny, nz, r, mode, most_slot; };  // fast_candidate_bound.comp
 struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };       // sorted_float.comp
 struct QueryPush {
@@ -87,7 +88,6 @@ using GridGather = Interface<RangePush, 4>;
 using GridKey = Interface<GridKeyPush, 4>;
 using GridRadixCount = Interface<RadixPush, 2>;
 using GridRadixScatter = Interface<RadixPush, 5>;
-using GridScan = Interface<RangePush, 2>;
 using LocalMax = Interface<GroupsPush, 7>;
 using MapMax = Interface<GroupsPush, 3>;
 using MapMaxFinal = Interface<GroupsPush, 2>;
@@ -95,6 +95,7 @@ using Mbar = Interface<GroupsPush, 3>;
 using NearTie = Interface<NearTiePush, 6>;
 using RunHeads = Interface<RunPush, 3>;
 using RunStarts = Interface<RunPush, 7>;
+using ScanBlocks = Interface<ScanPush, 3>;
 using Selftest = Interface<SelftestPush, 2>;
 using SortedFloat = Interface<OriginPush, 2>;
 using Sweep8 = Interface<SweepPush, 6>;

@@ -40,7 +40,6 @@
 #include "grid_key_comp.h"
 #include "grid_radix_count_comp.h"
 #include "grid_radix_scatter_comp.h"
-#include "grid_scan_comp.h"
 #include "local_max_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
@@ -48,6 +47,7 @@
 #include "near_tie_comp.h"
 #include "run_heads_comp.h"
 #include "run_starts_comp.h"
+#include "scan_blocks_comp.h"
 #include "selftest_comp.h"
 #include "sorted_float_comp.h"
 #include "sweep8_comp.h"
@@ -240,6 +240,9 @@ template <> std::vector<Member> members_of<GroupKeyPush>() {
           MEMBER(GroupKeyPush, factor), MEMBER(GroupKeyPush, dx), MEMBER(GroupKeyPush, dy),
           MEMBER(GroupKeyPush, gx), MEMBER(GroupKeyPush, gy), MEMBER(GroupKeyPush, gz)};
 }
+template <> std::vector<Member> members_of<ScanPush>() {
+  return {MEMBER(ScanPush, base), MEMBER(ScanPush, nblocks), MEMBER(ScanPush, n), MEMBER(ScanPush, mode)};
+}
 template <> std::vector<Member> members_of<BoundPush>() {
   return {MEMBER(BoundPush, base), MEMBER(BoundPush, n), MEMBER(BoundPush, nx), MEMBER(BoundPush, ny),
           MEMBER(BoundPush, nz), MEMBER(BoundPush, r), MEMBER(BoundPush, mode), MEMBER(BoundPush, most_slot)};
@@ -318,11 +321,12 @@ std::vector<Case> all_cases() {
       SHADER(Fp64Rate, fp64_rate),                      SHADER(GlobalIndex, global_index),
       SHADER(GridGather, grid_gather),                  SHADER(GridKey, grid_key),
       SHADER(GridRadixCount, grid_radix_count),         SHADER(GridRadixScatter, grid_radix_scatter),
-      SHADER(GridScan, grid_scan),                      SHADER(LocalMax, local_max),
+      SHADER(LocalMax, local_max),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
       SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
-      SHADER(Selftest, selftest),                       SHADER(SortedFloat, sorted_float),
+      SHADER(ScanBlocks, scan_blocks),                  SHADER(Selftest, selftest),
+      SHADER(SortedFloat, sorted_float),
       SHADER(Sweep8, sweep8),                           SHADER(Sweep8List, sweep8_list),
       SHADER(Sweep8Mixed, sweep8_mixed),                SHADER(Sweep8Rows, sweep8_rows),
       SHADER(Sweep8RowsMixed, sweep8_rows_mixed),       SHADER(SweepN, sweepn),
