@@ -23,6 +23,11 @@ struct CountedPush { uint32_t base, n, count_slot; };
 struct RunPush { uint32_t base, n, count_slot, total_slot, flags; };  // run_heads/run_starts.comp
 struct PiecesPush { uint32_t base, n, mode, piece, pieces_slot; };     // fast_pieces.comp
 struct GroupKeyPush { uint32_t base, n, cells_slot, factor, dx, dy, gx, gy, gz; };
+// curvature_face_key.comp: the Morton grid's minimum and steps per model unit.
+struct MortonKeyPush {
+  uint32_t base, n, pad0, pad1;
+  double minx, miny, minz, scalex, scaley, scalez;
+};
 struct ScanPush { uint32_t base, nblocks, n, mode; };  // scan_blocks.comp
 struct BoundPush { uint32_t base, n, nx, ny, nz, r, mode, most_slot; };  // fast_candidate_bound.comp
 struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };       // sorted_float.comp
@@ -70,6 +75,9 @@ struct Interface {
 };
 
 // One line per shaders/NAME.comp (the test lists the same names).
+using Curvature = Interface<CountedPush, 7>;
+using CurvatureFaceKey = Interface<MortonKeyPush, 3>;
+using CurvatureIncidence = Interface<RangePush, 4>;
 using ExposureTest = Interface<ExposurePush, 8>;
 using FastAggregateCells = Interface<CellsPush, 7>;
 using FastAggregatePieces = Interface<CountedPush, 6>;

@@ -22,6 +22,9 @@
 
 #include "gpu/shader_interfaces.h"
 
+#include "curvature_comp.h"
+#include "curvature_face_key_comp.h"
+#include "curvature_incidence_comp.h"
 #include "exposure_test_comp.h"
 #include "fast_aggregate_cells_comp.h"
 #include "fast_aggregate_pieces_comp.h"
@@ -240,6 +243,12 @@ template <> std::vector<Member> members_of<GroupKeyPush>() {
           MEMBER(GroupKeyPush, factor), MEMBER(GroupKeyPush, dx), MEMBER(GroupKeyPush, dy),
           MEMBER(GroupKeyPush, gx), MEMBER(GroupKeyPush, gy), MEMBER(GroupKeyPush, gz)};
 }
+template <> std::vector<Member> members_of<MortonKeyPush>() {
+  return {MEMBER(MortonKeyPush, base),   MEMBER(MortonKeyPush, n),      MEMBER(MortonKeyPush, pad0),
+          MEMBER(MortonKeyPush, pad1),   MEMBER(MortonKeyPush, minx),   MEMBER(MortonKeyPush, miny),
+          MEMBER(MortonKeyPush, minz),   MEMBER(MortonKeyPush, scalex), MEMBER(MortonKeyPush, scaley),
+          MEMBER(MortonKeyPush, scalez)};
+}
 template <> std::vector<Member> members_of<ScanPush>() {
   return {MEMBER(ScanPush, base), MEMBER(ScanPush, nblocks), MEMBER(ScanPush, n), MEMBER(ScanPush, mode)};
 }
@@ -311,6 +320,8 @@ Case make_case(const char* name, const uint32_t* spirv, size_t spirv_bytes) {
 // Every shaders/*.comp, with the interface the C++ side uses it with.
 std::vector<Case> all_cases() {
   return {
+      SHADER(Curvature, curvature),                     SHADER(CurvatureFaceKey, curvature_face_key),
+      SHADER(CurvatureIncidence, curvature_incidence),
       SHADER(ExposureTest, exposure_test),
       SHADER(FastAggregateCells, fast_aggregate_cells), SHADER(FastAggregatePieces, fast_aggregate_pieces),
       SHADER(FastCandidateBound, fast_candidate_bound),

@@ -1,0 +1,114 @@
+// The GPU mean curvature (gpu_curvature.h) against its CPU twin mean_curvature_morton():
+// the same bits per vertex, on synthetic meshes (loose vertices, degenerate and repeated
+// triangles, a flat plane), a real scan, under forced staging, and the incidence it keeps.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/synthetic.h"
+#include "core/mesh_points.h"
+#include "gpu/gpu_curvature.h"
+#include "gpu/vk_compute.h"
+#include "gpu/vk_context.h"
+#include "meshsal/meshsal.h"
+#include "saliency/curvature.h"
+#include "test_util.h"
+
+using namespace meshsal;
+
+namespace {
+
+std::vector<double> gpu_curvature(vk::Context& ctx, const Mesh& mesh, const BoundingBox& box, bool* complete) {
+  const size_t nv = mesh.vertex_count();
+  std::vector<float> p32(4 * nv, 0.0f);
+  for (size_t v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a) p32[4 * v + a] = mesh.positions[3 * v + a];
+  std::vector<double> p(4 * nv, 7.0);  // w overwritten with H
+  vk::Buffer pos32(ctx, p32.size() * 4, "test"), pos(ctx, p.size() * 8, "test");
+  pos32.upload(p32.data(), p32.size() * 4);
+  pos.upload(p.data(), p.size() * 8);
+  gpu::DeviceCurvature dc(ctx, mesh, pos32, pos, box);
+  vk::submit(ctx, "test", [&](VkCommandBuffer cmd) { dc.record(ctx, cmd); });
+  *complete = dc.complete();
+  pos.download(p.data(), p.size() * 8);
+  std::vector<double> H(nv);
+  for (size_t v = 0; v < nv; ++v) H[v] = p[4 * v + 3];
+  // The incidence: each vertex's entries name triangles that hold it.
+  std::vector<uint32_t> start(nv + 1), entry(3 * mesh.triangle_count()), order(mesh.triangle_count());
+  dc.start.download(start.data(), start.size() * 4);
+  dc.entry().download(entry.data(), entry.size() * 4);
+  dc.triangle_order().download(order.data(), order.size() * 4);
+  CHECK(start[nv] == 3 * mesh.triangle_count());
+  for (size_t v = 0; v < nv; ++v)
+    for (uint32_t j = start[v]; j < start[v + 1]; ++j) {
+      const uint32_t f = order[entry[j] / 3], c = entry[j] % 3;
+      if (mesh.triangles[3 * f + c] != v) FAIL("vertex " << v << " entry " << j << " names another corner");
+    }
+  return H;
+}
+
+void check_same_bits(vk::Context& ctx, const Mesh& mesh, const std::string& what) {
+  INFO(what);
+  const uint64_t before = vk::validation_message_count();
+  const BoundingBox box = mesh_points_bbox(mesh, referenced_vertices(mesh));
+  const std::vector<double> cpu = mean_curvature_morton(mesh, box, 2);
+  bool complete = false;
+  const std::vector<double> gpu = gpu_curvature(ctx, mesh, box, &complete);
+  CHECK(complete);
+  REQUIRE(gpu.size() == cpu.size());
+  size_t differ = 0, first = 0;
+  for (size_t v = 0; v < cpu.size(); ++v)
+    if (std::memcmp(&cpu[v], &gpu[v], 8) != 0 && differ++ == 0) first = v;
+  INFO("first differing vertex " << first << ": cpu " << cpu[first] << " gpu " << gpu[first]);
+  CHECK(differ == 0);
+  CHECK(vk::validation_message_count() == before);
+}
+
+vk::Context& context() {
+  static std::unique_ptr<vk::Context> ctx = std::make_unique<vk::Context>(-1, true);
+  return *ctx;
+}
+
+}  // namespace
+
+TEST_CASE("gpu curvature: the same bits as mean_curvature_morton", "[gpu][curvature]") {
+  vk::Context& ctx = context();
+  check_same_bits(ctx, make_bumpy_sphere(4), "bumpy sphere");
+  check_same_bits(ctx, make_cube(12), "cube");
+  check_same_bits(ctx, make_plane_with_bump(2.0, 40, 0.3, 0.2), "plane with bump");
+  Mesh odd = make_bumpy_sphere(3);
+  odd.positions.insert(odd.positions.end(), {0.1f, 0.2f, 0.3f, 5.0f, 5.0f, 5.0f});  // loose vertices
+  odd.triangles.insert(odd.triangles.end(), {0, 0, 5, 1, 2, 1, 3, 4, 5, 3, 4, 5});   // degenerate, repeated
+  check_same_bits(ctx, odd, "bumpy sphere with loose vertices, degenerate and repeated triangles");
+}
+
+TEST_CASE("gpu curvature: a real scan, and under forced staging", "[gpu][curvature]") {
+  MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
+  const Mesh bunny = load_mesh(path);
+  check_same_bits(context(), bunny, "bunny_36k");
+  vk::Context ctx(-1, true);
+  ctx.use_staging = true;
+  check_same_bits(ctx, make_bumpy_sphere(3), "bumpy sphere, staged");
+}
+
+TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visit is flagged", "[gpu][curvature]") {
+  // A fan of 20000 triangles around vertex 0: its H is left to the host.
+  Mesh fan;
+  fan.positions = {0, 0, 1};
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * 3.141592653589793 * i / n;
+    fan.positions.insert(fan.positions.end(), {float(std::cos(a)), float(std::sin(a)), 0.0f});
+  }
+  for (int i = 0; i < n; ++i) fan.triangles.insert(fan.triangles.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % n)});
+  const BoundingBox box = mesh_points_bbox(fan, referenced_vertices(fan));
+  bool complete = true;
+  const std::vector<double> gpu = gpu_curvature(context(), fan, box, &complete);
+  CHECK(!complete);
+  const std::vector<double> cpu = mean_curvature_morton(fan, box, 2);
+  CHECK(gpu[1] == cpu[1]);  // the rim's are computed
+  CHECK(gpu[0] == 0.0);
+}
