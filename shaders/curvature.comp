@@ -16,6 +16,7 @@ layout(std430, binding = 3) readonly buffer Entry { uint entry[]; };    // by ve
 layout(std430, binding = 4) readonly buffer Start { uint start[]; };    // per vertex, + 1
 layout(std430, binding = 5) buffer Pos { dvec4 pos[]; };                // w: H
 layout(std430, binding = 6) buffer Counts { uint counts[]; };
+layout(std430, binding = 7) writeonly buffer H { double h[]; };        // H again, for the host
 layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;  // n = vertices; the flag slot
 const uint MAX_CORNERS = 16384u;
 
@@ -48,6 +49,7 @@ void main() {
   if (e - b > MAX_CORNERS) {
     atomicMax(counts[pc.count_slot], e - b);
     pos[v].w = 0.0LF;
+    h[v] = 0.0LF;
     return;
   }
   precise dvec3 n = dvec3(0.0LF);
@@ -72,5 +74,7 @@ void main() {
     if (k1 != 0.0LF) sum += A * k1;
     if (k2 != 0.0LF) sum += A * k2;
   }
-  pos[v].w = area > 0.0LF ? sum / area : 0.0LF;
+  const double H = area > 0.0LF ? sum / area : 0.0LF;
+  pos[v].w = H;
+  h[v] = H;
 }

@@ -23,12 +23,13 @@ uint32_t checked_count(size_t n, const char* what) {
 }  // namespace
 
 uint64_t DeviceCurvature::bytes(uint64_t nv, uint64_t nt) {
-  return nt * 12 + RadixSort::bytes(nt) + RadixSort::bytes(3 * nt) + (nv + 1) * 8 + Scan::bytes(nv) + 16;
+  return nv * 8 + nt * 12 + RadixSort::bytes(nt) + RadixSort::bytes(3 * nt) + (nv + 1) * 8 + Scan::bytes(nv) + 16;
 }
 
 DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
                                  const BoundingBox& box)
-    : triangles(ctx, mesh.triangles.size() * 4, "the triangles"),
+    : curvature(ctx, mesh.vertex_count() * 8, "the curvature"),
+      triangles(ctx, mesh.triangles.size() * 4, "the triangles"),
       start(ctx, (mesh.vertex_count() + 1) * 4, "the triangles of each vertex"),
       nv_(checked_count(mesh.vertex_count(), "vertices")), nt_(checked_count(mesh.triangle_count(), "triangles")),
       count_(ctx, size_t(nv_) * 4, "the triangles of each vertex"),
@@ -49,7 +50,7 @@ DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::B
   s_key_ = pool_.bind(*k_key_, {&pos32, &triangles, &face_sort_.keys_in()});
   s_incidence_ = pool_.bind(*k_incidence_, {&triangles, &face_sort_.order(), &corner_sort_.keys_in(), &count_});
   s_curvature_ = pool_.bind(*k_curvature_, {&pos32, &triangles, &face_sort_.order(), &corner_sort_.order(), &start,
-                                            &pos, &flag_});
+                                            &pos, &flag_, &curvature});
 }
 
 void DeviceCurvature::record(vk::Context& ctx, VkCommandBuffer cmd) {

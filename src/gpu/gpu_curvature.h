@@ -21,7 +21,8 @@ class DeviceCurvature {
  public:
   // For `mesh` (its triangles uploaded here), its float coordinates in pos32 (vec4 per
   // vertex) and `box` (the mesh points' box: the Morton grid's, as the CPU's fast method
-  // takes it). H goes to pos[v].w (dvec4 per vertex).
+  // takes it). H goes to pos[v].w (dvec4 per vertex) and to curvature (a double per vertex,
+  // for the host to read).
   DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
                   const BoundingBox& box);
   // Records the whole computation into cmd, ending with a barrier.
@@ -34,6 +35,7 @@ class DeviceCurvature {
 
   // The incidence, by vertex: vertex v's entries are entry()[start[v] .. start[v+1]), each
   // 3 s + c: corner c of the triangle at sorted slot s, triangle_order()[s].
+  vk::Buffer curvature;  // H per vertex
   vk::Buffer triangles;  // 3 per triangle, as the mesh has them
   vk::Buffer start;      // nv + 1
   vk::Buffer& triangle_order() { return face_sort_.order(); }

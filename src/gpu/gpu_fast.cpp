@@ -31,17 +31,6 @@ using shader::CenterSurroundPush;  // the push blocks: gpu/shader_interfaces.h
 using shader::FinishPush;
 using shader::QueryPush;
 
-// The float input coordinates per vertex (vec4), which the centroids are summed from.
-vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
-  const size_t nv = mesh.vertex_count();
-  std::vector<float> p4(4 * nv, 0.0f);
-  for (size_t v = 0; v < nv; ++v)
-    for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
-  vk::Buffer b(ctx, p4.size() * 4, "the float positions");
-  b.upload(p4.data(), p4.size() * 4);
-  return b;
-}
-
 // Adds a phase's seconds and host waits to ctx.fast_phases and restarts the clock.
 struct PhaseClock {
   Timer t;
@@ -148,18 +137,28 @@ class FastDevice {
 
 }  // namespace
 
+vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
+  const size_t nv = mesh.vertex_count();
+  std::vector<float> p4(4 * nv, 0.0f);
+  for (size_t v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
+  vk::Buffer b(ctx, p4.size() * 4, "the float positions");
+  b.upload(p4.data(), p4.size() * 4);
+  return b;
+}
+
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig) {
   const uint64_t grid_cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
   // per sigma: the averages and the pair counts; per point at most: the query grid's
   // sorted cells (32 + 4) and the sums (32: 8 doubles a group, at most a group per 2 points;
   // 16 sparse); the cells, the groups; the grid's scratch and the candidate bound's
-  return nv * 16 + nsig * (nv * 8 + np * 4) + np * (36 + 32) + fast_cells_bytes(nv, np) +
+  return nsig * (nv * 8 + np * 4) + np * (36 + 32) + fast_cells_bytes(nv, np) +
          fast_groups_bytes(np) + grid_cells * 4 + gpu_grid_scratch_bytes(np, grid_cells) +
          CandidateBound::bytes(grid_cells);
 }
 
 uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
-                     const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
+                     const vk::Buffer& pos32, const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
                      const FastFilterPlan& plan, vk::Buffer& result,
                      const SaliencyOptions& options, const char* stage) {
   const uint32_t nv = uint32_t(mesh.vertex_count());
@@ -181,7 +180,6 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   for (double s : plan.sigmas)
     plans.push_back({s, plan_fast_grid(extent, usable_cell(box, s / params.cells_per_sigma)),
                      plan_grid(extent, 0.5 * s, np, ctx.properties.limits.maxStorageBufferRange / 4 - 1)});
-  vk::Buffer pos32 = upload_float_positions(ctx, mesh);
   const FastInputs in{&pos, &flags, &pos32};
   FastDevice dev(ctx, in, nv, np, plans, params);
   // Per sigma: its averages (a buffer each: all of them in one passed lavapipe's 128 MiB

@@ -23,15 +23,20 @@ struct FastFilterPlan {
 };
 
 // The filter of the values in pos[].w (pos: dvec4 per vertex, position - box.min in
-// double; flags: uint per vertex, mesh point or not) into result ([output][vertex]
+// double; pos32: vec4 per vertex, the input's float coordinates, upload_float_positions();
+// flags: uint per vertex, mesh point or not) into result ([output][vertex]
 // doubles, 0 on vertices that are not mesh points). np = the mesh points. Returns the
 // (query, cell) pairs inside the cutoffs, as FilterStats::pairs counts them on the CPU.
 // Throws Error (naming the CPU path) when a scale needs more cells than 32-bit keys hold.
 // A query's candidates are walked in windows of ctx.fast_window_candidates, one dispatch each.
 uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
-                     const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
+                     const vk::Buffer& pos32, const vk::Buffer& flags, uint32_t np, const BoundingBox& box,
                      const FastFilterPlan& plan, vk::Buffer& result,
                      const SaliencyOptions& options, const char* stage);
+
+// The float input coordinates per vertex (vec4) on the device: the cells' centroids are
+// summed from them, as on the CPU, and the GPU curvature reads them.
+vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh);
 
 // Device bytes fast_filter() needs at its peak besides pos, flags and result.
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig);

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
 #include "gpu/gpu_fp64_rate.h"
 #include "meshsal/meshsal.h"
+#include "gpu/gpu_curvature.h"
 #include "gpu/gpu_fast.h"
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_session.h"
@@ -25,6 +27,7 @@
 #include "final_sum_comp.h"
 #include "global_index_comp.h"
 #include "local_max_comp.h"
+#include "local_max_faces_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
@@ -70,6 +73,10 @@ struct DeviceMesh {
   vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
   vk::Buffer sorted_pos32, bound;  // the mixed-precision sweep's (gpu_sweep.h)
+  // The fast method's: the float coordinates, the curvature and its incidence (the
+  // local maxima's neighbours in place of the 1-rings).
+  vk::Buffer pos32;
+  std::unique_ptr<gpu::DeviceCurvature> curvature;
 };
 
 // Device bytes of one saliency computation: the buffers below, the largest grid
@@ -303,17 +310,26 @@ void check_device(const vk::Context& ctx) {
 // Positions relative to the bbox minimum in double (as the CPU grid has them) with the
 // curvature as w, the mesh-point flags and the 1-ring, after checking that everything
 // the computation will allocate fits the device.
+// m.pos: the positions less bb.min in double, the curvature as w (0 while the fast method's
+// is still to come from the device).
+void upload_positions(const Mesh& mesh, const SaliencyResult& res, const BoundingBox& bb, DeviceMesh& m) {
+  const size_t nv = mesh.vertex_count();
+  std::vector<double> pos4(4 * nv);
+  for (size_t v = 0; v < nv; ++v) {
+    for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
+    pos4[4 * v + 3] = res.curvature.empty() ? 0.0 : res.curvature[v];
+  }
+  m.pos.upload(pos4.data(), pos4.size() * 8);
+}
+
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
                  uint64_t fast_bytes, DeviceMesh* out) {
   DeviceMesh& m = *out;
   const size_t nv = mesh.vertex_count();
   m.nv = static_cast<uint32_t>(nv);
-  std::vector<double> pos4(4 * nv);
   std::vector<uint32_t> flags(nv);
   for (size_t v = 0; v < nv; ++v) {
-    for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
-    pos4[4 * v + 3] = res.curvature[v];
     flags[v] = res.is_point[v];
     m.np += res.is_point[v];
   }
@@ -336,13 +352,16 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
   m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
   m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
-  m.pos.upload(pos4.data(), pos4.size() * 8);
+  upload_positions(mesh, res, bb, m);
   m.flags.upload(flags.data(), flags.size() * 4);
   m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
   m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
 }
 
 // suppress() of every raw map in m.result and the final sum S into `saliency`.
+// The neighbours of the local-maximum test: the 1-rings (m.offsets, m.neighbors), or for the
+// fast method the triangles of each vertex (m.curvature's incidence), as the CPU's
+// suppress() and suppress_faces() take them.
 void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, size_t nsc,
                         vk::Buffer& saliency) {
   const uint32_t groups = (m.nv + kLocal - 1) / kLocal;
@@ -361,8 +380,12 @@ void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& 
   VkDescriptorSet s_mx = pool.bind(k_mx, {&raw, &m.flags, &partial_max});
   VkDescriptorSet s_mf = pool.bind(k_mf, {&partial_max, &map_max});
   VkDescriptorSet s_gi = pool.bind(k_gi, {&raw, &m.flags, &map_max, &global_index});
-  VkDescriptorSet s_lm = pool.bind(
-      k_lm, {&raw, &m.flags, &map_max, &global_index, &m.offsets, &m.neighbors, &partial});
+  gpu::DeviceCurvature* faces = m.curvature.get();
+  auto& k_lmf = KERNEL(ctx, spv_local_max_faces_comp, shader::LocalMaxFaces);
+  VkDescriptorSet s_lm =
+      faces ? pool.bind(k_lmf, {&raw, &m.flags, &map_max, &global_index, &faces->start, &faces->entry(),
+                                &faces->triangle_order(), &faces->triangles, &partial})
+            : pool.bind(k_lm, {&raw, &m.flags, &map_max, &global_index, &m.offsets, &m.neighbors, &partial});
   VkDescriptorSet s_mb = pool.bind(k_mb, {&partial, &map_max, &factor});
   VkDescriptorSet s_fs = pool.bind(k_fs, {&raw, &m.flags, &factor, &saliency, &m.pos});
   const uint32_t n = m.nv, ns = static_cast<uint32_t>(nsc);
@@ -379,7 +402,7 @@ void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& 
     vk::dispatch(ctx, cmd, k_gi, s_gi, &gi, 0, n, kLocal, ns);
     vk::barrier(cmd);
     GroupsPush lm{0, 0, groups};
-    vk::dispatch(ctx, cmd, k_lm, s_lm, &lm, 0, n, kLocal, ns);
+    vk::dispatch(ctx, cmd, faces ? k_lmf : k_lm, s_lm, &lm, 0, n, kLocal, ns);
     vk::barrier(cmd);
     GroupsPush mb{0, 0, groups};
     vk::dispatch(ctx, cmd, k_mb, s_mb, &mb, 0, ns * kLocal, kLocal);
@@ -397,7 +420,7 @@ void smooth_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
                       const Mesh& mesh, const BoundingBox& bb, SaliencyResult* res) {
   const size_t nv = m.nv;
   if (options.method == Method::Fast) {  // the same method as the averages (meshsal.h)
-    gpu::fast_filter(ctx, mesh, m.pos, m.flags, m.np, bb, {{3.0 * eps}, {0}, {-1}}, m.result,
+    gpu::fast_filter(ctx, mesh, m.pos, m.pos32, m.flags, m.np, bb, {{3.0 * eps}, {0}, {-1}}, m.result,
                      options, "smoothing");
     res->smoothed.resize(nv);
     m.result.download(res->smoothed.data(), nv * 8);
@@ -429,14 +452,22 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (nsc == 0) throw Error("at least one scale is needed");
   if (nsc > kMaxScales) throw Error("the GPU path takes at most " + std::to_string(kMaxScales) + " scales");
 
-  // --- curvature (CPU): the same functions as compute_saliency_cpu --------------------
+  // --- curvature: for the exact method on the CPU, the same functions as
+  // compute_saliency_cpu (with the 1-rings the suppression takes); for the fast method on
+  // the device after the upload (gpu_curvature.h: mean_curvature_morton's bits, as
+  // compute_saliency_fast_cpu takes it), no 1-rings built
   Timer t0;
+  if (options.method == Method::Auto) throw Error("internal: method auto not resolved");
+  const bool fast = options.method == Method::Fast;
   res.is_point = referenced_vertices(mesh);
   res.eps = scale_unit(mesh, res.is_point, options.eps_frac);
-  Adjacency adj = build_adjacency(mesh);
-  std::vector<double> normals = vertex_normals(mesh);
-  res.curvature = mean_curvature(mesh, adj, normals, options.threads);
-  res.stages.push_back({"curvature", t0.seconds()});
+  Adjacency adj;
+  if (!fast) {
+    adj = build_adjacency(mesh);
+    std::vector<double> normals = vertex_normals(mesh);
+    res.curvature = mean_curvature(mesh, adj, normals, options.threads);
+    res.stages.push_back({"curvature", t0.seconds()});
+  }
 
   const double eps = res.eps;
   const SweepPlan plan = plan_sweep(options.scales, eps);
@@ -445,8 +476,6 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // --- the sweep's precision: --precision auto may time the device's doubles, once --------
   t0.restart();
   check_device(ctx);
-  const bool fast = options.method == Method::Fast;
-  if (options.method == Method::Auto) throw Error("internal: method auto not resolved");
   res.method = options.method;
   const bool probed = ctx.fp64_slowdown != 0;
   const bool mixed = !fast && use_mixed(ctx, plan.fast8, options.precision);
@@ -459,11 +488,28 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];
   DeviceMesh m;
-  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb,
-              fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) : 0, &m);
+  const uint64_t fast_bytes = fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) + nv * 16 +
+                                         gpu::DeviceCurvature::bytes(nv, mesh.triangle_count())
+                                   : 0;
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
+  if (fast) m.pos32 = gpu::upload_float_positions(ctx, mesh);
   res.stages.push_back({"upload", t0.seconds()});
+
+  if (fast) {  // --- the fast method's curvature, on the device ---------------------------
+    t0.restart();
+    m.curvature = std::make_unique<gpu::DeviceCurvature>(ctx, mesh, m.pos32, m.pos, bb);
+    vk::submit(ctx, "curvature", [&](VkCommandBuffer cmd) { m.curvature->record(ctx, cmd); });
+    if (m.curvature->complete()) {
+      res.curvature.resize(nv);
+      m.curvature->curvature.download(res.curvature.data(), nv * 8);
+    } else {  // a vertex of more triangles than one invocation may visit: the host's H
+      res.curvature = mean_curvature_morton(mesh, bb, options.threads);
+      upload_positions(mesh, res, bb, m);
+    }
+    res.stages.push_back({"curvature", t0.seconds()});
+  }
 
   vk::DescriptorPool pool(ctx, 32, 128);
 
@@ -479,7 +525,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       fp.out_a.push_back(index_of(k));
       fp.out_b.push_back(index_of(2 * k));
     }
-    res.pairs = gpu::fast_filter(ctx, mesh, m.pos, m.flags, m.np, bb, fp, m.result, options,
+    res.pairs = gpu::fast_filter(ctx, mesh, m.pos, m.pos32, m.flags, m.np, bb, fp, m.result, options,
                                  "gaussian sweep");
     res.stages.push_back({"gaussian sweep", t0.seconds()});
   } else {

@@ -75,7 +75,7 @@ struct Interface {
 };
 
 // One line per shaders/NAME.comp (the test lists the same names).
-using Curvature = Interface<CountedPush, 7>;
+using Curvature = Interface<CountedPush, 8>;
 using CurvatureFaceKey = Interface<MortonKeyPush, 3>;
 using CurvatureIncidence = Interface<RangePush, 4>;
 using ExposureTest = Interface<ExposurePush, 8>;
@@ -97,6 +97,7 @@ using GridKey = Interface<GridKeyPush, 4>;
 using GridRadixCount = Interface<RadixPush, 2>;
 using GridRadixScatter = Interface<RadixPush, 5>;
 using LocalMax = Interface<GroupsPush, 7>;
+using LocalMaxFaces = Interface<GroupsPush, 9>;
 using MapMax = Interface<GroupsPush, 3>;
 using MapMaxFinal = Interface<GroupsPush, 2>;
 using Mbar = Interface<GroupsPush, 3>;

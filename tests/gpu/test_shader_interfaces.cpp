@@ -44,6 +44,7 @@
 #include "grid_radix_count_comp.h"
 #include "grid_radix_scatter_comp.h"
 #include "local_max_comp.h"
+#include "local_max_faces_comp.h"
 #include "map_max_comp.h"
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
@@ -332,7 +333,7 @@ std::vector<Case> all_cases() {
       SHADER(Fp64Rate, fp64_rate),                      SHADER(GlobalIndex, global_index),
       SHADER(GridGather, grid_gather),                  SHADER(GridKey, grid_key),
       SHADER(GridRadixCount, grid_radix_count),         SHADER(GridRadixScatter, grid_radix_scatter),
-      SHADER(LocalMax, local_max),
+      SHADER(LocalMax, local_max),                      SHADER(LocalMaxFaces, local_max_faces),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
       SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
