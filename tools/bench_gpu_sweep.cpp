@@ -2,7 +2,8 @@
 // one Vulkan device, to choose the defaults for it (docs/benchmarks.md, "NVIDIA").
 //   bench_gpu_sweep [--repeat N] [--device I] [--probe-lanes N] [--no-fast] [--no-exact] [MESH ...]
 // First the fp64 probe (gpu_fp64_rate.h: what --precision auto decides by; --probe-lanes:
-// its lanes, 0 = the library's default).
+// its lanes, 0 = the library's default) and the layout probe (gpu_layout_probe.h: what a GPU
+// takes for the exact sweep).
 // Per mesh: the exact method in each layout (shared rows: a lane per point; subgroup: a
 // subgroup per point) and precision (mixed, double), then the fast method with the host
 // seconds and host waits (submissions the host waited for) of each of its phases. Times are the fastest of the repeats, after one run that
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "gpu/gpu_fp64_rate.h"
+#include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
@@ -82,6 +84,13 @@ int main(int argc, char** argv) {
                 "slowdown %.2f (auto takes mixed above %.1f on GPUs)\n",
                 probe.lanes, probe.iterations, 1e3 * probe.float_seconds, 1e3 * probe.double_seconds,
                 probe.slowdown(), gpu::kMixedAboveFp64Slowdown);
+    // The layout probe a GPU runs once per process (gpu_layout_probe.h; CPU devices take rows).
+    for (bool mixed : {false, true}) {
+      const gpu::LayoutProbe lp = gpu::measure_sweep_layout(ctx, mixed);
+      std::printf("layout probe (%s): sweep rows %.3f ms, subgroup %.3f ms: a GPU takes %s\n",
+                  mixed ? "mixed" : "double", 1e3 * lp.rows_seconds, 1e3 * lp.subgroup_seconds,
+                  lp.variant() == 0 ? "rows" : "subgroup");
+    }
     std::printf("%-26s %9s %-9s %-7s %8s %8s %8s %8s %10s %8s\n", "mesh", "vertices", "layout", "prec",
                 "grid", "sweep", "recheck", "total", "pairs/s", "recheck%");
     for (const std::string& path : meshes) {

@@ -14,6 +14,7 @@
 #include "gpu/gpu_curvature.h"
 #include "gpu/gpu_fast.h"
 #include "gpu/gpu_grid.h"
+#include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_session.h"
 #include "gpu/gpu_slices.h"
 #include "gpu/gpu_sweep.h"
@@ -101,19 +102,22 @@ GridPlan build_grid(vk::Context& ctx, DeviceMesh& m, const double extent[3], dou
                         m.nv, m.np, extent, cell, starts_out);
 }
 
-// Whether the sweep runs a lane per point over rows shared by the subgroup (sweep8_rows:
-// the default plan on CPU devices, or as Context::sweep_variant says) rather than a
-// subgroup per point.
-bool shared_rows(const vk::Context& ctx, bool fast8) {
+// Whether the sweep runs a lane per point over rows shared by the subgroup (sweep8_rows)
+// rather than a subgroup per point: as Context::sweep_variant says, else on CPU devices
+// (lavapipe: rows, measured in docs/benchmarks.md) and on GPUs as timed once per context
+// (gpu_layout_probe.h).
+bool shared_rows(vk::Context& ctx, bool fast8, bool mixed) {
   if (!fast8) return false;
-  return ctx.sweep_variant < 0 ? ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU
-                               : ctx.sweep_variant == 0;
+  if (ctx.sweep_variant >= 0) return ctx.sweep_variant == 0;
+  if (ctx.info.vk_type == VK_PHYSICAL_DEVICE_TYPE_CPU) return true;
+  return gpu::measured_sweep_variant(ctx, mixed) == 0;
 }
 
 // One neighbour sweep over the grid (gaussian_filter): result[o][v] as the plan in
 // m.params says; returns the number of pairs strictly inside `radius` (v itself included).
+// rows: the default plan (fast8) with a lane per point over shared rows (shared_rows()).
 uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const GridPlan& g,
-               const std::vector<uint32_t>& starts, bool fast8, bool mixed, const SweepParams& params,
+               const std::vector<uint32_t>& starts, bool fast8, bool rows, bool mixed, const SweepParams& params,
                uint32_t nsig, uint32_t nout,
                double radius, const SaliencyOptions& options, const char* stage) {
   // sweep8 has the default plan built in; sweepn is specialised to this plan (count and
@@ -123,9 +127,7 @@ uint64_t sweep(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, const 
     spec.push_back(int32_t(nsig));
     for (uint32_t e = 0; e < 16; ++e) spec.push_back(e < nsig ? params.parent[e] : -1);
   }
-  // CPU devices (lavapipe) run the default plan with a lane per point over rows shared by
-  // the subgroup (sweep8_rows); otherwise each point gets a subgroup (see sweep.glsl).
-  const bool rows = shared_rows(ctx, fast8);
+  if (rows && !fast8) throw Error("internal: the shared rows take the default plan only");
   // Mixed precision (the default plan only) adds the float points and the error bounds.
   auto& k = mixed ? (rows ? KERNEL(ctx, spv_sweep8_rows_mixed_comp, shader::Sweep8RowsMixed)
                           : KERNEL(ctx, spv_sweep8_mixed_comp, shader::Sweep8Mixed))
@@ -433,7 +435,7 @@ void smooth_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
   sp.out_b[0] = -1;
   m.params.upload(&sp, sizeof sp);
   GridPlan g2 = build_grid(ctx, m, extent, 0.5 * 6 * eps, &starts);
-  sweep(ctx, pool, m, g2, starts, false, false, sp, 1, 1, 6 * eps, options, "smoothing");
+  sweep(ctx, pool, m, g2, starts, false, false, false, sp, 1, 1, 6 * eps, options, "smoothing");
   res->smoothed.resize(nv);
   m.result.download(res->smoothed.data(), nv * 8);
   for (size_t v = 0; v < nv; ++v)
@@ -481,6 +483,11 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   const bool mixed = !fast && use_mixed(ctx, plan.fast8, options.precision);
   res.mixed_precision = mixed;
   if (!probed && ctx.fp64_slowdown != 0) res.stages.push_back({"fp64 probe", t0.seconds()});
+  // --- and its layout: on a GPU timed once per context (gpu_layout_probe.h) -------------
+  t0.restart();
+  const int measured = ctx.measured_sweep_variant[mixed ? 1 : 0];
+  const bool rows = !fast && shared_rows(ctx, plan.fast8, mixed);
+  if (measured != ctx.measured_sweep_variant[mixed ? 1 : 0]) res.stages.push_back({"layout probe", t0.seconds()});
 
   // --- upload ---------------------------------------------------------------------------
   t0.restart();
@@ -537,7 +544,6 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     // subgroup's points; on lavapipe, igea_134k, 1/4 to 1/8 were within the noise of each
     // other, 1/5 looked best, 1/3 and 1/2 were slower); half the radius for a subgroup per
     // point, where short rows would leave lanes idle.
-    const bool rows = shared_rows(ctx, plan.fast8);
     GridPlan g = build_grid(ctx, m, extent, (rows ? 0.2 : 0.5) * plan.radius, &starts);
     res.stages.push_back({"grid", t0.seconds()});
 
@@ -547,7 +553,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       m.bound = vk::Buffer(ctx, size_t(nv) * nsc * 4, "the error bounds");
       gpu::make_float_points(ctx, pool, m.sorted_pos, m.sorted_pos32, m.np, bb.min);
     }
-    res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, mixed, plan.params, nsig,
+    res.pairs = sweep(ctx, pool, m, g, starts, plan.fast8, rows, mixed, plan.params, nsig,
                       static_cast<uint32_t>(nsc), plan.radius, options, "gaussian sweep");
     res.stages.push_back({"gaussian sweep", t0.seconds()});
     if (mixed) {

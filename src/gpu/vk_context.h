@@ -95,6 +95,9 @@ class Context {
   // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
   // 0 shared rows, 1 subgroup per point. Tests run both.
   int sweep_variant = -1;
+  // On GPUs, -1: the layout of the default plan chosen by timing both once per context
+  // (gpu_layout_probe.h), in double ([0]) and mixed ([1]) precision; then the choice.
+  int measured_sweep_variant[2] = {-1, -1};
   // Time of double over float arithmetic, measured on first need (gpu_fp64_rate.h); 0:
   // not yet. Tests may set it to choose what --precision auto takes.
   double fp64_slowdown = 0;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/adjacency.h"
+#include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/gpu_sweep.h"
 #include "meshsal/meshsal.h"
@@ -168,4 +169,21 @@ TEST_CASE("the near-tie recheck replaces the flagged points' maps by double swee
   CHECK(before < checked.rechecked / 2);  // flat parts of fandisk: exact zeros either way
   CHECK(after >= checked.rechecked);
   CHECK(after <= checked.rechecked + before);
+}
+
+TEST_CASE("gpu layout probe: both layouts timed, the choice kept per context", "[gpu]") {
+  vk::Context ctx(-1, true);
+  const uint64_t before = vk::validation_message_count();
+  const gpu::LayoutProbe p = gpu::measure_sweep_layout(ctx, false, 2048, 1);
+  CHECK(p.rows_seconds > 0);
+  CHECK(p.subgroup_seconds > 0);
+  CHECK(p.variant() == (p.rows_seconds <= p.subgroup_seconds ? 0 : 1));
+  CHECK(ctx.sweep_variant == -1);  // restored
+  // Measured once: a kept choice is returned as it is.
+  ctx.measured_sweep_variant[1] = 1;
+  CHECK(gpu::measured_sweep_variant(ctx, true) == 1);
+  ctx.measured_sweep_variant[1] = 0;
+  CHECK(gpu::measured_sweep_variant(ctx, true) == 0);
+  CHECK(ctx.measured_sweep_variant[0] == -1);
+  CHECK(vk::validation_message_count() == before);
 }
