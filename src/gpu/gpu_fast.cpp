@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/parallel.h"
 #include "core/timer.h"
 #include "gpu/gpu_fast_bound.h"
 #include "gpu/gpu_fast_cells.h"
@@ -137,11 +138,15 @@ class FastDevice {
 
 }  // namespace
 
-vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh) {
+vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned threads) {
   const size_t nv = mesh.vertex_count();
-  std::vector<float> p4(4 * nv, 0.0f);
-  for (size_t v = 0; v < nv; ++v)
-    for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
+  std::vector<float> p4(4 * nv);
+  parallel_for(nv, threads, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
+      p4[4 * v + 3] = 0.0f;
+    }
+  });
   vk::Buffer b(ctx, p4.size() * 4, "the float positions");
   b.upload(p4.data(), p4.size() * 4);
   return b;

@@ -23,6 +23,7 @@
 #include "gpu/vk_buffer.h"
 #include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
+#include "core/parallel.h"
 #include "core/timer.h"
 
 #include "final_sum_comp.h"
@@ -314,19 +315,22 @@ void check_device(const vk::Context& ctx) {
 // the computation will allocate fits the device.
 // m.pos: the positions less bb.min in double, the curvature as w (0 while the fast method's
 // is still to come from the device).
-void upload_positions(const Mesh& mesh, const SaliencyResult& res, const BoundingBox& bb, DeviceMesh& m) {
+void upload_positions(const Mesh& mesh, const SaliencyResult& res, const BoundingBox& bb, DeviceMesh& m,
+                      unsigned threads) {
   const size_t nv = mesh.vertex_count();
   std::vector<double> pos4(4 * nv);
-  for (size_t v = 0; v < nv; ++v) {
-    for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
-    pos4[4 * v + 3] = res.curvature.empty() ? 0.0 : res.curvature[v];
-  }
+  parallel_for(nv, threads, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
+      pos4[4 * v + 3] = res.curvature.empty() ? 0.0 : res.curvature[v];
+    }
+  });
   m.pos.upload(pos4.data(), pos4.size() * 8);
 }
 
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
-                 uint64_t fast_bytes, DeviceMesh* out) {
+                 uint64_t fast_bytes, unsigned threads, DeviceMesh* out) {
   DeviceMesh& m = *out;
   const size_t nv = mesh.vertex_count();
   m.nv = static_cast<uint32_t>(nv);
@@ -354,7 +358,7 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
   m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
   m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
-  upload_positions(mesh, res, bb, m);
+  upload_positions(mesh, res, bb, m, threads);
   m.flags.upload(flags.data(), flags.size() * 4);
   m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
   m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
@@ -498,10 +502,10 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   const uint64_t fast_bytes = fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) + nv * 16 +
                                          gpu::DeviceCurvature::bytes(nv, mesh.triangle_count())
                                    : 0;
-  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, &m);
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, options.threads, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
-  if (fast) m.pos32 = gpu::upload_float_positions(ctx, mesh);
+  if (fast) m.pos32 = gpu::upload_float_positions(ctx, mesh, options.threads);
   res.stages.push_back({"upload", t0.seconds()});
 
   if (fast) {  // --- the fast method's curvature, on the device ---------------------------
@@ -513,7 +517,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       m.curvature->curvature.download(res.curvature.data(), nv * 8);
     } else {  // a vertex of more triangles than one invocation may visit: the host's H
       res.curvature = mean_curvature_morton(mesh, bb, options.threads);
-      upload_positions(mesh, res, bb, m);
+      upload_positions(mesh, res, bb, m, options.threads);
     }
     res.stages.push_back({"curvature", t0.seconds()});
   }
