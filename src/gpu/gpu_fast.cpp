@@ -21,6 +21,7 @@
 #include "fast_center_surround_comp.h"
 #include "fast_finish_comp.h"
 #include "fast_query_comp.h"
+#include "pair_sums_comp.h"
 #include "core/cancel.h"
 
 namespace meshsal::gpu {
@@ -28,8 +29,10 @@ namespace meshsal::gpu {
 namespace {
 
 constexpr uint32_t kLocal = 64;  // local_size_x of the shaders
+constexpr uint32_t kPairGroup = 256;  // pair_sums.comp's local_size_x: queries per partial sum
 using shader::CenterSurroundPush;  // the push blocks: gpu/shader_interfaces.h
 using shader::FinishPush;
+using shader::PairSumsPush;
 using shader::QueryPush;
 
 // Adds a phase's seconds and host waits to ctx.fast_phases and restarts the clock.
@@ -154,10 +157,11 @@ vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned t
 
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig) {
   const uint64_t grid_cells = std::max<uint64_t>(uint64_t(1) << 20, 4 * np) + 1;
-  // per sigma: the averages and the pair counts; per point at most: the query grid's
-  // sorted cells (32 + 4) and the sums (32: 8 doubles a group, at most a group per 2 points;
-  // 16 sparse); the cells, the groups; the grid's scratch and the candidate bound's
-  return nsig * (nv * 8 + np * 4) + np * (36 + 32) + fast_cells_bytes(nv, np) +
+  // per sigma: the averages and the pair sums (16 B per 256 queries); per point at most:
+  // the query grid's sorted cells (32 + 4), the sums (32: 8 doubles a group, at most a group
+  // per 2 points; 16 sparse) and the pair counts (4); the cells, the groups; the grid's
+  // scratch and the candidate bound's
+  return nsig * (nv * 8 + np / 16) + np * (36 + 32 + 4) + fast_cells_bytes(nv, np) +
          fast_groups_bytes(np) + grid_cells * 4 + gpu_grid_scratch_bytes(np, grid_cells) +
          CandidateBound::bytes(grid_cells);
 }
@@ -187,14 +191,15 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
                      plan_grid(extent, 0.5 * s, np, ctx.properties.limits.maxStorageBufferRange / 4 - 1)});
   const FastInputs in{&pos, &flags, &pos32};
   FastDevice dev(ctx, in, nv, np, plans, params);
-  // Per sigma: its averages (a buffer each: all of them in one passed lavapipe's 128 MiB
-  // per buffer at 2 million vertices; zero for the vertices that are not mesh points) and
-  // its pair counts, read once all sigmas are done.
-  std::vector<vk::Buffer> g, pairs;
-  for (uint32_t k = 0; k < nsig; ++k) {
-    g.emplace_back(ctx, size_t(nv) * 8, "the fast method's averages");
-    pairs.emplace_back(ctx, size_t(np) * 4, "the pair counts");
-  }
+  // Per sigma its averages (a buffer each: all of them in one passed lavapipe's 128 MiB
+  // per buffer at 2 million vertices; zero for the vertices that are not mesh points).
+  std::vector<vk::Buffer> g;
+  for (uint32_t k = 0; k < nsig; ++k) g.emplace_back(ctx, size_t(nv) * 8, "the fast method's averages");
+  // The pair counts per query, summed per 256 queries after each sigma (pair_sums.comp)
+  // into host memory the host reads once at the end.
+  vk::Buffer pairs(ctx, size_t(np) * 4, "the pair counts");
+  const uint32_t pair_groups = (np + kPairGroup - 1) / kPairGroup;
+  vk::Buffer pair_sums = vk::Buffer::host_visible(ctx, size_t(nsig) * pair_groups * 16, "the pair sums");
   const double dense_groups = params.points_per_query_cell > 0
                                   ? std::min<double>(np, std::floor(np / params.points_per_query_cell))
                                   : double(np);
@@ -205,13 +210,15 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   FastCells& fc = dev.cells();
   FastGroups& gr = dev.groups();
   // Per sigma and mode (0 sparse, 1 dense): the query and finish sets.
-  vk::DescriptorPool pool(ctx, 4 * nsig, 32 * nsig);
+  auto& k_pairs = vk::cached_kernel<shader::PairSums>(ctx, spv_pair_sums_comp, sizeof spv_pair_sums_comp, "pair_sums");
+  vk::DescriptorPool pool(ctx, 4 * nsig + 1, 32 * nsig + 2);
+  VkDescriptorSet s_pairs = pool.bind(k_pairs, {&pairs, &pair_sums});
   std::vector<VkDescriptorSet> s_query(2 * nsig), s_finish(2 * nsig);
   for (uint32_t k = 0; k < nsig; ++k)
     for (int dense = 0; dense < 2; ++dense) {
       s_query[2 * k + dense] =
           pool.bind(k_query, {&dev.qsorted(), &dev.qcell(), &dev.qstarts(), &fc.cell_count,
-                              dense ? &gr.group_pos : &pos, &fc.order(), &sums, &pairs[k]});
+                              dense ? &gr.group_pos : &pos, &fc.order(), &sums, &pairs});
       // (sparse: the group buffers are not read; the cells' stand in for the binding)
       s_finish[2 * k + dense] =
           pool.bind(k_finish, {&sums, dense ? &gr.group_pos : &fc.cell_pos, &fc.piece_start, &fc.piece_cell,
@@ -250,6 +257,8 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
     auto record_finish = [&](VkCommandBuffer cmd) {
       FinishPush fp{0, 0, mode, 0, 1.0 / (s * s)};
       vk::dispatch(ctx, cmd, k_finish, s_finish[2 * k + mode], &fp, 0, sc.dense ? sc.pieces : np, kLocal);
+      PairSumsPush pp{0, 0, k * pair_groups};
+      vk::dispatch(ctx, cmd, k_pairs, s_pairs, &pp, 0, sc.queries, kPairGroup);
       vk::barrier(cmd);
     };
     for (uint32_t w = 0; w < sc.windows; ++w) {
@@ -262,7 +271,7 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
         vk::submit(ctx, stage, [&](VkCommandBuffer cmd) {
           if (w == 0 && at == 0) {
             vkCmdFillBuffer(cmd, sums.handle(), 0, VkDeviceSize(sc.queries) * (sc.dense ? 8 : 2) * 8, 0);
-            vkCmdFillBuffer(cmd, pairs[k].handle(), 0, VkDeviceSize(sc.queries) * 4, 0);
+            vkCmdFillBuffer(cmd, pairs.handle(), 0, VkDeviceSize(sc.queries) * 4, 0);
             vk::barrier(cmd);
           }
           vk::dispatch(ctx, cmd, k_query, s_query[2 * k + mode], &qp, at, next, kLocal);
@@ -306,12 +315,20 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
   phase(ctx, "center-surround", clock);
   // Every query counts at least its own cell (a centroid at distance 0, or the vertex's
   // own cell's centroid within sqrt(3)/6 sigma): 0 means it was never swept.
+  std::vector<double> part(size_t(nsig) * pair_groups * 2);
+  pair_sums.download(part.data(), part.size() * 8);  // host memory: a copy, no submission
   uint64_t swept = 0;
-  std::vector<uint32_t> per_query;
   for (uint32_t k = 0; k < nsig; ++k) {
-    per_query.resize(queries[k]);
-    pairs[k].download(per_query.data(), per_query.size() * 4);
-    swept += total_swept_pairs(per_query);
+    double sum = 0, missed = 0;
+    for (uint32_t i = 0; i < (queries[k] + kPairGroup - 1) / kPairGroup; ++i) {
+      sum += part[2 * (size_t(k) * pair_groups + i)];
+      missed += part[2 * (size_t(k) * pair_groups + i) + 1];
+    }
+    if (missed > 0)
+      throw Error("internal: the GPU fast method left " + std::to_string(uint64_t(missed)) + " of " +
+                  std::to_string(queries[k]) + " queries of sigma " + std::to_string(k) +
+                  " unswept (pair count 0)");
+    swept += uint64_t(sum);
   }
   phase(ctx, "pair counts", clock);
   return swept;

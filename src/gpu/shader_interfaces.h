@@ -20,6 +20,7 @@ struct CellKeyPush { uint32_t base, n, nx, ny, nz, pad; double cell; };
 struct CellsPush { uint32_t base, n, count_slot, pad1; double minx, miny, minz; };  // fast_aggregate_cells.comp
 // A dispatch over a bound n whose items' count the device wrote to counts[count_slot].
 struct CountedPush { uint32_t base, n, count_slot; };
+struct PairSumsPush { uint32_t base, n, first; };  // pair_sums.comp
 struct RunPush { uint32_t base, n, count_slot, total_slot, flags; };  // run_heads/run_starts.comp
 struct PiecesPush { uint32_t base, n, mode, piece, pieces_slot; };     // fast_pieces.comp
 struct GroupKeyPush { uint32_t base, n, cells_slot, factor, dx, dy, gx, gy, gz; };
@@ -102,6 +103,7 @@ using MapMax = Interface<GroupsPush, 3>;
 using MapMaxFinal = Interface<GroupsPush, 2>;
 using Mbar = Interface<GroupsPush, 3>;
 using NearTie = Interface<NearTiePush, 6>;
+using PairSums = Interface<PairSumsPush, 2>;
 using RunHeads = Interface<RunPush, 3>;
 using RunStarts = Interface<RunPush, 7>;
 using ScanBlocks = Interface<ScanPush, 3>;

@@ -193,13 +193,9 @@ TEST_CASE("gpu fast: the host waits only for the submissions of queries", "[gpu]
     // grid and bound of every sigma but the first, and each sigma's finish, ride on them.
     CHECK(queries == slices);
     CHECK(slices >= opt.scales.size());
-    // Outside them: the first sigma's preparation and the center-surround maps; with staging
-    // also each sigma's pair counts, read at the end.
-    std::vector<double> units;
-    for (double k : opt.scales) units.push_back(k), units.push_back(2 * k);
-    std::sort(units.begin(), units.end());
-    const uint64_t sigmas = uint64_t(std::unique(units.begin(), units.end()) - units.begin());
-    CHECK(others == (staging ? 2 + sigmas : 2));
+    // Outside them: the first sigma's preparation and the center-surround maps, staged or
+    // not (the counts and the pair sums are in host memory: read without a copy).
+    CHECK(others == 2);
 
     // Submitted apart (the bench's timing): the same maps, bit for bit.
     ctx.fast_phase_timing = true;

@@ -49,6 +49,7 @@
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
 #include "near_tie_comp.h"
+#include "pair_sums_comp.h"
 #include "run_heads_comp.h"
 #include "run_starts_comp.h"
 #include "scan_blocks_comp.h"
@@ -231,6 +232,9 @@ template <> std::vector<Member> members_of<CellsPush>() {
 template <> std::vector<Member> members_of<CountedPush>() {
   return {MEMBER(CountedPush, base), MEMBER(CountedPush, n), MEMBER(CountedPush, count_slot)};
 }
+template <> std::vector<Member> members_of<PairSumsPush>() {
+  return {MEMBER(PairSumsPush, base), MEMBER(PairSumsPush, n), MEMBER(PairSumsPush, first)};
+}
 template <> std::vector<Member> members_of<RunPush>() {
   return {MEMBER(RunPush, base), MEMBER(RunPush, n), MEMBER(RunPush, count_slot), MEMBER(RunPush, total_slot),
           MEMBER(RunPush, flags)};
@@ -336,6 +340,7 @@ std::vector<Case> all_cases() {
       SHADER(LocalMax, local_max),                      SHADER(LocalMaxFaces, local_max_faces),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
+      SHADER(PairSums, pair_sums),
       SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
       SHADER(ScanBlocks, scan_blocks),                  SHADER(Selftest, selftest),
       SHADER(SortedFloat, sorted_float),
