@@ -219,10 +219,6 @@ SweepParams make_params(const std::vector<double>& units, double eps, std::vecto
   return p;
 }
 
-std::vector<double> to_vector(const std::vector<double>& v, size_t begin, size_t count) {
-  return std::vector<double>(v.begin() + begin, v.begin() + begin + count);
-}
-
 }  // namespace
 
 std::vector<vk::DeviceInfo> gpu_devices() { return vk::list_devices(); }
@@ -576,14 +572,19 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   suppress_on_device(ctx, pool, m, nsc, saliency);
   res.stages.push_back({"suppression", t0.seconds()});
 
-  // --- download the maps and S (before the smoothing sweep reuses the result buffer) --
+  // --- download S and the maps (before the smoothing sweep reuses the result buffer),
+  // the maps only when asked for (SaliencyOptions::raw_maps: 8 bytes a vertex a scale,
+  // the most of the download; the CPU paths leave them empty too) ---------------------
   t0.restart();
-  std::vector<double> raw_h(nv * nsc);
   res.saliency.resize(nv);
-  m.result.download(raw_h.data(), raw_h.size() * 8);
   saliency.download(res.saliency.data(), nv * 8);
-  res.raw.resize(nsc);
-  for (size_t i = 0; i < nsc; ++i) res.raw[i] = to_vector(raw_h, i * nv, nv);
+  if (options.raw_maps) {
+    res.raw.resize(nsc);
+    for (size_t i = 0; i < nsc; ++i) {
+      res.raw[i].resize(nv);
+      m.result.download(res.raw[i].data(), nv * 8, i * nv * 8);
+    }
+  }
   res.stages.push_back({"download", t0.seconds()});
 
   if (options.smoothed) {

@@ -134,3 +134,22 @@ TEST_CASE("gpu saliency refuses a mesh too large for the device with a clear mes
   CHECK_THROWS_WITH(compute_saliency_gpu(ctx, make_bumpy_sphere(5), SaliencyOptions{}),
                     Catch::Contains("mesh too large") && Catch::Contains("MiB of device memory"));
 }
+
+TEST_CASE("gpu: without raw_maps the maps are not downloaded, S is the same", "[gpu]") {
+  const Mesh mesh = make_bumpy_sphere(3);
+  for (Method method : {Method::Exact, Method::Fast}) {
+    INFO(int(method));
+    SaliencyOptions opt;
+    opt.method = method;
+    opt.threads = 2;
+    opt.smoothed = true;
+    const SaliencyResult with = compute_saliency_gpu(context(), mesh, opt);
+    opt.raw_maps = false;
+    const SaliencyResult without = compute_saliency_gpu(context(), mesh, opt);
+    CHECK(with.raw.size() == opt.scales.size());
+    CHECK(without.raw.empty());
+    CHECK(without.saliency == with.saliency);
+    CHECK(without.smoothed == with.smoothed);
+    CHECK(without.curvature == with.curvature);
+  }
+}
