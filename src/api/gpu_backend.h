@@ -30,6 +30,9 @@ struct ExposureRun {
 struct GpuBackend {
   std::vector<DeviceInfo> (*list_devices)();
   SaliencyResult (*saliency)(const Mesh& mesh, const SaliencyOptions& options);
+  // gpu/gpu_saliency.h's warm_up_saliency_gpu: options.device opened and cached, the run's
+  // pipelines compiled and probes run (see warm_up_saliency).
+  void (*warm_up)(const SaliencyOptions& options);
   ViewScorerSetup (*view_scorer)(const Mesh& mesh, const std::vector<double>& score,
                                  const VisibilityOptions& options, int device);
   // meshsal::Device: opens device `index` (-1: the best) outside the cache and returns its
@@ -57,6 +60,13 @@ const GpuBackend* linked_gpu_backend();
 
 // The open handle of `session` (throws Error when it was closed).
 std::shared_ptr<void> session_handle(const Device& session);
+
+// What a saliency run with `options` will pay once per process on a GPU (the device's
+// opening, the pipelines' compiles, the probes), paid now on the device that run will take
+// (Backend::Gpu: options.device; Auto: the hardware GPU it would pick; nothing for the CPU,
+// tiles, a session or a library without Vulkan). Never throws: a failure is left for the
+// run to report. For a front end to call on a thread while it reads the input.
+void warm_up_saliency(const SaliencyOptions& options);
 
 // The linked backend; throws Error when this library has none.
 const GpuBackend& gpu_backend();

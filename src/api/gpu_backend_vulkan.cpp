@@ -120,7 +120,7 @@ ExposureRun exposure_on(const std::shared_ptr<void>& device, const Mesh& mesh, c
   return {gpu.exposure(views, weighting), "vulkan: " + held->ctx.info.name};
 }
 
-const GpuBackend backend{devices,     saliency,       view_scorer, open_device,
+const GpuBackend backend{devices,     saliency,       warm_up_saliency_gpu, view_scorer, open_device,
                          saliency_on, view_scorer_on, gpu::release_cached_devices,
                          exposure,    exposure_on};
 

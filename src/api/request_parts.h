@@ -31,6 +31,9 @@ struct RequestRun {
   bool input_has_saliency = false;
   bool saliency_file_known = false;
   std::string saliency_file;
+  // What the run waited for the device's warm-up after reading (warm_up_saliency), -1 when
+  // there was none: the first computed S shows it as its first stage ("device warm-up").
+  double warm_up_wait = -1;
   Timer timer;  // since the run began
   double timer_seconds() const;
 };

@@ -108,6 +108,20 @@ SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
 
 }  // namespace
 
+void warm_up_saliency(const SaliencyOptions& options) {
+  if (options.backend == Backend::Cpu || options.tiles > 0 || options.session || !linked_gpu_backend()) return;
+  try {
+    SaliencyOptions o = options;
+    if (o.backend == Backend::Auto && o.device < 0) {
+      o.device = pick_hardware_gpu(list_devices());  // as compute_auto picks
+      if (o.device < 0) return;                        // the CPU path: nothing to warm
+    }
+    linked_gpu_backend()->warm_up(o);
+  } catch (...) {
+    // The run itself reports (or falls back): a warm-up only saves time.
+  }
+}
+
 // The exact CPU sweep's rate per thread, measured on a 2-core VM (igea_loop1_537k: 3.5e8
 // pairs/s on 2 threads, docs/benchmarks.md): what the long-run note estimates with.
 constexpr double kCpuPairsPerThreadSecond = 1.7e8;

@@ -9,10 +9,7 @@
 
 namespace meshsal::gpu {
 
-namespace {
-
-// A sphere of rows x 2 rows vertices (latitude, longitude; open at the poles) with bumps.
-Mesh bumpy_sphere(uint32_t points) {
+Mesh probe_sphere(uint32_t points) {
   const uint32_t rows = std::max<uint32_t>(8, uint32_t(std::sqrt(points / 2.0)));
   const uint32_t cols = 2 * rows;
   const double pi = 3.141592653589793;
@@ -32,6 +29,8 @@ Mesh bumpy_sphere(uint32_t points) {
   return m;
 }
 
+namespace {
+
 double sweep_seconds(const SaliencyResult& r) {
   for (const StageTime& s : r.stages)
     if (s.name == "gaussian sweep") return s.seconds;
@@ -41,7 +40,7 @@ double sweep_seconds(const SaliencyResult& r) {
 }  // namespace
 
 LayoutProbe measure_sweep_layout(vk::Context& ctx, bool mixed, uint32_t points, int repeats) {
-  const Mesh mesh = bumpy_sphere(points);
+  const Mesh mesh = probe_sphere(points);
   SaliencyOptions o;
   o.method = Method::Exact;
   o.backend = Backend::Gpu;

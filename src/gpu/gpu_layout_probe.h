@@ -9,8 +9,13 @@
 #include <cstdint>
 
 #include "gpu/vk_context.h"
+#include "meshsal/meshsal.h"
 
 namespace meshsal::gpu {
+
+// A sphere of about `points` vertices in latitude-longitude rows (open at the poles) with
+// bumps: the probes' and the warm-up's synthetic scan.
+Mesh probe_sphere(uint32_t points);
 
 struct LayoutProbe {
   double rows_seconds = 0, subgroup_seconds = 0;  // the sweep stage, fastest of the repeats

@@ -239,6 +239,26 @@ SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& opt
   return res;
 }
 
+void warm_up_saliency_gpu(const SaliencyOptions& options) {
+  gpu::DeviceLease lease = gpu::lease_device(options.device, false);
+  const Mesh mesh = gpu::probe_sphere(2048);
+  SaliencyOptions o = options;
+  o.progress = nullptr;
+  o.notice = nullptr;
+  o.session = nullptr;
+  o.tiles = 0;
+  try {
+    for (Method m : {Method::Exact, Method::Fast})
+      if (options.method == Method::Auto || options.method == m) {
+        o.method = m;
+        compute_saliency_gpu(lease.context(), mesh, o);
+      }
+  } catch (const std::exception& e) {
+    lease.discard_if_broken(e.what());
+    throw;
+  }
+}
+
 namespace {
 
 // The sweep plan for `scales`: the distinct s_i and 2 s_i (filter_sigma_units), in eps.

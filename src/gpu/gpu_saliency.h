@@ -22,6 +22,13 @@ std::vector<vk::DeviceInfo> gpu_devices();
 SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& options,
                                     bool validation = false);
 
+// Opens device options.device in the process's cache (gpu_session.h) and runs what a
+// saliency run with these options pays once per process, on a small synthetic scan: the
+// pipelines' compiles, the fp64 probe (--precision auto) and the layout probe, for the
+// method asked (both for Auto). A front end calls it on a thread while it reads the input,
+// so that the run starts at once. Throws as compute_saliency_gpu does.
+void warm_up_saliency_gpu(const SaliencyOptions& options);
+
 // Same on an already open device (tests and the benchmark reuse one context).
 SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
                                     const SaliencyOptions& options);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "api/gpu_backend.h"
 #include "api/viewpoint_backend.h"
 #include "cli/synthetic.h"
 #include "gpu/gpu_saliency.h"
@@ -127,4 +128,42 @@ TEST_CASE("gpu session: meshsal batch opens the device and builds its pipelines 
     else
       CHECK(built == 0);
   }
+}
+
+TEST_CASE("gpu session: a warm-up opens the device and builds the run's pipelines ahead", "[gpu]") {
+  gpu::release_cached_devices();
+  const Mesh mesh = make_bumpy_sphere(3);
+  SaliencyOptions o;
+  o.backend = Backend::Gpu;
+  o.device = 0;
+  o.threads = 2;
+  // The CPU, tiles or a device that is not there: nothing opened, nothing thrown.
+  const gpu::SessionCounters cold = gpu::session_counters();
+  SaliencyOptions cpu = o;
+  cpu.backend = Backend::Cpu;
+  warm_up_saliency(cpu);
+  SaliencyOptions tiled = o;
+  tiled.tiles = 8;
+  warm_up_saliency(tiled);
+  SaliencyOptions missing = o;
+  missing.device = 99;
+  CHECK_NOTHROW(warm_up_saliency(missing));
+  CHECK(gpu::session_counters().contexts_opened == cold.contexts_opened);
+  for (Method method : {Method::Exact, Method::Fast}) {
+    INFO(int(method));
+    gpu::release_cached_devices();
+    o.method = method;
+    const gpu::SessionCounters before = gpu::session_counters();
+    warm_up_saliency(o);
+    const gpu::SessionCounters warm = gpu::session_counters();
+    CHECK(warm.contexts_opened == before.contexts_opened + 1);
+    CHECK(warm.kernels_built > before.kernels_built);
+    // The run then opens nothing and builds nothing: it starts at once.
+    const SaliencyResult r = compute_saliency(mesh, o);
+    CHECK_FALSE(has_stage(r, "device setup"));
+    CHECK(gpu::session_counters().contexts_opened == warm.contexts_opened);
+    CHECK(gpu::session_counters().kernels_built == warm.kernels_built);
+    CHECK(r.method == method);
+  }
+  gpu::release_cached_devices();
 }
