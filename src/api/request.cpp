@@ -2,11 +2,13 @@
 // (the saliency mesh, the views, the simplified mesh, the levels of detail).
 #include <algorithm>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 #include "api/gpu_backend.h"
 #include "api/request_parts.h"
+#include "core/cancel.h"
 #include "core/timer.h"
 #include "saliency/saliency.h"
 #include "meshsal/meshsal.h"
@@ -27,6 +29,17 @@ Request with_implied_options(const Request& given) {
 
 bool weighted_simplification(const Request& r) {
   return r.weighting != Weighting::None && (!r.simplified_output.empty() || !r.lod_output.empty() || r.simplify_in_memory);
+}
+
+// Whether the request computes S of the paper's model on one machine from a file it reads:
+// what warm_up_saliency prepares the device for (S read back, given, or not needed by any
+// output, another model, tiles or ranks: nothing to prepare).
+bool warms_up_device(const Request& r) {
+  const bool views = !r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view;
+  const bool needs_s = !r.saliency_output.empty() || (views && r.score == Score::Saliency) || weighted_simplification(r);
+  const SaliencyOptions& o = r.saliency;
+  return needs_s && !r.mesh && r.saliency_from.empty() && !r.saliency_values && o.backend != Backend::Cpu &&
+         o.model == Model::Lee2005 && o.tiles == 0 && !o.exchange && !o.session;
 }
 
 }  // namespace
@@ -109,10 +122,17 @@ RequestResult run_request(const Request& given) {
   // once-per-process costs, about 0.6 s on the H200: docs/benchmarks.md), so that the
   // computation starts at once. (A mesh given in memory has nothing to overlap with.)
   std::thread warm_up;
-  if (!r.mesh && r.saliency_from.empty() && !r.saliency_values && r.saliency.backend != Backend::Cpu) {
+  if (warms_up_device(r)) {
     SaliencyOptions so = r.saliency;
-    so.smoothed = !r.simplified_output.empty() || !r.lod_output.empty() || r.simplify_in_memory;
-    warm_up = std::thread([so] { warm_up_saliency(so); });
+    so.smoothed = weighted_simplification(r);
+    try {
+      warm_up = std::thread([so] {
+        CancelScope scope(so.cancel);  // a cancelled read ends the warm-up too
+        warm_up_saliency(so);
+      });
+    } catch (const std::system_error&) {
+      // No thread to spare (a process limit): the run opens the device itself.
+    }
   }
   try {
     step("read", [&] { read_input(run); });

@@ -25,6 +25,9 @@ class DeviceCurvature {
   // for the host to read).
   DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
                   const BoundingBox& box);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  DeviceCurvature(const DeviceCurvature&) = delete;
+  DeviceCurvature& operator=(const DeviceCurvature&) = delete;
   // Records the whole computation into cmd, ending with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd);
   // After the submission: false when some vertex has more triangles than one invocation may

@@ -90,9 +90,12 @@ SigmaCounts read_counts(const vk::Context& ctx, const vk::Buffer& counts, uint32
 // The arrays of one filter, made once for all its sigmas, and the steps that use them.
 class FastDevice {
  public:
+  FastDevice(const FastDevice&) = delete;
+  FastDevice& operator=(const FastDevice&) = delete;
   FastDevice(vk::Context& ctx, const FastInputs& in, uint32_t nv, uint32_t np,
              const std::vector<SigmaPlan>& plans, const FastFilterParams& params)
-      : counts_(vk::Buffer::host_visible(ctx, kFastCounts * 4, "the fast method's counts")),
+      : counts_(ctx, kFastCounts * 4, "the fast method's counts"),
+        counts_host_(vk::Buffer::host_visible(ctx, kFastCounts * 4, "the fast method's counts")),
         pool_(ctx, FastCells::kSets + FastGroups::kSets + GridBuilder::kSets + CandidateBound::kSets,
               FastCells::kBuffers + FastGroups::kBuffers + GridBuilder::kBuffers + CandidateBound::kBuffers),
         cells_(ctx, pool_, in, counts_, nv, np, most(plans, true)),
@@ -113,9 +116,13 @@ class FastDevice {
     groups_.record(ctx, cmd, p.cells);
     qgrid_.record(ctx, cmd, p.queries, np_);
     bound_.record(ctx, cmd, p.queries, 2 * p.sigma);
+    // The counts into host memory (the submission's end makes the copy visible to the host).
+    const VkBufferCopy c{0, 0, kFastCounts * 4};
+    vkCmdCopyBuffer(cmd, counts_.handle(), counts_host_.handle(), 1, &c);
   }
 
-  const vk::Buffer& counts() const { return counts_; }
+  // What the last preparation found: read after its submission, without a copy.
+  const vk::Buffer& counts() const { return counts_host_; }
   FastCells& cells() { return cells_; }
   FastGroups& groups() { return groups_; }
   vk::Buffer& qstarts() { return qstarts_; }
@@ -129,7 +136,9 @@ class FastDevice {
     for (const SigmaPlan& p : plans) m = std::max(m, fine ? p.cells.cells() : p.queries.cells());
     return m;
   }
-  vk::Buffer counts_;
+  // The counts the steps write and read (device memory: their atomics and reads stay on
+  // the device) and their copy in host memory.
+  vk::Buffer counts_, counts_host_;
   vk::DescriptorPool pool_;
   FastCells cells_;
   FastGroups groups_;

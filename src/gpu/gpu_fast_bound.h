@@ -26,6 +26,9 @@ class CandidateBound {
   // counts[slot].
   CandidateBound(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buffer& starts,
                  vk::Buffer& counts, uint64_t max_cells, uint32_t slot);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  CandidateBound(const CandidateBound&) = delete;
+  CandidateBound& operator=(const CandidateBound&) = delete;
   // Records the bound for grid g (its starts written before, behind a barrier), ending with
   // a barrier. counts[slot] must be 0 before (the passes take a maximum into it).
   void record(vk::Context& ctx, VkCommandBuffer cmd, const GridPlan& g, double radius) const;

@@ -6,7 +6,8 @@
 // pieces found as runs of the sorted keys (run_heads.comp, run_starts.comp, fast_pieces.comp;
 // host twin: fast_cell_runs()), and each cell gets its point count, value sum and centroid
 // (rounded to float, as the CPU rounds it). All on the device: the host reads nothing back;
-// the counts (cells, pieces) land in a host-visible counts buffer it reads once per sigma.
+// the counts (cells, pieces) land in a counts buffer on the device, which the fast filter
+// copies into host memory at the end of each sigma's preparation.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -24,7 +25,8 @@ namespace meshsal::gpu {
 constexpr uint32_t kFastPiece = 4096;
 
 // The slots of the fast filter's counts buffer (uint each): what the device found for the
-// current sigma. The host reads them once per sigma, after the submission that wrote them.
+// current sigma. The host reads them once per sigma (from a copy in host memory), after the
+// submission that wrote them.
 enum FastCount : uint32_t {
   kCountCells,           // occupied cells (m)
   kCountPieces,          // pieces of the cells
@@ -69,6 +71,9 @@ class FastCells {
  public:
   FastCells(vk::Context& ctx, vk::DescriptorPool& pool, const FastInputs& in, vk::Buffer& counts,
             uint32_t nv, uint32_t np, uint64_t most_cells, uint32_t piece = kFastPiece);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  FastCells(const FastCells&) = delete;
+  FastCells& operator=(const FastCells&) = delete;
   // Records the sort and aggregation for `grid` into cmd, ending with a barrier: afterwards
   // the arrays below hold this sigma's cells and counts[kCountCells], [kCountPieces] theirs.
   void record(vk::Context& ctx, VkCommandBuffer cmd, const FastGrid& grid, const double box_min[3]);

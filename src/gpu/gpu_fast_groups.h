@@ -19,6 +19,9 @@ class FastGroups {
   // cells (the finest sigma's: it sets the sort's passes).
   FastGroups(vk::Context& ctx, vk::DescriptorPool& pool, FastCells& cells, vk::Buffer& counts,
              uint64_t most_cells, int factor);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  FastGroups(const FastGroups&) = delete;
+  FastGroups& operator=(const FastGroups&) = delete;
   // Records the groups of this sigma's cells (on `grid`) into cmd, ending with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd, const FastGrid& grid);
   static constexpr uint32_t kSets = RadixSort::kSets + RunFinder::kSets + 2;

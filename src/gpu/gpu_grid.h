@@ -42,6 +42,9 @@ struct GridArrays {
 class GridBuilder {
  public:
   GridBuilder(vk::Context& ctx, vk::DescriptorPool& pool, const GridArrays& a, uint32_t n, uint64_t max_cells);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  GridBuilder(const GridBuilder&) = delete;
+  GridBuilder& operator=(const GridBuilder&) = delete;
   // Records the build of plan g (g.cells() <= max_cells) into cmd: a.starts over its cells,
   // the first `gather` sorted items (the points, or a bound of them) into a.sorted_pos and
   // a.sorted_vertex. Ends with a barrier.

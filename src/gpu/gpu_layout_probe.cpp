@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gpu/gpu_saliency.h"
+#include "core/cancel.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal::gpu {
@@ -66,7 +67,16 @@ LayoutProbe measure_sweep_layout(vk::Context& ctx, bool mixed, uint32_t points, 
 
 int measured_sweep_variant(vk::Context& ctx, bool mixed) {
   int& v = ctx.measured_sweep_variant[mixed ? 1 : 0];
-  if (v < 0) v = measure_sweep_layout(ctx, mixed).variant();
+  if (v >= 0) return v;
+  try {
+    v = measure_sweep_layout(ctx, mixed).variant();
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error&) {
+    // A probe that fails must not fail the run: the layout GPUs took before the probe (a
+    // subgroup per point); the run itself meets whatever broke, if it persists.
+    v = 1;
+  }
   return v;
 }
 

@@ -531,9 +531,18 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     if (m.curvature->complete()) {
       res.curvature.resize(nv);
       m.curvature->curvature.download(res.curvature.data(), nv * 8);
-    } else {  // a vertex of more triangles than one invocation may visit: the host's H
+    } else {
+      // A vertex of more triangles than one invocation may visit (lavapipe's loop limit):
+      // the host's H, and the suppression over the 1-rings (local_max.comp) rather than over
+      // each vertex's triangles, as the exact method takes them.
       res.curvature = mean_curvature_morton(mesh, bb, options.threads);
       upload_positions(mesh, res, bb, m, options.threads);
+      const Adjacency rings = build_adjacency(mesh);
+      m.offsets = vk::Buffer(ctx, rings.offsets.size() * 4, "the adjacency offsets");
+      m.neighbors = vk::Buffer(ctx, rings.neighbors.size() * 4, "the adjacency lists");
+      m.offsets.upload(rings.offsets.data(), rings.offsets.size() * 4);
+      m.neighbors.upload(rings.neighbors.data(), rings.neighbors.size() * 4);
+      m.curvature.reset();
     }
     res.stages.push_back({"curvature", t0.seconds()});
   }

@@ -15,6 +15,9 @@ class Scan {
  public:
   // Scans of `in` into `out` (max_n + 1 entries) of up to max_n entries.
   Scan(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buffer& in, vk::Buffer& out, uint32_t max_n);
+  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  Scan(const Scan&) = delete;
+  Scan& operator=(const Scan&) = delete;
   // out[i] = in[0] + ... + in[i-1] for i <= n (n <= max_n). Ends with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd, uint32_t n) const;
   static constexpr uint32_t kSets = 1, kBuffers = 3;  // what it takes from the pool

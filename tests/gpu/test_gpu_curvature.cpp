@@ -3,6 +3,7 @@
 // triangles, a flat plane), a real scan, under forced staging, and the incidence it keeps.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -11,10 +12,12 @@
 #include "cli/synthetic.h"
 #include "core/mesh_points.h"
 #include "gpu/gpu_curvature.h"
+#include "gpu/gpu_saliency.h"
 #include "gpu/vk_compute.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
 #include "saliency/curvature.h"
+#include "saliency/saliency.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -111,4 +114,25 @@ TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visi
   const std::vector<double> cpu = mean_curvature_morton(fan, box, 2);
   CHECK(gpu[1] == cpu[1]);  // the rim's are computed
   CHECK(gpu[0] == 0.0);
+}
+
+TEST_CASE("gpu fast saliency: a vertex past the limit takes the host's curvature and the 1-rings", "[gpu][curvature]") {
+  // A cone of 20000 triangles around its apex, with a ring of bumps: the apex is flagged.
+  Mesh fan;
+  fan.positions = {0, 0, 1};
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * 3.141592653589793 * i / n;
+    fan.positions.insert(fan.positions.end(), {float(std::cos(a)), float(std::sin(a)), float(0.05 * std::sin(40 * a))});
+  }
+  for (int i = 0; i < n; ++i) fan.triangles.insert(fan.triangles.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % n)});
+  SaliencyOptions opt;
+  opt.method = Method::Fast;
+  opt.threads = 2;
+  const uint64_t before = vk::validation_message_count();
+  const SaliencyResult gpu = compute_saliency_gpu(context(), fan, opt);
+  const SaliencyResult cpu = compute_saliency_cpu(fan, opt);
+  CHECK(vk::validation_message_count() == before);
+  CHECK(gpu.curvature == cpu.curvature);  // the host's H, the CPU fast path's bits
+  meshsal_test::check_maps_match(cpu, gpu, opt.scales, 1e-4, 1e-4);
 }
