@@ -70,6 +70,18 @@ void check_same_bits(vk::Context& ctx, const Mesh& mesh, const std::string& what
   CHECK(vk::validation_message_count() == before);
 }
 
+// A cone of n triangles around its apex (vertex 0), its rim at height bump * sin(40 a).
+Mesh make_cone(int n, double bump) {
+  Mesh m;
+  m.positions = {0, 0, 1};
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * 3.141592653589793 * i / n;
+    m.positions.insert(m.positions.end(), {float(std::cos(a)), float(std::sin(a)), float(bump * std::sin(40 * a))});
+  }
+  for (int i = 0; i < n; ++i) m.triangles.insert(m.triangles.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % n)});
+  return m;
+}
+
 vk::Context& context() {
   static std::unique_ptr<vk::Context> ctx = std::make_unique<vk::Context>(-1, true);
   return *ctx;
@@ -99,14 +111,7 @@ TEST_CASE("gpu curvature: a real scan, and under forced staging", "[gpu][curvatu
 
 TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visit is flagged", "[gpu][curvature]") {
   // A fan of 20000 triangles around vertex 0: its H is left to the host.
-  Mesh fan;
-  fan.positions = {0, 0, 1};
-  const int n = 20000;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * 3.141592653589793 * i / n;
-    fan.positions.insert(fan.positions.end(), {float(std::cos(a)), float(std::sin(a)), 0.0f});
-  }
-  for (int i = 0; i < n; ++i) fan.triangles.insert(fan.triangles.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % n)});
+  const Mesh fan = make_cone(20000, 0.0);
   const BoundingBox box = mesh_points_bbox(fan, referenced_vertices(fan));
   bool complete = true;
   const std::vector<double> gpu = gpu_curvature(context(), fan, box, &complete);
@@ -118,14 +123,7 @@ TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visi
 
 TEST_CASE("gpu fast saliency: a vertex past the limit takes the host's curvature and the 1-rings", "[gpu][curvature]") {
   // A cone of 20000 triangles around its apex, with a ring of bumps: the apex is flagged.
-  Mesh fan;
-  fan.positions = {0, 0, 1};
-  const int n = 20000;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * 3.141592653589793 * i / n;
-    fan.positions.insert(fan.positions.end(), {float(std::cos(a)), float(std::sin(a)), float(0.05 * std::sin(40 * a))});
-  }
-  for (int i = 0; i < n; ++i) fan.triangles.insert(fan.triangles.end(), {0u, uint32_t(1 + i), uint32_t(1 + (i + 1) % n)});
+  const Mesh fan = make_cone(20000, 0.05);
   SaliencyOptions opt;
   opt.method = Method::Fast;
   opt.threads = 2;
