@@ -344,6 +344,14 @@ void upload_positions(const Mesh& mesh, const SaliencyResult& res, const Boundin
   m.pos.upload(pos4.data(), pos4.size() * 8);
 }
 
+// m.offsets, m.neighbors: the 1-rings of the local-maximum test (local_max.comp).
+void upload_rings(vk::Context& ctx, const Adjacency& adj, DeviceMesh& m) {
+  m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
+  m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
+  m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
+  m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
+}
+
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
                  uint64_t fast_bytes, unsigned threads, DeviceMesh* out) {
@@ -367,8 +375,7 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
 
   m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");
   m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
-  m.offsets = vk::Buffer(ctx, adj.offsets.size() * 4, "the adjacency offsets");
-  m.neighbors = vk::Buffer(ctx, adj.neighbors.size() * 4, "the adjacency lists");
+  upload_rings(ctx, adj, m);
   m.sorted_pos = vk::Buffer(ctx, size_t(m.np) * 32, "the sorted points");
   m.sorted_vertex = vk::Buffer(ctx, size_t(m.np) * 4, "the sorted point indices");
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
@@ -376,8 +383,6 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
   m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
   upload_positions(mesh, res, bb, m, threads);
   m.flags.upload(flags.data(), flags.size() * 4);
-  m.offsets.upload(adj.offsets.data(), adj.offsets.size() * 4);
-  m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
 }
 
 // suppress() of every raw map in m.result and the final sum S into `saliency`.
@@ -537,11 +542,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       // each vertex's triangles, as the exact method takes them.
       res.curvature = mean_curvature_morton(mesh, bb, options.threads);
       upload_positions(mesh, res, bb, m, options.threads);
-      const Adjacency rings = build_adjacency(mesh);
-      m.offsets = vk::Buffer(ctx, rings.offsets.size() * 4, "the adjacency offsets");
-      m.neighbors = vk::Buffer(ctx, rings.neighbors.size() * 4, "the adjacency lists");
-      m.offsets.upload(rings.offsets.data(), rings.offsets.size() * 4);
-      m.neighbors.upload(rings.neighbors.data(), rings.neighbors.size() * 4);
+      upload_rings(ctx, build_adjacency(mesh), m);
       m.curvature.reset();
     }
     res.stages.push_back({"curvature", t0.seconds()});

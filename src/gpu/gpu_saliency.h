@@ -1,8 +1,10 @@
 // meshsal: SPEC section 1 on a Vulkan device, held to the CPU path (compute_saliency_cpu)
 // to 1e-4 of each map's maximum, with the same local maxima, in both sweep precisions
-// (options.precision, see saliency.h). Curvature and the 1-ring adjacency come from the CPU;
-// the grid, the neighbour sweep, the raw maps, suppression, the final sum and the smoothed
-// saliency G(S, 3 eps) run on the device.
+// (options.precision, see saliency.h). The exact method's curvature and 1-rings come from the
+// CPU (its bits are the CPU path's); the fast method's curvature runs on the device
+// (gpu_curvature.h) and its suppression takes each vertex's triangles. The grid, the
+// neighbour sweep, the raw maps, suppression, the final sum and the smoothed saliency
+// G(S, 3 eps) run on the device.
 #pragma once
 #include <vector>
 

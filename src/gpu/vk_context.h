@@ -91,12 +91,12 @@ class Context {
   bool has_float64 = false;  // shaderFloat64, enabled when the device has it
   uint32_t subgroup_size = 0;        // lanes per subgroup (Vulkan 1.1)
   bool subgroup_arithmetic = false;  // subgroupAdd & co. in compute shaders
-  // The sweep variant of the default plan (sweep.glsl): -1 by device type (a lane per
-  // point over rows shared by the subgroup on CPU devices, a subgroup per point on GPUs),
-  // 0 shared rows, 1 subgroup per point. Tests run both.
+  // The sweep variant of the default plan (sweep.glsl): 0 shared rows (a lane per point
+  // over rows shared by the subgroup), 1 a subgroup per point; -1: rows on CPU devices, on
+  // GPUs as measured_sweep_variant says. Tests run both.
   int sweep_variant = -1;
-  // On GPUs, -1: the layout of the default plan chosen by timing both once per context
-  // (gpu_layout_probe.h), in double ([0]) and mixed ([1]) precision; then the choice.
+  // A GPU's choice for -1: both layouts timed once per context (gpu_layout_probe.h), in
+  // double ([0]) and mixed ([1]) precision; -1 until then.
   int measured_sweep_variant[2] = {-1, -1};
   // Time of double over float arithmetic, measured on first need (gpu_fp64_rate.h); 0:
   // not yet. Tests may set it to choose what --precision auto takes.
