@@ -65,8 +65,11 @@ std::shared_ptr<void> session_handle(const Device& session);
 // opening, the pipelines' compiles, the probes), paid now on the device that run will take
 // (Backend::Gpu: options.device; Auto: the hardware GPU it would pick; nothing for the CPU,
 // tiles, a session or a library without Vulkan). Never throws: a failure is left for the
-// run to report. For a front end to call on a thread while it reads the input.
-void warm_up_saliency(const SaliencyOptions& options);
+// run to report. For a front end to call on a thread while it reads the input. Returns the
+// options with what it resolved for Auto (the GPU's index, or Backend::Cpu where Auto takes
+// the CPU), so that the run lists the devices no second time; as given where it resolved
+// nothing or failed (the run then meets the failure and says so).
+SaliencyOptions warm_up_saliency(const SaliencyOptions& options);
 
 // The linked backend; throws Error when this library has none.
 const GpuBackend& gpu_backend();

@@ -31,12 +31,17 @@ bool weighted_simplification(const Request& r) {
   return r.weighting != Weighting::None && (!r.simplified_output.empty() || !r.lod_output.empty() || r.simplify_in_memory);
 }
 
+// Whether the request has a view found or drawn (the page, the picture, the view map).
+bool makes_views(const Request& r) {
+  return !r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view;
+}
+
 // Whether the request computes S of the paper's model on one machine from a file it reads:
 // what warm_up_saliency prepares the device for (S read back, given, or not needed by any
 // output, another model, tiles or ranks: nothing to prepare).
 bool warms_up_device(const Request& r) {
-  const bool views = !r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view;
-  const bool needs_s = !r.saliency_output.empty() || (views && r.score == Score::Saliency) || weighted_simplification(r);
+  const bool needs_s =
+      !r.saliency_output.empty() || (makes_views(r) && r.score == Score::Saliency) || weighted_simplification(r);
   const SaliencyOptions& o = r.saliency;
   return needs_s && !r.mesh && r.saliency_from.empty() && !r.saliency_values && o.backend != Backend::Cpu &&
          o.model == Model::Lee2005 && o.tiles == 0 && !o.exchange && !o.session;
@@ -121,14 +126,17 @@ RequestResult run_request(const Request& given) {
   // compiled and the probes run on a thread while the file is read (a GPU run's
   // once-per-process costs, about 0.6 s on the H200: docs/benchmarks.md), so that the
   // computation starts at once. (A mesh given in memory has nothing to overlap with.)
+  // The device it resolved (Auto's pick) is the run's, so the run lists the devices no
+  // second time.
   std::thread warm_up;
+  SaliencyOptions warmed = r.saliency;
   if (warms_up_device(r)) {
     SaliencyOptions so = r.saliency;
     so.smoothed = weighted_simplification(r);
     try {
-      warm_up = std::thread([so] {
+      warm_up = std::thread([so, &warmed] {
         CancelScope scope(so.cancel);  // a cancelled read ends the warm-up too
-        warm_up_saliency(so);
+        warmed = warm_up_saliency(so);
       });
     } catch (const std::system_error&) {
       // No thread to spare (a process limit): the run opens the device itself.
@@ -144,6 +152,8 @@ RequestResult run_request(const Request& given) {
     const Timer wait;
     warm_up.join();
     run.warm_up_wait = wait.seconds();
+    run.saliency.backend = warmed.backend;
+    run.saliency.device = warmed.device;
   }
   if (r.on_read) r.on_read();
   // Where S is computed on the plain mesh for its own outputs and the simplifier weighs by
@@ -156,8 +166,7 @@ RequestResult run_request(const Request& given) {
       if (writes_files(r)) write_saliency_output(run);
       else plain_saliency(run, false);  // the ranks compute together; rank 0 writes
     });
-  if (!r.page_output.empty() || !r.picture_output.empty() || !r.map_output.empty() || r.find_view)
-    step("views", [&] { make_views(run); });
+  if (makes_views(r)) step("views", [&] { make_views(run); });
   if (!r.simplified_output.empty() || (r.simplify_in_memory && r.lod.empty())) step("simplify", [&] { make_simplified(run); });
   if (!r.lod_output.empty() || (r.simplify_in_memory && !r.lod.empty())) step("levels of detail", [&] { make_lod(run); });
   if (result.saliency.saliency.empty() && run.has_plain_s) result.saliency = run.plain_s;

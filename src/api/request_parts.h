@@ -12,9 +12,11 @@
 namespace meshsal {
 
 struct RequestRun {
-  RequestRun(const Request& r, RequestResult& out) : request(r), result(out) {}
+  RequestRun(const Request& r, RequestResult& out) : request(r), result(out), saliency(r.saliency) {}
   const Request& request;
   RequestResult& result;
+  // What S is computed with: the request's options, with the device a warm-up resolved.
+  SaliencyOptions saliency;
   // The input read plainly (S, the saliency PLY, the views) and with its attributes (the
   // outputs that carry them); either points at the caller's mesh or at its copy here.
   const Mesh* plain = nullptr;

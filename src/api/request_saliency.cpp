@@ -56,7 +56,7 @@ SaliencyResult saliency_of(RequestRun& run, const Mesh& mesh, bool smoothed) {
     run.result.saliency_source = from;
     return s;
   }
-  SaliencyOptions so = r.saliency;
+  SaliencyOptions so = run.saliency;
   so.smoothed = smoothed;
   so.raw_maps = r.dump_scales;  // written only then: 8 bytes per vertex per scale otherwise
   s = compute_saliency(mesh, so);

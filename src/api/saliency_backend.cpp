@@ -108,17 +108,23 @@ SaliencyResult run_backend(const Mesh& mesh, const SaliencyOptions& options) {
 
 }  // namespace
 
-void warm_up_saliency(const SaliencyOptions& options) {
-  if (options.backend == Backend::Cpu || options.tiles > 0 || options.session || !linked_gpu_backend()) return;
+SaliencyOptions warm_up_saliency(const SaliencyOptions& options) {
+  if (options.backend == Backend::Cpu || options.tiles > 0 || options.session || !linked_gpu_backend())
+    return options;
   try {
     SaliencyOptions o = options;
     if (o.backend == Backend::Auto && o.device < 0) {
       o.device = pick_hardware_gpu(list_devices());  // as compute_auto picks
-      if (o.device < 0) return;                        // the CPU path: nothing to warm
+      if (o.device < 0) {                            // the CPU path, as compute_auto takes it
+        o.backend = Backend::Cpu;
+        return o;
+      }
     }
     linked_gpu_backend()->warm_up(o);
+    return o;
   } catch (...) {
     // The run itself reports (or falls back): a warm-up only saves time.
+    return options;
   }
 }
 

@@ -141,14 +141,30 @@ TEST_CASE("gpu session: a warm-up opens the device and builds the run's pipeline
   const gpu::SessionCounters cold = gpu::session_counters();
   SaliencyOptions cpu = o;
   cpu.backend = Backend::Cpu;
-  warm_up_saliency(cpu);
+  CHECK(warm_up_saliency(cpu).backend == Backend::Cpu);
   SaliencyOptions tiled = o;
   tiled.tiles = 8;
-  warm_up_saliency(tiled);
+  CHECK(warm_up_saliency(tiled).backend == Backend::Gpu);
   SaliencyOptions missing = o;
   missing.device = 99;
-  CHECK_NOTHROW(warm_up_saliency(missing));
+  SaliencyOptions back;
+  CHECK_NOTHROW(back = warm_up_saliency(missing));
+  CHECK(back.device == 99);  // as given: the run meets the failure
   CHECK(gpu::session_counters().contexts_opened == cold.contexts_opened);
+  // Auto resolved as compute_auto resolves it: the hardware GPU, or the CPU where there is
+  // none (lavapipe alone): the run then lists the devices no second time.
+  SaliencyOptions automatic = o;
+  automatic.backend = Backend::Auto;
+  automatic.device = -1;
+  const SaliencyOptions resolved = warm_up_saliency(automatic);
+  const int hardware = pick_hardware_gpu(list_devices());
+  if (hardware < 0) {
+    CHECK(resolved.backend == Backend::Cpu);
+  } else {
+    CHECK(resolved.backend == Backend::Auto);
+    CHECK(resolved.device == hardware);
+  }
+  gpu::release_cached_devices();
   for (Method method : {Method::Exact, Method::Fast}) {
     INFO(int(method));
     gpu::release_cached_devices();
