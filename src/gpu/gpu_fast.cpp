@@ -64,7 +64,8 @@ struct SigmaPlan {
 struct SigmaCounts {
   uint32_t cells, pieces, groups;
   bool dense;
-  uint32_t queries, windows;
+  uint32_t queries;
+  uint32_t window, windows;  // candidates a dispatch visits, and how many windows of them
 };
 
 SigmaCounts read_counts(const vk::Context& ctx, const vk::Buffer& counts, uint32_t np) {
@@ -81,9 +82,9 @@ SigmaCounts read_counts(const vk::Context& ctx, const vk::Buffer& counts, uint32
                 " query groups for " + std::to_string(np) + " mesh points");
   out.dense = double(np) >= params.points_per_query_cell * double(out.cells);
   out.queries = out.dense ? out.groups : np;
-  const uint32_t window = std::max<uint32_t>(1, ctx.fast_window_candidates);
-  const uint64_t most = out.cells <= window ? out.cells : c[kCountMostCandidates];
-  out.windows = uint32_t(std::max<uint64_t>(1, (most + window - 1) / window));
+  out.window = std::max<uint32_t>(1, ctx.fast_window_candidates);
+  const uint64_t most = out.cells <= out.window ? out.cells : c[kCountMostCandidates];
+  out.windows = uint32_t(std::max<uint64_t>(1, (most + out.window - 1) / out.window));
   return out;
 }
 
@@ -257,7 +258,6 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
     QueryPush qp{0, 0, qg.nx, qg.ny, qg.nz, mode, 0, 0, qg.h, 4 * s * s, radius,
                  1.0 / (2 * s * s), t > 0 ? (2 * s - t) * (2 * s - t) : INFINITY,
                  t > 0 ? s * s * std::exp(-2.0) / (2 * s * t) : 0.0};
-    const uint32_t window = std::max<uint32_t>(1, ctx.fast_window_candidates);
     // Submissions of a range of queries each: the first small and timed, the next ones
     // sized from the measured rate to about ctx.submission_target_s (gpu_slices.h).
     double budget = std::max(64.0, std::min(4096.0, double(sc.queries) / 16));
@@ -271,8 +271,8 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
       vk::barrier(cmd);
     };
     for (uint32_t w = 0; w < sc.windows; ++w) {
-      qp.ord_lo = w * window;
-      qp.ord_hi = qp.ord_lo + window;
+      qp.ord_lo = w * sc.window;
+      qp.ord_hi = qp.ord_lo + sc.window;
       for (uint32_t at = 0; at < sc.queries;) {
         const uint32_t next = uint32_t(std::min<double>(sc.queries, at + std::max(1.0, std::floor(budget))));
         const bool last = w + 1 == sc.windows && next == sc.queries;

@@ -91,7 +91,7 @@ FastCells::FastCells(vk::Context& ctx, vk::DescriptorPool& pool, const FastInput
       is_cell(ctx, size_t(np) * 4, "the fast method's cell flags"),
       piece_start(ctx, (max_pieces(np, piece) + 1) * 4, "the fast method's pieces"),
       piece_cell(ctx, max_pieces(np, piece) * 4, "the fast method's pieces"),
-      nv_(nv), np_(np), piece_(piece), in_(in),
+      nv_(nv), np_(np), piece_(piece),
       // keys run up to the grid's cell count (a vertex that is not a mesh point)
       sort_(ctx, pool, nv, most_cells, "the fast method's"),
       head_(ctx, size_t(np) * 4, "the fast method's run heads"),

@@ -95,7 +95,6 @@ class FastCells {
 
  private:
   uint32_t nv_, np_, piece_;
-  const FastInputs in_;
   RadixSort sort_;
   vk::Buffer head_, scan_, piece_head_, piece_scan_, piece_sum_;
   RunFinder runs_;
