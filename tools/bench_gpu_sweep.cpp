@@ -118,7 +118,11 @@ int main(int argc, char** argv) {
       ctx.sweep_variant = -1;
       if (!fast) continue;
       o.method = Method::Fast;
+      const uint64_t sent = ctx.uploaded_bytes;
       compute_saliency_gpu(ctx, mesh, o);
+      const double up = double(ctx.uploaded_bytes - sent);
+      std::printf("%-26s fast: %.1f MB uploaded, %.1f bytes a vertex\n", name.c_str(), up / 1e6,
+                  up / double(mesh.vertex_count()));
       std::vector<vk::Context::FastPhase> phases;
       const SaliencyResult r = best_of(ctx, mesh, o, repeat, &phases);
       std::printf("%-26s fast: curvature %.3fs upload %.3fs sweep %.3fs suppression %.3fs download %.3fs total %.3fs\n",

@@ -13,6 +13,7 @@
 #include "meshsal/meshsal.h"
 #include "gpu/gpu_curvature.h"
 #include "gpu/gpu_fast.h"
+#include "gpu/gpu_mesh_points.h"
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_session.h"
@@ -326,21 +327,11 @@ void check_device(const vk::Context& ctx) {
                 "shaders (subgroup size " + std::to_string(ctx.subgroup_size) + "), which the GPU path needs");
 }
 
-// Positions relative to the bbox minimum in double (as the CPU grid has them) with the
-// curvature as w, the mesh-point flags and the 1-ring, after checking that everything
-// the computation will allocate fits the device.
-// m.pos: the positions less bb.min in double, the curvature as w (0 while the fast method's
-// is still to come from the device).
+// m.pos: the positions less bb.min in double (as the CPU grid has them) with the curvature
+// as w (gpu_mesh_points.h's local_points).
 void upload_positions(const Mesh& mesh, const SaliencyResult& res, const BoundingBox& bb, DeviceMesh& m,
                       unsigned threads) {
-  const size_t nv = mesh.vertex_count();
-  std::vector<double> pos4(4 * nv);
-  parallel_for(nv, threads, 1 << 16, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) {
-      for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - bb.min[a];
-      pos4[4 * v + 3] = res.curvature.empty() ? 0.0 : res.curvature[v];
-    }
-  });
+  const std::vector<double> pos4 = gpu::local_points(mesh, res.curvature, bb, threads);
   m.pos.upload(pos4.data(), pos4.size() * 8);
 }
 
@@ -352,17 +343,17 @@ void upload_rings(vk::Context& ctx, const Adjacency& adj, DeviceMesh& m) {
   m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
 }
 
+// The device buffers of the mesh, after checking that everything the computation will
+// allocate fits the device; the positions (m.pos) and the mesh-point flags uploaded unless
+// `on_device` (the fast method builds them there: gpu_mesh_points.h), the 1-rings unless
+// `adj` is empty.
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
-                 uint64_t fast_bytes, unsigned threads, DeviceMesh* out) {
+                 uint64_t fast_bytes, unsigned threads, bool on_device, DeviceMesh* out) {
   DeviceMesh& m = *out;
   const size_t nv = mesh.vertex_count();
   m.nv = static_cast<uint32_t>(nv);
-  std::vector<uint32_t> flags(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    flags[v] = res.is_point[v];
-    m.np += res.is_point[v];
-  }
+  for (size_t v = 0; v < nv; ++v) m.np += res.is_point[v];
 
   // Memory: refuse up front what cannot fit the device-local heap (or its budget).
   const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
@@ -381,7 +372,9 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
   m.params = vk::Buffer(ctx, sizeof(SweepParams), "the sweep parameters");
   m.result = vk::Buffer(ctx, nv * nsc * 8, "the raw saliency maps");
   m.pairs = vk::Buffer(ctx, size_t(m.np) * 4, "the pair counts");
+  if (on_device) return;
   upload_positions(mesh, res, bb, m, threads);
+  const std::vector<uint32_t> flags(res.is_point.begin(), res.is_point.end());
   m.flags.upload(flags.data(), flags.size() * 4);
 }
 
@@ -523,16 +516,21 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   const uint64_t fast_bytes = fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) + nv * 16 +
                                          gpu::DeviceCurvature::bytes(nv, mesh.triangle_count())
                                    : 0;
-  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, options.threads, &m);
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, options.threads, fast, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
   if (fast) m.pos32 = gpu::upload_float_positions(ctx, mesh, options.threads);
   res.stages.push_back({"upload", t0.seconds()});
 
-  if (fast) {  // --- the fast method's curvature, on the device ---------------------------
+  if (fast) {  // --- the fast method's mesh points and curvature, on the device ------------
     t0.restart();
     m.curvature = std::make_unique<gpu::DeviceCurvature>(ctx, mesh, m.pos32, m.pos, bb);
-    vk::submit(ctx, "curvature", [&](VkCommandBuffer cmd) { m.curvature->record(ctx, cmd); });
+    const gpu::DeviceMeshPoints points(ctx, m.pos32, m.curvature->triangles, m.pos, m.flags, m.nv,
+                                       mesh.triangle_count());
+    vk::submit(ctx, "curvature", [&](VkCommandBuffer cmd) {
+      points.record(ctx, cmd, bb);
+      m.curvature->record(ctx, cmd);
+    });
     if (m.curvature->complete()) {
       res.curvature.resize(nv);
       m.curvature->curvature.download(res.curvature.data(), nv * 8);

@@ -31,7 +31,8 @@ struct MortonKeyPush {
 };
 struct ScanPush { uint32_t base, nblocks, n, mode; };  // scan_blocks.comp
 struct BoundPush { uint32_t base, n, nx, ny, nz, r, mode, most_slot; };  // fast_candidate_bound.comp
-struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };       // sorted_float.comp
+struct OriginPush { uint32_t base, n, pad0, pad1; double ox, oy, oz; };  // sorted_float, point_positions.comp
+struct CornersPush { uint32_t base, n, vertices; };                     // point_flags.comp
 struct QueryPush {
   uint32_t base, n, nx, ny, nz, dense, ord_lo, ord_hi;
   double h, cut2, radius, coef, shell2, shell_w;
@@ -104,6 +105,8 @@ using MapMaxFinal = Interface<GroupsPush, 2>;
 using Mbar = Interface<GroupsPush, 3>;
 using NearTie = Interface<NearTiePush, 6>;
 using PairSums = Interface<PairSumsPush, 2>;
+using PointFlags = Interface<CornersPush, 2>;
+using PointPositions = Interface<OriginPush, 2>;
 using RunHeads = Interface<RunPush, 3>;
 using RunStarts = Interface<RunPush, 7>;
 using ScanBlocks = Interface<ScanPush, 3>;

@@ -150,6 +150,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_) throw Error("internal: upload past the end of a Vulkan buffer");
+  ctx_->uploaded_bytes += bytes;
   if (mapped_) {
     std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
     return;

@@ -115,6 +115,7 @@ class Context {
   bool use_staging = false;
   std::unique_ptr<StagingArea> staging;  // made on first use, reused (vk_staging.h)
   uint64_t staged_copies = 0;            // copy submissions through it (tests count them)
+  uint64_t uploaded_bytes = 0;           // bytes Buffer::upload sent (staged or mapped)
   // Target device time of one sweep submission (seconds): the first slice is timed and
   // the rest sized to it, far below a desktop driver's ~2 s watchdog.
   double submission_target_s = 0.15;

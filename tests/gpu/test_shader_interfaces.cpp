@@ -50,6 +50,8 @@
 #include "mbar_comp.h"
 #include "near_tie_comp.h"
 #include "pair_sums_comp.h"
+#include "point_flags_comp.h"
+#include "point_positions_comp.h"
 #include "run_heads_comp.h"
 #include "run_starts_comp.h"
 #include "scan_blocks_comp.h"
@@ -265,6 +267,9 @@ template <> std::vector<Member> members_of<OriginPush>() {
   return {MEMBER(OriginPush, base), MEMBER(OriginPush, n), MEMBER(OriginPush, pad0), MEMBER(OriginPush, pad1),
           MEMBER(OriginPush, ox), MEMBER(OriginPush, oy), MEMBER(OriginPush, oz)};
 }
+template <> std::vector<Member> members_of<CornersPush>() {
+  return {MEMBER(CornersPush, base), MEMBER(CornersPush, n), MEMBER(CornersPush, vertices)};
+}
 template <> std::vector<Member> members_of<QueryPush>() {
   return {MEMBER(QueryPush, base), MEMBER(QueryPush, n), MEMBER(QueryPush, nx), MEMBER(QueryPush, ny),
           MEMBER(QueryPush, nz), MEMBER(QueryPush, dense), MEMBER(QueryPush, ord_lo), MEMBER(QueryPush, ord_hi),
@@ -340,7 +345,8 @@ std::vector<Case> all_cases() {
       SHADER(LocalMax, local_max),                      SHADER(LocalMaxFaces, local_max_faces),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
-      SHADER(PairSums, pair_sums),
+      SHADER(PairSums, pair_sums),                      SHADER(PointFlags, point_flags),
+      SHADER(PointPositions, point_positions),
       SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
       SHADER(ScanBlocks, scan_blocks),                  SHADER(Selftest, selftest),
       SHADER(SortedFloat, sorted_float),
