@@ -153,15 +153,19 @@ class FastDevice {
 
 vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned threads) {
   const size_t nv = mesh.vertex_count();
-  std::vector<float> p4(4 * nv);
-  parallel_for(nv, threads, 1 << 16, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) {
-      for (int a = 0; a < 3; ++a) p4[4 * v + a] = mesh.positions[3 * v + a];
-      p4[4 * v + 3] = 0.0f;
-    }
+  vk::Buffer b(ctx, nv * 16, "the float positions");
+  // Packed straight into the staging area (or the mapping), whole vertices: its chunks
+  // start at multiples of 256 KiB.
+  b.upload_with(nv * 16, [&](char* to, size_t first, size_t n) {
+    const size_t v0 = first / 16;
+    parallel_for(n / 16, threads, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const float* p = &mesh.positions[3 * (v0 + i)];
+        const float xyzw[4] = {p[0], p[1], p[2], 0.0f};
+        std::memcpy(to + 16 * i, xyzw, 16);
+      }
+    });
   });
-  vk::Buffer b(ctx, p4.size() * 4, "the float positions");
-  b.upload(p4.data(), p4.size() * 4);
   return b;
 }
 

@@ -13,16 +13,21 @@ namespace {
 constexpr uint32_t kLocal = 64;  // local_size_x of both shaders
 }  // namespace
 
-std::vector<double> local_points(const Mesh& mesh, const std::vector<double>& curvature, const BoundingBox& box,
-                                 unsigned threads) {
-  const size_t nv = mesh.vertex_count();
-  std::vector<double> pos4(4 * nv);
-  parallel_for(nv, threads, 1 << 16, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) {
-      for (int a = 0; a < 3; ++a) pos4[4 * v + a] = double(mesh.positions[3 * v + a]) - box.min[a];
-      pos4[4 * v + 3] = curvature.empty() ? 0.0 : curvature[v];
+void pack_local_points(const Mesh& mesh, const std::vector<double>& curvature, const BoundingBox& box,
+                       size_t first, size_t count, double* out, unsigned threads) {
+  parallel_for(count, threads, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const size_t v = first + i;
+      for (int a = 0; a < 3; ++a) out[4 * i + a] = double(mesh.positions[3 * v + a]) - box.min[a];
+      out[4 * i + 3] = curvature.empty() ? 0.0 : curvature[v];
     }
   });
+}
+
+std::vector<double> local_points(const Mesh& mesh, const std::vector<double>& curvature, const BoundingBox& box,
+                                 unsigned threads) {
+  std::vector<double> pos4(4 * mesh.vertex_count());
+  pack_local_points(mesh, curvature, box, 0, mesh.vertex_count(), pos4.data(), threads);
   return pos4;
 }
 

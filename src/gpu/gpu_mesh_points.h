@@ -19,6 +19,10 @@ namespace meshsal::gpu {
 // w = curvature[v] (0 where `curvature` is empty); packed on `threads` threads.
 std::vector<double> local_points(const Mesh& mesh, const std::vector<double>& curvature, const BoundingBox& box,
                                  unsigned threads = 0);
+// Vertices [first, first + count) of that layout at `out` (the exact method's upload packs
+// them straight into the staging area).
+void pack_local_points(const Mesh& mesh, const std::vector<double>& curvature, const BoundingBox& box,
+                       size_t first, size_t count, double* out, unsigned threads = 0);
 
 class DeviceMeshPoints {
  public:

@@ -331,8 +331,10 @@ void check_device(const vk::Context& ctx) {
 // as w (gpu_mesh_points.h's local_points).
 void upload_positions(const Mesh& mesh, const SaliencyResult& res, const BoundingBox& bb, DeviceMesh& m,
                       unsigned threads) {
-  const std::vector<double> pos4 = gpu::local_points(mesh, res.curvature, bb, threads);
-  m.pos.upload(pos4.data(), pos4.size() * 8);
+  // Packed straight into the staging area (or the mapping): 32 bytes a vertex, no host copy.
+  m.pos.upload_with(size_t(m.nv) * 32, [&](char* to, size_t first, size_t n) {
+    gpu::pack_local_points(mesh, res.curvature, bb, first / 32, n / 32, reinterpret_cast<double*>(to), threads);
+  });
 }
 
 // m.offsets, m.neighbors: the 1-rings of the local-maximum test (local_max.comp).

@@ -148,14 +148,18 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 }
 
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
+  upload_with(bytes, copy_from(data), offset);
+}
+
+void Buffer::upload_with(size_t bytes, const std::function<void(char*, size_t, size_t)>& fill, size_t offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_) throw Error("internal: upload past the end of a Vulkan buffer");
   ctx_->uploaded_bytes += bytes;
   if (mapped_) {
-    std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
+    fill(static_cast<char*>(mapped_) + offset, 0, bytes);
     return;
   }
-  staged_upload(*ctx_, buffer_, offset, data, bytes);
+  staged_upload(*ctx_, buffer_, offset, bytes, fill);
 }
 
 void Buffer::download(void* data, size_t bytes, size_t offset) const {

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <string>
 
@@ -33,6 +34,9 @@ class Buffer {
   bool mapped() const { return mapped_ != nullptr; }  // host maps it (no staging copies)
 
   void upload(const void* data, size_t bytes, size_t offset = 0);
+  // An upload of `bytes` that `fill` writes straight into the mapping or the staging area
+  // (to, first byte, count: see vk_staging.h's FillBytes), without a host copy first.
+  void upload_with(size_t bytes, const std::function<void(char*, size_t, size_t)>& fill, size_t offset = 0);
   void download(void* data, size_t bytes, size_t offset = 0) const;
 
  private:

@@ -124,52 +124,102 @@ VkDescriptorSet DescriptorPool::bind(const Kernel& kernel, const std::vector<con
 }
 
 void submit(Context& ctx, const char* what, const std::function<void(VkCommandBuffer)>& record) {
+  PendingSubmission(ctx, what, record).wait();
+}
+
+PendingSubmission::PendingSubmission(Context& ctx, const char* what,
+                                     const std::function<void(VkCommandBuffer)>& record)
+    : ctx_(&ctx), what_(what) {
   VkCommandBufferAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
   ai.commandPool = ctx.command_pool;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  check(vkAllocateCommandBuffers(ctx.device, &ai, &cmd), "vkAllocateCommandBuffers");
-  VkFence fence = VK_NULL_HANDLE;
-  auto cleanup = [&] {
-    if (fence) vkDestroyFence(ctx.device, fence, nullptr);
-    if (cmd) vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
-  };
+  check(vkAllocateCommandBuffers(ctx.device, &ai, &cmd_), "vkAllocateCommandBuffers");
   try {
     VkCommandBufferBeginInfo bi{};
     bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-    record(cmd);
-    host_barrier(cmd);
-    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    check(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    record(cmd_);
+    host_barrier(cmd_);
+    check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    check(vkCreateFence(ctx.device, &fi, nullptr, &fence), "vkCreateFence");
+    check(vkCreateFence(ctx.device, &fi, nullptr, &fence_), "vkCreateFence");
     VkSubmitInfo si{};
     si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    check(vkQueueSubmit(ctx.queue, 1, &si, fence), (std::string("submitting ") + what).c_str());
-    uint64_t timeout_ns = static_cast<uint64_t>(ctx.fence_timeout_s * 1e9);
-    ++ctx.host_waits;
-    VkResult r = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, timeout_ns);
-    if (r == VK_TIMEOUT) {
-      // The work may still be running: keep what it uses until the context goes.
-      ctx.abandoned_fences.push_back(fence);
-      ctx.abandoned_commands.push_back(cmd);
-      fence = VK_NULL_HANDLE;
-      cmd = VK_NULL_HANDLE;
-      throw Error(std::string("Vulkan stage '") + what + "' did not finish within " +
-                  std::to_string(ctx.fence_timeout_s) + " s on '" + ctx.info.name + "'");
-    }
-    check(r, (std::string("waiting for ") + what).c_str());
+    si.pCommandBuffers = &cmd_;
+    check(vkQueueSubmit(ctx.queue, 1, &si, fence_), (std::string("submitting ") + what).c_str());
   } catch (...) {
-    cleanup();  // a fence that was submitted is either signalled or abandoned by now
+    // Nothing was submitted (vkQueueSubmit failed or was never reached).
+    release();
     throw;
   }
-  cleanup();
+}
+
+PendingSubmission& PendingSubmission::operator=(PendingSubmission&& o) noexcept {
+  if (this != &o) {
+    if (fence_) {
+      try {
+        wait();
+      } catch (...) {
+        // Dropped, as the destructor drops it.
+      }
+    }
+    release();
+    ctx_ = o.ctx_;
+    what_ = o.what_;
+    fence_ = o.fence_;
+    cmd_ = o.cmd_;
+    o.fence_ = VK_NULL_HANDLE;
+    o.cmd_ = VK_NULL_HANDLE;
+  }
+  return *this;
+}
+
+PendingSubmission::~PendingSubmission() {
+  if (fence_) {
+    try {
+      wait();
+    } catch (...) {
+      // An error while another is already on its way (or in a destructor): dropped.
+    }
+  }
+  release();
+}
+
+void PendingSubmission::release() noexcept {
+  if (!ctx_) return;
+  if (fence_) vkDestroyFence(ctx_->device, fence_, nullptr);
+  if (cmd_) vkFreeCommandBuffers(ctx_->device, ctx_->command_pool, 1, &cmd_);
+  fence_ = VK_NULL_HANDLE;
+  cmd_ = VK_NULL_HANDLE;
+}
+
+void PendingSubmission::wait() {
+  if (!fence_) return;
+  Context& ctx = *ctx_;
+  const uint64_t timeout_ns = static_cast<uint64_t>(ctx.fence_timeout_s * 1e9);
+  ++ctx.host_waits;
+  const VkResult r = vkWaitForFences(ctx.device, 1, &fence_, VK_TRUE, timeout_ns);
+  if (r == VK_TIMEOUT) {
+    // The work may still be running: keep what it uses until the context goes.
+    ctx.abandoned_fences.push_back(fence_);
+    ctx.abandoned_commands.push_back(cmd_);
+    fence_ = VK_NULL_HANDLE;
+    cmd_ = VK_NULL_HANDLE;
+    throw Error(std::string("Vulkan stage '") + what_ + "' did not finish within " +
+                std::to_string(ctx.fence_timeout_s) + " s on '" + ctx.info.name + "'");
+  }
+  if (r != VK_SUCCESS) {
+    // Lost device and the like: the fence is signalled or never will be; freed now, as
+    // submit() always freed it.
+    release();
+    check(r, (std::string("waiting for ") + what_).c_str());
+  }
+  release();
 }
 
 void dispatch(Context& ctx, VkCommandBuffer cmd, const Kernel& kernel, VkDescriptorSet set,

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "gpu/vk_buffer.h"
@@ -53,6 +54,30 @@ class DescriptorPool {
 // waits for the fence at most ctx.fence_timeout_s; a timeout or a lost device becomes an
 // Error naming `what`.
 void submit(Context& ctx, const char* what, const std::function<void(VkCommandBuffer)>& record);
+
+// submit() in two halves, so that the host can work while the device runs it (the staged
+// upload fills one half of its staging area while the other half's copy runs): the
+// constructor records and submits, wait() waits as submit() does (and counts the host
+// wait). One left unwaited is waited for by its destructor, errors dropped (a timed-out one
+// is kept for the context to free, as submit() keeps it).
+class PendingSubmission {
+ public:
+  PendingSubmission() = default;
+  PendingSubmission(Context& ctx, const char* what, const std::function<void(VkCommandBuffer)>& record);
+  ~PendingSubmission();
+  PendingSubmission(PendingSubmission&& o) noexcept { *this = std::move(o); }
+  PendingSubmission& operator=(PendingSubmission&& o) noexcept;
+  PendingSubmission(const PendingSubmission&) = delete;
+  PendingSubmission& operator=(const PendingSubmission&) = delete;
+  void wait();  // nothing when nothing is pending
+
+ private:
+  void release() noexcept;
+  Context* ctx_ = nullptr;
+  const char* what_ = "";
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+};
 
 // Binds the kernel and set, and dispatches groups of `local_size` threads over the items
 // [begin, end) (times `groups_y` in y). The push block must begin with two uints

@@ -7,6 +7,7 @@
 #include "meshsal/meshsal.h"
 #include "gpu/vk_buffer.h"
 #include "gpu/vk_compute.h"
+#include "core/parallel.h"
 
 namespace meshsal::vk {
 
@@ -80,20 +81,42 @@ static void host_to_transfer(VkCommandBuffer cmd) {
                        0, nullptr, 0, nullptr);
 }
 
-void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes) {
+FillBytes copy_from(const void* data) {
+  return [data](char* to, size_t first, size_t n) {
+    const char* from = static_cast<const char*>(data) + first;
+    // Several cores: one thread's copy into uncached, write-combined memory is well below
+    // the bus's rate.
+    parallel_for(n, 0, size_t(4) << 20, [&](size_t begin, size_t end) {
+      std::memcpy(to + begin, from + begin, end - begin);
+    });
+  };
+}
+
+void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, const FillBytes& fill) {
   StagingArea& s = staging_area(ctx, bytes);
-  for (size_t done = 0; done < bytes; done += s.size) {
-    const size_t n = std::min(s.size, bytes - done);
-    std::memcpy(s.mapped, static_cast<const char*>(data) + done, n);
+  // Areas are powers of two from 1 MiB: a half is a multiple of 256 KiB.
+  const size_t chunk = bytes > s.size ? s.size / 2 : s.size;
+  PendingSubmission copies[2];
+  size_t k = 0;
+  for (size_t done = 0; done < bytes; done += chunk, ++k) {
+    const size_t n = std::min(chunk, bytes - done), half = k % 2;
+    copies[half].wait();  // its previous copy has read the half out
+    fill(s.mapped + half * chunk, done, n);
     s.flush_host_writes();
-    // submit() ends with the barrier that makes the copy visible to later shaders.
-    submit(ctx, "upload", [&](VkCommandBuffer cmd) {
+    // The submission ends with the barrier that makes the copy visible to later shaders.
+    copies[half] = PendingSubmission(ctx, "upload", [&](VkCommandBuffer cmd) {
       host_to_transfer(cmd);
-      VkBufferCopy c{0, offset + done, n};
+      VkBufferCopy c{half * chunk, offset + done, n};
       vkCmdCopyBuffer(cmd, s.buffer, dst, 1, &c);
     });
     ++ctx.staged_copies;
   }
+  copies[k % 2].wait();  // the older one first: copies complete in submission order
+  copies[(k + 1) % 2].wait();
+}
+
+void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes) {
+  staged_upload(ctx, dst, offset, bytes, copy_from(data));
 }
 
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "gpu/vk_context.h"
 
@@ -38,10 +39,22 @@ class StagingArea {
 // Staging bytes the context will allocate for transfers of up to `largest` bytes.
 size_t staging_bytes_for(size_t largest);
 
-// Copies host data into dst[offset, offset + bytes) / dst's range out to the host through
-// ctx.staging (made or grown on first use); one fenced submission per chunk.
+// Writes bytes [first, first + n) of a transfer at `to` (host memory the device reads: a
+// staging chunk, or a mapped buffer). It may run on several threads itself.
+using FillBytes = std::function<void(char* to, size_t first, size_t n)>;
+
+// Fills dst[offset, offset + bytes) through ctx.staging (made or grown on first use), in
+// chunks of half the area when it takes more than one: the host fills one half while the
+// device copies the other (one fenced submission per chunk, waited for before its half is
+// refilled). Chunks start at multiples of 256 KiB of the transfer.
+void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, const FillBytes& fill);
+// The same from host data (copied on every core).
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes);
+// dst's range out to the host through ctx.staging; one fenced submission per chunk.
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes);
+
+// A FillBytes that copies from `data` (offsets relative to it), on every core.
+FillBytes copy_from(const void* data);
 
 // The context's staging area, made or grown to hold min(bytes, kStagingMaxBytes).
 StagingArea& staging_area(Context& ctx, size_t bytes);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -30,19 +31,22 @@ TEST_CASE("forced staging: buffers are unmapped and transfers go through the sta
   {
     vk::Context ctx(-1, true);
     ctx.use_staging = true;
-    // More than the largest staging area: two chunks each way through one reused area.
+    // More than the largest staging area through one reused area: up in its two halves
+    // in turn (three chunks), down in two whole-area chunks.
     const size_t n = vk::kStagingMaxBytes / 4 + 1000;
     std::vector<uint32_t> x(n), y(n, 0);
     for (size_t i = 0; i < n; ++i) x[i] = uint32_t(i * 2654435761u);
     vk::Buffer b(ctx, n * 4, "test data");
     CHECK(!b.mapped());
+    const uint64_t waits = ctx.host_waits;
     b.upload(x.data(), n * 4);
-    CHECK(ctx.staged_copies == 2);
+    CHECK(ctx.staged_copies == 3);
+    CHECK(ctx.host_waits - waits == 3);  // each copy waited for once
     REQUIRE(ctx.staging);
     CHECK(ctx.staging->size == vk::kStagingMaxBytes);
     const vk::StagingArea* area = ctx.staging.get();
     b.download(y.data(), n * 4);
-    CHECK(ctx.staged_copies == 4);
+    CHECK(ctx.staged_copies == 5);
     CHECK(ctx.staging.get() == area);  // reused, not made again
     CHECK(y == x);
     // A range inside the buffer, at an offset.
@@ -50,6 +54,43 @@ TEST_CASE("forced staging: buffers are unmapped and transfers go through the sta
     b.download(part.data(), 400, 4 * (n - 100));
     CHECK(part == std::vector<uint32_t>(x.end() - 100, x.end()));
   }
+  CHECK(vk::validation_message_count() == before);
+}
+
+TEST_CASE("staged upload_with: the fill writes each chunk at its place, and a failing fill leaves the area usable", "[gpu]") {
+  const uint64_t before = vk::validation_message_count();
+  vk::Context ctx(-1, true);
+  ctx.use_staging = true;
+  // Four chunks of half the area, the last one short (a buffer stays under lavapipe's
+  // 128 MiB): each fill's bytes depend on where they go.
+  const size_t n = 7 * (vk::kStagingMaxBytes / 4) / 8 - 3;
+  const size_t offset = 8 * 7;
+  vk::Buffer b(ctx, n * 8 + offset, "test data");
+  std::vector<size_t> firsts;
+  b.upload_with(n * 8, [&](char* to, size_t first, size_t count) {
+    firsts.push_back(first);
+    for (size_t i = 0; i < count / 8; ++i) {
+      const uint64_t value = (first / 8 + i) * 0x9E3779B97F4A7C15ull;
+      std::memcpy(to + 8 * i, &value, 8);
+    }
+  }, offset);
+  CHECK(firsts == std::vector<size_t>{0, vk::kStagingMaxBytes / 2, vk::kStagingMaxBytes, 3 * vk::kStagingMaxBytes / 2});
+  std::vector<uint64_t> y(n);
+  b.download(y.data(), n * 8, offset);
+  size_t wrong = 0;
+  for (size_t i = 0; i < n; ++i) wrong += y[i] != i * 0x9E3779B97F4A7C15ull;
+  CHECK(wrong == 0);
+  // A fill that throws in its third chunk: the copies in flight are waited for, the error
+  // passes through, and the next upload goes through the same area.
+  int calls = 0;
+  CHECK_THROWS_WITH(b.upload_with(n * 8, [&](char*, size_t, size_t) {
+    if (++calls == 3) throw Error("fill failed");
+  }), "fill failed");
+  const std::vector<uint64_t> ones(1000, 1);
+  b.upload(ones.data(), 8000);
+  std::vector<uint64_t> back(1000);
+  b.download(back.data(), 8000);
+  CHECK(back == ones);
   CHECK(vk::validation_message_count() == before);
 }
 
