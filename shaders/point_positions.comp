@@ -1,8 +1,8 @@
 // CPU twin: local_points() in src/gpu/gpu_mesh_points.cpp
 // meshsal: each vertex's position as the sweeps read it, from the float positions already on
 // the device: x, y, z in double less the mesh points' box minimum (the CPU grid's frame;
-// one IEEE subtraction of exact values, so the same bits as the host's), w = 0 (the
-// curvature, which the device writes next).
+// one correctly rounded subtraction of exact values, so the same bits as the host's),
+// w = 0 (the curvature, which the device writes next).
 #version 450
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pos32 { vec4 pos32[]; };

@@ -468,6 +468,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
                                     const SaliencyOptions& options) {
   SaliencyResult res;
   res.backend_name = ctx.info.name;
+  ctx.host_threads = options.threads;  // the uploads' copies and packing
   const size_t nv = mesh.vertex_count();
   if (nv >= 0xffffffffu / 32) throw Error("mesh too large for the GPU path (vertex count)");
   const size_t nsc = options.scales.size();

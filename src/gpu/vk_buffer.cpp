@@ -148,7 +148,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 }
 
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
-  upload_with(bytes, copy_from(data), offset);
+  upload_with(bytes, copy_from(data, ctx_ ? ctx_->host_threads : 0), offset);
 }
 
 void Buffer::upload_with(size_t bytes, const std::function<void(char*, size_t, size_t)>& fill, size_t offset) {

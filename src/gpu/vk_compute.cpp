@@ -151,7 +151,10 @@ PendingSubmission::PendingSubmission(Context& ctx, const char* what,
     si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd_;
-    check(vkQueueSubmit(ctx.queue, 1, &si, fence_), (std::string("submitting ") + what).c_str());
+    const VkResult submitted = vkQueueSubmit(ctx.queue, 1, &si, fence_);
+    // The message is built only on failure: past a successful submit nothing may throw
+    // (the catch below would free a fence and commands the device is using).
+    if (submitted != VK_SUCCESS) check(submitted, (std::string("submitting ") + what).c_str());
   } catch (...) {
     // Nothing was submitted (vkQueueSubmit failed or was never reached).
     release();

@@ -116,6 +116,12 @@ class Context {
   std::unique_ptr<StagingArea> staging;  // made on first use, reused (vk_staging.h)
   uint64_t staged_copies = 0;            // copy submissions through it (tests count them)
   uint64_t uploaded_bytes = 0;           // bytes Buffer::upload sent (staged or mapped)
+  // Host threads for the copies and packing of uploads: the run's --threads (0: the
+  // process's share of the cores). compute_saliency_gpu sets it to its options' threads.
+  unsigned host_threads = 0;
+  // Tests: a staged upload's chunks made at most this (a power of two from 64 KiB; 0: half
+  // the staging area), so that a small mesh's upload takes several.
+  size_t staging_chunk_limit = 0;
   // Target device time of one sweep submission (seconds): the first slice is timed and
   // the rest sized to it, far below a desktop driver's ~2 s watchdog.
   double submission_target_s = 0.15;

@@ -48,6 +48,17 @@ void StagingArea::flush_host_writes() const {
   check(vkFlushMappedMemoryRanges(ctx_.device, 1, &r), "vkFlushMappedMemoryRanges");
 }
 
+void StagingArea::flush_host_writes(size_t offset, size_t bytes) const {
+  if (coherent || bytes == 0) return;
+  const VkDeviceSize atom = std::max<VkDeviceSize>(1, ctx_.properties.limits.nonCoherentAtomSize);
+  const VkDeviceSize begin = offset / atom * atom;
+  const VkDeviceSize end = (offset + bytes + atom - 1) / atom * atom;
+  // A range reaching the end of the memory must be VK_WHOLE_SIZE or end on an atom.
+  const VkDeviceSize range = end >= size ? VK_WHOLE_SIZE : end - begin;
+  VkMappedMemoryRange r{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, begin, range};
+  check(vkFlushMappedMemoryRanges(ctx_.device, 1, &r), "vkFlushMappedMemoryRanges");
+}
+
 void StagingArea::invalidate_for_host_reads() const {
   if (coherent) return;
   VkMappedMemoryRange r{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0, VK_WHOLE_SIZE};
@@ -81,12 +92,12 @@ static void host_to_transfer(VkCommandBuffer cmd) {
                        0, nullptr, 0, nullptr);
 }
 
-FillBytes copy_from(const void* data) {
-  return [data](char* to, size_t first, size_t n) {
+FillBytes copy_from(const void* data, unsigned threads) {
+  return [data, threads](char* to, size_t first, size_t n) {
     const char* from = static_cast<const char*>(data) + first;
     // Several cores: one thread's copy into uncached, write-combined memory is well below
     // the bus's rate.
-    parallel_for(n, 0, size_t(4) << 20, [&](size_t begin, size_t end) {
+    parallel_for(n, threads, size_t(4) << 20, [&](size_t begin, size_t end) {
       std::memcpy(to + begin, from + begin, end - begin);
     });
   };
@@ -94,15 +105,17 @@ FillBytes copy_from(const void* data) {
 
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, const FillBytes& fill) {
   StagingArea& s = staging_area(ctx, bytes);
-  // Areas are powers of two from 1 MiB: a half is a multiple of 256 KiB.
-  const size_t chunk = bytes > s.size ? s.size / 2 : s.size;
+  // Areas are powers of two from 1 MiB: a half is a multiple of 256 KiB (the limit, a
+  // power of two from 64 KiB, keeps chunks multiples of 32 bytes too).
+  size_t chunk = bytes > s.size ? s.size / 2 : s.size;
+  if (ctx.staging_chunk_limit) chunk = std::min(chunk, ctx.staging_chunk_limit);
   PendingSubmission copies[2];
   size_t k = 0;
   for (size_t done = 0; done < bytes; done += chunk, ++k) {
     const size_t n = std::min(chunk, bytes - done), half = k % 2;
     copies[half].wait();  // its previous copy has read the half out
     fill(s.mapped + half * chunk, done, n);
-    s.flush_host_writes();
+    s.flush_host_writes(half * chunk, n);
     // The submission ends with the barrier that makes the copy visible to later shaders.
     copies[half] = PendingSubmission(ctx, "upload", [&](VkCommandBuffer cmd) {
       host_to_transfer(cmd);
@@ -116,7 +129,7 @@ void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, cons
 }
 
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes) {
-  staged_upload(ctx, dst, offset, bytes, copy_from(data));
+  staged_upload(ctx, dst, offset, bytes, copy_from(data, ctx.host_threads));
 }
 
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes) {

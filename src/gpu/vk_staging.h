@@ -29,6 +29,9 @@ class StagingArea {
   bool coherent = false;  // else host writes are flushed and reads invalidated by hand
 
   void flush_host_writes() const;        // host writes -> visible to the device's copies
+  // The same for the bytes [offset, offset + bytes) alone (rounded out to the device's
+  // nonCoherentAtomSize): the other half of the area may be in a copy meanwhile.
+  void flush_host_writes(size_t offset, size_t bytes) const;
   void invalidate_for_host_reads() const;  // device writes (made available) -> host reads
 
  private:
@@ -53,8 +56,9 @@ void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, 
 // dst's range out to the host through ctx.staging; one fenced submission per chunk.
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes);
 
-// A FillBytes that copies from `data` (offsets relative to it), on every core.
-FillBytes copy_from(const void* data);
+// A FillBytes that copies from `data` (offsets relative to it), on `threads` threads (0:
+// the process's share of the cores).
+FillBytes copy_from(const void* data, unsigned threads = 0);
 
 // The context's staging area, made or grown to hold min(bytes, kStagingMaxBytes).
 StagingArea& staging_area(Context& ctx, size_t bytes);
