@@ -8,6 +8,7 @@
 // the same bits. A vertex with more than MAX_CORNERS triangles (lavapipe ends an
 // invocation's loops after 65,535 steps) is left to the host: flagged in counts[slot].
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pos32 { vec4 pos32[]; };
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };
@@ -20,7 +21,8 @@ layout(std430, binding = 7) writeonly buffer H { double h[]; };        // H agai
 layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;  // n = vertices; the flag slot
 const uint MAX_CORNERS = 16384u;
 
-dvec3 p(uint v) { return dvec3(pos32[v].xyz); }
+#include "exact_double.glsl"
+dvec3 p(uint v) { return exact_double3(pos32[v].xyz); }
 
 // face_normal(): un-normalised, its length twice the area.
 dvec3 face_normal(uint f) {

@@ -7,6 +7,7 @@
 // stable sort by it gives each vertex its triangles in the order mean_curvature_morton()'s
 // renumbered copy visits them, so that the sums are the same bits.
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pos32 { vec4 pos32[]; };     // input coordinates
 layout(std430, binding = 1) readonly buffer Triangles { uint tri[]; };   // 3 per triangle
@@ -27,12 +28,14 @@ uint spread10(uint x) {  // bit i to bit 3i, for the 10 low bits (spread_bits_21
   return x;
 }
 
+#include "exact_double.glsl"
+
 uint code_of(uint v) {
   const double lo[3] = double[3](pc.minx, pc.miny, pc.minz);
   const double scale[3] = double[3](pc.scalex, pc.scaley, pc.scalez);
   uint code = 0u;
   for (int a = 0; a < 3; ++a) {
-    precise double q = (double(pos32[v][a]) - lo[a]) * scale[a];
+    precise double q = (exact_double(pos32[v][a]) - lo[a]) * scale[a];
     const double c = q >= 0.0LF ? min(q, 1023.0LF) : 0.0LF;
     code |= spread10(uint(c)) << uint(a);
   }

@@ -4,6 +4,7 @@
 // lavapipe's 65,535 steps however many points share a cell): the input's float
 // coordinates summed in double, and the values. fast_aggregate_cells.comp adds the pieces.
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pos { dvec4 pos[]; };     // value in w
 layout(std430, binding = 1) readonly buffer Pos32 { vec4 pos32[]; };  // input coordinates
@@ -13,6 +14,7 @@ layout(std430, binding = 4) writeonly buffer PieceSum { dvec4 piece_sum[]; };
 layout(std430, binding = 5) readonly buffer Counts { uint counts[]; };
 // n: the pieces' bound the dispatch covers; their count is counts[count_slot] (fast_pieces.comp).
 layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;
+#include "exact_double.glsl"
 void main() {
   uint p = pc.base + gl_GlobalInvocationID.x;
   if (p >= pc.n || p >= counts[pc.count_slot]) return;
@@ -20,7 +22,7 @@ void main() {
   const uint b = piece_start[p], e = piece_start[p + 1u];
   for (uint i = b; i < e; ++i) {
     uint v = order[i];
-    s += dvec4(dvec3(pos32[v].xyz), pos[v].w);
+    s += dvec4(exact_double3(pos32[v].xyz), pos[v].w);
   }
   piece_sum[p] = s;
 }

@@ -4,13 +4,15 @@
 // one correctly rounded subtraction of exact values, so the same bits as the host's),
 // w = 0 (the curvature, which the device writes next).
 #version 450
+#extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Pos32 { vec4 pos32[]; };
 layout(std430, binding = 1) writeonly buffer Pos { dvec4 pos[]; };
 layout(push_constant) uniform Push { uint base; uint n; uint pad0; uint pad1; double ox; double oy; double oz; } pc;
+#include "exact_double.glsl"
 void main() {
   const uint v = pc.base + gl_GlobalInvocationID.x;
   if (v >= pc.n) return;
-  precise const dvec3 local = dvec3(pos32[v].xyz) - dvec3(pc.ox, pc.oy, pc.oz);
+  precise const dvec3 local = exact_double3(pos32[v].xyz) - dvec3(pc.ox, pc.oy, pc.oz);
   pos[v] = dvec4(local, 0.0);
 }
