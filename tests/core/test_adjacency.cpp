@@ -80,3 +80,21 @@ TEST_CASE("adjacency: the parallel builder equals the oracle on a scan", "[curva
   const Mesh m = load_mesh(path);
   require_same(build_adjacency(m, 2), build_adjacency_reference(m));
 }
+
+TEST_CASE("adjacency: the same lists when the vertices are split among threads", "[curvature]") {
+  // Over 2 x 64K vertices, so that each thread owns a range of them and scans every triangle
+  // for its corners (the triangles around each vertex); a triangle's corners lie in
+  // different ranges, and the awkward cases sit at the end.
+  Mesh m = make_sphere(1.0, 7);
+  const Mesh extra = awkward_mesh();
+  const uint32_t base = uint32_t(m.vertex_count());
+  REQUIRE(base > 2 * 65536);
+  m.positions.insert(m.positions.end(), extra.positions.begin(), extra.positions.end());
+  for (uint32_t i : extra.triangles) m.triangles.push_back(base + i);
+  m.triangles.insert(m.triangles.end(), {0, base - 1, base + 5, base / 2, 7, base + 40});
+  const Adjacency want = build_adjacency_reference(m);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    INFO("threads " << threads);
+    require_same(build_adjacency(m, threads), want);
+  }
+}
