@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <memory>
 
 #include "core/adjacency.h"
@@ -24,7 +23,6 @@
 #include "gpu/vk_buffer.h"
 #include "gpu/shader_interfaces.h"
 #include "gpu/vk_compute.h"
-#include "core/parallel.h"
 #include "core/timer.h"
 
 #include "final_sum_comp.h"
