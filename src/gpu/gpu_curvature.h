@@ -25,7 +25,7 @@ class DeviceCurvature {
   // for the host to read).
   DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
                   const BoundingBox& box);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   DeviceCurvature(const DeviceCurvature&) = delete;
   DeviceCurvature& operator=(const DeviceCurvature&) = delete;
   // Records the whole computation into cmd, ending with a barrier.

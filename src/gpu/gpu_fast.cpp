@@ -155,7 +155,7 @@ vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned t
   const size_t nv = mesh.vertex_count();
   vk::Buffer b(ctx, nv * 16, "the float positions");
   // Packed straight into the staging area (or the mapping), whole vertices: its chunks
-  // start at multiples of 256 KiB.
+  // start at multiples of 64 KiB (vk_staging.h).
   b.upload_with(nv * 16, [&](char* to, size_t first, size_t n) {
     const size_t v0 = first / 16;
     parallel_for(n / 16, threads, 1 << 16, [&](size_t begin, size_t end) {

@@ -26,7 +26,7 @@ class CandidateBound {
   // counts[slot].
   CandidateBound(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buffer& starts,
                  vk::Buffer& counts, uint64_t max_cells, uint32_t slot);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   CandidateBound(const CandidateBound&) = delete;
   CandidateBound& operator=(const CandidateBound&) = delete;
   // Records the bound for grid g (its starts written before, behind a barrier), ending with

@@ -71,7 +71,7 @@ class FastCells {
  public:
   FastCells(vk::Context& ctx, vk::DescriptorPool& pool, const FastInputs& in, vk::Buffer& counts,
             uint32_t nv, uint32_t np, uint64_t most_cells, uint32_t piece = kFastPiece);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   FastCells(const FastCells&) = delete;
   FastCells& operator=(const FastCells&) = delete;
   // Records the sort and aggregation for `grid` into cmd, ending with a barrier: afterwards

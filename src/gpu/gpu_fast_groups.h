@@ -19,7 +19,7 @@ class FastGroups {
   // cells (the finest sigma's: it sets the sort's passes).
   FastGroups(vk::Context& ctx, vk::DescriptorPool& pool, FastCells& cells, vk::Buffer& counts,
              uint64_t most_cells, int factor);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   FastGroups(const FastGroups&) = delete;
   FastGroups& operator=(const FastGroups&) = delete;
   // Records the groups of this sigma's cells (on `grid`) into cmd, ending with a barrier.

@@ -42,7 +42,7 @@ struct GridArrays {
 class GridBuilder {
  public:
   GridBuilder(vk::Context& ctx, vk::DescriptorPool& pool, const GridArrays& a, uint32_t n, uint64_t max_cells);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   GridBuilder(const GridBuilder&) = delete;
   GridBuilder& operator=(const GridBuilder&) = delete;
   // Records the build of plan g (g.cells() <= max_cells) into cmd: a.starts over its cells,

@@ -19,7 +19,7 @@ class RadixSort {
   // The caller fills keys_in() on the device, then records record() after a barrier.
   RadixSort(vk::Context& ctx, vk::DescriptorPool& pool, uint32_t n, uint64_t largest_key,
             const std::string& what);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   RadixSort(const RadixSort&) = delete;
   RadixSort& operator=(const RadixSort&) = delete;
   vk::Buffer& keys_in() { return key_[0]; }

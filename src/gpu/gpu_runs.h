@@ -32,7 +32,7 @@ class RunFinder {
  public:
   // For arrays of up to max_n keys.
   RunFinder(vk::Context& ctx, vk::DescriptorPool& pool, const RunArrays& a, uint32_t max_n);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   RunFinder(const RunFinder&) = delete;
   RunFinder& operator=(const RunFinder&) = delete;
   // The runs among the first counts[count_slot] of the n keys (kCountIsN: n); their number

@@ -15,7 +15,7 @@ class Scan {
  public:
   // Scans of `in` into `out` (max_n + 1 entries) of up to max_n entries.
   Scan(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buffer& in, vk::Buffer& out, uint32_t max_n);
-  // Its descriptor sets and scan hold its own buffers: neither copied nor moved.
+  // Its descriptor sets name its own buffers: neither copied nor moved.
   Scan(const Scan&) = delete;
   Scan& operator=(const Scan&) = delete;
   // out[i] = in[0] + ... + in[i-1] for i <= n (n <= max_n). Ends with a barrier.

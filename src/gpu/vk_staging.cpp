@@ -128,10 +128,6 @@ void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, cons
   copies[(k + 1) % 2].wait();
 }
 
-void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes) {
-  staged_upload(ctx, dst, offset, bytes, copy_from(data, ctx.host_threads));
-}
-
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes) {
   StagingArea& s = staging_area(ctx, bytes);
   for (size_t done = 0; done < bytes; done += s.size) {

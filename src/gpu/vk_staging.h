@@ -49,10 +49,9 @@ using FillBytes = std::function<void(char* to, size_t first, size_t n)>;
 // Fills dst[offset, offset + bytes) through ctx.staging (made or grown on first use), in
 // chunks of half the area when it takes more than one: the host fills one half while the
 // device copies the other (one fenced submission per chunk, waited for before its half is
-// refilled). Chunks start at multiples of 256 KiB of the transfer.
+// refilled). Chunks start at multiples of 64 KiB of the transfer (of 256 KiB but under
+// Context::staging_chunk_limit).
 void staged_upload(Context& ctx, VkBuffer dst, size_t offset, size_t bytes, const FillBytes& fill);
-// The same from host data (copied on every core).
-void staged_upload(Context& ctx, VkBuffer dst, size_t offset, const void* data, size_t bytes);
 // dst's range out to the host through ctx.staging; one fenced submission per chunk.
 void staged_download(Context& ctx, VkBuffer src, size_t offset, void* data, size_t bytes);
 

@@ -26,6 +26,17 @@
 
 using namespace meshsal;
 
+namespace {
+
+// n words that differ from their neighbours and from 0, so that a misplaced chunk shows.
+std::vector<uint32_t> hashed_words(size_t n) {
+  std::vector<uint32_t> x(n);
+  for (size_t i = 0; i < n; ++i) x[i] = uint32_t(i * 2654435761u);
+  return x;
+}
+
+}  // namespace
+
 TEST_CASE("forced staging: buffers are unmapped and transfers go through the staging area", "[gpu]") {
   const uint64_t before = vk::validation_message_count();
   {
@@ -34,8 +45,8 @@ TEST_CASE("forced staging: buffers are unmapped and transfers go through the sta
     // More than the largest staging area through one reused area: up in its two halves
     // in turn (three chunks), down in two whole-area chunks.
     const size_t n = vk::kStagingMaxBytes / 4 + 1000;
-    std::vector<uint32_t> x(n), y(n, 0);
-    for (size_t i = 0; i < n; ++i) x[i] = uint32_t(i * 2654435761u);
+    const std::vector<uint32_t> x = hashed_words(n);
+    std::vector<uint32_t> y(n, 0);
     vk::Buffer b(ctx, n * 4, "test data");
     CHECK(!b.mapped());
     const uint64_t waits = ctx.host_waits;
@@ -103,8 +114,7 @@ TEST_CASE("a staged upload whose copy times out with another in flight ends clea
     vk::Context ctx(-1, true);
     ctx.use_staging = true;
     const size_t n = vk::kStagingMaxBytes / 4 + (1 << 20);  // three chunks of half the area
-    std::vector<uint32_t> x(n);
-    for (size_t i = 0; i < n; ++i) x[i] = uint32_t(i * 2654435761u);
+    const std::vector<uint32_t> x = hashed_words(n);
     vk::Buffer b(ctx, n * 4, "test data");
     ctx.fence_timeout_s = 1e-9;
     bool timed_out = false;
