@@ -208,6 +208,33 @@ std::vector<double> mean_curvature(const Mesh& mesh, const Adjacency& adjacency,
   return H;
 }
 
+void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H) {
+  const size_t nv = mesh.vertex_count();
+  std::vector<uint8_t> wanted(nv, 0);
+  for (uint32_t v : vertices) wanted[v] = 1;
+  // The triangles that hold a listed vertex, in order, and every vertex they name.
+  std::vector<uint32_t> tris;
+  std::vector<uint32_t> index(nv, UINT32_MAX);
+  for (size_t f = 0; f < mesh.triangle_count(); ++f) {
+    const uint32_t* t = &mesh.triangles[3 * f];
+    if (!wanted[t[0]] && !wanted[t[1]] && !wanted[t[2]]) continue;
+    tris.insert(tris.end(), t, t + 3);
+    for (int c = 0; c < 3; ++c) index[t[c]] = 0;
+  }
+  for (uint32_t v : vertices) index[v] = 0;
+  // Renumbered in increasing order: neighbour lists sort as in the whole mesh.
+  Mesh part;
+  for (size_t v = 0; v < nv; ++v)
+    if (index[v] == 0) {
+      index[v] = uint32_t(part.vertex_count());
+      part.positions.insert(part.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v + 3]);
+    }
+  part.triangles.reserve(tris.size());
+  for (uint32_t v : tris) part.triangles.push_back(index[v]);
+  const std::vector<double> h = mean_curvature(part, build_adjacency(part), vertex_normals(part));
+  for (uint32_t v : vertices) H[v] = h[index[v]];
+}
+
 std::vector<double> mean_curvature_faces(const Mesh& mesh, const std::vector<double>& normals,
                                          unsigned threads) {
   std::vector<double> H(mesh.vertex_count(), 0.0);

@@ -18,6 +18,13 @@ std::vector<double> vertex_normals(const Mesh& mesh, unsigned threads = 0);
 std::vector<double> mean_curvature(const Mesh& mesh, const Adjacency& adjacency,
                                    const std::vector<double>& normals, unsigned threads = 0);
 
+// mean_curvature(mesh, build_adjacency(mesh), vertex_normals(mesh)) at the listed vertices
+// alone, the same bits, into H[v] for each (the rest of H untouched): from the triangles
+// that hold them, on a copy of those renumbered in the same relative order (so the
+// neighbours sort alike and each sum runs in the same order). The GPU's exact curvature
+// leaves a vertex of many triangles to the host this way.
+void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H);
+
 // The same H from one pass over the triangles, without the 1-rings (the fast method's:
 // build_adjacency is most of the curvature stage's time and memory on a large scan). Each
 // edge's area is added triangle by triangle, so H differs from mean_curvature()'s in the

@@ -1,5 +1,8 @@
 // Taubin mean curvature against analytic values (SPEC 1).
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "core/adjacency.h"
 #include "saliency/curvature.h"
@@ -47,4 +50,29 @@ TEST_CASE("adjacency sums the area of both triangles on an edge", "[curvature]")
   CHECK(adj.neighbors[adj.offsets[0] + 1] == 2);
   CHECK(adj.edge_area[adj.offsets[0] + 1] == Approx(1.0));
   CHECK(adj.edge_area[adj.offsets[0]] == Approx(0.5));
+}
+
+TEST_CASE("mean_curvature_at gives the listed vertices mean_curvature's bits", "[curvature]") {
+  // A bumpy sphere with extra triangles: degenerate, repeated, reversed, non-manifold, and
+  // a loose vertex; every fifth vertex listed (and the loose one), in no particular order.
+  Mesh m = make_bumpy_sphere(3);
+  const uint32_t n = uint32_t(m.vertex_count());
+  m.positions.insert(m.positions.end(), {0.1f, 0.2f, 0.3f, 3.0f, 1.0f, -2.0f});
+  m.triangles.insert(m.triangles.end(), {0, 0, 5, 1, 2, 1, 3, 4, 5, 3, 4, 5, 5, 4, 3, 3, 4, n + 1, 7, 8, 8});
+  const std::vector<double> all = mean_curvature(m, build_adjacency(m), vertex_normals(m));
+  std::vector<uint32_t> listed{n};
+  for (uint32_t v = m.vertex_count() - 1; v > 0; --v)
+    if (v % 5 == 0 || v < 9) listed.push_back(v);
+  std::vector<double> H(m.vertex_count(), -7.0);
+  mean_curvature_at(m, listed, H.data());
+  size_t same = 0, untouched = 0;
+  for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+    const bool is_listed = std::find(listed.begin(), listed.end(), v) != listed.end();
+    if (is_listed) same += std::memcmp(&H[v], &all[v], 8) == 0;
+    else untouched += H[v] == -7.0;
+  }
+  CHECK(same == listed.size());
+  CHECK(untouched == m.vertex_count() - listed.size());
+  CHECK(all[n] == 0.0);  // the loose vertex
+  CHECK(all[3] != 0.0);
 }
