@@ -9,6 +9,7 @@
 #include "curvature_comp.h"
 #include "curvature_face_key_comp.h"
 #include "curvature_incidence_comp.h"
+#include "curvature_rings_comp.h"
 
 namespace meshsal::gpu {
 
@@ -27,7 +28,7 @@ uint64_t DeviceCurvature::bytes(uint64_t nv, uint64_t nt) {
 }
 
 DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
-                                 const BoundingBox& box)
+                                 const BoundingBox& box, TriangleOrder order)
     : curvature(ctx, mesh.vertex_count() * 8, "the curvature"),
       triangles(ctx, mesh.triangles.size() * 4, "the triangles"),
       start(ctx, (mesh.vertex_count() + 1) * 4, "the triangles of each vertex"),
@@ -35,18 +36,25 @@ DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::B
       count_(ctx, size_t(nv_) * 4, "the triangles of each vertex"),
       flag_(vk::Buffer::host_visible(ctx, 16, "the curvature's overflow flag")),
       pool_(ctx, 3 + 2 * RadixSort::kSets + Scan::kSets, 16 + 2 * RadixSort::kBuffers + Scan::kBuffers),
-      face_sort_(ctx, pool_, nt_, (1u << kFaceKeyBits) - 1, "the curvature's triangle"),
+      face_sort_(ctx, pool_, nt_, order == TriangleOrder::morton ? (1u << kFaceKeyBits) - 1 : 0,
+                 "the curvature's triangle"),
       corner_sort_(ctx, pool_, 3 * nt_, nv_, "the curvature's corner"),
       scan_(ctx, pool_, count_, start, nv_) {
-  // The Morton grid as morton_order() lays it over the box.
+  // The Morton grid as morton_order() lays it over the box; in input order a scale of 0,
+  // which keys every triangle 0.
   for (int a = 0; a < 3; ++a) {
     lo_[a] = box.min[a];
-    scale_[a] = box.max[a] > box.min[a] ? double((1u << kMortonBits) - 1) / (box.max[a] - box.min[a]) : 0.0;
+    scale_[a] = order == TriangleOrder::morton && box.max[a] > box.min[a]
+                    ? double((1u << kMortonBits) - 1) / (box.max[a] - box.min[a])
+                    : 0.0;
   }
   triangles.upload(mesh.triangles.data(), mesh.triangles.size() * 4);
   k_key_ = &vk::cached_kernel<shader::CurvatureFaceKey>(ctx, spv_curvature_face_key_comp, sizeof spv_curvature_face_key_comp, "curvature_face_key");
   k_incidence_ = &vk::cached_kernel<shader::CurvatureIncidence>(ctx, spv_curvature_incidence_comp, sizeof spv_curvature_incidence_comp, "curvature_incidence");
-  k_curvature_ = &vk::cached_kernel<shader::Curvature>(ctx, spv_curvature_comp, sizeof spv_curvature_comp, "curvature");
+  k_curvature_ = order == TriangleOrder::morton
+                     ? &vk::cached_kernel<shader::Curvature>(ctx, spv_curvature_comp, sizeof spv_curvature_comp, "curvature")
+                     : &vk::cached_kernel<shader::CurvatureRings>(ctx, spv_curvature_rings_comp,
+                                                             sizeof spv_curvature_rings_comp, "curvature_rings");
   s_key_ = pool_.bind(*k_key_, {&pos32, &triangles, &face_sort_.keys_in()});
   s_incidence_ = pool_.bind(*k_incidence_, {&triangles, &face_sort_.order(), &corner_sort_.keys_in(), &count_});
   s_curvature_ = pool_.bind(*k_curvature_, {&pos32, &triangles, &face_sort_.order(), &corner_sort_.order(), &start,
@@ -71,10 +79,12 @@ void DeviceCurvature::record(vk::Context& ctx, VkCommandBuffer cmd) {
   vk::barrier(cmd);
 }
 
-bool DeviceCurvature::complete() const {
+uint32_t DeviceCurvature::most_flagged_corners() const {
   uint32_t most = 0;
   flag_.download(&most, 4);  // host memory: no submission
-  return most == 0;
+  return most;
 }
+
+bool DeviceCurvature::complete() const { return most_flagged_corners() == 0; }
 
 }  // namespace meshsal::gpu

@@ -74,8 +74,9 @@ struct DeviceMesh {
   vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
   vk::Buffer sorted_pos32, bound;  // the mixed-precision sweep's (gpu_sweep.h)
-  // The fast method's: the float coordinates, the curvature and its incidence (the
-  // local maxima's neighbours in place of the 1-rings).
+  // Where the device computes the curvature (all but the mixed sweep): the float
+  // coordinates, the curvature and its incidence (the local maxima's neighbours in place of
+  // the 1-rings).
   vk::Buffer pos32;
   std::unique_ptr<gpu::DeviceCurvature> curvature;
 };
@@ -344,12 +345,12 @@ void upload_rings(vk::Context& ctx, const Adjacency& adj, DeviceMesh& m) {
 }
 
 // The device buffers of the mesh, after checking that everything the computation will
-// allocate fits the device; the positions (m.pos) and the mesh-point flags uploaded unless
-// `on_device` (the fast method builds them there: gpu_mesh_points.h), the 1-rings unless
-// `adj` is empty.
+// allocate fits the device (`device_bytes`: what the caller allocates besides); the
+// positions (m.pos) and the mesh-point flags uploaded unless `on_device` (built there from
+// the float coordinates: gpu_mesh_points.h), the 1-rings unless `adj` is empty.
 void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
                  const Adjacency& adj, size_t nsc, bool mixed, const BoundingBox& bb,
-                 uint64_t fast_bytes, unsigned threads, bool on_device, DeviceMesh* out) {
+                 uint64_t device_bytes, unsigned threads, bool on_device, DeviceMesh* out) {
   DeviceMesh& m = *out;
   const size_t nv = mesh.vertex_count();
   m.nv = static_cast<uint32_t>(nv);
@@ -357,7 +358,7 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
 
   // Memory: refuse up front what cannot fit the device-local heap (or its budget).
   const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
-                                            ctx.use_staging, mixed) + fast_bytes;
+                                            ctx.use_staging, mixed) + device_bytes;
   const uint64_t have = vk::device_memory_available(ctx.info);
   if (have && need > have * 0.9)
     throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
@@ -379,9 +380,9 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
 }
 
 // suppress() of every raw map in m.result and the final sum S into `saliency`.
-// The neighbours of the local-maximum test: the 1-rings (m.offsets, m.neighbors), or for the
-// fast method the triangles of each vertex (m.curvature's incidence), as the CPU's
-// suppress() and suppress_faces() take them.
+// The neighbours of the local-maximum test: the 1-rings (m.offsets, m.neighbors), or where
+// the device computed the curvature the triangles of each vertex (m.curvature's
+// incidence), as the CPU's suppress() and suppress_faces() take them (the same bits).
 void suppress_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m, size_t nsc,
                         vk::Buffer& saliency) {
   const uint32_t groups = (m.nv + kLocal - 1) / kLocal;
@@ -473,29 +474,16 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   if (nsc == 0) throw Error("at least one scale is needed");
   if (nsc > kMaxScales) throw Error("the GPU path takes at most " + std::to_string(kMaxScales) + " scales");
 
-  // --- curvature: for the exact method on the CPU, the same functions as
-  // compute_saliency_cpu (with the 1-rings the suppression takes); for the fast method on
-  // the device after the upload (gpu_curvature.h: mean_curvature_morton's bits, as
-  // compute_saliency_fast_cpu takes it), no 1-rings built
-  Timer t0;
   if (options.method == Method::Auto) throw Error("internal: method auto not resolved");
   const bool fast = options.method == Method::Fast;
   res.is_point = referenced_vertices(mesh);
   res.eps = scale_unit(mesh, res.is_point, options.eps_frac);
-  Adjacency adj;
-  if (!fast) {
-    adj = build_adjacency(mesh);
-    std::vector<double> normals = vertex_normals(mesh);
-    res.curvature = mean_curvature(mesh, adj, normals, options.threads);
-    res.stages.push_back({"curvature", t0.seconds()});
-  }
-
   const double eps = res.eps;
   const SweepPlan plan = plan_sweep(options.scales, eps);
   const uint32_t nsig = static_cast<uint32_t>(plan.units.size());
 
   // --- the sweep's precision: --precision auto may time the device's doubles, once --------
-  t0.restart();
+  Timer t0;
   check_device(ctx);
   res.method = options.method;
   const bool probed = ctx.fp64_slowdown != 0;
@@ -508,40 +496,71 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   const bool rows = !fast && shared_rows(ctx, plan.fast8, mixed);
   if (measured != ctx.measured_sweep_variant[mixed ? 1 : 0]) res.stages.push_back({"layout probe", t0.seconds()});
 
+  // --- curvature: on the device after the upload (gpu_curvature.h), the twin of the CPU's
+  // for the method: mean_curvature_morton() for the fast one, mean_curvature() over the
+  // 1-rings for the exact one, neither building 1-rings on the host. The mixed sweep's
+  // near-tie recheck takes the 1-rings, so there the host computes H with them first, as
+  // compute_saliency_cpu() does; so it does for the exact method on a CPU device, where
+  // the host is the faster (Context::exact_curvature_on_device).
+  const bool device_curvature =
+      fast || (!mixed && (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
+                                                              : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+  Adjacency adj;
+  if (!device_curvature) {
+    t0.restart();
+    adj = build_adjacency(mesh);
+    res.curvature = mean_curvature(mesh, adj, vertex_normals(mesh), options.threads);
+    res.stages.push_back({"curvature", t0.seconds()});
+  }
+
   // --- upload ---------------------------------------------------------------------------
   t0.restart();
   const BoundingBox bb = mesh_points_bbox(mesh, res.is_point);
   double extent[3];
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];
   DeviceMesh m;
-  const uint64_t fast_bytes = fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) + nv * 16 +
-                                         gpu::DeviceCurvature::bytes(nv, mesh.triangle_count())
-                                   : 0;
-  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, fast_bytes, options.threads, fast, &m);
+  const uint64_t device_bytes =
+      (fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) : 0) +
+      (device_curvature ? nv * 16 + gpu::DeviceCurvature::bytes(nv, mesh.triangle_count()) : 0);
+  upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, device_bytes, options.threads, device_curvature, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
-  if (fast) m.pos32 = gpu::upload_float_positions(ctx, mesh, options.threads);
+  if (device_curvature) m.pos32 = gpu::upload_float_positions(ctx, mesh, options.threads);
   res.stages.push_back({"upload", t0.seconds()});
 
-  if (fast) {  // --- the fast method's mesh points and curvature, on the device ------------
+  if (device_curvature) {  // --- the mesh points and the curvature, on the device -----------
     t0.restart();
-    m.curvature = std::make_unique<gpu::DeviceCurvature>(ctx, mesh, m.pos32, m.pos, bb);
+    m.curvature = std::make_unique<gpu::DeviceCurvature>(
+        ctx, mesh, m.pos32, m.pos, bb, fast ? gpu::TriangleOrder::morton : gpu::TriangleOrder::input);
     const gpu::DeviceMeshPoints points(ctx, m.pos32, m.curvature->triangles, m.pos, m.flags, m.nv,
                                        mesh.triangle_count());
     vk::submit(ctx, "curvature", [&](VkCommandBuffer cmd) {
       points.record(ctx, cmd, bb);
       m.curvature->record(ctx, cmd);
     });
-    if (m.curvature->complete()) {
+    const uint32_t flagged = m.curvature->most_flagged_corners();
+    if (flagged <= gpu::DeviceCurvature::kMortonCorners) {
       res.curvature.resize(nv);
       m.curvature->curvature.download(res.curvature.data(), nv * 8);
-    } else {
-      // A vertex of more triangles than one invocation may visit (lavapipe's loop limit):
-      // the host's H, and the suppression over the 1-rings (local_max.comp) rather than over
-      // each vertex's triangles, as the exact method takes them.
-      res.curvature = mean_curvature_morton(mesh, bb, options.threads);
+    }
+    if (flagged != 0 && flagged <= gpu::DeviceCurvature::kMortonCorners) {
+      // Input order leaves vertices of more than 64 triangles to the host: their H from
+      // the triangles around them (the same bits), and the positions uploaded with it.
+      std::vector<uint32_t> corners(nv, 0), many;
+      for (uint32_t v : mesh.triangles) ++corners[v];
+      for (size_t v = 0; v < nv; ++v)
+        if (corners[v] > gpu::DeviceCurvature::kInputOrderCorners) many.push_back(uint32_t(v));
+      mean_curvature_at(mesh, many, res.curvature.data());
       upload_positions(mesh, res, bb, m, options.threads);
-      upload_rings(ctx, build_adjacency(mesh), m);
+    } else if (flagged != 0) {
+      // A vertex of more triangles than one invocation may visit (lavapipe's loop limit):
+      // the host's H (the method's CPU twin), and the suppression over the 1-rings
+      // (local_max.comp) rather than over each vertex's triangles.
+      adj = build_adjacency(mesh);
+      res.curvature = fast ? mean_curvature_morton(mesh, bb, options.threads)
+                           : mean_curvature(mesh, adj, vertex_normals(mesh), options.threads);
+      upload_positions(mesh, res, bb, m, options.threads);
+      upload_rings(ctx, adj, m);
       m.curvature.reset();
     }
     res.stages.push_back({"curvature", t0.seconds()});

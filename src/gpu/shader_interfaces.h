@@ -80,6 +80,7 @@ struct Interface {
 using Curvature = Interface<CountedPush, 8>;
 using CurvatureFaceKey = Interface<MortonKeyPush, 3>;
 using CurvatureIncidence = Interface<RangePush, 4>;
+using CurvatureRings = Interface<CountedPush, 8>;  // curvature.comp's bindings
 using ExposureTest = Interface<ExposurePush, 8>;
 using FastAggregateCells = Interface<CellsPush, 7>;
 using FastAggregatePieces = Interface<CountedPush, 6>;

@@ -1,6 +1,8 @@
-// The GPU mean curvature (gpu_curvature.h) against its CPU twin mean_curvature_morton():
-// the same bits per vertex, on synthetic meshes (loose vertices, degenerate and repeated
-// triangles, a flat plane), a real scan, under forced staging, and the incidence it keeps.
+// The GPU mean curvature (gpu_curvature.h) against its CPU twins, mean_curvature_morton()
+// (Morton order, the fast method's) and mean_curvature() over the 1-rings of
+// build_adjacency_reference() (input order, the exact method's): the same bits per vertex,
+// on synthetic meshes (loose vertices, degenerate and repeated triangles, non-manifold
+// edges, a flat plane), a real scan, under forced staging, and the incidence it keeps.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "cli/synthetic.h"
+#include "core/adjacency.h"
 #include "core/mesh_points.h"
 #include "gpu/gpu_curvature.h"
 #include "gpu/gpu_saliency.h"
@@ -24,7 +27,8 @@ using namespace meshsal;
 
 namespace {
 
-std::vector<double> gpu_curvature(vk::Context& ctx, const Mesh& mesh, const BoundingBox& box, bool* complete) {
+std::vector<double> gpu_curvature(vk::Context& ctx, const Mesh& mesh, const BoundingBox& box, bool* complete,
+                                  gpu::TriangleOrder triangle_order = gpu::TriangleOrder::morton) {
   const size_t nv = mesh.vertex_count();
   std::vector<float> p32(4 * nv, 0.0f);
   for (size_t v = 0; v < nv; ++v)
@@ -33,7 +37,7 @@ std::vector<double> gpu_curvature(vk::Context& ctx, const Mesh& mesh, const Boun
   vk::Buffer pos32(ctx, p32.size() * 4, "test"), pos(ctx, p.size() * 8, "test");
   pos32.upload(p32.data(), p32.size() * 4);
   pos.upload(p.data(), p.size() * 8);
-  gpu::DeviceCurvature dc(ctx, mesh, pos32, pos, box);
+  gpu::DeviceCurvature dc(ctx, mesh, pos32, pos, box, triangle_order);
   vk::submit(ctx, "test", [&](VkCommandBuffer cmd) { dc.record(ctx, cmd); });
   *complete = dc.complete();
   pos.download(p.data(), p.size() * 8);
@@ -49,17 +53,27 @@ std::vector<double> gpu_curvature(vk::Context& ctx, const Mesh& mesh, const Boun
     for (uint32_t j = start[v]; j < start[v + 1]; ++j) {
       const uint32_t f = order[entry[j] / 3], c = entry[j] % 3;
       if (mesh.triangles[3 * f + c] != v) FAIL("vertex " << v << " entry " << j << " names another corner");
+      // In input order each vertex meets its triangles in index order, corner by corner.
+      if (triangle_order == gpu::TriangleOrder::input && j > start[v] && entry[j] <= entry[j - 1])
+        FAIL("vertex " << v << " entry " << j << " out of input order");
     }
   return H;
 }
 
-void check_same_bits(vk::Context& ctx, const Mesh& mesh, const std::string& what) {
-  INFO(what);
+// The exact method's H the slow way: the 1-rings from one sorted list of all half-edges.
+std::vector<double> rings_oracle(const Mesh& mesh) {
+  return mean_curvature(mesh, build_adjacency_reference(mesh), vertex_normals(mesh), 1);
+}
+
+void check_same_bits(vk::Context& ctx, const Mesh& mesh, const std::string& what,
+                     gpu::TriangleOrder triangle_order = gpu::TriangleOrder::morton) {
+  INFO(what << (triangle_order == gpu::TriangleOrder::input ? " (input order)" : " (Morton order)"));
   const uint64_t before = vk::validation_message_count();
   const BoundingBox box = mesh_points_bbox(mesh, referenced_vertices(mesh));
-  const std::vector<double> cpu = mean_curvature_morton(mesh, box, 2);
+  const std::vector<double> cpu =
+      triangle_order == gpu::TriangleOrder::input ? rings_oracle(mesh) : mean_curvature_morton(mesh, box, 2);
   bool complete = false;
-  const std::vector<double> gpu = gpu_curvature(ctx, mesh, box, &complete);
+  const std::vector<double> gpu = gpu_curvature(ctx, mesh, box, &complete, triangle_order);
   CHECK(complete);
   REQUIRE(gpu.size() == cpu.size());
   size_t differ = 0, first = 0;
@@ -100,6 +114,48 @@ TEST_CASE("gpu curvature: the same bits as mean_curvature_morton", "[gpu][curvat
   check_same_bits(ctx, odd, "bumpy sphere with loose vertices, degenerate and repeated triangles");
 }
 
+// A mesh whose neighbour order is not its triangle order: the vertices renumbered by a
+// fixed shuffle, the triangles listed backwards.
+Mesh shuffled(const Mesh& in) {
+  const size_t nv = in.vertex_count();
+  std::vector<uint32_t> to(nv);
+  for (size_t v = 0; v < nv; ++v) to[v] = uint32_t((v * 7919 + 13) % nv);  // 7919 prime: a bijection unless nv divides
+  Mesh out;
+  out.positions.resize(in.positions.size());
+  for (size_t v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a) out.positions[3 * to[v] + a] = in.positions[3 * v + a];
+  for (size_t f = in.triangle_count(); f-- > 0;)
+    for (int c = 0; c < 3; ++c) out.triangles.push_back(to[in.triangles[3 * f + c]]);
+  return out;
+}
+
+TEST_CASE("gpu curvature in input order: the same bits as mean_curvature over the 1-rings", "[gpu][curvature]") {
+  vk::Context& ctx = context();
+  const auto input = gpu::TriangleOrder::input;
+  check_same_bits(ctx, make_bumpy_sphere(4), "bumpy sphere", input);
+  check_same_bits(ctx, make_cube(12), "cube", input);
+  check_same_bits(ctx, make_plane_with_bump(2.0, 40, 0.3, 0.2), "plane with bump", input);
+  const Mesh sphere = make_bumpy_sphere(3);
+  REQUIRE(sphere.vertex_count() % 7919 != 0);
+  check_same_bits(ctx, shuffled(sphere), "bumpy sphere, shuffled", input);
+  Mesh odd = make_bumpy_sphere(3);
+  const uint32_t n = uint32_t(odd.vertex_count());
+  odd.positions.insert(odd.positions.end(), {0.1f, 0.2f, 0.3f, 5.0f, 5.0f, 5.0f, 0.5f, 0.5f, 2.0f});
+  odd.triangles.insert(odd.triangles.end(), {
+      0, 0, 5,  1, 2, 1,  3, 4, 5,  3, 4, 5,  // degenerate, repeated
+      5, 4, 3,                                // the same triangle reversed
+      6, 7, 7,  8, 8, 8,                      // (v, j, j): two edges v-j; (v, v, v): none
+      3, 4, n + 2,                            // a third triangle on edge 3-4
+      n + 1, n + 2, 9});                      // far vertices: long, skewed edges
+  check_same_bits(ctx, odd, "bumpy sphere with loose vertices, degenerate, repeated and non-manifold triangles",
+                  input);
+  // A pair of opposite triangles: the normals cancel at every corner (H 0).
+  Mesh flat;
+  flat.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3f, 0.3f, 0.5f};
+  flat.triangles = {0, 1, 2, 0, 2, 1, 0, 1, 3};
+  check_same_bits(ctx, flat, "opposite triangles", input);
+}
+
 TEST_CASE("gpu curvature: a real scan, and under forced staging", "[gpu][curvature]") {
   MESHSAL_REQUIRE_MESH(path, "bunny_36k.obj");
   const Mesh bunny = load_mesh(path);
@@ -107,6 +163,8 @@ TEST_CASE("gpu curvature: a real scan, and under forced staging", "[gpu][curvatu
   vk::Context ctx(-1, true);
   ctx.use_staging = true;
   check_same_bits(ctx, make_bumpy_sphere(3), "bumpy sphere, staged");
+  check_same_bits(context(), bunny, "bunny_36k", gpu::TriangleOrder::input);
+  check_same_bits(ctx, make_bumpy_sphere(3), "bumpy sphere, staged", gpu::TriangleOrder::input);
 }
 
 TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visit is flagged", "[gpu][curvature]") {
@@ -119,6 +177,44 @@ TEST_CASE("gpu curvature: a vertex of more triangles than an invocation may visi
   const std::vector<double> cpu = mean_curvature_morton(fan, box, 2);
   CHECK(gpu[1] == cpu[1]);  // the rim's are computed
   CHECK(gpu[0] == 0.0);
+}
+
+TEST_CASE("gpu curvature in input order: a vertex of more than 64 corners is flagged", "[gpu][curvature]") {
+  // Each neighbour costs a pass over the vertex's corners: past 64 the host takes it.
+  const Mesh fan = make_cone(65, 0.02);
+  const BoundingBox box = mesh_points_bbox(fan, referenced_vertices(fan));
+  bool complete = true;
+  const std::vector<double> gpu = gpu_curvature(context(), fan, box, &complete, gpu::TriangleOrder::input);
+  CHECK(!complete);
+  const std::vector<double> cpu = rings_oracle(fan);
+  CHECK(gpu[1] == cpu[1]);  // the rim's are computed
+  CHECK(gpu[0] == 0.0);
+  check_same_bits(context(), make_cone(64, 0.02), "a fan of 64 triangles", gpu::TriangleOrder::input);
+}
+
+// The exact method on the GPU against the CPU: the curvature bit for bit, the maps as
+// test_gpu_saliency.cpp holds them.
+void check_exact(const Mesh& mesh, const std::string& what) {
+  INFO(what);
+  SaliencyOptions opt;
+  opt.method = Method::Exact;
+  opt.precision = Precision::Double;
+  opt.threads = 2;
+  const uint64_t before = vk::validation_message_count();
+  context().exact_curvature_on_device = 1;  // lavapipe, a CPU device, would take the host's
+  const SaliencyResult gpu = compute_saliency_gpu(context(), mesh, opt);
+  context().exact_curvature_on_device = -1;
+  const SaliencyResult cpu = compute_saliency_cpu(mesh, opt);
+  CHECK(vk::validation_message_count() == before);
+  CHECK(gpu.curvature == cpu.curvature);
+  meshsal_test::check_maps_match(cpu, gpu, opt.scales, 1e-4, 1e-4);
+}
+
+TEST_CASE("gpu exact saliency: vertices past the limits take the host's curvature", "[gpu][curvature]") {
+  // Past 64 triangles: that vertex's H from the host, the rest from the device.
+  check_exact(make_cone(1500, 0.05), "a fan of 1500 triangles");
+  // Past 16,384: the host's H and the suppression over the 1-rings.
+  check_exact(make_cone(20000, 0.05), "a fan of 20000 triangles");
 }
 
 TEST_CASE("gpu fast saliency: a vertex past the limit takes the host's curvature and the 1-rings", "[gpu][curvature]") {

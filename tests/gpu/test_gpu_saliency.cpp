@@ -42,6 +42,15 @@ void compare(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
       compare_once(mesh, opt, what);
     }
   context().sweep_variant = -1;
+  // The exact method's curvature on the device (lavapipe, a CPU device, takes the host's):
+  // in double, the curvature bit for bit and the maps as above.
+  if (opt.method != Method::Fast) {
+    INFO("double, the curvature on the device");
+    opt.precision = Precision::Double;
+    context().exact_curvature_on_device = 1;
+    compare_once(mesh, opt, what);
+    context().exact_curvature_on_device = -1;
+  }
 }
 
 void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
@@ -55,6 +64,7 @@ void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what
   CHECK(gpu.backend_name == context().info.name);
   CHECK(gpu.eps == cpu.eps);
   check_maps_match(cpu, gpu, opt.scales, 1e-4);
+  CHECK(gpu.curvature == cpu.curvature);  // the host's function or its device twin: the same bits
   // Pair counts: identical up to float-vs-double ties at the sweep radius.
   CHECK(cpu.pairs > mesh.vertex_count());
   CHECK(std::fabs(double(gpu.pairs) - double(cpu.pairs)) <= 1e-5 * double(cpu.pairs));

@@ -25,6 +25,7 @@
 #include "curvature_comp.h"
 #include "curvature_face_key_comp.h"
 #include "curvature_incidence_comp.h"
+#include "curvature_rings_comp.h"
 #include "exposure_test_comp.h"
 #include "fast_aggregate_cells_comp.h"
 #include "fast_aggregate_pieces_comp.h"
@@ -331,7 +332,7 @@ Case make_case(const char* name, const uint32_t* spirv, size_t spirv_bytes) {
 std::vector<Case> all_cases() {
   return {
       SHADER(Curvature, curvature),                     SHADER(CurvatureFaceKey, curvature_face_key),
-      SHADER(CurvatureIncidence, curvature_incidence),
+      SHADER(CurvatureIncidence, curvature_incidence),   SHADER(CurvatureRings, curvature_rings),
       SHADER(ExposureTest, exposure_test),
       SHADER(FastAggregateCells, fast_aggregate_cells), SHADER(FastAggregatePieces, fast_aggregate_pieces),
       SHADER(FastCandidateBound, fast_candidate_bound),
