@@ -7,17 +7,25 @@
 // Per mesh: the exact method in each layout (shared rows: a lane per point; subgroup: a
 // subgroup per point) and precision (mixed, double), then the fast method with the host
 // seconds and host waits (submissions the host waited for) of each of its phases. Times are the fastest of the repeats, after one run that
-// compiles the pipelines. Default mesh: ../shared/data/meshes/igea_134k.ply.gz.
+// compiles the pipelines. Each method's device curvature is compared with its CPU twin bit
+// for bit (on a GPU that assumes correctly rounded double division and square root).
+// Default mesh: ../shared/data/meshes/igea_134k.ply.gz.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
+#include "core/adjacency.h"
+#include "core/mesh_points.h"
 #include "gpu/gpu_fp64_rate.h"
 #include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
+#include "saliency/curvature.h"
 
 using namespace meshsal;
 
@@ -48,6 +56,21 @@ SaliencyResult best_of(vk::Context& ctx, const Mesh& mesh, const SaliencyOptions
     }
   }
   return best;
+}
+
+// One line: how many of the device's H differ from the CPU twin's in any bit, and by how much.
+void print_curvature_check(const std::string& name, const char* method, const std::vector<double>& device,
+                           const std::vector<double>& host) {
+  size_t differ = 0;
+  double worst = 0;
+  for (size_t v = 0; v < host.size() && v < device.size(); ++v)
+    if (std::memcmp(&host[v], &device[v], 8) != 0) {
+      ++differ;
+      worst = std::max(worst, std::fabs(host[v] - device[v]) / std::max(std::fabs(host[v]), 1e-300));
+    }
+  std::printf("%-26s %s curvature against the CPU's: %zu of %zu vertices differ in some bit (largest relative "
+              "difference %.3g)%s\n",
+              name.c_str(), method, differ, host.size(), worst, device.size() == host.size() ? "" : " SIZE MISMATCH");
 }
 
 }  // namespace
@@ -116,6 +139,15 @@ int main(int argc, char** argv) {
         }
       }
       ctx.sweep_variant = -1;
+      if (exact) {
+        o.precision = Precision::Double;
+        ctx.exact_curvature_on_device = 1;  // a CPU device (lavapipe) would take the host's
+        const SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
+        ctx.exact_curvature_on_device = -1;
+        print_curvature_check(name, "exact", r.curvature,
+                              mean_curvature(mesh, build_adjacency(mesh), vertex_normals(mesh)));
+        o.precision = Precision::Auto;
+      }
       if (!fast) continue;
       o.method = Method::Fast;
       const uint64_t sent = ctx.uploaded_bytes;
@@ -123,6 +155,8 @@ int main(int argc, char** argv) {
       const double up = double(ctx.uploaded_bytes - sent);
       std::printf("%-26s fast: %.1f MB uploaded, %.1f bytes a vertex\n", name.c_str(), up / 1e6,
                   up / double(mesh.vertex_count()));
+      print_curvature_check(name, "fast", compute_saliency_gpu(ctx, mesh, o).curvature,
+                            mean_curvature_morton(mesh, mesh_points_bbox(mesh, referenced_vertices(mesh))));
       std::vector<vk::Context::FastPhase> phases;
       const SaliencyResult r = best_of(ctx, mesh, o, repeat, &phases);
       std::printf("%-26s fast: curvature %.3fs upload %.3fs sweep %.3fs suppression %.3fs download %.3fs total %.3fs\n",

@@ -4,7 +4,9 @@
 # MESH_DIR holds igea_loop2_2149k.ply.gz (MESH_NAME=... takes another, for a dry run on
 # lavapipe with a small one). Prints, each with the device named:
 #  1. bench_gpu_sweep on igea_loop2: the fp64 and layout probes, the exact sweep in both
-#     layouts and precisions, the fast method's stages, phases and host waits;
+#     layouts and precisions, each method's device curvature against its CPU twin (0 of N
+#     vertices should differ: the device's double division and square root correctly
+#     rounded), the fast method's stages, phases and host waits;
 #  2. the exact method on igea_loop2: its stages (meshsal bench --backend gpu) and the whole
 #     process (meshsal saliency --backend gpu --json; target: stages <= 0.5 s, process <= 2 s);
 #  3. the fast method on igea_loop2 subdivided once (8.6M vertices, written once as binary
