@@ -141,7 +141,17 @@ int main(int argc, char** argv) {
       ctx.sweep_variant = -1;
       if (exact) {
         o.precision = Precision::Double;
-        ctx.exact_curvature_on_device = 1;  // a CPU device (lavapipe) would take the host's
+        for (int on_device : {0, 1}) {  // -1 on a CPU device (lavapipe) would take the host's
+          ctx.exact_curvature_on_device = on_device;
+          const uint64_t sent = ctx.uploaded_bytes;
+          const SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
+          const double up = double(ctx.uploaded_bytes - sent);
+          std::printf("%-26s exact, double, curvature on the %s: %.1f MB uploaded, %.1f bytes a vertex; curvature "
+                      "%.3fs\n",
+                      name.c_str(), on_device ? "device" : "host", up / 1e6, up / double(mesh.vertex_count()),
+                      stage(r, "curvature"));
+        }
+        ctx.exact_curvature_on_device = 1;
         const SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
         ctx.exact_curvature_on_device = -1;
         print_curvature_check(name, "exact", r.curvature,
