@@ -74,7 +74,7 @@ struct DeviceMesh {
   vk::Buffer starts, sorted_pos, sorted_vertex;
   vk::Buffer params, result, pairs;
   vk::Buffer sorted_pos32, bound;  // the mixed-precision sweep's (gpu_sweep.h)
-  // Where the device computes the curvature (all but the mixed sweep): the float
+  // Where the device computes the curvature (see compute_saliency_gpu): the float
   // coordinates, the curvature and its incidence (the local maxima's neighbours in place of
   // the 1-rings).
   vk::Buffer pos32;
