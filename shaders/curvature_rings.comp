@@ -23,7 +23,7 @@ layout(std430, binding = 5) buffer Pos { dvec4 pos[]; };                // w: H
 layout(std430, binding = 6) buffer Counts { uint counts[]; };
 layout(std430, binding = 7) writeonly buffer H { double h[]; };        // H again, for the host
 layout(push_constant) uniform Push { uint base; uint n; uint count_slot; } pc;  // n = vertices; the flag slot
-const uint MAX_CORNERS = 64u;  // at most 16,576 loop steps a vertex: see main()
+const uint MAX_CORNERS = 64u;  // at most 16,641 loop steps a vertex: see main()
 
 #include "exact_double.glsl"
 dvec3 p(uint v) { return exact_double3(pos32[v].xyz); }
@@ -72,9 +72,10 @@ void main() {
   bool have_last = false;
   uint last = 0u;
   // Lavapipe ends an invocation's loops after 65,535 steps in all: the loops over a
-  // triangle's corners are written out, so with K corners a vertex takes K steps for its
-  // normal and 2K per neighbour (at most 2K of them, and one more step to find none): at
-  // most 4K^2 + 3K, 16,576 for K = 64.
+  // triangle's corners are written out, so with K corners and N distinct neighbours (at most
+  // 2K) a vertex takes K steps for its normal, then N + 1 rounds of the loop below, each one
+  // step and K to look for the next neighbour, and K more for each found one's area:
+  // K + (N + 1)(K + 1) + N K, at most (2K + 1)^2 = 16,641 for K = 64.
   for (;;) {  // a step per distinct neighbour: `last` only grows
     bool found = false;
     uint next = 0u;

@@ -41,7 +41,7 @@ class DeviceCurvature {
   // Records the whole computation into cmd, ending with a barrier.
   void record(vk::Context& ctx, VkCommandBuffer cmd);
   // After the submission: false when some vertex has more triangles than one invocation may
-  // visit on every device (16,384 corners in Morton order, 1,024 in input order, where each
+  // visit on every device (16,384 corners in Morton order, 64 in input order, where each
   // neighbour takes a pass over them; its H is then 0 here: the caller computes H on the
   // host).
   bool complete() const;

@@ -502,9 +502,18 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // near-tie recheck takes the 1-rings, so there the host computes H with them first, as
   // compute_saliency_cpu() does; so it does for the exact method on a CPU device, where
   // the host is the faster (Context::exact_curvature_on_device).
-  const bool device_curvature =
+  bool device_curvature =
       fast || (!mixed && (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
                                                               : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+  const uint64_t curvature_bytes = nv * 16 + gpu::DeviceCurvature::bytes(nv, mesh.triangle_count());
+  if (device_curvature && !fast) {
+    // Its sorts hold about 230 bytes a vertex where the 1-rings take about 30: where that
+    // does not fit the device and the host's way might, the host computes H.
+    const uint64_t points = uint64_t(std::count(res.is_point.begin(), res.is_point.end(), uint8_t(1)));
+    const uint64_t have = vk::device_memory_available(ctx.info);
+    const uint64_t need = gpu_memory_estimate(nv, points, nsc, 0, ctx.use_staging, mixed) + curvature_bytes;
+    if (have && need > have * 0.9) device_curvature = false;
+  }
   Adjacency adj;
   if (!device_curvature) {
     t0.restart();
@@ -520,8 +529,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   for (int a = 0; a < 3; ++a) extent[a] = bb.max[a] - bb.min[a];
   DeviceMesh m;
   const uint64_t device_bytes =
-      (fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) : 0) +
-      (device_curvature ? nv * 16 + gpu::DeviceCurvature::bytes(nv, mesh.triangle_count()) : 0);
+      (fast ? gpu::fast_filter_bytes(nv, nv, plan.units.size()) : 0) + (device_curvature ? curvature_bytes : 0);
   upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, device_bytes, options.threads, device_curvature, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
@@ -550,7 +558,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       for (uint32_t v : mesh.triangles) ++corners[v];
       for (size_t v = 0; v < nv; ++v)
         if (corners[v] > gpu::DeviceCurvature::kInputOrderCorners) many.push_back(uint32_t(v));
-      mean_curvature_at(mesh, many, res.curvature.data());
+      mean_curvature_at(mesh, many, res.curvature.data(), options.threads);
       upload_positions(mesh, res, bb, m, options.threads);
     } else if (flagged != 0) {
       // A vertex of more triangles than one invocation may visit (lavapipe's loop limit):

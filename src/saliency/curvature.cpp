@@ -208,7 +208,7 @@ std::vector<double> mean_curvature(const Mesh& mesh, const Adjacency& adjacency,
   return H;
 }
 
-void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H) {
+void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H, unsigned threads) {
   const size_t nv = mesh.vertex_count();
   std::vector<uint8_t> wanted(nv, 0);
   for (uint32_t v : vertices) wanted[v] = 1;
@@ -231,7 +231,8 @@ void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, 
     }
   part.triangles.reserve(tris.size());
   for (uint32_t v : tris) part.triangles.push_back(index[v]);
-  const std::vector<double> h = mean_curvature(part, build_adjacency(part), vertex_normals(part));
+  const std::vector<double> h =
+      mean_curvature(part, build_adjacency(part, threads), vertex_normals(part, threads), threads);
   for (uint32_t v : vertices) H[v] = h[index[v]];
 }
 

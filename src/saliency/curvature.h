@@ -23,7 +23,7 @@ std::vector<double> mean_curvature(const Mesh& mesh, const Adjacency& adjacency,
 // that hold them, on a copy of those renumbered in the same relative order (so the
 // neighbours sort alike and each sum runs in the same order). The GPU's exact curvature
 // leaves a vertex of many triangles to the host this way.
-void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H);
+void mean_curvature_at(const Mesh& mesh, const std::vector<uint32_t>& vertices, double* H, unsigned threads = 0);
 
 // The same H from one pass over the triangles, without the 1-rings (the fast method's:
 // build_adjacency is most of the curvature stage's time and memory on a large scan). Each

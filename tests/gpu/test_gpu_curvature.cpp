@@ -21,6 +21,7 @@
 #include "meshsal/meshsal.h"
 #include "saliency/curvature.h"
 #include "saliency/saliency.h"
+#include "scoped_value.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -149,6 +150,13 @@ TEST_CASE("gpu curvature in input order: the same bits as mean_curvature over th
       n + 1, n + 2, 9});                      // far vertices: long, skewed edges
   check_same_bits(ctx, odd, "bumpy sphere with loose vertices, degenerate, repeated and non-manifold triangles",
                   input);
+  // Float denormals (which a device may flush when converting) and coordinates near float's
+  // largest, whose products need double's range.
+  Mesh extreme;
+  extreme.positions = {0, 0, 0, 1e-45f, 0, 0, 0, 3e-44f, 0, 0, 0, 1e-40f,
+                       3e38f, 0, 0, 0, -3e38f, 0, 0, 0, 2e38f};
+  extreme.triangles = {0, 1, 2, 0, 2, 3, 0, 3, 1, 4, 5, 6, 0, 4, 5};
+  check_same_bits(ctx, extreme, "denormal and huge coordinates", input);
   // A pair of opposite triangles: the normals cancel at every corner (H 0).
   Mesh flat;
   flat.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3f, 0.3f, 0.5f};
@@ -190,6 +198,17 @@ TEST_CASE("gpu curvature in input order: a vertex of more than 64 corners is fla
   CHECK(gpu[1] == cpu[1]);  // the rim's are computed
   CHECK(gpu[0] == 0.0);
   check_same_bits(context(), make_cone(64, 0.02), "a fan of 64 triangles", gpu::TriangleOrder::input);
+  // The most loop steps a vertex may take: 64 triangles that share no other corner, so 128
+  // distinct neighbours (a wrong bound would have lavapipe end the loops early).
+  Mesh bow_tie;
+  bow_tie.positions = {0, 0, 0};
+  for (int i = 0; i < 128; ++i) {
+    const double a = 2 * 3.141592653589793 * i / 128;
+    bow_tie.positions.insert(bow_tie.positions.end(),
+                             {float(std::cos(a)), float(std::sin(a)), float(0.1 * std::sin(7 * a))});
+  }
+  for (uint32_t i = 0; i < 64; ++i) bow_tie.triangles.insert(bow_tie.triangles.end(), {0u, 2 * i + 1, 2 * i + 2});
+  check_same_bits(context(), bow_tie, "64 triangles, 128 neighbours", gpu::TriangleOrder::input);
 }
 
 // The exact method on the GPU against the CPU: the curvature bit for bit, the maps as
@@ -201,12 +220,16 @@ void check_exact(const Mesh& mesh, const std::string& what) {
   opt.precision = Precision::Double;
   opt.threads = 2;
   const uint64_t before = vk::validation_message_count();
-  context().exact_curvature_on_device = 1;  // lavapipe, a CPU device, would take the host's
-  const SaliencyResult gpu = compute_saliency_gpu(context(), mesh, opt);
-  context().exact_curvature_on_device = -1;
+  SaliencyResult gpu;
+  {
+    // lavapipe, a CPU device, would take the host's
+    const meshsal_test::ScopedValue<int> on_device(context().exact_curvature_on_device, 1);
+    gpu = compute_saliency_gpu(context(), mesh, opt);
+  }
   const SaliencyResult cpu = compute_saliency_cpu(mesh, opt);
   CHECK(vk::validation_message_count() == before);
-  CHECK(gpu.curvature == cpu.curvature);
+  REQUIRE(gpu.curvature.size() == cpu.curvature.size());
+  CHECK(std::memcmp(gpu.curvature.data(), cpu.curvature.data(), 8 * cpu.curvature.size()) == 0);
   meshsal_test::check_maps_match(cpu, gpu, opt.scales, 1e-4, 1e-4);
 }
 
@@ -229,4 +252,40 @@ TEST_CASE("gpu fast saliency: a vertex past the limit takes the host's curvature
   CHECK(vk::validation_message_count() == before);
   CHECK(gpu.curvature == cpu.curvature);  // the host's H, the CPU fast path's bits
   meshsal_test::check_maps_match(cpu, gpu, opt.scales, 1e-4, 1e-4);
+}
+
+TEST_CASE("gpu exact saliency: where the device curvature's sorts do not fit, the host computes H", "[gpu][curvature]") {
+  // bumpy sphere 5 (10k vertices), exact in double: about 9 MiB with the host's curvature
+  // and 1-rings, about 12 with the device's (more with a staging area). The device's memory
+  // grows a MiB at a time: refused, then the host's H (64 bytes a vertex uploaded: positions
+  // in double with H, flags, 1-rings), then the device's (40: float positions, triangles).
+  const Mesh m = make_bumpy_sphere(5);
+  SaliencyOptions opt;
+  opt.precision = Precision::Double;
+  opt.threads = 2;
+  std::vector<int> seen;  // bytes a vertex of each run that fitted, rounded
+  SaliencyResult host, device;
+  for (int mib = 4; mib <= 32 && (seen.empty() || seen.back() != 40); ++mib) {
+    vk::Context ctx(-1, true);
+    ctx.exact_curvature_on_device = 1;
+    ctx.info.device_local_bytes = uint64_t(mib) << 20;
+    const uint64_t sent = ctx.uploaded_bytes;
+    SaliencyResult r;
+    try {
+      r = compute_saliency_gpu(ctx, m, opt);
+    } catch (const Error& e) {
+      CHECK(seen.empty());  // only below the first that fits
+      CHECK_THAT(e.what(), Catch::Contains("mesh too large"));
+      continue;
+    }
+    seen.push_back(int(std::lround(double(ctx.uploaded_bytes - sent) / double(m.vertex_count()))));
+    (seen.back() == 64 ? host : device) = std::move(r);
+  }
+  REQUIRE(seen.size() >= 2);
+  CHECK(seen.front() == 64);
+  CHECK(seen.back() == 40);
+  REQUIRE(host.curvature.size() == m.vertex_count());
+  REQUIRE(device.curvature.size() == m.vertex_count());
+  CHECK(std::memcmp(host.curvature.data(), device.curvature.data(), 8 * m.vertex_count()) == 0);
+  CHECK(host.saliency == device.saliency);
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "saliency/saliency.h"
 #include "cli/synthetic.h"
 #include "gpu/vk_context.h"
+#include "scoped_value.h"
 #include "test_util.h"
 
 using namespace meshsal;
@@ -45,11 +47,12 @@ void compare(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
   // The exact method's curvature on the device (lavapipe, a CPU device, takes the host's):
   // in double, the curvature bit for bit and the maps as above.
   if (opt.method != Method::Fast) {
-    INFO("double, the curvature on the device");
-    opt.precision = Precision::Double;
-    context().exact_curvature_on_device = 1;
-    compare_once(mesh, opt, what);
-    context().exact_curvature_on_device = -1;
+    const meshsal_test::ScopedValue<int> on_device(context().exact_curvature_on_device, 1);
+    for (Precision precision : {Precision::Double, Precision::Mixed}) {  // mixed keeps the host's
+      INFO((precision == Precision::Mixed ? "mixed" : "double") << ", the curvature on the device");
+      opt.precision = precision;
+      compare_once(mesh, opt, what);
+    }
   }
 }
 
@@ -64,7 +67,9 @@ void compare_once(const Mesh& mesh, SaliencyOptions opt, const std::string& what
   CHECK(gpu.backend_name == context().info.name);
   CHECK(gpu.eps == cpu.eps);
   check_maps_match(cpu, gpu, opt.scales, 1e-4);
-  CHECK(gpu.curvature == cpu.curvature);  // the host's function or its device twin: the same bits
+  // The host's function or its device twin: the same bits.
+  REQUIRE(gpu.curvature.size() == cpu.curvature.size());
+  CHECK(std::memcmp(gpu.curvature.data(), cpu.curvature.data(), 8 * cpu.curvature.size()) == 0);
   // Pair counts: identical up to float-vs-double ties at the sweep radius.
   CHECK(cpu.pairs > mesh.vertex_count());
   CHECK(std::fabs(double(gpu.pairs) - double(cpu.pairs)) <= 1e-5 * double(cpu.pairs));
