@@ -100,7 +100,8 @@ class Context {
   int measured_sweep_variant[2] = {-1, -1};
   // Where the exact method's curvature runs in double precision (gpu_curvature.h's input
   // order): 1 on the device, 0 on the host; -1: on GPUs the device, on CPU devices the host
-  // (lavapipe on 2 cores took 0.19 s for igea_134k where the host took 0.03 s). Tests set 1.
+  // (lavapipe on 2 cores took 0.19-0.23 s for igea_134k where the host took 0.03 s). Tests
+  // set 1.
   int exact_curvature_on_device = -1;
   // Time of double over float arithmetic, measured on first need (gpu_fp64_rate.h); 0:
   // not yet. Tests may set it to choose what --precision auto takes.
