@@ -498,13 +498,13 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
 
   // --- curvature: on the device after the upload (gpu_curvature.h), the twin of the CPU's
   // for the method: mean_curvature_morton() for the fast one, mean_curvature() over the
-  // 1-rings for the exact one, neither building 1-rings on the host. The mixed sweep's
-  // near-tie recheck takes the 1-rings, so there the host computes H with them first, as
-  // compute_saliency_cpu() does; so it does for the exact method on a CPU device, where
-  // the host is the faster (Context::exact_curvature_on_device).
+  // 1-rings for the exact one, neither building 1-rings on the host (the local maxima and
+  // the mixed sweep's near ties take the neighbours from the triangles). For the exact
+  // method on a CPU device, where the host is the faster, the host computes H with the
+  // 1-rings first, as compute_saliency_cpu() does (Context::exact_curvature_on_device).
   bool device_curvature =
-      fast || (!mixed && (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
-                                                              : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU));
+      fast || (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
+                                                  : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU);
   const uint64_t curvature_bytes = nv * 16 + gpu::DeviceCurvature::bytes(nv, mesh.triangle_count());
   if (device_curvature && !fast) {
     // Its sorts hold about 230 bytes a vertex where the 1-rings take about 30: where that
@@ -616,6 +616,12 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
       t0.restart();
       gpu::NearTieBuffers nb{&m.result, &m.flags, &m.bound, &m.offsets, &m.neighbors,
                              &m.sorted_pos, &m.sorted_vertex, &m.starts, &m.params, &m.pairs, &m.pos};
+      if (m.curvature) {  // the neighbours from the curvature's incidence (no 1-rings)
+        nb.start = &m.curvature->start;
+        nb.entry = &m.curvature->entry();
+        nb.order = &m.curvature->triangle_order();
+        nb.triangles = &m.curvature->triangles;
+      }
       SweepPush p{0, 0, g.nx, g.ny, g.nz, 0, m.nv, nsig,
                   static_cast<uint32_t>(nsc), 0, g.h, plan.radius * plan.radius};
       res.rechecked = gpu::recheck_near_ties(ctx, pool, nb, m.nv, static_cast<uint32_t>(nsc), p);

@@ -7,6 +7,7 @@
 #include "meshsal/meshsal.h"
 
 #include "near_tie_comp.h"
+#include "near_tie_faces_comp.h"
 #include "sorted_float_comp.h"
 #include "sweep8_list_comp.h"
 
@@ -47,10 +48,15 @@ void make_float_points(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buf
 
 uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const NearTieBuffers& b,
                            uint32_t nv, uint32_t nmaps, SweepPush push) {
-  auto& k_mark = vk::cached_kernel<shader::NearTie>(ctx, spv_near_tie_comp, sizeof spv_near_tie_comp, "near_tie");
+  const bool faces = b.start != nullptr;
+  auto& k_mark =
+      faces ? vk::cached_kernel<shader::NearTieFaces>(ctx, spv_near_tie_faces_comp, sizeof spv_near_tie_faces_comp,
+                                                      "near_tie_faces")
+            : vk::cached_kernel<shader::NearTie>(ctx, spv_near_tie_comp, sizeof spv_near_tie_comp, "near_tie");
   vk::Buffer need(ctx, size_t(nv) * 4, "the near-tie marks");
   VkDescriptorSet s_mark =
-      pool.bind(k_mark, {b.raw, b.is_point, b.bound, b.offsets, b.neighbors, &need});
+      faces ? pool.bind(k_mark, {b.raw, b.is_point, b.bound, b.start, b.entry, b.order, b.triangles, &need})
+            : pool.bind(k_mark, {b.raw, b.is_point, b.bound, b.offsets, b.neighbors, &need});
   shader::NearTiePush mp{0, 0, nmaps};
   vk::submit(ctx, "near ties", [&](VkCommandBuffer cmd) {
     vk::dispatch(ctx, cmd, k_mark, s_mark, &mp, 0, nv, kLocal);

@@ -27,10 +27,14 @@ void make_float_points(vk::Context& ctx, vk::DescriptorPool& pool, const vk::Buf
 struct NearTieBuffers {
   vk::Buffer *raw, *is_point, *bound, *offsets, *neighbors;      // near_tie.comp
   vk::Buffer *sorted_pos, *sorted_vertex, *starts, *params, *pairs, *pos;  // sweep8_list
+  // Where the device computed the curvature: its incidence (gpu_curvature.h), whose
+  // neighbours near_tie_faces.comp reads in place of offsets and neighbors.
+  vk::Buffer *start = nullptr, *entry = nullptr, *order = nullptr, *triangles = nullptr;
 };
 
 // After a mixed-precision sweep: sweeps again in double (sweep8_list) every mesh point
-// whose value in some raw map is within the two error bounds of a 1-ring neighbour's, and
+// whose value in some raw map is within the two error bounds of a 1-ring neighbour's (from
+// the 1-rings, or from the triangles where `b` has the curvature's incidence), and
 // overwrites its raw maps, so that the strict local-maximum test falls as in double.
 // `push` is the sweep's push block. Returns how many points were swept again.
 uint32_t recheck_near_ties(vk::Context& ctx, vk::DescriptorPool& pool, const NearTieBuffers& b,

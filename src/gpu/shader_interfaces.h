@@ -105,6 +105,7 @@ using MapMax = Interface<GroupsPush, 3>;
 using MapMaxFinal = Interface<GroupsPush, 2>;
 using Mbar = Interface<GroupsPush, 3>;
 using NearTie = Interface<NearTiePush, 6>;
+using NearTieFaces = Interface<NearTiePush, 8>;
 using PairSums = Interface<PairSumsPush, 2>;
 using PointFlags = Interface<CornersPush, 2>;
 using PointPositions = Interface<OriginPush, 2>;

@@ -98,8 +98,8 @@ class Context {
   // A GPU's choice for -1: both layouts timed once per context (gpu_layout_probe.h), in
   // double ([0]) and mixed ([1]) precision; -1 until then.
   int measured_sweep_variant[2] = {-1, -1};
-  // Where the exact method's curvature runs in double precision (gpu_curvature.h's input
-  // order): 1 on the device, 0 on the host; -1: on GPUs the device, on CPU devices the host
+  // Where the exact method's curvature runs (gpu_curvature.h's input order): 1 on the
+  // device, 0 on the host; -1: on GPUs the device, on CPU devices the host
   // (lavapipe on 2 cores took 0.19-0.23 s for igea_134k where the host took 0.03 s). Tests
   // set 1.
   int exact_curvature_on_device = -1;

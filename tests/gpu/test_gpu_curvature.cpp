@@ -9,6 +9,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/synthetic.h"
@@ -16,6 +17,7 @@
 #include "core/mesh_points.h"
 #include "gpu/gpu_curvature.h"
 #include "gpu/gpu_saliency.h"
+#include "gpu/gpu_sweep.h"
 #include "gpu/vk_compute.h"
 #include "gpu/vk_context.h"
 #include "meshsal/meshsal.h"
@@ -288,4 +290,80 @@ TEST_CASE("gpu exact saliency: where the device curvature's sorts do not fit, th
   REQUIRE(device.curvature.size() == m.vertex_count());
   CHECK(std::memcmp(host.curvature.data(), device.curvature.data(), 8 * m.vertex_count()) == 0);
   CHECK(host.saliency == device.saliency);
+}
+
+TEST_CASE("gpu mixed sweep: the near ties found over the triangles are those over the 1-rings", "[gpu][curvature]") {
+  // The same run with the host's curvature and 1-rings (near_tie.comp) and with the
+  // device's and its incidence (near_tie_faces.comp): the same points swept again, so the
+  // same bits everywhere.
+  std::vector<std::pair<Mesh, std::string>> meshes;
+  meshes.emplace_back(make_bumpy_sphere(4), "bumpy sphere");
+  meshes.emplace_back(make_plane_with_bump(2.0, 40, 0.3, 0.2), "plane with bump: ties on its flat part");
+  const std::string fandisk = meshsal_test::shared_mesh("fandisk_6k.obj");
+  if (!fandisk.empty()) meshes.emplace_back(load_mesh(fandisk), "fandisk_6k");
+  for (const auto& [mesh, what] : meshes) {
+    INFO(what);
+    SaliencyOptions opt;
+    opt.precision = Precision::Mixed;
+    opt.threads = 2;
+    SaliencyResult rings, faces;
+    {
+      const meshsal_test::ScopedValue<int> host(context().exact_curvature_on_device, 0);
+      rings = compute_saliency_gpu(context(), mesh, opt);
+    }
+    {
+      const meshsal_test::ScopedValue<int> device(context().exact_curvature_on_device, 1);
+      faces = compute_saliency_gpu(context(), mesh, opt);
+    }
+    CHECK(rings.mixed_precision);
+    CHECK(faces.mixed_precision);
+    CHECK(rings.rechecked > 0);
+    CHECK(faces.rechecked == rings.rechecked);
+    CHECK(faces.curvature == rings.curvature);
+    CHECK(faces.saliency == rings.saliency);
+  }
+}
+
+TEST_CASE("gpu near ties over the triangles: both ends of a tied edge are marked, whichever corner it is", "[gpu][curvature]") {
+  // One open fan: triangles (0, 1, 2), (0, 2, 3), (0, 3, 4). Every raw value apart (bound 0)
+  // but two neighbours' equal: each tied pair marks its two ends, whether the other end
+  // follows the vertex in its triangle or comes before it (boundary edges have one each).
+  Mesh fan;
+  fan.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0};
+  fan.triangles = {0, 1, 2, 0, 2, 3, 0, 3, 4};
+  const uint32_t nv = 5, nmaps = 2;
+  vk::Context& ctx = context();
+  std::vector<float> p32(4 * nv, 0.0f);
+  for (uint32_t v = 0; v < nv; ++v)
+    for (int a = 0; a < 3; ++a) p32[4 * v + a] = fan.positions[3 * v + a];
+  vk::Buffer pos32(ctx, p32.size() * 4, "test"), pos(ctx, size_t(nv) * 32, "test");
+  pos32.upload(p32.data(), p32.size() * 4);
+  const BoundingBox box = mesh_points_bbox(fan, referenced_vertices(fan));
+  gpu::DeviceCurvature dc(ctx, fan, pos32, pos, box, gpu::TriangleOrder::input);
+  vk::submit(ctx, "test", [&](VkCommandBuffer cmd) { dc.record(ctx, cmd); });
+  const std::vector<uint32_t> flags(nv, 1);
+  const std::vector<float> bound(nmaps * nv, 0.0f);
+  vk::Buffer raw(ctx, size_t(nmaps) * nv * 8, "test"), is_point(ctx, nv * 4, "test"), err(ctx, bound.size() * 4, "test");
+  is_point.upload(flags.data(), flags.size() * 4);
+  err.upload(bound.data(), bound.size() * 4);
+  vk::DescriptorPool pool(ctx, 8, 32);
+  gpu::NearTieBuffers nb{&raw, &is_point, &err, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+  nb.start = &dc.start;
+  nb.entry = &dc.entry();
+  nb.order = &dc.triangle_order();
+  nb.triangles = &dc.triangles;
+  const meshsal_test::ScopedValue<bool> marks_only(gpu::test_skip_recheck, true);
+  auto marked = [&](uint32_t a, uint32_t b, int map) {  // how many points one tie marks
+    std::vector<double> values(nmaps * nv);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = 10.0 * double(i);
+    values[map * nv + b] = values[map * nv + a];
+    raw.upload(values.data(), values.size() * 8);
+    return gpu::recheck_near_ties(ctx, pool, nb, nv, nmaps, gpu::SweepPush{});
+  };
+  CHECK(marked(0, 1, 0) == 2);  // 1 follows 0 in (0, 1, 2), 0 follows 1 nowhere
+  CHECK(marked(0, 4, 1) == 2);  // 4 comes before 0 in (0, 3, 4)
+  CHECK(marked(1, 2, 0) == 2);
+  CHECK(marked(3, 4, 1) == 2);
+  CHECK(marked(1, 3, 0) == 0);  // not neighbours
+  CHECK(marked(0, 2, 1) == 2);  // an inner edge
 }

@@ -48,7 +48,7 @@ void compare(const Mesh& mesh, SaliencyOptions opt, const std::string& what) {
   // in double, the curvature bit for bit and the maps as above.
   if (opt.method != Method::Fast) {
     const meshsal_test::ScopedValue<int> on_device(context().exact_curvature_on_device, 1);
-    for (Precision precision : {Precision::Double, Precision::Mixed}) {  // mixed keeps the host's
+    for (Precision precision : {Precision::Double, Precision::Mixed}) {
       INFO((precision == Precision::Mixed ? "mixed" : "double") << ", the curvature on the device");
       opt.precision = precision;
       compare_once(mesh, opt, what);

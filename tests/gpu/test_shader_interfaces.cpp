@@ -50,6 +50,7 @@
 #include "map_max_final_comp.h"
 #include "mbar_comp.h"
 #include "near_tie_comp.h"
+#include "near_tie_faces_comp.h"
 #include "pair_sums_comp.h"
 #include "point_flags_comp.h"
 #include "point_positions_comp.h"
@@ -346,6 +347,7 @@ std::vector<Case> all_cases() {
       SHADER(LocalMax, local_max),                      SHADER(LocalMaxFaces, local_max_faces),
       SHADER(MapMax, map_max),                          SHADER(MapMaxFinal, map_max_final),
       SHADER(Mbar, mbar),                               SHADER(NearTie, near_tie),
+      SHADER(NearTieFaces, near_tie_faces),
       SHADER(PairSums, pair_sums),                      SHADER(PointFlags, point_flags),
       SHADER(PointPositions, point_positions),
       SHADER(RunHeads, run_heads),                      SHADER(RunStarts, run_starts),
