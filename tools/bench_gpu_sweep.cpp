@@ -141,31 +141,30 @@ int main(int argc, char** argv) {
       ctx.sweep_variant = -1;
       if (exact) {
         o.precision = Precision::Double;
+        SaliencyResult r;
         for (int on_device : {0, 1}) {  // -1 on a CPU device (lavapipe) would take the host's
           ctx.exact_curvature_on_device = on_device;
           const uint64_t sent = ctx.uploaded_bytes;
-          const SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
+          r = compute_saliency_gpu(ctx, mesh, o);
           const double up = double(ctx.uploaded_bytes - sent);
           std::printf("%-26s exact, double, curvature on the %s: %.1f MB uploaded, %.1f bytes a vertex; curvature "
                       "%.3fs\n",
                       name.c_str(), on_device ? "device" : "host", up / 1e6, up / double(mesh.vertex_count()),
                       stage(r, "curvature"));
         }
-        ctx.exact_curvature_on_device = 1;
-        const SaliencyResult r = compute_saliency_gpu(ctx, mesh, o);
         ctx.exact_curvature_on_device = -1;
-        print_curvature_check(name, "exact", r.curvature,
+        print_curvature_check(name, "exact", r.curvature,  // the device's, the loop's last run
                               mean_curvature(mesh, build_adjacency(mesh), vertex_normals(mesh)));
         o.precision = Precision::Auto;
       }
       if (!fast) continue;
       o.method = Method::Fast;
       const uint64_t sent = ctx.uploaded_bytes;
-      compute_saliency_gpu(ctx, mesh, o);
+      const std::vector<double> device_curvature = compute_saliency_gpu(ctx, mesh, o).curvature;
       const double up = double(ctx.uploaded_bytes - sent);
       std::printf("%-26s fast: %.1f MB uploaded, %.1f bytes a vertex\n", name.c_str(), up / 1e6,
                   up / double(mesh.vertex_count()));
-      print_curvature_check(name, "fast", compute_saliency_gpu(ctx, mesh, o).curvature,
+      print_curvature_check(name, "fast", device_curvature,
                             mean_curvature_morton(mesh, mesh_points_bbox(mesh, referenced_vertices(mesh))));
       std::vector<vk::Context::FastPhase> phases;
       const SaliencyResult r = best_of(ctx, mesh, o, repeat, &phases);

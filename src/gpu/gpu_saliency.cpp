@@ -344,6 +344,13 @@ void upload_rings(vk::Context& ctx, const Adjacency& adj, DeviceMesh& m) {
   m.neighbors.upload(adj.neighbors.data(), adj.neighbors.size() * 4);
 }
 
+// Whether `need` bytes fit the device: at most 90% of its device-local heap (or budget);
+// true where the device says nothing of its memory.
+bool fits_device(const vk::Context& ctx, uint64_t need) {
+  const uint64_t have = vk::device_memory_available(ctx.info);
+  return !have || need <= have * 0.9;
+}
+
 // The device buffers of the mesh, after checking that everything the computation will
 // allocate fits the device (`device_bytes`: what the caller allocates besides); the
 // positions (m.pos) and the mesh-point flags uploaded unless `on_device` (built there from
@@ -359,11 +366,10 @@ void upload_mesh(vk::Context& ctx, const Mesh& mesh, const SaliencyResult& res,
   // Memory: refuse up front what cannot fit the device-local heap (or its budget).
   const uint64_t need = gpu_memory_estimate(nv, m.np, nsc, adj.neighbors.size(),
                                             ctx.use_staging, mixed) + device_bytes;
-  const uint64_t have = vk::device_memory_available(ctx.info);
-  if (have && need > have * 0.9)
-    throw Error("mesh too large for '" + ctx.info.name + "': needs about " +
-                std::to_string(need >> 20) + " MiB of device memory, the device has " +
-                std::to_string(have >> 20) + " MiB; use the CPU path (--backend cpu)");
+  if (!fits_device(ctx, need))
+    throw Error("mesh too large for '" + ctx.info.name + "': needs about " + std::to_string(need >> 20) +
+                " MiB of device memory, the device has " +
+                std::to_string(vk::device_memory_available(ctx.info) >> 20) + " MiB; use the CPU path (--backend cpu)");
 
   m.pos = vk::Buffer(ctx, nv * 32, "the vertex positions");
   m.flags = vk::Buffer(ctx, nv * 4, "the mesh-point flags");
@@ -510,9 +516,8 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     // Its sorts hold about 230 bytes a vertex where the 1-rings take about 30: where that
     // does not fit the device and the host's way might, the host computes H.
     const uint64_t points = uint64_t(std::count(res.is_point.begin(), res.is_point.end(), uint8_t(1)));
-    const uint64_t have = vk::device_memory_available(ctx.info);
-    const uint64_t need = gpu_memory_estimate(nv, points, nsc, 0, ctx.use_staging, mixed) + curvature_bytes;
-    if (have && need > have * 0.9) device_curvature = false;
+    device_curvature =
+        fits_device(ctx, gpu_memory_estimate(nv, points, nsc, 0, ctx.use_staging, mixed) + curvature_bytes);
   }
   Adjacency adj;
   if (!device_curvature) {
