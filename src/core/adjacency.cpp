@@ -60,25 +60,31 @@ Adjacency build_adjacency(const Mesh& mesh, unsigned threads) {
       area[f] = triangle_area(mesh.positions.data(), t[3 * f], t[3 * f + 1], t[3 * f + 2]);
   });
 
+  // Vertex v's half-edges come from the triangles around it in triangle order: edge (a, b)
+  // of a triangle gives a the neighbour b and b the neighbour a. Calls at(neighbour,
+  // triangle) for each.
+  auto half_edges = [&](size_t v, auto&& at) {
+    for (uint32_t i = around_start[v]; i < around_start[v + 1]; ++i) {
+      const uint32_t f = around[i];
+      const uint32_t* c = &t[3 * f];
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t a = c[e], b = c[(e + 1) % 3];
+        if (a == b) continue;
+        if (a == v) at(b, f);
+        if (b == v) at(a, f);
+      }
+    }
+  };
+
   // Two passes: the neighbour counts (hence the offsets), then the lists in place.
   Adjacency adj;
   adj.offsets.assign(n + 1, 0);
-  // Vertex v's half-edges come from the triangles around it in triangle order: edge (a, b)
-  // of a triangle gives a the neighbour b and b the neighbour a. The counts: the distinct
-  // ends, from the indices alone (no areas loaded or moved).
+  // The counts: the distinct ends, from the indices alone (no areas loaded or moved).
   parallel_for(n, threads, 4096, [&](size_t begin, size_t end) {
     std::vector<uint32_t> ends;
     for (size_t v = begin; v < end; ++v) {
       ends.clear();
-      for (uint32_t i = around_start[v]; i < around_start[v + 1]; ++i) {
-        const uint32_t* c = &t[3 * around[i]];
-        for (int e = 0; e < 3; ++e) {
-          const uint32_t a = c[e], b = c[(e + 1) % 3];
-          if (a == b) continue;
-          if (a == v) ends.push_back(b);
-          if (b == v) ends.push_back(a);
-        }
-      }
+      half_edges(v, [&](uint32_t b, uint32_t) { ends.push_back(b); });
       std::sort(ends.begin(), ends.end());
       adj.offsets[v + 1] = uint32_t(std::unique(ends.begin(), ends.end()) - ends.begin());
     }
@@ -92,23 +98,13 @@ Adjacency build_adjacency(const Mesh& mesh, unsigned threads) {
   parallel_for(n, threads, 4096, [&](size_t begin, size_t end) {
     std::vector<uint64_t> keys;
     std::vector<double> areas;
-    auto add = [&](uint32_t neighbour, double a) {
-      keys.push_back(uint64_t(neighbour) << 32 | areas.size());
-      areas.push_back(a);
-    };
     for (size_t v = begin; v < end; ++v) {
       keys.clear();
       areas.clear();
-      for (uint32_t i = around_start[v]; i < around_start[v + 1]; ++i) {
-        const uint32_t f = around[i];
-        const uint32_t* c = &t[3 * f];
-        for (int e = 0; e < 3; ++e) {
-          const uint32_t a = c[e], b = c[(e + 1) % 3];
-          if (a == b) continue;
-          if (a == v) add(b, area[f]);
-          if (b == v) add(a, area[f]);
-        }
-      }
+      half_edges(v, [&](uint32_t b, uint32_t f) {
+        keys.push_back(uint64_t(b) << 32 | areas.size());
+        areas.push_back(area[f]);
+      });
       std::sort(keys.begin(), keys.end());
       uint32_t slot = adj.offsets[v];
       for (size_t k = 0; k < keys.size();) {
