@@ -16,6 +16,7 @@
 #include "core/adjacency.h"
 #include "core/mesh_points.h"
 #include "gpu/gpu_curvature.h"
+#include "gpu/gpu_fast.h"
 #include "gpu/gpu_saliency.h"
 #include "gpu/gpu_sweep.h"
 #include "gpu/vk_compute.h"
@@ -333,11 +334,8 @@ TEST_CASE("gpu near ties over the triangles: both ends of a tied edge are marked
   fan.triangles = {0, 1, 2, 0, 2, 3, 0, 3, 4};
   const uint32_t nv = 5, nmaps = 2;
   vk::Context& ctx = context();
-  std::vector<float> p32(4 * nv, 0.0f);
-  for (uint32_t v = 0; v < nv; ++v)
-    for (int a = 0; a < 3; ++a) p32[4 * v + a] = fan.positions[3 * v + a];
-  vk::Buffer pos32(ctx, p32.size() * 4, "test"), pos(ctx, size_t(nv) * 32, "test");
-  pos32.upload(p32.data(), p32.size() * 4);
+  const vk::Buffer pos32 = gpu::upload_float_positions(ctx, fan);
+  vk::Buffer pos(ctx, size_t(nv) * 32, "test");
   const BoundingBox box = mesh_points_bbox(fan, referenced_vertices(fan));
   gpu::DeviceCurvature dc(ctx, fan, pos32, pos, box, gpu::TriangleOrder::input);
   vk::submit(ctx, "test", [&](VkCommandBuffer cmd) { dc.record(ctx, cmd); });
