@@ -32,6 +32,28 @@ inline void model_position(const Mesh& mesh, size_t v, double out[3]) {
   model_coordinates(sourced ? &mesh.source_positions[3 * v] : nullptr, &mesh.positions[3 * v], mesh.origin, out);
 }
 
+// set_model_positions (meshsal.h) in two steps, for a loader that makes the positions
+// before it has read the triangles (io/read_observer.h: so that work on them can start
+// while it reads the rest). Positions made early take set_model_positions' rule as if
+// every vertex were a mesh point, the centre of all the vertices' box: nearly always the
+// same origin as the mesh points' box gives.
+struct EarlyPositions {
+  double origin[3] = {0, 0, 0};
+  size_t vertex_count = 0;
+  bool exact = false;  // every local position gives its source back
+};
+// mesh.positions from `xyz` (3 doubles a vertex) at the origin it returns; the origin,
+// the source positions and everything else of the mesh are left as they are.
+EarlyPositions early_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count);
+// The origin set_model_positions gives `xyz` with mesh.triangles (the mesh points' box).
+void model_origin(const Mesh& mesh, const double* xyz, size_t vertex_count, double origin[3]);
+// Whether the positions `early` made are the ones `origin` gives.
+bool keeps_early_positions(const EarlyPositions& early, size_t vertex_count, const double origin[3]);
+// The rest of set_model_positions at `origin`: the positions made, or kept where `early`
+// (may be null) made them at it, and the source positions kept or dropped.
+void set_model_positions_at(Mesh& mesh, const double* xyz, size_t vertex_count, const double origin[3],
+                            const EarlyPositions* early);
+
 // Gives `out` the frame of `in`: its origin, double_positions and, where `in` keeps source
 // positions, each out vertex i the source of in's vertex from[i] (UINT32_MAX: a vertex of
 // out's own, whose source is its origin + position). out.positions must be set.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 
 #include "core/mesh_points.h"
@@ -12,31 +13,70 @@
 
 namespace meshsal {
 
-void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
-  // The origin: the centre of the mesh points' bounding box (every vertex when no triangle
-  // is usable yet: validate_mesh refuses such a mesh anyway). Halves added, so 1e308 does
-  // not overflow; non-finite values are left out, for validate_mesh to name.
-  bool any = false;
-  const std::vector<uint8_t> used = referenced_mask(mesh.triangles.data(), mesh.triangles.size(), vertex_count, &any);
-  const BoundingBox box = bounding_box(xyz, vertex_count, any ? used.data() : nullptr);
-  for (int k = 0; k < 3; ++k)
-    mesh.origin[k] = box.min[k] <= box.max[k] ? box.min[k] / 2 + box.max[k] / 2 : 0.0;
+namespace {
 
+// The centre of the box of the vertices `used` marks (null: all). Halves added, so 1e308
+// does not overflow; non-finite values are left out, for validate_mesh to name.
+void box_centre(const double* xyz, size_t vertex_count, const uint8_t* used, double origin[3]) {
+  const BoundingBox box = bounding_box(xyz, vertex_count, used);
+  for (int k = 0; k < 3; ++k) origin[k] = box.min[k] <= box.max[k] ? box.min[k] / 2 + box.max[k] / 2 : 0.0;
+}
+
+// mesh.positions = local_coordinate(xyz, origin); true when each one gives its source
+// back exactly (origin + local == source: no source need be kept).
+bool convert_positions(Mesh& mesh, const double* xyz, size_t vertex_count, const double origin[3]) {
   mesh.positions.resize(3 * vertex_count);
   std::atomic<bool> exact{true};
   float* out = mesh.positions.data();
   parallel_for(vertex_count, 0, 1 << 16, [&](size_t begin, size_t end) {
     bool mine = true;
     for (size_t i = 3 * begin; i < 3 * end; ++i) {
-      const double o = mesh.origin[i % 3];
+      const double o = origin[i % 3];
       const float local = local_coordinate(xyz[i], o);
       out[i] = local;
       mine &= double(local) + o == xyz[i] || !std::isfinite(xyz[i]);
     }
     if (!mine) exact.store(false, std::memory_order_relaxed);
   });
-  if (exact.load()) mesh.source_positions.clear();
+  return exact.load();
+}
+
+}  // namespace
+
+void set_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
+  double origin[3];
+  model_origin(mesh, xyz, vertex_count, origin);
+  set_model_positions_at(mesh, xyz, vertex_count, origin, nullptr);
+}
+
+void model_origin(const Mesh& mesh, const double* xyz, size_t vertex_count, double origin[3]) {
+  // The centre of the mesh points' bounding box (every vertex when no triangle is usable
+  // yet: validate_mesh refuses such a mesh anyway).
+  bool any = false;
+  const std::vector<uint8_t> used = referenced_mask(mesh.triangles.data(), mesh.triangles.size(), vertex_count, &any);
+  box_centre(xyz, vertex_count, any ? used.data() : nullptr, origin);
+}
+
+bool keeps_early_positions(const EarlyPositions& early, size_t vertex_count, const double origin[3]) {
+  // Bit for bit: a zero's sign changes what -0 - origin gives.
+  return early.vertex_count == vertex_count && std::memcmp(early.origin, origin, sizeof early.origin) == 0;
+}
+
+void set_model_positions_at(Mesh& mesh, const double* xyz, size_t vertex_count, const double origin[3],
+                            const EarlyPositions* early) {
+  for (int k = 0; k < 3; ++k) mesh.origin[k] = origin[k];
+  const bool kept = early && mesh.positions.size() == 3 * vertex_count && keeps_early_positions(*early, vertex_count, origin);
+  const bool exact = kept ? early->exact : convert_positions(mesh, xyz, vertex_count, origin);
+  if (exact) mesh.source_positions.clear();
   else if (mesh.source_positions.data() != xyz) mesh.source_positions.assign(xyz, xyz + 3 * vertex_count);
+}
+
+EarlyPositions early_model_positions(Mesh& mesh, const double* xyz, size_t vertex_count) {
+  EarlyPositions early;
+  early.vertex_count = vertex_count;
+  box_centre(xyz, vertex_count, nullptr, early.origin);
+  early.exact = convert_positions(mesh, xyz, vertex_count, early.origin);
+  return early;
 }
 
 std::vector<double> model_positions(const Mesh& mesh) {

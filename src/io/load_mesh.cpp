@@ -10,6 +10,7 @@
 #include "meshsal/meshsal.h"
 #include "io/mesh_io_internal.h"
 #include "io/read_bytes.h"
+#include "io/read_observer.h"
 #include "io/text_scan.h"
 
 namespace meshsal {
@@ -39,7 +40,7 @@ std::string check_extension(const std::string& name, bool& gz) {
 // file's bytes are not kept beside the inflated ones while they are parsed).
 Mesh parse(std::string_view raw, const std::string& name, const std::string& ext, bool gz_name,
            VertexProperties* properties, uint64_t limit, LoadReport* report, bool attributes,
-           const std::string& folder, Bytes* raw_owner = nullptr) {
+           const std::string& folder, Bytes* raw_owner = nullptr, ReadObserver* observer = nullptr) {
   Bytes inflated;
   std::string_view bytes = raw;
   if (has_gzip_magic(raw)) {
@@ -69,15 +70,17 @@ Mesh parse(std::string_view raw, const std::string& name, const std::string& ext
                            report ? &report->attributes_not_read : nullptr);
   else
     mesh = load_ply_bytes(bytes, name, properties, attributes, report ? &report->unread : nullptr,
-                          report ? &report->attributes_not_read : nullptr);
+                          report ? &report->attributes_not_read : nullptr, observer);
   return mesh;
 }
 
 // Runs `load` and gives every failure a one-line message that names the input.
+// `observer` (may be null) is ended before the mesh is returned or dropped (read_observer.h).
 template <typename Load>
-Mesh load_named(const std::string& name, VertexProperties* properties, Load&& load) {
+Mesh load_named(const std::string& name, VertexProperties* properties, Load&& load, ReadObserver* observer = nullptr) {
   if (properties) properties->clear();
   Mesh mesh;
+  const EndObserver end(observer);
   try {
     mesh = load();
     validate_mesh(mesh);
@@ -101,7 +104,7 @@ Mesh load_named(const std::string& name, VertexProperties* properties, Load&& lo
 namespace {
 
 Mesh load_file(const std::string& path, const LoadOptions& options, VertexProperties* properties,
-               LoadReport* report) {
+               LoadReport* report, ReadObserver* observer = nullptr) {
   bool gz = false;
   const std::string ext = check_extension(path, gz);
   return load_named(path, properties, [&] {
@@ -109,8 +112,8 @@ Mesh load_file(const std::string& path, const LoadOptions& options, VertexProper
     Bytes file = read_file(path, limit ? limit : kNoHeaderLimitBytes, options.regular_files_only);
     const size_t slash = path.find_last_of('/');
     const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
-    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes, folder, &file);
-  });
+    return parse(file.view(), path, ext, gz, properties, limit, report, options.attributes, folder, &file, observer);
+  }, observer);
 }
 
 Mesh load_bytes(std::string_view bytes, const std::string& name, const LoadOptions& options,
@@ -132,6 +135,12 @@ Mesh load_mesh(const std::string& path, const LoadOptions& options) {
 LoadedMesh read_mesh(const std::string& path, const LoadOptions& options) {
   LoadedMesh r;
   r.mesh = load_file(path, options, &r.properties, &r.report);
+  return r;
+}
+
+LoadedMesh read_mesh_observed(const std::string& path, const LoadOptions& options, ReadObserver* observer) {
+  LoadedMesh r;
+  r.mesh = load_file(path, options, &r.properties, &r.report, observer);
   return r;
 }
 

@@ -9,13 +9,16 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/model_frame.h"
 #include "core/parallel.h"
 #include "io/mesh_io_internal.h"
 #include "io/ply_types.h"
+#include "io/read_observer.h"
 #include "io/seam_twins.h"
 #include "io/text_scan.h"
 
@@ -494,8 +497,10 @@ ElementPlans plan_elements(const Header& h, const Element* vertex, const Element
   return out;
 }
 
-// Reads every element in header order; returns where the body ended.
-size_t read_body(Reader& reader, const Header& h, std::vector<Plan>& plans, const Element* vertex) {
+// Reads every element in header order; returns where the body ended. `vertices_read` is
+// called once the vertex element is.
+size_t read_body(Reader& reader, const Header& h, std::vector<Plan>& plans, const Element* vertex,
+                 const std::function<void()>& vertices_read) {
   if (h.format == Format::Ascii) {
     TextScan scan(reader.bytes, reader.name);
     scan.pos = h.body;
@@ -503,7 +508,10 @@ size_t read_body(Reader& reader, const Header& h, std::vector<Plan>& plans, cons
     for (size_t ei = 0; ei < h.elements.size(); ++ei) {
       if (h.elements[ei].props.empty()) continue;
       reader.read_ascii(h.elements[ei], plans[ei], scan);
-      if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
+      if (&h.elements[ei] == vertex) {
+        reader.vertex_count = vertex->count;
+        vertices_read();
+      }
     }
     return scan.pos;
   }
@@ -516,10 +524,14 @@ size_t read_body(Reader& reader, const Header& h, std::vector<Plan>& plans, cons
     if (&e == vertex && (swap ? reader.read_fixed_fast<true>(e, plans[ei], end)
                               : reader.read_fixed_fast<false>(e, plans[ei], end))) {
       reader.vertex_count = vertex->count;
+      vertices_read();
       continue;
     }
     end = swap ? reader.read_binary<true>(e, plans[ei], end) : reader.read_binary<false>(e, plans[ei], end);
-    if (&h.elements[ei] == vertex) reader.vertex_count = vertex->count;
+    if (&h.elements[ei] == vertex) {
+      reader.vertex_count = vertex->count;
+      vertices_read();
+    }
   }
   return end;
 }
@@ -543,7 +555,8 @@ void check_nothing_after(std::string_view bytes, size_t end, bool ascii, const s
 }  // namespace
 
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
-                    bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read) {
+                    bool attributes, std::vector<std::string>* unread, std::vector<std::string>* not_read,
+                    ReadObserver* observer) {
   const Header h = parse_header(bytes, name);
   const size_t body_size = bytes.size() - std::min(h.body, bytes.size());
   check_counts_fit(h, body_size, name);
@@ -566,9 +579,21 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
     throw Error(name + (strips ? ": PLY stores triangle strips (tristrips), which are not supported"
                                : ": PLY has no 'face' element (a point cloud, not a mesh)"));
   }
+  // The observer is told of the positions once the vertices are read (made early: their
+  // origin is nearly always the final one), and of the triangles once the faces are; it
+  // is ended before the mesh is dropped by a throw, or its positions made again (the
+  // load's caller ends it as it returns the mesh).
+  const EndObserver end_on_throw(observer, true);
+  EarlyPositions early;
+  const auto vertices_read = [&] {
+    if (!observer) return;
+    early = early_model_positions(mesh, mesh.source_positions.data(), mesh.source_positions.size() / 3);
+    observer->positions_read(mesh.positions.data(), early.vertex_count);
+  };
   Reader reader{bytes, name, mesh};
-  const size_t end = read_body(reader, h, plan.plans, vertex);
+  const size_t end = read_body(reader, h, plan.plans, vertex, vertices_read);
   check_nothing_after(bytes, end, h.format == Format::Ascii, name);
+  if (observer) observer->triangles_read(mesh.triangles.data(), mesh.triangle_count());
   if (unread) *unread = std::move(plan.unread);
   for (size_t i = 0; i < plan.extras.size(); ++i) {
     if (properties) (*properties)[plan.extra_names[i]] = plan.extras[i];
@@ -577,7 +602,12 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   // A PLY stores a UV seam as vertices split at one position: found here, with or without
   // the attributes kept, so that saliency and simplification see one surface there, as for
   // an OBJ's v/vt corners (every front end reads a PLY so).
-  localize_read_positions(mesh);
+  const size_t nv = mesh.source_positions.size() / 3;
+  double origin[3];
+  model_origin(mesh, mesh.source_positions.data(), nv, origin);
+  const bool kept = observer && keeps_early_positions(early, nv, origin);
+  if (observer && !kept) observer->read_ended(false);  // the positions it was given change
+  set_model_positions_at(mesh, mesh.source_positions.data(), nv, origin, kept ? &early : nullptr);
   find_seam_twins(mesh);
   if (!attributes) {
     for (const VertexAttribute& a : mesh.attributes) note_not_read(not_read, a.name);

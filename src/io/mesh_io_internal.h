@@ -14,6 +14,8 @@
 
 namespace meshsal {
 
+class ReadObserver;  // io/read_observer.h
+
 // `attributes`: also vt, vn and v/vt/vn corners (LoadOptions::attributes).
 // `not_read` (may be null): what `attributes` off left unread (LoadReport::attributes_not_read).
 Mesh load_obj_text(std::string_view text, const std::string& name, bool attributes = false,
@@ -22,10 +24,11 @@ Mesh load_obj_text(std::string_view text, const std::string& name, bool attribut
 Mesh load_off_text(std::string_view text, const std::string& name, bool attributes = false,
                    std::vector<std::string>* not_read = nullptr);
 // `attributes`: the extra scalar vertex properties also go to Mesh::attributes, in file order.
-// `unread` (may be null) gets what no option keeps (LoadReport::unread).
+// `unread` (may be null) gets what no option keeps (LoadReport::unread). `observer` (may be
+// null) is told of the positions and triangles as they are read (io/read_observer.h).
 Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexProperties* properties,
                     bool attributes = false, std::vector<std::string>* unread = nullptr,
-                    std::vector<std::string>* not_read = nullptr);
+                    std::vector<std::string>* not_read = nullptr, ReadObserver* observer = nullptr);
 // STL, ASCII or binary, welded (load_stl.cpp); `welded` gets the corners merged into an
 // earlier vertex at the same position.
 Mesh load_stl_bytes(std::string_view bytes, const std::string& name, uint64_t* welded);

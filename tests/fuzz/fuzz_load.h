@@ -20,7 +20,9 @@
 
 #include "io/gltf_assets.h"
 #include "core/mesh_points.h"
+#include "io/mesh_io_internal.h"
 #include "io/ply_stream.h"
+#include "io/read_observer.h"
 #include "meshsal/meshsal.h"
 #include "saliency/saliency.h"
 
@@ -41,6 +43,60 @@ inline std::string load(const uint8_t* data, size_t size, const std::string& nam
     return e.what();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: not a meshsal::Error: %s\n", name.c_str(), e.what());
+    std::abort();
+  }
+}
+
+// A PLY read with an observer (io/read_observer.h), as a GPU run reads it: the arrays it is
+// told of read at once (under ASan, a told array that is gone is a report), the calls in
+// order (positions, triangles, then the end), and the mesh the same as `plain`, the load
+// without one ("" when it failed the same way).
+inline void check_observed_ply(const uint8_t* data, size_t size, const meshsal::Mesh& plain, const std::string& outcome) {
+  struct Observer final : meshsal::ReadObserver {
+    std::string calls;
+    std::vector<float> positions;
+    std::vector<uint32_t> triangles;
+    bool open = true;
+    void positions_read(const float* p, size_t n) override {
+      calls += open ? "p" : "P";
+      positions.assign(p, p + 3 * n);
+    }
+    void triangles_read(const uint32_t* t, size_t n) override {
+      calls += open ? "t" : "T";
+      triangles.assign(t, t + 3 * n);
+    }
+    void read_ended(bool returned) noexcept override {
+      calls += returned ? "r" : "e";
+      open &= returned;
+    }
+  } seen;
+  std::string got;
+  meshsal::Mesh mesh;
+  try {
+    const meshsal::EndObserver end(&seen);  // as load_mesh ends it
+    mesh = meshsal::load_ply_bytes(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.ply", nullptr,
+                                   false, nullptr, nullptr, &seen);
+    meshsal::validate_mesh(mesh);
+  } catch (const meshsal::Error& e) {
+    got = e.what();
+  }
+  // The calls: p, t (either may be missing), any e's (a throw; positions made again),
+  // then r where the load returned.
+  const std::string& c = seen.calls;
+  size_t i = 0;
+  if (i < c.size() && c[i] == 'p') ++i;
+  if (i < c.size() && c[i] == 't') ++i;
+  while (i < c.size() && c[i] == 'e') ++i;
+  const bool returned = i < c.size() && c[i] == 'r';
+  const bool ordered = i + (returned ? 1 : 0) == c.size() && returned == got.empty() && !c.empty();
+  const bool same = got.empty() == outcome.empty() &&
+                    (!got.empty() || (mesh.positions.size() == plain.positions.size() &&
+                                      std::memcmp(mesh.positions.data(), plain.positions.data(), 4 * mesh.positions.size()) == 0 &&
+                                      mesh.triangles == plain.triangles &&
+                                      std::memcmp(mesh.origin, plain.origin, sizeof mesh.origin) == 0));
+  if (!ordered || !same) {
+    std::fprintf(stderr, "ply: the observed read differs (calls '%s', error '%s' against '%s')\n", seen.calls.c_str(),
+                 got.c_str(), outcome.c_str());
     std::abort();
   }
 }
@@ -314,7 +370,9 @@ inline std::string run_target(const std::string& target, const uint8_t* data, si
       meshsal::Mesh with_attributes;
       load(data, size, "fuzz." + target, with_attributes, true);
     }
-    return load(data, size, "fuzz." + target, mesh);
+    const std::string outcome = load(data, size, "fuzz." + target, mesh);
+    if (target == "ply") check_observed_ply(data, size, mesh, outcome);
+    return outcome;
   }
   if (size < 1) return "empty input";
   static const char* const formats[] = {"obj", "off", "ply"};
