@@ -120,9 +120,19 @@ ExposureRun exposure_on(const std::shared_ptr<void>& device, const Mesh& mesh, c
   return {gpu.exposure(views, weighting), "vulkan: " + held->ctx.info.name};
 }
 
-const GpuBackend backend{devices,     saliency,       warm_up_saliency_gpu, view_scorer, open_device,
-                         saliency_on, view_scorer_on, gpu::release_cached_devices,
-                         exposure,    exposure_on};
+const GpuBackend backend{devices,
+                         saliency,
+                         warm_up_saliency_gpu,
+                         prestage_positions_gpu,
+                         prestage_triangles_gpu,
+                         drop_prestaged_gpu,
+                         view_scorer,
+                         open_device,
+                         saliency_on,
+                         view_scorer_on,
+                         gpu::release_cached_devices,
+                         exposure,
+                         exposure_on};
 
 }  // namespace
 

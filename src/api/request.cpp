@@ -1,14 +1,13 @@
 // meshsal: run_request, every front end's pipeline: check, read, S once, then each output
 // (the saliency mesh, the views, the simplified mesh, the levels of detail).
 #include <algorithm>
+#include <memory>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "api/gpu_backend.h"
+#include "api/read_upload.h"
 #include "api/request_parts.h"
-#include "core/cancel.h"
 #include "core/timer.h"
 #include "saliency/saliency.h"
 #include "meshsal/meshsal.h"
@@ -124,34 +123,21 @@ RequestResult run_request(const Request& given) {
   }
   // S to compute on a GPU from a file still to read: the device opened, the pipelines
   // compiled and the probes run on a thread while the file is read (a GPU run's
-  // once-per-process costs, about 0.6 s on the H200: docs/benchmarks.md), so that the
-  // computation starts at once. (A mesh given in memory has nothing to overlap with.)
-  // The device it resolved (Auto's pick) is the run's, so the run lists the devices no
-  // second time.
-  std::thread warm_up;
-  SaliencyOptions warmed = r.saliency;
+  // once-per-process costs, about 0.6 s on the H200: docs/benchmarks.md), and the mesh
+  // uploaded as it is read, so that the computation starts at once (read_upload.h). (A
+  // mesh given in memory has nothing to overlap with.) The device it resolved (Auto's
+  // pick) is the run's, so the run lists the devices no second time.
+  std::unique_ptr<ReadUpload> upload;
   if (warms_up_device(r)) {
     SaliencyOptions so = r.saliency;
     so.smoothed = weighted_simplification(r);
-    try {
-      warm_up = std::thread([so, &warmed] {
-        CancelScope scope(so.cancel);  // a cancelled read ends the warm-up too
-        warmed = warm_up_saliency(so);
-      });
-    } catch (const std::system_error&) {
-      // No thread to spare (a process limit): the run opens the device itself.
-    }
+    upload = std::make_unique<ReadUpload>(so);
+    run.read_observer = upload.get();
   }
-  try {
-    step("read", [&] { read_input(run); });
-  } catch (...) {
-    if (warm_up.joinable()) warm_up.join();
-    throw;
-  }
-  if (warm_up.joinable()) {
-    const Timer wait;
-    warm_up.join();
-    run.warm_up_wait = wait.seconds();
+  step("read", [&] { read_input(run); });  // a throw ends the upload (its destructor)
+  run.read_observer = nullptr;
+  SaliencyOptions warmed;
+  if (upload && upload->join(warmed, run.warm_up_wait)) {
     run.saliency.backend = warmed.backend;
     run.saliency.device = warmed.device;
   }

@@ -4,6 +4,7 @@
 
 #include "api/request_parts.h"
 #include "core/timer.h"
+#include "io/read_observer.h"
 #include "meshsal/meshsal.h"
 
 namespace meshsal {
@@ -57,7 +58,8 @@ void read_input(RequestRun& run) {
       const std::string format = input_format(r.input);
       LoadOptions o = r.load;
       o.attributes = r.saliency_from_input && (format == ".ply" || format == ".glb" || format == ".gltf");
-      LoadedMesh read = read_mesh(r.input, o);
+      LoadedMesh read = read_mesh_observed(r.input, o, run.read_observer);
+      run.read_observer = nullptr;
       const LoadReport& report = read.report;
       run.plain_read = std::move(read.mesh);
       for (const VertexAttribute& a : run.plain_read.attributes) run.input_has_saliency |= a.name == kSaliencyAttribute;
@@ -78,7 +80,8 @@ void read_input(RequestRun& run) {
       // The input read again with its attributes (a caller gave it read plainly).
       LoadOptions o = r.load;
       o.attributes = true;
-      LoadedMesh read = read_mesh(r.input, o);
+      LoadedMesh read = read_mesh_observed(r.input, o, run.read_observer);
+      run.read_observer = nullptr;
       const LoadReport& report = read.report;
       run.attributed_read = std::move(read.mesh);
       note_read(run, report, run.attributed_read, !run.plain);

@@ -11,6 +11,8 @@
 
 namespace meshsal {
 
+class ReadObserver;  // io/read_observer.h
+
 struct RequestRun {
   RequestRun(const Request& r, RequestResult& out) : request(r), result(out), saliency(r.saliency) {}
   const Request& request;
@@ -36,6 +38,8 @@ struct RequestRun {
   // What the run waited for the device's warm-up after reading (warm_up_saliency), -1 when
   // there was none: the first computed S shows it as its first stage ("device warm-up").
   double warm_up_wait = -1;
+  // Told what the first read has read while it reads (read_upload.h); null for none.
+  ReadObserver* read_observer = nullptr;
   Timer timer;  // since the run began
   double timer_seconds() const;
 };

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/morton_order.h"
+#include "gpu/gpu_prestage.h"
 #include "gpu/shader_interfaces.h"
 
 #include "curvature_comp.h"
@@ -30,7 +31,7 @@ uint64_t DeviceCurvature::bytes(uint64_t nv, uint64_t nt) {
 DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos32, vk::Buffer& pos,
                                  const BoundingBox& box, TriangleOrder order)
     : curvature(ctx, mesh.vertex_count() * 8, "the curvature"),
-      triangles(ctx, mesh.triangles.size() * 4, "the triangles"),
+      triangles(mesh_triangles(ctx, mesh, ctx.host_threads)),
       start(ctx, (mesh.vertex_count() + 1) * 4, "the triangles of each vertex"),
       nv_(checked_count(mesh.vertex_count(), "vertices")), nt_(checked_count(mesh.triangle_count(), "triangles")),
       count_(ctx, size_t(nv_) * 4, "the triangles of each vertex"),
@@ -48,7 +49,6 @@ DeviceCurvature::DeviceCurvature(vk::Context& ctx, const Mesh& mesh, const vk::B
                     ? double((1u << kMortonBits) - 1) / (box.max[a] - box.min[a])
                     : 0.0;
   }
-  triangles.upload(mesh.triangles.data(), mesh.triangles.size() * 4);
   k_key_ = &vk::cached_kernel<shader::CurvatureFaceKey>(ctx, spv_curvature_face_key_comp, sizeof spv_curvature_face_key_comp, "curvature_face_key");
   k_incidence_ = &vk::cached_kernel<shader::CurvatureIncidence>(ctx, spv_curvature_incidence_comp, sizeof spv_curvature_incidence_comp, "curvature_incidence");
   k_curvature_ = order == TriangleOrder::morton

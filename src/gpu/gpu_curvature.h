@@ -29,7 +29,7 @@ enum class TriangleOrder { morton, input };
 
 class DeviceCurvature {
  public:
-  // For `mesh` (its triangles uploaded here), its float coordinates in pos32 (vec4 per
+  // For `mesh` (its triangles uploaded here, or taken where gpu_prestage.h holds them), its float coordinates in pos32 (vec4 per
   // vertex) and `box` (the mesh points' box: the Morton grid's, as the CPU's fast method
   // takes it; unused in input order). H goes to pos[v].w (dvec4 per vertex) and to
   // curvature (a double per vertex, for the host to read).

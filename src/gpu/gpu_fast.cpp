@@ -152,7 +152,10 @@ class FastDevice {
 }  // namespace
 
 vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned threads) {
-  const size_t nv = mesh.vertex_count();
+  return upload_float_positions(ctx, mesh.positions.data(), mesh.vertex_count(), threads);
+}
+
+vk::Buffer upload_float_positions(vk::Context& ctx, const float* positions, size_t nv, unsigned threads) {
   vk::Buffer b(ctx, nv * 16, "the float positions");
   // Packed straight into the staging area (or the mapping), whole vertices: its chunks
   // start at multiples of 64 KiB (vk_staging.h).
@@ -160,7 +163,7 @@ vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned t
     const size_t v0 = first / 16;
     parallel_for(n / 16, threads, 1 << 16, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
-        const float* p = &mesh.positions[3 * (v0 + i)];
+        const float* p = positions + 3 * (v0 + i);
         const float xyzw[4] = {p[0], p[1], p[2], 0.0f};
         std::memcpy(to + 16 * i, xyzw, 16);
       }

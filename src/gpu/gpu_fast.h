@@ -37,6 +37,8 @@ uint64_t fast_filter(vk::Context& ctx, const Mesh& mesh, const vk::Buffer& pos,
 // The float input coordinates per vertex (vec4) on the device: the cells' centroids are
 // summed from them, as on the CPU, and the GPU curvature reads them.
 vk::Buffer upload_float_positions(vk::Context& ctx, const Mesh& mesh, unsigned threads = 0);
+// The same from the positions alone (3 floats a vertex, as Mesh::positions).
+vk::Buffer upload_float_positions(vk::Context& ctx, const float* positions, size_t vertex_count, unsigned threads = 0);
 
 // Device bytes fast_filter() needs at its peak besides pos, flags and result.
 uint64_t fast_filter_bytes(uint64_t nv, uint64_t np, uint64_t nsig);

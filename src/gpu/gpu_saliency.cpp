@@ -13,6 +13,7 @@
 #include "gpu/gpu_curvature.h"
 #include "gpu/gpu_fast.h"
 #include "gpu/gpu_mesh_points.h"
+#include "gpu/gpu_prestage.h"
 #include "gpu/gpu_grid.h"
 #include "gpu/gpu_layout_probe.h"
 #include "gpu/gpu_session.h"
@@ -237,6 +238,37 @@ SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& opt
   }
   if (lease.opened()) res.stages.insert(res.stages.begin(), {"device setup", lease.open_seconds()});
   return res;
+}
+
+namespace {
+
+// Whether a run of `method` on `ctx` uploads the float positions and the triangles: its
+// curvature computed on the device (Method::Auto: the fast method, nearly always, where
+// it is worth putting the mesh on a device ahead).
+bool device_curvature_by_default(const vk::Context& ctx, Method method) {
+  return method != Method::Exact || (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
+                                                                         : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU);
+}
+
+}  // namespace
+
+// Only on the cached context the run will lease (opened by the warm-up), where it is free.
+void prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
+  gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
+    if (device_curvature_by_default(ctx, options.method))
+      gpu::prestage_float_positions(ctx, positions, vertex_count, options.threads);
+  });
+}
+
+void prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
+  gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
+    if (device_curvature_by_default(ctx, options.method))
+      gpu::prestage_triangles(ctx, triangles, triangle_count, options.threads);
+  });
+}
+
+void drop_prestaged_gpu(const SaliencyOptions& options) {
+  gpu::on_cached_device(options.device, false, [](vk::Context& ctx) { gpu::drop_prestaged(ctx); });
 }
 
 void warm_up_saliency_gpu(const SaliencyOptions& options) {
@@ -471,6 +503,12 @@ void smooth_on_device(vk::Context& ctx, vk::DescriptorPool& pool, DeviceMesh& m,
 
 SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
                                     const SaliencyOptions& options) {
+  // What was uploaded ahead for this call and it does not take is freed at its end
+  // (gpu_prestage.h: held for the next call only).
+  struct DropPrestaged {
+    vk::Context& ctx;
+    ~DropPrestaged() { gpu::drop_prestaged(ctx); }
+  } drop_prestaged{ctx};
   SaliencyResult res;
   res.backend_name = ctx.info.name;
   ctx.host_threads = options.threads;  // the uploads' copies and packing
@@ -508,9 +546,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   // the mixed sweep's near ties take the neighbours from the triangles). For the exact
   // method on a CPU device, where the host is the faster, the host computes H with the
   // 1-rings first, as compute_saliency_cpu() does (Context::exact_curvature_on_device).
-  bool device_curvature =
-      fast || (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
-                                                  : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU);
+  bool device_curvature = device_curvature_by_default(ctx, options.method);
   const uint64_t curvature_bytes = nv * 16 + gpu::DeviceCurvature::bytes(nv, mesh.triangle_count());
   if (device_curvature && !fast) {
     // Its sorts hold about 230 bytes a vertex where the 1-rings take about 30: where that
@@ -538,7 +574,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
   upload_mesh(ctx, mesh, res, adj, nsc, mixed, bb, device_bytes, options.threads, device_curvature, &m);
   m.params.upload(&plan.params, sizeof plan.params);
   vk::Buffer saliency(ctx, nv * 8, "the saliency");
-  if (device_curvature) m.pos32 = gpu::upload_float_positions(ctx, mesh, options.threads);
+  if (device_curvature) m.pos32 = gpu::float_positions(ctx, mesh, options.threads);
   res.stages.push_back({"upload", t0.seconds()});
 
   if (device_curvature) {  // --- the mesh points and the curvature, on the device -----------

@@ -17,6 +17,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 
@@ -61,6 +62,11 @@ class DeviceLease {
 // Khronos layer (also on with MESHSAL_VALIDATION=1). Throws Error when the device cannot
 // be opened.
 DeviceLease lease_device(int device_index, bool validation);
+
+// Runs `body` on the cached context of device `device_index` (keyed as lease_device keys
+// it) where it is open and free; false, without running it, otherwise. For work that only
+// pays where the next call will find it (gpu_prestage.h), and that must not open a device.
+bool on_cached_device(int device_index, bool validation, const std::function<void(vk::Context&)>& body);
 
 // The device a meshsal::Device holds (its opaque handle): opened once, never cached, closed
 // when the last holder (the Device, a running call, a view scorer) lets go. A call holds

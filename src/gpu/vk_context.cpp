@@ -379,6 +379,7 @@ Context::Context(int device_index, bool want_validation) {
 // If they still do not signal, the device and what it may use are left to the driver's
 // process tear-down rather than destroyed under running work (or waited for forever).
 Context::~Context() {
+  prestaged.reset();  // no work uses them (a call takes a buffer off before it uses it)
   if (device && !abandoned_fences.empty()) {
     const uint64_t timeout_ns = uint64_t(std::max(fence_timeout_s, 1.0) * 1e9);
     VkResult r = vkWaitForFences(device, uint32_t(abandoned_fences.size()),

@@ -148,6 +148,11 @@ class Context {
   // its last submission of queries.
   bool fast_phase_timing = false;
   std::map<std::string, std::unique_ptr<Kernel>> kernel_cache;  // see cached_kernel()
+  // Buffers uploaded ahead of the call that takes them (gpu_prestage.h, which alone knows
+  // what it holds: a mesh put on the device while its file is still read), and how many
+  // a call took; freed with the context, before its device.
+  std::shared_ptr<void> prestaged;
+  uint64_t prestaged_taken = 0;
   // Fences and command buffers of submissions that timed out: the device may still use
   // them, so they are freed only once the destructor has seen their fences signal.
   std::vector<VkFence> abandoned_fences;
