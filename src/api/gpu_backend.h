@@ -35,8 +35,8 @@ struct GpuBackend {
   void (*warm_up)(const SaliencyOptions& options);
   // gpu/gpu_saliency.h's prestage_positions_gpu, prestage_triangles_gpu and
   // drop_prestaged_gpu: a mesh's arrays uploaded ahead of its run (api/read_upload.h).
-  void (*prestage_positions)(const SaliencyOptions& options, const float* positions, size_t vertex_count);
-  void (*prestage_triangles)(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count);
+  bool (*prestage_positions)(const SaliencyOptions& options, const float* positions, size_t vertex_count);
+  bool (*prestage_triangles)(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count);
   void (*drop_prestaged)(const SaliencyOptions& options);
   ViewScorerSetup (*view_scorer)(const Mesh& mesh, const std::vector<double>& score,
                                  const VisibilityOptions& options, int device);

@@ -54,12 +54,13 @@ void ReadUpload::read_ended(bool returned) noexcept {
   changed_.wait(hold, [this] { return !uploading_; });
 }
 
-bool ReadUpload::join(SaliencyOptions& resolved, double& waited) {
+bool ReadUpload::join(SaliencyOptions& resolved, double& waited, double& uploading) {
   read_ended(true);  // where the reader said nothing (a read that tells nothing)
   if (!thread_.joinable()) return false;
   const Timer wait;
   thread_.join();
   waited = wait.seconds();
+  uploading = uploading_seconds_;
   resolved = resolved_;
   return true;
 }
@@ -104,16 +105,18 @@ void ReadUpload::run() {
       if (!data) return;  // returned, and everything told is uploaded
       uploading_ = true;
     }
-    bool failed = false;
+    bool failed = false, uploaded = false;
+    const Timer took;
     try {
-      if (positions) gpu.prestage_positions(warmed, static_cast<const float*>(data), count);
-      else gpu.prestage_triangles(warmed, static_cast<const uint32_t*>(data), count);
+      uploaded = positions ? gpu.prestage_positions(warmed, static_cast<const float*>(data), count)
+                           : gpu.prestage_triangles(warmed, static_cast<const uint32_t*>(data), count);
     } catch (...) {
       failed = true;  // the run uploads it, and meets the failure if it is the device's
     }
     std::lock_guard<std::mutex> hold(lock_);
     uploading_ = false;
-    uploaded_ = true;
+    uploaded_ = true;  // (a failure may leave one array held: freed below)
+    if (uploaded) uploading_seconds_ += took.seconds();
     changed_.notify_all();
     if (failed) return;
   }

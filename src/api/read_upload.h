@@ -34,9 +34,9 @@ class ReadUpload final : public ReadObserver {
 
   // After the read, before the mesh read changes or goes: waits for the thread, the
   // warm-up and the uploads of what the reader told of (the seconds it waited go to
-  // `waited`), and gives the options warm_up_saliency resolved (Auto's device). False
-  // where no thread ran.
-  bool join(SaliencyOptions& resolved, double& waited);
+  // `waited`, those it spent uploading to `uploading`), and gives the options
+  // warm_up_saliency resolved (Auto's device). False where no thread ran.
+  bool join(SaliencyOptions& resolved, double& waited, double& uploading);
 
  private:
   void run();
@@ -52,6 +52,7 @@ class ReadUpload final : public ReadObserver {
   bool returned_ = false;   // read_ended(true): what was told is uploaded, then the thread ends
   bool uploading_ = false;  // an upload reads the reader's arrays
   bool uploaded_ = false;   // something went to the device (freed unless a run took it)
+  double uploading_seconds_ = 0;
   SaliencyOptions options_, resolved_;
   std::thread thread_;
 };

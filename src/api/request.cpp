@@ -137,7 +137,7 @@ RequestResult run_request(const Request& given) {
   step("read", [&] { read_input(run); });  // a throw ends the upload (its destructor)
   run.read_observer = nullptr;
   SaliencyOptions warmed;
-  if (upload && upload->join(warmed, run.warm_up_wait)) {
+  if (upload && upload->join(warmed, run.warm_up_wait, run.uploaded_ahead)) {
     run.saliency.backend = warmed.backend;
     run.saliency.device = warmed.device;
   }

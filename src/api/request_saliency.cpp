@@ -60,9 +60,13 @@ SaliencyResult saliency_of(RequestRun& run, const Mesh& mesh, bool smoothed) {
   so.smoothed = smoothed;
   so.raw_maps = r.dump_scales;  // written only then: 8 bytes per vertex per scale otherwise
   s = compute_saliency(mesh, so);
-  if (run.warm_up_wait >= 0) {  // the part of the warm-up reading did not hide
+  if (run.warm_up_wait >= 0) {  // the part of the warm-up (and uploads) reading did not hide
     s.stages.insert(s.stages.begin(), {"device warm-up", run.warm_up_wait});
     run.warm_up_wait = -1;
+  }
+  if (run.uploaded_ahead > 0) {  // the uploads made while reading (read_upload.h), mostly hidden by it
+    s.stages.insert(s.stages.begin() + 1, {"upload while reading", run.uploaded_ahead});
+    run.uploaded_ahead = 0;
   }
   run.result.saliency_source = "computed (" + s.backend_name + ")";
   return s;

@@ -253,18 +253,22 @@ bool device_curvature_by_default(const vk::Context& ctx, Method method) {
 }  // namespace
 
 // Only on the cached context the run will lease (opened by the warm-up), where it is free.
-void prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
+bool prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
+  bool uploaded = false;
   gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
-    if (device_curvature_by_default(ctx, options.method))
+    if ((uploaded = device_curvature_by_default(ctx, options.method)))
       gpu::prestage_float_positions(ctx, positions, vertex_count, options.threads);
   });
+  return uploaded;
 }
 
-void prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
+bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
+  bool uploaded = false;
   gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
-    if (device_curvature_by_default(ctx, options.method))
+    if ((uploaded = device_curvature_by_default(ctx, options.method)))
       gpu::prestage_triangles(ctx, triangles, triangle_count, options.threads);
   });
+  return uploaded;
 }
 
 void drop_prestaged_gpu(const SaliencyOptions& options) {

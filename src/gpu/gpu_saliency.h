@@ -35,9 +35,10 @@ void warm_up_saliency_gpu(const SaliencyOptions& options);
 // vertex) or its triangles now, for the next saliency run there to take (gpu_prestage.h),
 // where a run with these options uploads them (the fast method, and the exact one where
 // the device computes its curvature); nothing otherwise. A front end calls them while it
-// still reads the rest of the mesh (api/read_upload.h). Throws as compute_saliency_gpu does.
-void prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count);
-void prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count);
+// still reads the rest of the mesh (api/read_upload.h). True when it uploaded; throws as
+// compute_saliency_gpu does.
+bool prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count);
+bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count);
 // Frees what was uploaded ahead on device options.device and no run took.
 void drop_prestaged_gpu(const SaliencyOptions& options);
 

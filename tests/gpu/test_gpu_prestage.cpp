@@ -137,8 +137,14 @@ TEST_CASE("gpu prestage: a run reading a PLY uploads it while reading, with the 
       // computes its curvature on the host) and the reader tells of them (PLY).
       const bool ply = std::string(input) == "sphere.ply";
       const bool cpu_device = result.saliency.backend_name.find("llvmpipe") != std::string::npos;
-      CHECK(after.taken - before.taken == (ply && (method == Method::Fast || !cpu_device) ? 2 : 0));
+      const bool ahead = ply && (method == Method::Fast || !cpu_device);
+      CHECK(after.taken - before.taken == (ahead ? 2 : 0));
       CHECK(after.bytes == 0);
+      // The stages show it after the warm-up's wait.
+      const std::vector<StageTime>& stages = result.saliency.stages;
+      REQUIRE(stages.size() > 2);
+      CHECK(stages[0].name == "device warm-up");
+      CHECK((stages[1].name == "upload while reading") == ahead);
       CHECK(same_bits(result.saliency.saliency, compute_saliency(read, r.saliency).saliency));
     }
   }
