@@ -11,7 +11,9 @@
 #     process (meshsal saliency --backend gpu --json; target: stages <= 0.5 s, process <= 2 s);
 #  3. the fast method on igea_loop2 subdivided once (8.6M vertices, written once as binary
 #     PLY): the whole process with --backend gpu and --backend cpu, taking turns, and the
-#     ratio of the medians (target: gpu <= 0.5x cpu);
+#     ratio of the medians (target: gpu <= 0.5x cpu); a GPU run's stages include `upload
+#     while reading` (the uploads made as the PLY was read) and `device warm-up` (what the
+#     run still waited for after the read);
 #  4. views per second (bench_views --backend gpu).
 # The build needs -DMESHSAL_BUILD_TOOLS=ON (bench_gpu_sweep, bench_views).
 set -euo pipefail
