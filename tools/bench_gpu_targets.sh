@@ -11,9 +11,9 @@
 #     process (meshsal saliency --backend gpu --json; target: stages <= 0.5 s, process <= 2 s);
 #  3. the fast method on igea_loop2 subdivided once (8.6M vertices, written once as binary
 #     PLY): the whole process with --backend gpu and --backend cpu, taking turns, and the
-#     ratio of the medians (target: gpu <= 0.5x cpu); a GPU run's stages include `upload
-#     while reading` (the uploads made as the PLY was read) and `device warm-up` (what the
-#     run still waited for after the read);
+#     ratio of the medians (target: gpu <= 0.5x cpu); a GPU run prints `ahead`, the seconds
+#     it spent uploading while the PLY was read, beside its `device_warm_up` stage (what it
+#     still waited for after the read);
 #  4. views per second (bench_views --backend gpu).
 # The build needs -DMESHSAL_BUILD_TOOLS=ON (bench_gpu_sweep, bench_views).
 set -euo pipefail
@@ -43,7 +43,7 @@ wall = time.time() - t
 j = json.loads(r.stdout)
 stages = " ".join(f"{name} {sec:.3f}" for name, sec in j.get("stages", {}).items())
 print(f"{label:<10} {mesh.split('/')[-1]:<24} wall {wall:6.2f} s  read {j['read_seconds']:5.2f} s  "
-      f"saliency {j['seconds']:6.2f} s  [{stages}]", flush=True)
+      f"ahead {j.get('upload_while_reading_seconds', 0):5.3f} s  saliency {j['seconds']:6.2f} s  [{stages}]", flush=True)
 print(f"WALL {label} {wall:.3f}", file=sys.stderr)
 PY
 }

@@ -124,6 +124,10 @@ struct RequestResult {
   Mesh mesh;                       // the input as read (plainly, or with attributes when only those were needed)
   LoadReport load;                 // what reading it left out (LoadReport::unread), STL welding
   double load_seconds = 0;
+  // S on a GPU from a PLY: seconds spent uploading the mesh on a second thread while it was
+  // read, most of them hidden by the read (what was not is saliency's "device warm-up"
+  // stage), so not among the stages; 0 where nothing was uploaded ahead.
+  double upload_while_reading = 0;
   SaliencyResult saliency;         // S (computed; read back: only saliency and is_point filled)
   std::string saliency_source;     // "computed" or the file S was read from
   std::vector<double> score;       // what the views showed (S, or |H|), per vertex

@@ -115,7 +115,7 @@ void ReadUpload::run() {
     }
     std::lock_guard<std::mutex> hold(lock_);
     uploading_ = false;
-    uploaded_ = true;  // (a failure may leave one array held: freed below)
+    uploaded_ = true;  // (a failure may leave one array held: the destructor frees it)
     if (uploaded) uploading_seconds_ += took.seconds();
     changed_.notify_all();
     if (failed) return;

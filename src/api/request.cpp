@@ -137,10 +137,12 @@ RequestResult run_request(const Request& given) {
   step("read", [&] { read_input(run); });  // a throw ends the upload (its destructor)
   run.read_observer = nullptr;
   SaliencyOptions warmed;
-  if (upload && upload->join(warmed, run.warm_up_wait, run.uploaded_ahead)) {
+  if (upload && upload->join(warmed, run.warm_up_wait, result.upload_while_reading)) {
     run.saliency.backend = warmed.backend;
     run.saliency.device = warmed.device;
   }
+  // S read back from the input itself: nothing uploaded ahead is taken; freed now.
+  if (r.saliency_from_input && run.input_has_saliency) upload.reset();
   if (r.on_read) r.on_read();
   // Where S is computed on the plain mesh for its own outputs and the simplifier weighs by
   // it too, it is computed once with its Sm.

@@ -38,9 +38,6 @@ struct RequestRun {
   // What the run waited for the device's warm-up after reading (warm_up_saliency), -1 when
   // there was none: the first computed S shows it as its first stage ("device warm-up").
   double warm_up_wait = -1;
-  // Seconds the warm-up's thread spent uploading the mesh as it was read (read_upload.h),
-  // shown as the stage "upload while reading" after it; 0 for none.
-  double uploaded_ahead = 0;
   // Told what the first read has read while it reads (read_upload.h); null for none.
   ReadObserver* read_observer = nullptr;
   Timer timer;  // since the run began

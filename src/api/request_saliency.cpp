@@ -64,10 +64,6 @@ SaliencyResult saliency_of(RequestRun& run, const Mesh& mesh, bool smoothed) {
     s.stages.insert(s.stages.begin(), {"device warm-up", run.warm_up_wait});
     run.warm_up_wait = -1;
   }
-  if (run.uploaded_ahead > 0) {  // the uploads made while reading (read_upload.h), mostly hidden by it
-    s.stages.insert(s.stages.begin() + 1, {"upload while reading", run.uploaded_ahead});
-    run.uploaded_ahead = 0;
-  }
   run.result.saliency_source = "computed (" + s.backend_name + ")";
   return s;
 }

@@ -96,6 +96,7 @@ int run(Args a) {
   if (a.text.json) {
     JsonObject j = saliency_json(a.input, a.output, result.mesh, result.saliency, result.load_seconds);
     j.count("peak_rss", peak).count("threads_per_rank", resolve_threads(r.saliency.threads));
+    if (result.upload_while_reading > 0) j.number("upload_while_reading_seconds", result.upload_while_reading);
     j.strings("outputs", result.outputs);
     j.print();
   } else if (!a.text.quiet) {

@@ -5,8 +5,10 @@
 // The buffers are held on the context (vk::Context::prestaged) under a key of their bytes.
 // The next compute_saliency_gpu on that context takes a held buffer only where its mesh's
 // array gives the same key (the same kind, count and bytes: the buffer the upload would
-// make), uploads as before otherwise, and frees what it did not take. A key is 64 bits of
-// a hash, not a copy: arrays that differ and still agree in it are a 2^-64 chance.
+// make), uploads as before otherwise, and frees what it did not take (so two runs sharing a
+// device at once may free each other's: they upload again, with the same result). A key
+// is 64 bits of a hash, not a copy: arrays that differ and still agree in it are a 2^-64
+// chance.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "core/adjacency.h"
@@ -243,19 +244,33 @@ SaliencyResult compute_saliency_gpu(const Mesh& mesh, const SaliencyOptions& opt
 namespace {
 
 // Whether a run of `method` on `ctx` uploads the float positions and the triangles: its
-// curvature computed on the device (Method::Auto: the fast method, nearly always, where
-// it is worth putting the mesh on a device ahead).
+// curvature computed on the device, unless the device's memory decides otherwise
+// (Method::Auto: as the fast method, which the meshes worth uploading ahead, the large
+// ones, resolve to).
 bool device_curvature_by_default(const vk::Context& ctx, Method method) {
   return method != Method::Exact || (ctx.exact_curvature_on_device >= 0 ? ctx.exact_curvature_on_device == 1
                                                                          : ctx.info.vk_type != VK_PHYSICAL_DEVICE_TYPE_CPU);
 }
 
+// Only on the cached context the run will lease (opened by the warm-up), where it is free;
+// a failure that leaves it unusable drops it from the cache, as a run's does.
+bool on_cached_device(const SaliencyOptions& options, const std::function<void(vk::Context&)>& body) {
+  gpu::DeviceLease lease = gpu::lease_cached_device(options.device, false);
+  if (!lease.held()) return false;
+  try {
+    body(lease.context());
+  } catch (const std::exception& e) {
+    lease.discard_if_broken(e.what());
+    throw;
+  }
+  return true;
+}
+
 }  // namespace
 
-// Only on the cached context the run will lease (opened by the warm-up), where it is free.
 bool prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
   bool uploaded = false;
-  gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
+  on_cached_device(options, [&](vk::Context& ctx) {
     if ((uploaded = device_curvature_by_default(ctx, options.method)))
       gpu::prestage_float_positions(ctx, positions, vertex_count, options.threads);
   });
@@ -264,7 +279,7 @@ bool prestage_positions_gpu(const SaliencyOptions& options, const float* positio
 
 bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
   bool uploaded = false;
-  gpu::on_cached_device(options.device, false, [&](vk::Context& ctx) {
+  on_cached_device(options, [&](vk::Context& ctx) {
     if ((uploaded = device_curvature_by_default(ctx, options.method)))
       gpu::prestage_triangles(ctx, triangles, triangle_count, options.threads);
   });
@@ -272,7 +287,7 @@ bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* tria
 }
 
 void drop_prestaged_gpu(const SaliencyOptions& options) {
-  gpu::on_cached_device(options.device, false, [](vk::Context& ctx) { gpu::drop_prestaged(ctx); });
+  on_cached_device(options, [](vk::Context& ctx) { gpu::drop_prestaged(ctx); });
 }
 
 void warm_up_saliency_gpu(const SaliencyOptions& options) {
@@ -559,6 +574,9 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     device_curvature =
         fits_device(ctx, gpu_memory_estimate(nv, points, nsc, 0, ctx.use_staging, mixed) + curvature_bytes);
   }
+  // A run that will not take the float mesh frees what was uploaded ahead before it
+  // allocates anything (where the device's memory decided, that is what it lacked).
+  if (!device_curvature) gpu::drop_prestaged(ctx);
   Adjacency adj;
   if (!device_curvature) {
     t0.restart();
@@ -585,6 +603,7 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     t0.restart();
     m.curvature = std::make_unique<gpu::DeviceCurvature>(
         ctx, mesh, m.pos32, m.pos, bb, fast ? gpu::TriangleOrder::morton : gpu::TriangleOrder::input);
+    gpu::drop_prestaged(ctx);  // what it did not take (another mesh's) before anything else
     const gpu::DeviceMeshPoints points(ctx, m.pos32, m.curvature->triangles, m.pos, m.flags, m.nv,
                                        mesh.triangle_count());
     vk::submit(ctx, "curvature", [&](VkCommandBuffer cmd) {

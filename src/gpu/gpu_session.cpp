@@ -49,21 +49,19 @@ std::unique_ptr<vk::Context> open(int device_index, bool validation, double* sec
 
 }  // namespace
 
-bool on_cached_device(int device_index, bool validation, const std::function<void(vk::Context&)>& body) {
+DeviceLease lease_cached_device(int device_index, bool validation) {
   const Key key{device_index, validation || vk::validation_requested_by_env(), vk::force_staging_by_env()};
   Cache& c = cache();
-  std::shared_ptr<CachedDevice> cached;
-  std::unique_lock<std::mutex> busy;
-  {
-    std::lock_guard<std::mutex> g(c.mutex);
-    auto it = c.devices.find(key);
-    if (it == c.devices.end()) return false;
-    busy = std::unique_lock<std::mutex>(it->second->busy, std::try_to_lock);
-    if (!busy.owns_lock() || !it->second->ctx) return false;
-    cached = it->second;
-  }
-  body(*cached->ctx);
-  return true;
+  DeviceLease lease;
+  std::lock_guard<std::mutex> g(c.mutex);
+  auto it = c.devices.find(key);
+  if (it == c.devices.end()) return lease;
+  std::unique_lock<std::mutex> busy(it->second->busy, std::try_to_lock);
+  if (!busy.owns_lock() || !it->second->ctx) return lease;
+  lease.cached_ = it->second;
+  lease.lock_ = std::move(busy);
+  lease.kernels_at_start_ = lease.cached_->ctx->kernel_cache.size();
+  return lease;
 }
 
 DeviceLease lease_device(int device_index, bool validation) {

@@ -17,7 +17,6 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <mutex>
 
@@ -37,7 +36,8 @@ class DeviceLease {
   DeviceLease& operator=(DeviceLease&&) noexcept;
   ~DeviceLease();
 
-  vk::Context& context() const;
+  vk::Context& context() const;  // (not on an empty lease)
+  bool held() const { return cached_ || own_; }
   // True when this lease opened the device (nothing was cached for it, or it was busy):
   // open_seconds() is then the start-up this call paid.
   bool opened() const { return opened_; }
@@ -49,6 +49,7 @@ class DeviceLease {
 
  private:
   friend DeviceLease lease_device(int device_index, bool validation);
+  friend DeviceLease lease_cached_device(int device_index, bool validation);
   std::shared_ptr<CachedDevice> cached_;
   std::unique_lock<std::mutex> lock_;
   std::unique_ptr<vk::Context> own_;  // a private context (cache busy or full)
@@ -63,10 +64,10 @@ class DeviceLease {
 // be opened.
 DeviceLease lease_device(int device_index, bool validation);
 
-// Runs `body` on the cached context of device `device_index` (keyed as lease_device keys
-// it) where it is open and free; false, without running it, otherwise. For work that only
+// A lease on the cached context of device `device_index` (keyed as lease_device keys it)
+// where it is open and free; an empty lease (held() false) otherwise. For work that only
 // pays where the next call will find it (gpu_prestage.h), and that must not open a device.
-bool on_cached_device(int device_index, bool validation, const std::function<void(vk::Context&)>& body);
+DeviceLease lease_cached_device(int device_index, bool validation);
 
 // The device a meshsal::Device holds (its opaque handle): opened once, never cached, closed
 // when the last holder (the Device, a running call, a view scorer) lets go. A call holds

@@ -593,22 +593,28 @@ Mesh load_ply_bytes(std::string_view bytes, const std::string& name, VertexPrope
   Reader reader{bytes, name, mesh};
   const size_t end = read_body(reader, h, plan.plans, vertex, vertices_read);
   check_nothing_after(bytes, end, h.format == Format::Ascii, name);
-  if (observer) observer->triangles_read(mesh.triangles.data(), mesh.triangle_count());
+  // The origin, from the mesh points' box. Where the positions told were made at another
+  // (a vertex no triangle uses lies outside that box), the observer is ended before they
+  // are made again, and told nothing more.
+  const size_t nv = mesh.source_positions.size() / 3;
+  double origin[3];
+  model_origin(mesh, mesh.source_positions.data(), nv, origin);
+  const bool kept = observer && keeps_early_positions(early, nv, origin);
+  if (observer && !kept) observer->read_ended(false);
+  else if (observer) observer->triangles_read(mesh.triangles.data(), mesh.triangle_count());
   if (unread) *unread = std::move(plan.unread);
   for (size_t i = 0; i < plan.extras.size(); ++i) {
     if (properties) (*properties)[plan.extra_names[i]] = plan.extras[i];
     mesh.attributes.push_back({plan.extra_names[i], std::move(plan.extras[i])});
   }
+  set_model_positions_at(mesh, mesh.source_positions.data(), nv, origin, kept ? &early : nullptr);
   // A PLY stores a UV seam as vertices split at one position: found here, with or without
   // the attributes kept, so that saliency and simplification see one surface there, as for
   // an OBJ's v/vt corners (every front end reads a PLY so).
-  const size_t nv = mesh.source_positions.size() / 3;
-  double origin[3];
-  model_origin(mesh, mesh.source_positions.data(), nv, origin);
-  const bool kept = observer && keeps_early_positions(early, nv, origin);
-  if (observer && !kept) observer->read_ended(false);  // the positions it was given change
-  set_model_positions_at(mesh, mesh.source_positions.data(), nv, origin, kept ? &early : nullptr);
   find_seam_twins(mesh);
+  // Such a mesh is computed on its welded twin, whose arrays are others: the observer's
+  // work would be wasted.
+  if (kept && !mesh.position_vertex.empty()) observer->read_ended(false);
   if (!attributes) {
     for (const VertexAttribute& a : mesh.attributes) note_not_read(not_read, a.name);
     std::vector<VertexAttribute>().swap(mesh.attributes);

@@ -2,8 +2,8 @@
 // can overlap the rest of the read (the GPU path uploads a PLY's positions while its faces
 // are parsed: api/read_upload.h).
 //
-// The calls come on the reading thread, each at most once. The arrays they name are the
-// mesh's own. The loader calls read_ended(false) before it throws (the mesh is dropped) or
+// The calls come on the reading thread: positions_read and triangles_read at most once
+// each, read_ended once or more. The arrays they name are the mesh's own. The loader calls read_ended(false) before it throws (the mesh is dropped) or
 // changes them (positions made early at another origin: core/model_frame.h's
 // EarlyPositions): the observer must read them no more once that returns. It calls
 // read_ended(true) as it returns the mesh: the arrays live on, unchanged, in the mesh
@@ -25,7 +25,8 @@ class ReadObserver {
   // Mesh::positions as the mesh will have them (3 floats a vertex), before the faces are
   // read; or as they may be: nearly always (see EarlyPositions).
   virtual void positions_read(const float* positions, size_t vertex_count) = 0;
-  // Mesh::triangles as the mesh will have them (3 indices each).
+  // Mesh::triangles as the mesh will have them (3 indices each); not told where the
+  // positions told are made again.
   virtual void triangles_read(const uint32_t* triangles, size_t triangle_count) = 0;
   // The read is over: `returned`, with the mesh the arrays belong to; otherwise the
   // arrays are about to change or go, and this returns once the observer reads them no

@@ -39,12 +39,18 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 struct Held {
   uint64_t taken = 0, bytes = 0;
 };
+template <typename Body>
+void on_device0(Body&& body) {
+  gpu::DeviceLease lease = gpu::lease_cached_device(0, false);
+  REQUIRE(lease.held());
+  body(lease.context());
+}
 Held held_on_device0() {
   Held h;
-  REQUIRE(gpu::on_cached_device(0, false, [&](vk::Context& ctx) {
+  on_device0([&](vk::Context& ctx) {
     h.taken = ctx.prestaged_taken;
     h.bytes = gpu::prestaged_bytes(ctx);
-  }));
+  });
   return h;
 }
 
@@ -73,13 +79,14 @@ TEST_CASE("gpu prestage: a run takes the mesh uploaded ahead, with the same S bi
     const SaliencyOptions o = gpu_options(method);
     const SaliencyResult plain = compute_saliency(mesh, o);  // opens and caches device 0
     // The exact method takes them where the device computes its curvature.
-    REQUIRE(gpu::on_cached_device(0, false, [](vk::Context& ctx) { ctx.exact_curvature_on_device = 1; }));
+    on_device0([](vk::Context& ctx) { ctx.exact_curvature_on_device = 1; });
     const SaliencyResult device_h = compute_saliency(mesh, o);
     const Held before = held_on_device0();
     CHECK(before.bytes == 0);
     prestage_positions_gpu(o, mesh.positions.data(), mesh.vertex_count());
     prestage_triangles_gpu(o, mesh.triangles.data(), mesh.triangle_count());
-    CHECK(held_on_device0().bytes == mesh.vertex_count() * 16 + mesh.triangle_count() * 12);
+    // (each buffer rounded up to 16 bytes, as vk::Buffer makes it)
+    CHECK(held_on_device0().bytes == mesh.vertex_count() * 16 + ((mesh.triangle_count() * 12 + 15) & ~size_t(15)));
     const SaliencyResult ahead = compute_saliency(mesh, o);
     const Held after = held_on_device0();
     CHECK(after.taken == before.taken + 2);
@@ -87,7 +94,7 @@ TEST_CASE("gpu prestage: a run takes the mesh uploaded ahead, with the same S bi
     CHECK(same_bits(ahead.saliency, device_h.saliency));
     CHECK(same_bits(ahead.curvature, device_h.curvature));
     CHECK(same_bits(ahead.saliency, plain.saliency));  // and the host's curvature (exact)
-    REQUIRE(gpu::on_cached_device(0, false, [](vk::Context& ctx) { ctx.exact_curvature_on_device = -1; }));
+    on_device0([](vk::Context& ctx) { ctx.exact_curvature_on_device = -1; });
   }
   gpu::release_cached_devices();
 }
@@ -140,11 +147,11 @@ TEST_CASE("gpu prestage: a run reading a PLY uploads it while reading, with the 
       const bool ahead = ply && (method == Method::Fast || !cpu_device);
       CHECK(after.taken - before.taken == (ahead ? 2 : 0));
       CHECK(after.bytes == 0);
-      // The stages show it after the warm-up's wait.
-      const std::vector<StageTime>& stages = result.saliency.stages;
-      REQUIRE(stages.size() > 2);
-      CHECK(stages[0].name == "device warm-up");
-      CHECK((stages[1].name == "upload while reading") == ahead);
+      // The result says how long it took, apart from the stages (the read hid most of it);
+      // what the read did not hide is the warm-up's wait.
+      CHECK((result.upload_while_reading > 0) == ahead);
+      REQUIRE_FALSE(result.saliency.stages.empty());
+      CHECK(result.saliency.stages[0].name == "device warm-up");
       CHECK(same_bits(result.saliency.saliency, compute_saliency(read, r.saliency).saliency));
     }
   }

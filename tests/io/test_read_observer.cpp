@@ -77,11 +77,27 @@ TEST_CASE("read observer: positions made early at another origin are ended first
   write_mesh(dir.file("loose.ply"), mesh);
   Recorder seen;
   const LoadedMesh read = read_mesh_observed(dir.file("loose.ply"), {}, &seen);
-  // Ended before the positions change; then told the load returned.
-  CHECK(seen.calls == std::vector<std::string>{"positions", "triangles", "ended", "returned"});
+  // Ended before the positions change, told nothing more; then told the load returned.
+  CHECK(seen.calls == std::vector<std::string>{"positions", "ended", "returned"});
   CHECK_FALSE(same_bits(seen.positions, read.mesh.positions));
-  CHECK(seen.triangles == read.mesh.triangles);
+  CHECK(read.mesh.origin[0] != 0.0);
   check_same_mesh(read.mesh, load_mesh(dir.file("loose.ply")));
+}
+
+TEST_CASE("read observer: a PLY with seams is computed on other arrays, so its observer is ended", "[io]") {
+  // Two triangles on one square whose shared edge is split: vertices 3 and 4 sit where 1
+  // and 2 do, with another u (a UV seam).
+  const TempDir dir;
+  const std::string path = dir.write("seam.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                                     "property float z\nproperty float u\nelement face 2\n"
+                                     "property list uchar int vertex_indices\nend_header\n"
+                                     "0 0 0 0\n1 0 0 0\n0 1 0 0\n1 0 0 1\n0 1 0 1\n1 1 0 1\n3 0 1 2\n3 3 5 4\n");
+  Recorder seen;
+  const LoadedMesh read = read_mesh_observed(path, {}, &seen);
+  REQUIRE_FALSE(read.mesh.position_vertex.empty());
+  CHECK(seen.calls == std::vector<std::string>{"positions", "triangles", "ended", "returned"});
+  check_same_mesh(read.mesh, load_mesh(path));
 }
 
 TEST_CASE("read observer: a load that fails after telling ends the observer", "[io]") {
