@@ -66,21 +66,12 @@ bool ReadUpload::join(SaliencyOptions& resolved, double& waited, double& uploadi
 }
 
 const void* ReadUpload::next(bool& positions, size_t& count) {
-  if (positions_) {
-    positions = true;
-    count = vertex_count_;
-    const void* p = positions_;
-    positions_ = nullptr;
-    return p;
-  }
-  if (triangles_) {
-    positions = false;
-    count = triangle_count_;
-    const void* p = triangles_;
-    triangles_ = nullptr;
-    return p;
-  }
-  return nullptr;
+  positions = positions_ != nullptr;  // the positions first: they were told first
+  count = positions ? vertex_count_ : triangle_count_;
+  const void* p = positions ? static_cast<const void*>(positions_) : triangles_;
+  if (positions) positions_ = nullptr;
+  else triangles_ = nullptr;
+  return p;
 }
 
 void ReadUpload::run() {

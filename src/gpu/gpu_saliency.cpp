@@ -266,24 +266,27 @@ bool on_cached_device(const SaliencyOptions& options, const std::function<void(v
   return true;
 }
 
-}  // namespace
-
-bool prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
+// `upload` on the cached context where a run with `options` would upload it itself.
+bool prestage(const SaliencyOptions& options, const std::function<void(vk::Context&)>& upload) {
   bool uploaded = false;
   on_cached_device(options, [&](vk::Context& ctx) {
-    if ((uploaded = device_curvature_by_default(ctx, options.method)))
-      gpu::prestage_float_positions(ctx, positions, vertex_count, options.threads);
+    if ((uploaded = device_curvature_by_default(ctx, options.method))) upload(ctx);
   });
   return uploaded;
 }
 
-bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
-  bool uploaded = false;
-  on_cached_device(options, [&](vk::Context& ctx) {
-    if ((uploaded = device_curvature_by_default(ctx, options.method)))
-      gpu::prestage_triangles(ctx, triangles, triangle_count, options.threads);
+}  // namespace
+
+bool prestage_positions_gpu(const SaliencyOptions& options, const float* positions, size_t vertex_count) {
+  return prestage(options, [&](vk::Context& ctx) {
+    gpu::prestage_float_positions(ctx, positions, vertex_count, options.threads);
   });
-  return uploaded;
+}
+
+bool prestage_triangles_gpu(const SaliencyOptions& options, const uint32_t* triangles, size_t triangle_count) {
+  return prestage(options, [&](vk::Context& ctx) {
+    gpu::prestage_triangles(ctx, triangles, triangle_count, options.threads);
+  });
 }
 
 void drop_prestaged_gpu(const SaliencyOptions& options) {
