@@ -50,7 +50,8 @@ void model_origin(const Mesh& mesh, const double* xyz, size_t vertex_count, doub
 // Whether the positions `early` made are the ones `origin` gives.
 bool keeps_early_positions(const EarlyPositions& early, size_t vertex_count, const double origin[3]);
 // The rest of set_model_positions at `origin`: the positions made, or kept where `early`
-// (may be null) made them at it, and the source positions kept or dropped.
+// made them (null: none; given only where keeps_early_positions says they are origin's),
+// and the source positions kept or dropped.
 void set_model_positions_at(Mesh& mesh, const double* xyz, size_t vertex_count, const double origin[3],
                             const EarlyPositions* early);
 

@@ -65,8 +65,7 @@ bool keeps_early_positions(const EarlyPositions& early, size_t vertex_count, con
 void set_model_positions_at(Mesh& mesh, const double* xyz, size_t vertex_count, const double origin[3],
                             const EarlyPositions* early) {
   for (int k = 0; k < 3; ++k) mesh.origin[k] = origin[k];
-  const bool kept = early && mesh.positions.size() == 3 * vertex_count && keeps_early_positions(*early, vertex_count, origin);
-  const bool exact = kept ? early->exact : convert_positions(mesh, xyz, vertex_count, origin);
+  const bool exact = early ? early->exact : convert_positions(mesh, xyz, vertex_count, origin);
   if (exact) mesh.source_positions.clear();
   else if (mesh.source_positions.data() != xyz) mesh.source_positions.assign(xyz, xyz + 3 * vertex_count);
 }

@@ -577,11 +577,11 @@ SaliencyResult compute_saliency_gpu(vk::Context& ctx, const Mesh& mesh,
     device_curvature =
         fits_device(ctx, gpu_memory_estimate(nv, points, nsc, 0, ctx.use_staging, mixed) + curvature_bytes);
   }
-  // A run that will not take the float mesh frees what was uploaded ahead before it
-  // allocates anything (where the device's memory decided, that is what it lacked).
-  if (!device_curvature) gpu::drop_prestaged(ctx);
   Adjacency adj;
   if (!device_curvature) {
+    // A run that will not take the float mesh frees what was uploaded ahead before it
+    // allocates anything (where the device's memory decided, that is what it lacked).
+    gpu::drop_prestaged(ctx);
     t0.restart();
     adj = build_adjacency(mesh);
     res.curvature = mean_curvature(mesh, adj, vertex_normals(mesh), options.threads);

@@ -133,9 +133,7 @@ Mesh load_mesh(const std::string& path, const LoadOptions& options) {
 }
 
 LoadedMesh read_mesh(const std::string& path, const LoadOptions& options) {
-  LoadedMesh r;
-  r.mesh = load_file(path, options, &r.properties, &r.report);
-  return r;
+  return read_mesh_observed(path, options, nullptr);
 }
 
 LoadedMesh read_mesh_observed(const std::string& path, const LoadOptions& options, ReadObserver* observer) {
